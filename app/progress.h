@@ -1,0 +1,28 @@
+// Progress line for long work: simulated time, steps, rate and ETA on
+// stderr. On a terminal it redraws one line; otherwise (CI logs, pipes) it
+// prints a fresh line every few seconds.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+namespace simsols {
+
+class Progress {
+ public:
+  Progress(std::string label, std::int64_t total_steps, double dt, std::int64_t particles,
+           bool quiet);
+  void update(std::int64_t step, bool force = false);
+  void finish(std::int64_t step);
+
+ private:
+  std::string line(std::int64_t step) const;
+  std::string label_;
+  std::int64_t total_, first_step_ = -1, particles_;
+  double dt_;
+  bool quiet_, tty_;
+  std::chrono::steady_clock::time_point start_, last_;
+};
+
+}  // namespace simsols

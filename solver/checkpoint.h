@@ -1,0 +1,25 @@
+// Checkpoints: the complete dynamic state of a run, so that a resumed run
+// continues bit for bit as if it had never stopped (same device, same
+// precision).
+//
+// File layout (little endian): "SIMSOLS-CKPT" magic, format version, the
+// scene as exact TOML (to_toml), step, list builds, neighbour capacity, then
+// every dynamic buffer as (name, byte count, bytes). Files are written to a
+// temporary name and renamed, so a crash never leaves half a checkpoint.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "simulation.h"
+
+namespace simsols {
+
+void save_checkpoint(Simulation& sim, const std::string& path);
+
+// Rebuilds the simulation from a checkpoint. Throws SceneError (bad or
+// foreign file, named with its path) or DeviceError.
+std::unique_ptr<Simulation> load_checkpoint(std::shared_ptr<Device> device,
+                                            const std::string& path);
+
+}  // namespace simsols

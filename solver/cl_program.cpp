@@ -1,0 +1,92 @@
+#include "cl_program.h"
+
+#include <chrono>
+#include <vector>
+
+#include "kernel_source.h"
+
+namespace simsols {
+
+std::string KernelConfig::build_options() const {
+  std::string o = "-cl-std=CL1.2";
+  if (double_precision) o += " -DSIMSOLS_DOUBLE";
+  if (gravity) o += " -DHAS_GRAVITY";
+  if (damping) o += " -DHAS_DAMPING";
+  if (friction) o += " -DHAS_FRICTION";
+  if (rolling) o += " -DHAS_ROLLING";
+  if (walls) o += " -DHAS_WALLS";
+  if (interleaved_lists) o += " -DNBR_INTERLEAVED";
+  if (!extra_options.empty()) o += " " + extra_options;
+  return o;
+}
+
+KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
+  KernelConfig c;
+  c.double_precision = scene.numerics.precision == Precision::Double;
+  if (c.double_precision && !device.has_double())
+    throw DeviceError("numerics.precision = \"double\" but the OpenCL device " + device.name() +
+                      " has no cl_khr_fp64; use precision = \"float\"");
+  c.gravity = scene.has_gravity();
+  bool any_friction = false, any_rolling = false, any_damping = false;
+  for (const Material& m : scene.materials) {
+    any_friction = any_friction || m.sliding_friction > 0;
+    any_rolling = any_rolling || m.rolling_friction > 0;
+    any_damping = any_damping || m.restitution < 1;
+  }
+  for (const PairOverride& p : scene.pair_overrides) {
+    any_friction = any_friction || p.sliding_friction.value_or(0) > 0;
+    any_rolling = any_rolling || p.rolling_friction.value_or(0) > 0;
+    any_damping = any_damping || p.restitution.value_or(1) < 1;
+  }
+  c.damping = scene.effects.damping && any_damping;
+  c.friction = scene.effects.tangential_friction && any_friction;
+  c.rolling = scene.effects.rolling_friction && any_rolling;
+  c.walls = !scene.walls.empty();
+  c.interleaved_lists = device.is_gpu();
+  return c;
+}
+
+std::string program_source() {
+  std::string text;
+  for (const KernelFile& f : kernel_files()) {
+    text += "#line 1 \"";
+    text += f.name;
+    text += "\"\n";
+    text += f.text;
+    text += "\n";
+  }
+  return text;
+}
+
+Program::Program(Device& device, const KernelConfig& config) : config_(config) {
+  const std::string text = program_source();
+  const char* src = text.c_str();
+  const size_t len = text.size();
+  cl_int err = CL_SUCCESS;
+  program_ = ClProgram(clCreateProgramWithSource(device.context(), 1, &src, &len, &err));
+  check(err, "clCreateProgramWithSource");
+  const std::string options = config.build_options();
+  cl_device_id id = device.id();
+  const auto t0 = std::chrono::steady_clock::now();
+  err = clBuildProgram(program_.get(), 1, &id, options.c_str(), nullptr, nullptr);
+  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (err != CL_SUCCESS) {
+    size_t n = 0;
+    clGetProgramBuildInfo(program_.get(), id, CL_PROGRAM_BUILD_LOG, 0, nullptr, &n);
+    std::string log(n, '\0');
+    clGetProgramBuildInfo(program_.get(), id, CL_PROGRAM_BUILD_LOG, n, log.data(), nullptr);
+    throw DeviceError("OpenCL kernel build failed (error " + std::to_string(err) +
+                      ", options '" + options + "') on " + device.name() + ":\n" + log);
+  }
+}
+
+ClKernel Program::kernel(const char* name) const {
+  cl_int err = CL_SUCCESS;
+  cl_kernel k = clCreateKernel(program_.get(), name, &err);
+  if (err != CL_SUCCESS)
+    throw DeviceError(std::string("kernel '") + name + "' missing from the program (error " +
+                      std::to_string(err) + ")");
+  return ClKernel(k);
+}
+
+}  // namespace simsols

@@ -1,0 +1,52 @@
+// Kernel program: the embedded .cl sources built for one configuration.
+//
+// A KernelConfig is derived from the Scene (make_kernel_config): precision
+// and the optional physics the scene uses become -D options, so a scene pays
+// only for what it calls for (MuJoCo's "disable flags", decided at build
+// time instead of at run time). A failed build throws DeviceError carrying
+// the full build log; nothing fails silently.
+#pragma once
+
+#include <string>
+
+#include "cl_device.h"
+#include "scene.h"
+
+namespace simsols {
+
+struct KernelConfig {
+  bool double_precision = true;
+  bool gravity = true;
+  bool damping = true;
+  bool friction = true;
+  bool rolling = true;
+  bool walls = true;
+  bool interleaved_lists = false;  // neighbour slot layout k*n+i (GPUs)
+  std::string extra_options;       // appended verbatim (diagnostics, tests)
+
+  std::string build_options() const;
+  bool operator==(const KernelConfig&) const = default;
+};
+
+KernelConfig make_kernel_config(const Scene& scene, const Device& device);
+
+class Program {
+ public:
+  // Builds the program; throws DeviceError with the build log on failure.
+  Program(Device& device, const KernelConfig& config);
+
+  ClKernel kernel(const char* name) const;  // throws DeviceError if absent
+  const KernelConfig& config() const { return config_; }
+  double build_seconds() const { return build_seconds_; }
+
+ private:
+  ClProgram program_;
+  KernelConfig config_;
+  double build_seconds_ = 0;
+};
+
+// The full program text for a configuration (prelude of #defines is passed
+// as build options, not text). Exposed for tools and tests.
+std::string program_source();
+
+}  // namespace simsols

@@ -1,0 +1,62 @@
+// Contact model: the per-material-pair coefficients of the paper's eq. (1).
+//
+// The force laws themselves live in kernels/contact_law.cl (the single source
+// of the physics). This file derives, once per Scene, the constants those
+// laws need, and the stable time step:
+//
+//   normal    F_n  = K_n d^{3/2} + gamma_n sqrt(m* K_n) d^{1/4} v_n,  F_n >= 0
+//             K_n  = 4/3 E* sqrt(R*)            (Hertz; the paper prints d^2)
+//   tangent   K_t  = 8 G* sqrt(R* d)            (Mindlin, N/m)
+//             C_t  = gamma_n sqrt(m* K_t)       (the paper's C_t = C_n sqrt(K_t/K_n)
+//                                                with K_n the Hertz secant stiffness)
+//             |F_t| <= mu_s F_n
+//   rolling   M    = -min(mu_r F_n, I* |w_r| / dt) w_r/|w_r|
+//
+// gamma_n is not the linear-spring formula: for a Hertz spring with a
+// d^{1/4} dashpot the restitution coefficient depends on gamma_n alone
+// (not on the impact speed), and damping_for_restitution() inverts that
+// relation numerically so the simulated restitution equals the input.
+// See docs/model.md.
+#pragma once
+
+#include <vector>
+
+#include "scene.h"
+
+namespace simsols {
+
+// Coefficients of one (material a, material b) pair, SI units.
+struct PairCoefficients {
+  double e_star = 0;      // effective Young modulus E*, Pa
+  double g_star = 0;      // effective shear modulus G*, Pa
+  double gamma_n = 0;     // dimensionless damping, from the pair restitution
+  double restitution = 1;
+  double sliding_friction = 0;
+  double rolling_friction = 0;  // m
+};
+
+// Pair table, row-major [a * n + b], symmetric.
+struct PairTable {
+  int n = 0;
+  std::vector<PairCoefficients> pairs;
+  const PairCoefficients& at(int a, int b) const { return pairs[a * n + b]; }
+};
+
+PairTable make_pair_table(const Scene& scene);
+
+// Dimensionless damping gamma such that a Hertz contact with
+// F = K d^{3/2} + gamma sqrt(m K) d^{1/4} v (clamped at F >= 0) rebounds with
+// restitution `e` in (0, 1]. gamma(1) = 0. Accurate to ~1e-10 in e.
+double damping_for_restitution(double e);
+// The inverse: restitution produced by a dimensionless damping gamma >= 0.
+double restitution_for_damping(double gamma);
+
+// Rayleigh time step of the smallest particle over all materials used:
+//   dt_R = pi R sqrt(rho / G) / (0.1631 nu + 0.8766).
+// Returns 0 when the scene has no particles.
+double rayleigh_time_step(const Scene& scene);
+
+// The time step a run uses: numerics.dt if set, else dt_fraction x dt_R.
+double effective_time_step(const Scene& scene);
+
+}  // namespace simsols

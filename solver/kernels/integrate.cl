@@ -1,0 +1,38 @@
+// integrate.cl — stage: integrate (leapfrog / kick-drift, second order).
+//
+//   v_{n+1/2} = v_{n-1/2} + (F_n / m + g) dt,   w likewise with T_n / I
+//   x_{n+1}   = x_n + v_{n+1/2} dt              (compensated in float runs)
+//
+// Velocities in the state are the half-step ones; observables (reduce.cl)
+// re-centre them to v_n. Also raises flags[0] when a particle has moved more
+// than skin/2 since the last neighbour-list build.
+
+__kernel void integrate(__global real4* pos POS_LO_ARG, __global real4* vel,
+                        __global real4* omega, __global const real4* force,
+                        __global const real4* torque, __global const real4* pos_build,
+                        __global int* flags, real4 gravity, real dt, real half_skin2, int n) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  real4 v = vel[i];
+  real4 w = omega[i];
+  real4 x = pos[i];
+  const real m = v.w;
+  real3 a = force[i].xyz / m;
+#ifdef HAS_GRAVITY
+  a += gravity.xyz;
+#endif
+  v.xyz += a * dt;
+  w.xyz += torque[i].xyz * (dt / ((real)0.4 * m * x.w * x.w));
+#ifdef POS_COMPENSATED
+  float4 lo = pos_lo[i];
+  add_compensated(&x, &lo, v.xyz * dt);
+  pos_lo[i] = lo;
+#else
+  x.xyz += v.xyz * dt;
+#endif
+  vel[i] = v;
+  omega[i] = w;
+  pos[i] = x;
+  const real3 moved = x.xyz - pos_build[i].xyz;
+  if (dot(moved, moved) > half_skin2) flags[0] = 1;
+}

@@ -1,0 +1,74 @@
+// neighbors.cl — Verlet neighbour lists with a skin (stage: detect contacts, part 2).
+//
+// Each particle i keeps the sorted list of particles j != i with
+// |x_j - x_i| < r_i + r_j + skin (a "full" list: the pair appears in both
+// lists and each side computes the contact; no atomics, deterministic sums).
+// Every list slot carries the tangential spring of that contact. On a rebuild
+// the springs are carried over from the previous list by a merge join on j,
+// so contact history survives every rebuild. The list is rebuilt when some
+// particle has moved more than skin/2 since the last build (integrate.cl).
+//
+// flags[1] receives the largest list length requested when a list overflows
+// its capacity; the host then grows the capacity and rebuilds.
+
+#define MAX_CAP 256
+
+__kernel void build_neighbors(__global const real4* pos POS_LO_CARG,
+                              __global const uint* count, __global const uint* start,
+                              __global const int* sorted,
+                              __global const int* old_count, __global const int* old_nbr,
+                              __global const real4* old_spring,
+                              __global int* nbr_count, __global int* nbr, __global real4* spring,
+                              __global real4* pos_build, __global volatile int* flags,
+                              real inv_cell, real skin, uint table, int cap, int n) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  const real4 pi = pos[i];
+  const int3 ci = cell_of(pi.xyz, inv_cell);
+
+  int list[MAX_CAP];
+  int len = 0;
+  int wanted = 0;
+  uint seen[27];
+  int nseen = 0;
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const uint b = hash_cell(ci + (int3)(dx, dy, dz), table);
+        bool dup = false;
+        for (int s = 0; s < nseen; ++s) dup = dup || (seen[s] == b);
+        if (dup) continue;
+        seen[nseen++] = b;
+        const uint s0 = start[b];
+        const uint s1 = s0 + count[b];
+        for (uint s = s0; s < s1; ++s) {
+          const int j = sorted[s];
+          if (j == i) continue;
+          const real4 pj = pos[j];
+          const real3 d = rel_pos(pi, pj LO(i) LO(j));
+          const real cut = pi.w + pj.w + skin;
+          if (dot(d, d) >= cut * cut) continue;
+          ++wanted;
+          if (len >= cap) continue;
+          // insertion keeps the list sorted by j: deterministic order
+          int k = len++;
+          while (k > 0 && list[k - 1] > j) { list[k] = list[k - 1]; --k; }
+          list[k] = j;
+        }
+      }
+  if (wanted > cap) atomic_max(&flags[1], wanted);
+
+  // Carry the springs over: both lists are sorted by j.
+  const int olen = old_count[i];
+  int o = 0;
+  for (int k = 0; k < len; ++k) {
+    const int j = list[k];
+    while (o < olen && old_nbr[NBR(i, o, n, cap)] < j) ++o;
+    real4 sp = (real4)(0);
+    if (o < olen && old_nbr[NBR(i, o, n, cap)] == j) sp = old_spring[NBR(i, o, n, cap)];
+    nbr[NBR(i, k, n, cap)] = j;
+    spring[NBR(i, k, n, cap)] = sp;
+  }
+  nbr_count[i] = len;
+  pos_build[i] = pi;
+}

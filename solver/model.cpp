@@ -1,0 +1,105 @@
+#include "model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "errors.h"
+
+namespace simsols {
+namespace {
+
+// Host-side packing of doubles into the device's real type.
+class RealPacker {
+ public:
+  explicit RealPacker(bool dbl) : dbl_(dbl) {}
+  void push(double v) {
+    if (dbl_) {
+      const auto* p = reinterpret_cast<const unsigned char*>(&v);
+      bytes_.insert(bytes_.end(), p, p + sizeof v);
+    } else {
+      const float f = static_cast<float>(v);
+      const auto* p = reinterpret_cast<const unsigned char*>(&f);
+      bytes_.insert(bytes_.end(), p, p + sizeof f);
+    }
+  }
+  void push4(double a, double b, double c, double d) { push(a); push(b); push(c); push(d); }
+  const std::vector<unsigned char>& bytes() const { return bytes_; }
+
+ private:
+  bool dbl_;
+  std::vector<unsigned char> bytes_;
+};
+
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+}  // namespace
+
+Model::Model(std::shared_ptr<Device> device, const Scene& scene)
+    : device_(std::move(device)), scene_(scene) {
+  if (scene_.particles.empty())
+    throw SceneError("no_particles", scene_.source_path, 0, "particles", "the scene has no particles");
+  program_ = std::make_unique<Program>(*device_, make_kernel_config(scene_, *device_));
+  const Program& p = *program_;
+  kernels_.grid_clear = p.kernel("grid_clear");
+  kernels_.grid_count = p.kernel("grid_count");
+  kernels_.scan_chunks = p.kernel("scan_chunks");
+  kernels_.scan_totals = p.kernel("scan_totals");
+  kernels_.scan_apply = p.kernel("scan_apply");
+  kernels_.grid_scatter = p.kernel("grid_scatter");
+  kernels_.build_neighbors = p.kernel("build_neighbors");
+  kernels_.contact_forces = p.kernel("contact_forces");
+  kernels_.integrate = p.kernel("integrate");
+  kernels_.reduce_observables = p.kernel("reduce_observables");
+  if (config().walls) {
+    kernels_.wall_forces = p.kernel("wall_forces");
+    kernels_.advance_walls = p.kernel("advance_walls");
+    kernels_.reduce_walls = p.kernel("reduce_walls");
+  }
+
+  rayleigh_dt_ = rayleigh_time_step(scene_);
+  dt_ = effective_time_step(scene_);
+  double rmax = 0;
+  Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (const Particle& q : scene_.particles) {
+    rmax = std::max(rmax, q.radius);
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], q.position[a]);
+      hi[a] = std::max(hi[a], q.position[a]);
+    }
+  }
+  skin_ = scene_.numerics.skin > 0 ? scene_.numerics.skin : 0.2 * rmax;
+  cell_size_ = 2 * rmax + skin_;
+  // The float frame is centred on the initial packing, rounded to a cell so
+  // that origins are exact and reproducible.
+  for (int a = 0; a < 3; ++a) origin_[a] = std::round(0.5 * (lo[a] + hi[a]) / cell_size_) * cell_size_;
+
+  pairs_ = make_pair_table(scene_);
+  const bool dbl = config().double_precision;
+  RealPacker pk(dbl);
+  for (const PairCoefficients& c : pairs_.pairs) {
+    pk.push4(c.e_star, c.g_star, c.gamma_n, c.sliding_friction);
+    pk.push4(c.rolling_friction, 0, 0, 0);
+  }
+  pair_buf_ = device_->alloc(pk.bytes().size(), pk.bytes().data());
+
+  RealPacker wk(dbl);
+  for (const Wall& w : scene_.walls) {
+    const Vec3 v = cross(w.normal, w.axis_u);
+    wk.push4(w.point[0] - origin_[0], w.point[1] - origin_[1], w.point[2] - origin_[2],
+             w.shape == WallShape::Plane ? 0 : 1);
+    wk.push4(w.normal[0], w.normal[1], w.normal[2], w.material);
+    wk.push4(w.axis_u[0], w.axis_u[1], w.axis_u[2], w.half_u);
+    wk.push4(v[0], v[1], v[2], w.half_v);
+  }
+  wall_buf_ = device_->alloc(wk.bytes().size(), wk.bytes().data());
+  local_size_ = 64;
+}
+
+size_t Model::device_bytes() const {
+  return pairs_.pairs.size() * 8 * real_size() + scene_.walls.size() * 16 * real_size();
+}
+
+}  // namespace simsols

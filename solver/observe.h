@@ -1,0 +1,57 @@
+// Observe: what a run measures, read back from the device.
+//
+// observe() sums per-particle observables with a device reduction in a fixed
+// order (deterministic) and adds the group partials in double on the host.
+// wall_reactions() gives the force the particles exert on each wall.
+// download() copies the particle state to the host (for dumps, tests and
+// the renderer's host path); state_hash() hashes the raw dynamic buffers
+// bit for bit.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "model.h"
+#include "state.h"
+
+namespace simsols {
+
+struct Observables {
+  double kinetic_translational = 0;  // J, at synchronized velocities v_n
+  double kinetic_rotational = 0;     // J
+  double elastic_energy = 0;         // J, 2/5 K_n d^{5/2} summed over contacts
+  double gravitational_energy = 0;   // J, -m g.x relative to the scene origin
+  double contacts = 0;               // sum over particles of touching partners (pairs twice, walls once)
+  double particles = 0;
+  Vec3 momentum{};                   // kg m/s
+  Vec3 angular_momentum{};           // kg m^2/s, about the scene origin
+  double kinetic() const { return kinetic_translational + kinetic_rotational; }
+  double total_energy() const { return kinetic() + elastic_energy + gravitational_energy; }
+};
+
+struct WallReaction {
+  Vec3 force{};  // N, exerted by the particles on the wall
+  int contacts = 0;
+};
+
+Observables observe(const Model& model, State& state);
+std::vector<WallReaction> wall_reactions(const Model& model, State& state);
+// Current position of each wall's reference point (absolute, m).
+std::vector<Vec3> wall_points(const Model& model, State& state);
+
+struct ParticleSnapshot {
+  std::vector<Vec3> position;          // absolute, m
+  std::vector<Vec3> velocity;          // m/s (half-step velocities of the leapfrog)
+  std::vector<Vec3> angular_velocity;  // rad/s
+  std::vector<Vec3> force;             // N, last contact + wall force
+  std::vector<double> radius;          // m
+  std::vector<int> material;
+  std::vector<int> contacts;           // touching neighbours + walls
+};
+
+ParticleSnapshot download(const Model& model, State& state);
+
+// FNV-1a over the dynamic buffers (positions, velocities, springs, lists...).
+std::uint64_t state_hash(const Model& model, State& state);
+
+}  // namespace simsols

@@ -1,0 +1,120 @@
+#include "pipeline.h"
+
+#include <algorithm>
+
+#include "kernel_args.h"
+
+namespace simsols {
+namespace {
+
+constexpr int kMaxNeighbors = 256;  // MAX_CAP in neighbors.cl
+
+Real4 gravity4(const Model& m) {
+  const Vec3& g = m.scene().effects.gravity;
+  return {g[0], g[1], g[2], 0};
+}
+
+void build_grid(const Model& m, State& s) {
+  const Kernels& k = m.kernels();
+  const Real inv_cell{1.0 / m.cell_size()};
+  set_args(m, k.grid_clear, s.cell_count, s.table);
+  launch_exact(m, k.grid_clear, s.table);
+  set_args(m, k.grid_count, s.pos, s.bucket, s.slot, s.cell_count, inv_cell, s.table, s.n);
+  launch(m, k.grid_count, s.n);
+  set_args(m, k.scan_chunks, s.cell_count, s.chunk_sum, s.table, s.chunk_len);
+  launch_exact(m, k.scan_chunks, s.chunks);
+  set_args(m, k.scan_totals, s.chunk_sum, s.chunks);
+  launch_exact(m, k.scan_totals, 1);
+  set_args(m, k.scan_apply, s.cell_count, s.chunk_sum, s.cell_start, s.table, s.chunk_len);
+  launch_exact(m, k.scan_apply, s.chunks);
+  set_args(m, k.grid_scatter, s.bucket, s.slot, s.cell_start, s.sorted, s.n);
+  launch(m, k.grid_scatter, s.n);
+}
+
+// Returns the longest list asked for (> cap on overflow).
+int build_lists(const Model& m, State& s) {
+  const Kernels& k = m.kernels();
+  set_args(m, k.build_neighbors, s.pos, s.pos_lo, s.cell_count, s.cell_start, s.sorted,
+           s.old_count, s.old_nbr, s.old_spring, s.nbr_count, s.nbr, s.spring, s.pos_build,
+           s.flags, Real{1.0 / m.cell_size()}, Real{m.skin()}, s.table, s.cap, s.n);
+  launch(m, k.build_neighbors, s.n);
+  int flags[2] = {0, 0};
+  m.device().read(s.flags.get(), sizeof flags, flags);
+  return flags[1];
+}
+
+}  // namespace
+
+void detect_contacts(const Model& m, State& s, bool force_rebuild) {
+  int flags[2] = {0, 0};
+  m.device().read(s.flags.get(), sizeof flags, flags);
+  if (!flags[0] && !force_rebuild) return;
+  const int zero[2] = {0, 0};
+  m.device().write(s.flags.get(), sizeof zero, zero);
+
+  build_grid(m, s);
+  // The lists in use become the "old" ones the springs are carried from.
+  s.nbr.mem.swap(s.old_nbr.mem);
+  s.spring.mem.swap(s.old_spring.mem);
+  s.nbr_count.mem.swap(s.old_count.mem);
+  int wanted = build_lists(m, s);
+  while (wanted > s.cap) {
+    if (wanted > kMaxNeighbors)
+      throw DeviceError("a particle has " + std::to_string(wanted) +
+                        " neighbours within the skin (limit 256): reduce numerics.skin or the "
+                        "size ratio");
+    s.grow_lists(m, std::min(kMaxNeighbors, std::max(wanted + wanted / 4, 2 * s.cap)));
+    m.device().write(s.flags.get(), sizeof zero, zero);
+    wanted = build_lists(m, s);
+  }
+  ++s.list_builds;
+}
+
+void contact_forces(const Model& m, State& s) {
+  const Kernels& k = m.kernels();
+  set_args(m, k.contact_forces, s.pos, s.pos_lo, s.vel, s.omega, s.nbr_count, s.nbr, s.spring,
+           m.pair_buffer(), s.force, s.torque, Real{m.dt()}, s.cap, s.n, m.pairs().n);
+  launch(m, k.contact_forces, s.n);
+}
+
+void wall_forces(const Model& m, State& s) {
+  if (!m.config().walls) return;
+  const Kernels& k = m.kernels();
+  if (m.config().double_precision) {
+    set_args(m, k.wall_forces, s.pos, s.pos_lo, s.vel, s.omega, m.wall_buffer(), s.wall_point,
+             s.wall_vel, s.wall_spring, s.wall_force, m.pair_buffer(), s.force, s.torque,
+             Real{m.dt()}, s.n, m.walls(), m.pairs().n);
+  } else {
+    set_args(m, k.wall_forces, s.pos, s.pos_lo, s.vel, s.omega, m.wall_buffer(), s.wall_point,
+             s.wall_point_lo, s.wall_vel, s.wall_spring, s.wall_force, m.pair_buffer(), s.force,
+             s.torque, Real{m.dt()}, s.n, m.walls(), m.pairs().n);
+  }
+  launch(m, k.wall_forces, s.n);
+}
+
+void integrate(const Model& m, State& s) {
+  const Kernels& k = m.kernels();
+  const double half_skin = 0.5 * m.skin();
+  set_args(m, k.integrate, s.pos, s.pos_lo, s.vel, s.omega, s.force, s.torque, s.pos_build,
+           s.flags, gravity4(m), Real{m.dt()}, Real{half_skin * half_skin}, s.n);
+  launch(m, k.integrate, s.n);
+  if (m.config().walls) {
+    if (m.config().double_precision)
+      set_args(m, k.advance_walls, s.wall_point, s.wall_vel, Real{m.dt()}, m.walls());
+    else
+      set_args(m, k.advance_walls, s.wall_point, s.wall_point_lo, s.wall_vel, Real{m.dt()},
+               m.walls());
+    launch_exact(m, k.advance_walls, m.walls());
+  }
+  ++s.step;
+  s.time = s.step * m.dt();
+}
+
+void step(const Model& m, State& s) {
+  detect_contacts(m, s);
+  contact_forces(m, s);
+  wall_forces(m, s);
+  integrate(m, s);
+}
+
+}  // namespace simsols

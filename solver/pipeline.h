@@ -1,0 +1,27 @@
+// Pipeline: one DEM step as named stages over (Model, State), in order.
+//
+//   detect_contacts  rebuild grid + neighbour lists when a particle has moved
+//                    more than skin/2 (springs carried over)   grid.cl, neighbors.cl
+//   contact_forces   particle-particle forces and torques      forces.cl
+//   wall_forces      particle-wall forces; returns early when
+//                    the scene has no walls                     walls.cl
+//   integrate        leapfrog kick-drift, walls advanced        integrate.cl
+//
+// step() runs the four in this order. Stages only enqueue kernels on the
+// device's in-order queue; detect_contacts reads one flag back per step.
+// Reductions for observables are in observe.h.
+#pragma once
+
+#include "model.h"
+#include "state.h"
+
+namespace simsols {
+
+void detect_contacts(const Model& model, State& state, bool force_rebuild = false);
+void contact_forces(const Model& model, State& state);
+void wall_forces(const Model& model, State& state);
+void integrate(const Model& model, State& state);
+
+void step(const Model& model, State& state);
+
+}  // namespace simsols

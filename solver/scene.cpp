@@ -1,0 +1,358 @@
+// Scene helpers and the semantic validation shared by scenes built in code
+// and scenes loaded from TOML (see scene_toml.h for the two-pass design).
+#include "scene.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <utility>
+
+#include "contact_model.h"
+#include "errors.h"
+#include "scene_toml.h"
+
+namespace simsols {
+
+int Scene::material_index(const std::string& material_name) const {
+  for (size_t i = 0; i < materials.size(); ++i)
+    if (materials[i].name == material_name) return static_cast<int>(i);
+  return -1;
+}
+
+bool Scene::has_gravity() const {
+  return effects.gravity[0] != 0 || effects.gravity[1] != 0 || effects.gravity[2] != 0;
+}
+
+// ---------------------------------------------------------------------------
+// detail: number formatting and the sphere grid (also used by the loader).
+
+namespace detail {
+
+std::string format_number(double v) {
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, res.ptr);
+}
+
+SphereGrid::SphereGrid(double cell_size)
+    : inv_cell_(cell_size > 0 && std::isfinite(cell_size) ? 1.0 / cell_size : 1.0) {}
+
+SphereGrid::Cell SphereGrid::cell_of(const Vec3& p) const {
+  // Clamped far beyond any sensible scene, only to keep the cast defined.
+  constexpr double kLimit = 1e15;
+  auto c = [&](double x) {
+    return static_cast<std::int64_t>(std::clamp(std::floor(x * inv_cell_), -kLimit, kLimit));
+  };
+  return {c(p[0]), c(p[1]), c(p[2])};
+}
+
+size_t SphereGrid::CellHash::operator()(const Cell& c) const {
+  std::uint64_t h = static_cast<std::uint64_t>(c.x) * 0x9E3779B97F4A7C15ull;
+  h ^= static_cast<std::uint64_t>(c.y) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+  h ^= static_cast<std::uint64_t>(c.z) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+  return static_cast<size_t>(h ^ (h >> 29));
+}
+
+void SphereGrid::insert(int index, const Vec3& center) {
+  cells_[cell_of(center)].push_back(index);
+}
+
+}  // namespace detail
+
+// ---------------------------------------------------------------------------
+// Validation. Checks throw an Issue internally; find_scene_issue() catches
+// the first one.
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Tolerances (documented in docs/scene-format.md).
+constexpr double kUnitTolerance = 1e-9;           // | |v| - 1 | for unit vectors
+constexpr double kPerpendicularTolerance = 1e-6;  // |normal . axis_u|
+constexpr double kMaxOverlapFraction = 0.01;      // of the smaller radius
+
+struct Issue {
+  SceneIssue issue;
+};
+
+[[noreturn]] void fail(std::string code, std::string field, std::string message) {
+  throw Issue{{std::move(code), std::move(field), std::move(message)}};
+}
+
+// A real interval with open or closed ends, printed as "[0, 0.5)".
+struct Interval {
+  double lo, hi;
+  bool lo_open, hi_open;
+  bool contains(double v) const {
+    return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+  }
+  std::string str() const {
+    return std::string(lo_open ? "(" : "[") + detail::format_number(lo) + ", " +
+           detail::format_number(hi) + (hi_open ? ")" : "]");
+  }
+};
+
+constexpr Interval kPositive{0, kInf, true, true};
+constexpr Interval kNonNegative{0, kInf, false, true};
+constexpr Interval kRestitution{0, 1, true, false};
+
+std::string at(const std::string& base, size_t i) { return base + "[" + std::to_string(i) + "]"; }
+
+void check_finite(const std::string& field, double v) {
+  if (!std::isfinite(v))
+    fail("not_finite", field, detail::format_number(v) + " is not a finite number");
+}
+
+void check_number(const std::string& field, double v, const Interval& allowed) {
+  check_finite(field, v);
+  if (!allowed.contains(v))
+    fail("out_of_range", field,
+         detail::format_number(v) + " is out of range, allowed " + allowed.str());
+}
+
+void check_vector(const std::string& field, const Vec3& v) {
+  for (size_t k = 0; k < 3; ++k)
+    if (!std::isfinite(v[k]))
+      fail("not_finite", field,
+           "component " + std::to_string(k) + " is " + detail::format_number(v[k]) +
+               ", not a finite number");
+}
+
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+void check_material_ref(const Scene& s, const std::string& field, int index) {
+  if (index < 0 || index >= static_cast<int>(s.materials.size()))
+    fail("unknown_material", field,
+         "material index " + std::to_string(index) + " does not exist, allowed [0, " +
+             std::to_string(s.materials.size()) + ")");
+}
+
+void check_name(const std::string& field, const std::string& name, std::set<std::string>& seen) {
+  if (name.empty()) fail("missing_field", field, "the name must not be empty");
+  if (!seen.insert(name).second)
+    fail("duplicate_name", field, "the name '" + name + "' is already used");
+}
+
+void check_materials(const Scene& s) {
+  std::set<std::string> names;
+  for (size_t i = 0; i < s.materials.size(); ++i) {
+    const Material& m = s.materials[i];
+    const std::string f = at("materials", i);
+    check_name(f + ".name", m.name, names);
+    check_number(f + ".young_modulus", m.young_modulus, kPositive);
+    check_number(f + ".poisson_ratio", m.poisson_ratio, {0, 0.5, false, true});
+    check_number(f + ".density", m.density, kPositive);
+    check_number(f + ".restitution", m.restitution, kRestitution);
+    check_number(f + ".sliding_friction", m.sliding_friction, kNonNegative);
+    check_number(f + ".rolling_friction", m.rolling_friction, kNonNegative);
+  }
+}
+
+void check_pair_overrides(const Scene& s) {
+  std::set<std::pair<int, int>> pairs;
+  for (size_t i = 0; i < s.pair_overrides.size(); ++i) {
+    const PairOverride& o = s.pair_overrides[i];
+    const std::string f = at("interactions", i);
+    check_material_ref(s, f + ".materials", o.material_a);
+    check_material_ref(s, f + ".materials", o.material_b);
+    if (!pairs.insert(std::minmax(o.material_a, o.material_b)).second)
+      fail("duplicate_name", f + ".materials",
+           "the pair ('" + s.materials[o.material_a].name + "', '" +
+               s.materials[o.material_b].name + "') already has an interaction");
+    if (o.restitution) check_number(f + ".restitution", *o.restitution, kRestitution);
+    if (o.sliding_friction)
+      check_number(f + ".sliding_friction", *o.sliding_friction, kNonNegative);
+    if (o.rolling_friction)
+      check_number(f + ".rolling_friction", *o.rolling_friction, kNonNegative);
+  }
+}
+
+void check_particles(const Scene& s) {
+  if (s.particles.empty())
+    fail("no_particles", "particles",
+         "the scene has no particles; add [[particles]] or [[generators]]");
+  for (size_t i = 0; i < s.particles.size(); ++i) {
+    const Particle& p = s.particles[i];
+    const std::string f = at("particles", i);
+    check_material_ref(s, f + ".material", p.material);
+    check_number(f + ".radius", p.radius, kPositive);
+    check_vector(f + ".position", p.position);
+    check_vector(f + ".velocity", p.velocity);
+    check_vector(f + ".angular_velocity", p.angular_velocity);
+  }
+}
+
+void check_unit(const std::string& field, const Vec3& v, const char* zero_code) {
+  check_vector(field, v);
+  const double n = norm(v);
+  if (n == 0) fail(zero_code, field, "must not be the zero vector");
+  if (std::abs(n - 1) > kUnitTolerance)
+    fail("bad_vector", field,
+         "must be a unit vector, its length is " + detail::format_number(n) + " (allowed 1 +- " +
+             detail::format_number(kUnitTolerance) + ")");
+}
+
+void check_wall(const Scene& s, size_t i, std::set<std::string>& names) {
+  const Wall& w = s.walls[i];
+  const std::string f = at("walls", i);
+  check_name(f + ".name", w.name, names);
+  check_material_ref(s, f + ".material", w.material);
+  check_vector(f + ".point", w.point);
+  check_vector(f + ".velocity", w.velocity);
+  check_unit(f + ".normal", w.normal, "zero_normal");
+  if (w.shape != WallShape::Rectangle) return;
+  check_unit(f + ".axis_u", w.axis_u, "bad_vector");
+  const double d = dot(w.normal, w.axis_u);
+  if (std::abs(d) > kPerpendicularTolerance)
+    fail("bad_vector", f + ".axis_u",
+         "must be perpendicular to the normal: normal . axis_u = " + detail::format_number(d) +
+             ", allowed |.| <= " + detail::format_number(kPerpendicularTolerance));
+  check_number(f + ".half_u", w.half_u, kPositive);
+  check_number(f + ".half_v", w.half_v, kPositive);
+}
+
+std::array<Vec3, 4> rectangle_corners(const Wall& w) {
+  const Vec3 v = cross(w.normal, w.axis_u);
+  std::array<Vec3, 4> c{};
+  const double su[4] = {1, 1, -1, -1}, sv[4] = {1, -1, 1, -1};
+  for (int k = 0; k < 4; ++k)
+    for (int d = 0; d < 3; ++d)
+      c[k][d] = w.point[d] + su[k] * w.half_u * w.axis_u[d] + sv[k] * w.half_v * v[d];
+  return c;
+}
+
+bool same_point(const Vec3& a, const Vec3& b) {
+  return norm(sub(a, b)) <= 1e-9 * (1 + norm(a) + norm(b));
+}
+
+bool identical_walls(const Wall& a, const Wall& b) {
+  if (a.shape != b.shape) return false;
+  if (a.shape == WallShape::Plane)
+    return dot(a.normal, b.normal) > 1 - 1e-12 && std::abs(dot(sub(b.point, a.point), a.normal)) <=
+                                                      1e-9 * (1 + norm(a.point) + norm(b.point));
+  const auto ca = rectangle_corners(a), cb = rectangle_corners(b);
+  return std::all_of(ca.begin(), ca.end(), [&](const Vec3& p) {
+    return std::any_of(cb.begin(), cb.end(), [&](const Vec3& q) { return same_point(p, q); });
+  });
+}
+
+double smallest_radius(const Scene& s) {
+  double r = kInf;
+  for (const Particle& p : s.particles) r = std::min(r, p.radius);
+  return r;
+}
+
+// Two walls overlap when they are identical, or when they are planes with
+// opposite normals whose allowed half-spaces leave a gap smaller than the
+// smallest particle diameter.
+void check_wall_pair(const Scene& s, size_t i, size_t j) {
+  const Wall& a = s.walls[i];
+  const Wall& b = s.walls[j];
+  const std::string f = at("walls", j);
+  if (identical_walls(a, b))
+    fail("overlapping_walls", f, "is identical to " + at("walls", i) + " ('" + a.name + "')");
+  if (a.shape != WallShape::Plane || b.shape != WallShape::Plane) return;
+  if (dot(a.normal, b.normal) > -1 + 1e-12) return;
+  const double gap = dot(sub(b.point, a.point), a.normal);
+  const double diameter = 2 * smallest_radius(s);
+  if (gap < diameter)
+    fail("overlapping_walls", f,
+         "faces " + at("walls", i) + " ('" + a.name + "') with a gap of " +
+             detail::format_number(gap) + " m between their half-spaces; allowed >= " +
+             detail::format_number(diameter) + " m (the smallest particle diameter)");
+}
+
+void check_walls(const Scene& s) {
+  std::set<std::string> names;
+  for (size_t i = 0; i < s.walls.size(); ++i) check_wall(s, i, names);
+  for (size_t j = 0; j < s.walls.size(); ++j)
+    for (size_t i = 0; i < j; ++i) check_wall_pair(s, i, j);
+}
+
+void check_numerics(const Scene& s) {
+  const Numerics& n = s.numerics;
+  check_number("numerics.dt", n.dt, kNonNegative);
+  check_number("numerics.dt_fraction", n.dt_fraction, {0, kMaxDtFraction, true, false});
+  check_number("numerics.duration", n.duration, kPositive);
+  check_number("numerics.skin", n.skin, kNonNegative);
+  if (n.neighbor_capacity != 0 && (n.neighbor_capacity < 4 || n.neighbor_capacity > 256))
+    fail("out_of_range", "numerics.neighbor_capacity",
+         std::to_string(n.neighbor_capacity) +
+             " is out of range, allowed 0 (automatic) or [4, 256]");
+  if (n.precision != Precision::Float && n.precision != Precision::Double)
+    fail("bad_enum", "numerics.precision", "allowed values: \"float\", \"double\"");
+}
+
+void check_outputs(const Scene& s) {
+  check_number("output.series_interval", s.outputs.series_interval, kNonNegative);
+  check_number("output.dump_interval", s.outputs.dump_interval, kNonNegative);
+  check_number("output.checkpoint_interval", s.outputs.checkpoint_interval, kNonNegative);
+}
+
+// O(N): a hash grid with cells as large as the largest diameter.
+void check_particle_overlaps(const Scene& s) {
+  double r_max = 0;
+  for (const Particle& p : s.particles) r_max = std::max(r_max, p.radius);
+  detail::SphereGrid grid(2 * r_max);
+  for (size_t i = 0; i < s.particles.size(); ++i) {
+    const Particle& p = s.particles[i];
+    grid.for_each_near(p.position, [&](int j) {
+      const Particle& q = s.particles[j];
+      const double overlap = p.radius + q.radius - norm(sub(p.position, q.position));
+      const double limit = kMaxOverlapFraction * std::min(p.radius, q.radius);
+      if (overlap > limit)
+        fail("overlapping_particles", at("particles", i),
+             "overlaps " + at("particles", j) + " by " + detail::format_number(overlap) +
+                 " m; allowed at most 1% of the smaller radius (" + detail::format_number(limit) +
+                 " m)");
+    });
+    grid.insert(static_cast<int>(i), p.position);
+  }
+}
+
+void check_time_step(const Scene& s) {
+  const Numerics& n = s.numerics;
+  if (n.dt <= 0 || n.force_dt) return;
+  const double rayleigh = rayleigh_time_step(s);
+  const double limit = kMaxDtFraction * rayleigh;
+  if (n.dt > limit)
+    fail("dt_above_limit", "numerics.dt",
+         detail::format_number(n.dt) + " s is above the stability limit " +
+             detail::format_number(limit) + " s (" + detail::format_number(kMaxDtFraction) +
+             " x Rayleigh time step " + detail::format_number(rayleigh) +
+             " s); lower dt, or set numerics.force_dt = true to run anyway");
+}
+
+}  // namespace
+
+std::optional<SceneIssue> find_scene_issue(const Scene& scene) {
+  try {
+    check_materials(scene);
+    check_pair_overrides(scene);
+    check_particles(scene);
+    check_walls(scene);
+    check_vector("effects.gravity", scene.effects.gravity);
+    check_numerics(scene);
+    check_outputs(scene);
+    check_particle_overlaps(scene);
+    check_time_step(scene);
+  } catch (Issue& e) {
+    return std::move(e.issue);
+  }
+  return std::nullopt;
+}
+
+void validate_scene(const Scene& scene, const std::string& file) {
+  if (auto issue = find_scene_issue(scene))
+    throw SceneError(issue->code, file, 0, issue->field, issue->message);
+}
+
+}  // namespace simsols

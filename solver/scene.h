@@ -1,0 +1,122 @@
+// Scene: the static, read-only description of one experiment.
+//
+// A Scene is what MuJoCo calls the model (mjModel): materials, particles,
+// walls, the effects switched on, numerics and outputs. It never changes
+// while a simulation runs; everything that evolves lives in State (device
+// buffers, see state.h). A Scene is plain data in SI units (metres, seconds,
+// kilograms, pascals), built either in code (tests) or by load_scene()
+// (scene_toml.h) from a TOML file. validate_scene() checks the semantic rules
+// shared by both paths; contact_model.h derives the per-pair coefficients and
+// the stable time step from it.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace simsols {
+
+using Vec3 = std::array<double, 3>;
+
+// One bulk material. Units: Pa, -, kg/m^3, -, -, m.
+struct Material {
+  std::string name;
+  double young_modulus = 0;      // E, Pa, > 0
+  double poisson_ratio = 0;      // nu, in [0, 0.5)
+  double density = 0;            // rho, kg/m^3, > 0
+  double restitution = 1;        // normal coefficient of restitution, (0, 1]
+  double sliding_friction = 0;   // mu_s, >= 0
+  double rolling_friction = 0;   // mu_r, metres (a lever arm), >= 0
+};
+
+// Optional override of the pair properties between two materials. When no
+// override exists, a pair uses the mean restitution, the smaller sliding
+// friction and the smaller rolling friction of its two materials.
+struct PairOverride {
+  int material_a = 0;
+  int material_b = 0;
+  std::optional<double> restitution;
+  std::optional<double> sliding_friction;
+  std::optional<double> rolling_friction;
+};
+
+struct Particle {
+  int material = 0;   // index into Scene::materials
+  double radius = 0;  // m
+  Vec3 position{};    // m
+  Vec3 velocity{};    // m/s
+  Vec3 angular_velocity{};  // rad/s
+};
+
+enum class WallShape : std::uint8_t { Plane, Rectangle };
+
+// A rigid wall moving with a prescribed constant velocity.
+// Plane: infinite, one-sided; particles live on the side `normal` points to.
+// Rectangle: finite, two-sided thin plate centred at `point`, spanned by
+//   axis_u (unit) and axis_v = normal x axis_u, half sizes half_u, half_v.
+struct Wall {
+  std::string name;
+  WallShape shape = WallShape::Plane;
+  int material = 0;
+  Vec3 point{};        // a point on the plane / the rectangle centre, m
+  Vec3 normal{0, 0, 1};  // unit normal
+  Vec3 axis_u{1, 0, 0};  // rectangle only: unit in-plane axis, normal to `normal`
+  double half_u = 0;   // rectangle only, m
+  double half_v = 0;   // rectangle only, m
+  Vec3 velocity{};     // m/s, prescribed
+};
+
+// Optional physics. What is off is compiled out of the kernels.
+struct Effects {
+  Vec3 gravity{0, 0, -9.81};     // m/s^2; all zero switches gravity off
+  bool damping = true;           // viscous normal + tangential damping
+  bool tangential_friction = true;  // Mindlin spring + Coulomb limit
+  bool rolling_friction = true;     // constant rolling-resistance torque
+};
+
+enum class Precision : std::uint8_t { Float, Double };
+
+struct Numerics {
+  Precision precision = Precision::Double;
+  double dt = 0;               // s; 0 = automatic (dt_fraction x Rayleigh step)
+  double dt_fraction = 0.15;   // of the Rayleigh time step, in (0, max_dt_fraction]
+  bool force_dt = false;       // accept a dt above the stability limit
+  double duration = 0;         // simulated time, s, > 0
+  double skin = 0;             // neighbour-list skin, m; 0 = 0.1 x largest diameter
+  int neighbor_capacity = 0;   // neighbours per particle; 0 = automatic
+};
+
+// Limit on dt: a requested step larger than this fraction of the Rayleigh
+// step is refused unless Numerics::force_dt is set.
+inline constexpr double kMaxDtFraction = 0.5;
+
+struct Outputs {
+  double series_interval = 0;      // s between time-series rows; 0 = duration/1000
+  double dump_interval = 0;        // s between particle dumps; 0 = only the last state
+  double checkpoint_interval = 0;  // s between checkpoints; 0 = only at the end
+  bool dump_csv = true;
+  bool dump_vtk = true;
+};
+
+struct Scene {
+  std::string name = "unnamed";
+  std::string description;
+  std::vector<Material> materials;
+  std::vector<PairOverride> pair_overrides;
+  std::vector<Particle> particles;
+  std::vector<Wall> walls;
+  Effects effects;
+  Numerics numerics;
+  Outputs outputs;
+
+  // Where it came from (empty for scenes built in code).
+  std::string source_path;
+  std::string source_text;
+
+  int material_index(const std::string& name) const;  // -1 when absent
+  bool has_gravity() const;
+};
+
+}  // namespace simsols

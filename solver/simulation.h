@@ -1,0 +1,42 @@
+// Simulation: a Model and its State on one device, the unit tests and the
+// app drive. Thin by design: the physics is in the pipeline stages, the
+// measuring in observe.h, persistence in checkpoint.h.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "model.h"
+#include "observe.h"
+#include "pipeline.h"
+#include "state.h"
+
+namespace simsols {
+
+class Simulation {
+ public:
+  Simulation(std::shared_ptr<Device> device, const Scene& scene);
+
+  const Model& model() const { return *model_; }
+  State& state() { return *state_; }
+  const Scene& scene() const { return model_->scene(); }
+
+  void advance(std::int64_t steps = 1);
+  double time() const { return state_->time; }
+  std::int64_t steps() const { return state_->step; }
+  double dt() const { return model_->dt(); }
+
+  Observables observe() { return simsols::observe(*model_, *state_); }
+  std::vector<WallReaction> wall_reactions() { return simsols::wall_reactions(*model_, *state_); }
+  ParticleSnapshot snapshot() { return download(*model_, *state_); }
+  std::uint64_t hash() { return state_hash(*model_, *state_); }
+
+ private:
+  std::unique_ptr<Model> model_;
+  std::unique_ptr<State> state_;
+};
+
+// The process-wide OpenCL device (opened on first use).
+std::shared_ptr<Device> default_device();
+
+}  // namespace simsols

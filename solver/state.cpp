@@ -1,0 +1,185 @@
+#include "state.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+
+namespace simsols {
+namespace {
+
+// Packs doubles as the device's real type, or as float for compensation terms.
+struct Packer {
+  explicit Packer(bool as_double) : dbl(as_double) {}
+  bool dbl;
+  std::vector<unsigned char> bytes;
+  void put(double v, bool as_double) {
+    if (as_double) {
+      const auto* p = reinterpret_cast<const unsigned char*>(&v);
+      bytes.insert(bytes.end(), p, p + 8);
+    } else {
+      const float f = static_cast<float>(v);
+      const auto* p = reinterpret_cast<const unsigned char*>(&f);
+      bytes.insert(bytes.end(), p, p + 4);
+    }
+  }
+  void real4(double a, double b, double c, double d) { put(a, dbl); put(b, dbl); put(c, dbl); put(d, dbl); }
+  void float4(double a, double b, double c, double d) { put(a, false); put(b, false); put(c, false); put(d, false); }
+};
+
+int default_capacity(const Scene& scene) {
+  if (scene.numerics.neighbor_capacity > 0) return scene.numerics.neighbor_capacity;
+  double rmin = 1e300, rmax = 0;
+  for (const Particle& p : scene.particles) {
+    rmin = std::min(rmin, p.radius);
+    rmax = std::max(rmax, p.radius);
+  }
+  // 24 slots cover a dense monodisperse packing with a 0.1 d skin; size
+  // ratios raise it (roughly the surface ratio). Overflow grows it anyway.
+  const double ratio = rmax / rmin;
+  return std::clamp(static_cast<int>(std::ceil(24 * std::min(ratio * ratio, 8.0))), 24, 192);
+}
+
+std::uint32_t next_pow2(std::uint64_t v) {
+  std::uint32_t p = 1;
+  while (p < v) p <<= 1;
+  return p;
+}
+
+}  // namespace
+
+Buffer State::make(Device& d, size_t bytes, const void* init) {
+  Buffer b;
+  b.mem = d.alloc(bytes, init);
+  b.bytes = bytes;
+  return b;
+}
+
+State::State(const Model& model) {
+  Device& d = model.device();
+  const Scene& s = model.scene();
+  const bool dbl = model.config().double_precision;
+  const size_t r4 = 4 * model.real_size();
+  n = model.particles();
+  cap = default_capacity(s);
+  table = next_pow2(2ull * n);
+  chunk_len = (table + chunks - 1) / chunks;
+
+  Packer p(dbl), lo(false), v(dbl), w(dbl);
+  const Vec3& o = model.origin();
+  for (const Particle& q : s.particles) {
+    const Material& m = s.materials[q.material];
+    const double mass = m.density * 4.0 / 3.0 * std::numbers::pi * q.radius * q.radius * q.radius;
+    double rel[3];
+    for (int a = 0; a < 3; ++a) rel[a] = q.position[a] - o[a];
+    p.real4(rel[0], rel[1], rel[2], q.radius);
+    if (!dbl) {  // compensation: what the float position could not hold
+      lo.float4(rel[0] - static_cast<float>(rel[0]), rel[1] - static_cast<float>(rel[1]),
+                rel[2] - static_cast<float>(rel[2]), 0);
+    }
+    v.real4(q.velocity[0], q.velocity[1], q.velocity[2], mass);
+    w.real4(q.angular_velocity[0], q.angular_velocity[1], q.angular_velocity[2], q.material);
+  }
+  pos = make(d, n * r4, p.bytes.data());
+  pos_lo = make(d, dbl ? 16 : n * 16, dbl ? nullptr : lo.bytes.data());
+  vel = make(d, n * r4, v.bytes.data());
+  omega = make(d, n * r4, w.bytes.data());
+  force = make(d, n * r4);
+  torque = make(d, n * r4);
+  pos_build = make(d, n * r4);
+
+  nbr_count = make(d, n * sizeof(int));
+  nbr = make(d, size_t(n) * cap * sizeof(int));
+  spring = make(d, size_t(n) * cap * r4);
+  old_count = make(d, n * sizeof(int));
+  old_nbr = make(d, size_t(n) * cap * sizeof(int));
+  old_spring = make(d, size_t(n) * cap * r4);
+
+  bucket = make(d, n * sizeof(std::uint32_t));
+  slot = make(d, n * sizeof(std::uint32_t));
+  cell_count = make(d, table * sizeof(std::uint32_t));
+  cell_start = make(d, table * sizeof(std::uint32_t));
+  sorted = make(d, n * sizeof(int));
+  chunk_sum = make(d, chunks * sizeof(std::uint32_t));
+
+  const int nw = model.walls();
+  Packer wp(dbl), wlo(false), wv(dbl);
+  for (const Wall& wall : s.walls) {
+    double rel[3];
+    for (int a = 0; a < 3; ++a) rel[a] = wall.point[a] - o[a];
+    wp.real4(rel[0], rel[1], rel[2], 0);
+    wlo.float4(rel[0] - static_cast<float>(rel[0]), rel[1] - static_cast<float>(rel[1]),
+               rel[2] - static_cast<float>(rel[2]), 0);
+    wv.real4(wall.velocity[0], wall.velocity[1], wall.velocity[2], 0);
+  }
+  wall_point = make(d, nw * r4, wp.bytes.data());
+  wall_point_lo = make(d, nw * 16, dbl ? nullptr : wlo.bytes.data());
+  wall_vel = make(d, nw * r4, wv.bytes.data());
+  wall_spring = make(d, size_t(nw) * n * r4);
+  wall_force = make(d, size_t(nw) * n * r4);
+
+  const int init_flags[4] = {1, 0, 0, 0};  // first step builds the lists
+  flags = make(d, sizeof init_flags, init_flags);
+  const size_t groups = model.global_size(n) / model.local_size();
+  obs_partial = make(d, groups * 12 * model.real_size());
+  wall_partial = make(d, std::max(1, nw) * groups * r4);
+}
+
+size_t State::device_bytes() const {
+  size_t total = 0;
+  for (const Buffer* b : {&pos, &pos_lo, &vel, &omega, &force, &torque, &pos_build, &nbr_count,
+                          &nbr, &spring, &old_count, &old_nbr, &old_spring, &bucket, &slot,
+                          &cell_count, &cell_start, &sorted, &chunk_sum, &wall_point,
+                          &wall_point_lo, &wall_vel, &wall_spring, &wall_force, &flags,
+                          &obs_partial, &wall_partial})
+    total += b->bytes;
+  return total;
+}
+
+std::vector<std::pair<std::string, Buffer*>> State::dynamic_buffers() {
+  // Grid buffers are rebuilt from positions before use and are not state.
+  return {{"pos", &pos},           {"pos_lo", &pos_lo},         {"vel", &vel},
+          {"omega", &omega},       {"force", &force},           {"torque", &torque},
+          {"pos_build", &pos_build}, {"nbr_count", &nbr_count}, {"nbr", &nbr},
+          {"spring", &spring},     {"wall_point", &wall_point}, {"wall_point_lo", &wall_point_lo},
+          {"wall_vel", &wall_vel}, {"wall_spring", &wall_spring}, {"wall_force", &wall_force},
+          {"flags", &flags}};
+}
+
+void State::grow_lists(const Model& model, int new_cap) {
+  Device& d = model.device();
+  const size_t r4 = 4 * model.real_size();
+  const bool inter = model.config().interleaved_lists;
+  auto index = [&](int i, int k, int c) -> size_t {
+    return inter ? size_t(k) * n + i : size_t(i) * c + k;
+  };
+  std::vector<int> cnt(n), ids(size_t(n) * cap);
+  std::vector<unsigned char> spr(size_t(n) * cap * r4);
+  d.read(old_count.get(), cnt.size() * sizeof(int), cnt.data());
+  d.read(old_nbr.get(), ids.size() * sizeof(int), ids.data());
+  d.read(old_spring.get(), spr.size(), spr.data());
+  std::vector<int> ids2(size_t(n) * new_cap, 0);
+  std::vector<unsigned char> spr2(size_t(n) * new_cap * r4, 0);
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < cnt[i]; ++k) {
+      ids2[index(i, k, new_cap)] = ids[index(i, k, cap)];
+      std::memcpy(&spr2[index(i, k, new_cap) * r4], &spr[index(i, k, cap) * r4], r4);
+    }
+  cap = new_cap;
+  old_nbr = make(d, ids2.size() * sizeof(int), ids2.data());
+  old_spring = make(d, spr2.size(), spr2.data());
+  nbr = make(d, ids2.size() * sizeof(int));
+  spring = make(d, spr2.size());
+}
+
+void State::resize_lists(const Model& model, int new_cap) {
+  Device& d = model.device();
+  const size_t r4 = 4 * model.real_size();
+  cap = new_cap;
+  nbr = make(d, size_t(n) * cap * sizeof(int));
+  spring = make(d, size_t(n) * cap * r4);
+  old_nbr = make(d, size_t(n) * cap * sizeof(int));
+  old_spring = make(d, size_t(n) * cap * r4);
+}
+
+}  // namespace simsols

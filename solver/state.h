@@ -1,0 +1,69 @@
+// State: everything that changes during a run, as device buffers.
+//
+// MuJoCo's mjData to the Model's mjModel. Struct of arrays, split into hot
+// per-particle records read every step (pos, vel, omega, force, torque) and
+// colder ones (neighbour lists, grid, wall slots, reduction scratch).
+// Records pack a constant into the spare 4th lane so one load serves the
+// contact loop: pos = (x, radius), vel = (v, mass), omega = (w, material).
+// pos_lo is the float-run compensation term (see kernels/common.cl).
+//
+// Memory is linear in N: per particle a fixed number of records, `cap`
+// neighbour slots (grown on overflow) and one slot per wall; the grid hash
+// table has ~2N buckets.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cl_device.h"
+#include "model.h"
+
+namespace simsols {
+
+struct Buffer {
+  ClMem mem;
+  size_t bytes = 0;
+  cl_mem get() const { return mem.get(); }
+};
+
+class State {
+ public:
+  explicit State(const Model& model);
+
+  // hot, per particle
+  Buffer pos, pos_lo, vel, omega, force, torque;
+  // neighbour lists (current and previous, for carrying springs over)
+  Buffer pos_build, nbr_count, nbr, spring, old_count, old_nbr, old_spring;
+  // grid
+  Buffer bucket, slot, cell_count, cell_start, sorted, chunk_sum;
+  // walls: current reference point (+ float compensation), velocity, slots
+  Buffer wall_point, wall_point_lo, wall_vel, wall_spring, wall_force;
+  // flags[0]: list rebuild needed, flags[1]: longest list asked for
+  Buffer flags, obs_partial, wall_partial;
+
+  int n = 0;             // particles
+  int cap = 0;           // neighbour slots per particle
+  std::uint32_t table = 0;   // grid hash buckets (power of two)
+  std::uint32_t chunks = 256, chunk_len = 0;
+
+  std::int64_t step = 0;
+  double time = 0;
+  std::int64_t list_builds = 0;
+
+  size_t device_bytes() const;
+
+  // Named dynamic buffers and their sizes, for checkpoints (fixed order).
+  std::vector<std::pair<std::string, Buffer*>> dynamic_buffers();
+
+  // Reallocates the neighbour lists with `new_cap` slots per particle,
+  // keeping the contents of the previous lists (old_*).
+  void grow_lists(const Model& model, int new_cap);
+  // Reallocates all neighbour-list buffers, zeroed, with `new_cap` slots.
+  void resize_lists(const Model& model, int new_cap);
+
+ private:
+  Buffer make(Device& d, size_t bytes, const void* init = nullptr);
+};
+
+}  // namespace simsols
