@@ -36,8 +36,10 @@ std::string format_number(double v) {
   return std::string(buf, res.ptr);
 }
 
-SphereGrid::SphereGrid(double cell_size)
-    : inv_cell_(cell_size > 0 && std::isfinite(cell_size) ? 1.0 / cell_size : 1.0) {}
+SphereGrid::SphereGrid(double cell_size, size_t expected_spheres)
+    : inv_cell_(cell_size > 0 && std::isfinite(cell_size) ? 1.0 / cell_size : 1.0) {
+  cells_.reserve(expected_spheres);
+}
 
 SphereGrid::Cell SphereGrid::cell_of(const Vec3& p) const {
   // Clamped far beyond any sensible scene, only to keep the cast defined.
@@ -55,9 +57,7 @@ size_t SphereGrid::CellHash::operator()(const Cell& c) const {
   return static_cast<size_t>(h ^ (h >> 29));
 }
 
-void SphereGrid::insert(int index, const Vec3& center) {
-  cells_[cell_of(center)].push_back(index);
-}
+void SphereGrid::insert(int index, const Vec3& center) { cells_[cell_of(center)].push_back(index); }
 
 }  // namespace detail
 
@@ -301,7 +301,7 @@ void check_outputs(const Scene& s) {
 void check_particle_overlaps(const Scene& s) {
   double r_max = 0;
   for (const Particle& p : s.particles) r_max = std::max(r_max, p.radius);
-  detail::SphereGrid grid(2 * r_max);
+  detail::SphereGrid grid(2 * r_max, s.particles.size());
   for (size_t i = 0; i < s.particles.size(); ++i) {
     const Particle& p = s.particles[i];
     grid.for_each_near(p.position, [&](int j) {

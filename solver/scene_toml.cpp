@@ -192,7 +192,6 @@ class Reader {
     return checked_choice(key, string(key, fallback), values);
   }
 
-
   Vec3 vec3(std::string_view key) const { return to_vec3(key, require(key)); }
   Vec3 vec3(std::string_view key, const Vec3& fallback) const {
     const toml::node* n = get(key);
@@ -578,7 +577,7 @@ class Loader {
              "the box [min, max] cannot hold one sphere of radius " + num(r_max));
     double cell = 2 * r_max;
     for (const Particle& p : scene_.particles) cell = std::max(cell, 2 * p.radius);
-    detail::SphereGrid grid(cell);
+    detail::SphereGrid grid(cell, scene_.particles.size() + static_cast<size_t>(count));
     for (size_t i = 0; i < scene_.particles.size(); ++i)
       grid.insert(static_cast<int>(i), scene_.particles[i].position);
     const std::int64_t budget = kExtraAttempts + kAttemptsPerSphere * count;

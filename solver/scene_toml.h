@@ -4,12 +4,12 @@
 //   1. parse_scene() walks the TOML document with a small Reader that knows
 //      the dotted path of the table it reads ("materials[1]"), refuses
 //      unknown keys, wrong types and non-finite numbers, resolves material
-//      names, expands [[generators]] into particles, and remembers the source
-//      line of every field it read.
+//      names and expands [[generators]] into particles.
 //   2. find_scene_issue() checks the rules shared with scenes built in code
 //      (ranges, unit normals, overlaps, the time-step limit). parse_scene()
-//      turns its first issue into a SceneError carrying the line recorded in
-//      pass 1; validate_scene() does the same without lines.
+//      turns its first issue into a SceneError, finding the line by looking
+//      the issue's field path up in the document; validate_scene() does the
+//      same without lines.
 // Every failure is a SceneError whose `code` is one of the stable identifiers
 // listed in docs/scene-format.md, and whose `field` is the dotted TOML path.
 //
@@ -61,7 +61,7 @@ std::string format_number(double v);
 // must be at least the largest diameter stored or queried.
 class SphereGrid {
  public:
-  explicit SphereGrid(double cell_size);
+  explicit SphereGrid(double cell_size, size_t expected_spheres = 0);
   void insert(int index, const Vec3& center);
   // Calls f(index) for every stored sphere in the 27 cells around `center`.
   template <class F>
