@@ -90,10 +90,10 @@ State::State(const Model& model) {
 
   nbr_count = make(d, n * sizeof(int));
   nbr = make(d, size_t(n) * cap * sizeof(int));
-  spring = make(d, size_t(n) * cap * r4);
+  spring = make(d, spring_bytes(model));
   old_count = make(d, n * sizeof(int));
   old_nbr = make(d, size_t(n) * cap * sizeof(int));
-  old_spring = make(d, size_t(n) * cap * r4);
+  old_spring = make(d, spring_bytes(model));
 
   bucket = make(d, n * sizeof(std::uint32_t));
   slot = make(d, n * sizeof(std::uint32_t));
@@ -154,12 +154,12 @@ void State::grow_lists(const Model& model, int new_cap) {
     return inter ? size_t(k) * n + i : size_t(i) * c + k;
   };
   std::vector<int> cnt(n), ids(size_t(n) * cap);
-  std::vector<unsigned char> spr(size_t(n) * cap * r4);
+  std::vector<unsigned char> spr(spring_bytes(model));
   d.read(old_count.get(), cnt.size() * sizeof(int), cnt.data());
   d.read(old_nbr.get(), ids.size() * sizeof(int), ids.data());
   d.read(old_spring.get(), spr.size(), spr.data());
   std::vector<int> ids2(size_t(n) * new_cap, 0);
-  std::vector<unsigned char> spr2(size_t(n) * new_cap * r4, 0);
+  std::vector<unsigned char> spr2(size_t(n + 1) * new_cap * r4, 0);
   for (int i = 0; i < n; ++i)
     for (int k = 0; k < cnt[i]; ++k) {
       ids2[index(i, k, new_cap)] = ids[index(i, k, cap)];
@@ -177,9 +177,14 @@ void State::resize_lists(const Model& model, int new_cap) {
   const size_t r4 = 4 * model.real_size();
   cap = new_cap;
   nbr = make(d, size_t(n) * cap * sizeof(int));
-  spring = make(d, size_t(n) * cap * r4);
+  spring = make(d, spring_bytes(model));
   old_nbr = make(d, size_t(n) * cap * sizeof(int));
-  old_spring = make(d, size_t(n) * cap * r4);
+  old_spring = make(d, spring_bytes(model));
+}
+
+size_t State::spring_bytes(const Model& model) const {
+  // one spare row of slots for the padding work items of contact_forces
+  return size_t(n + 1) * cap * 4 * model.real_size();
 }
 
 }  // namespace simsols

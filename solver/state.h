@@ -61,6 +61,7 @@ class State {
   void grow_lists(const Model& model, int new_cap);
   // Reallocates all neighbour-list buffers, zeroed, with `new_cap` slots.
   void resize_lists(const Model& model, int new_cap);
+  size_t spring_bytes(const Model& model) const;  // (n + 1) * cap slots
 
  private:
   Buffer make(Device& d, size_t bytes, const void* init = nullptr);

@@ -4,6 +4,7 @@
 //   SIMSOLS_DOUBLE     real = double; otherwise real = float
 //   HAS_GRAVITY, HAS_DAMPING, HAS_FRICTION, HAS_ROLLING, HAS_WALLS
 //   NBR_INTERLEAVED    neighbour slot k of particle i at k*n+i (GPU) instead of i*cap+k (CPU)
+//   WG_UNIFORM_LOOP    neighbour loops run in lock step across a work group (CPU SIMD)
 //
 // Positions in float runs are stored as an unevaluated sum hi + lo of two
 // floats ("double-float"): hi is a normal float position relative to the scene
@@ -17,12 +18,10 @@
 typedef double real;
 typedef double3 real3;
 typedef double4 real4;
-typedef double8 real8;
 #else
 typedef float real;
 typedef float3 real3;
 typedef float4 real4;
-typedef float8 real8;
 #define POS_COMPENSATED 1
 #endif
 
@@ -32,13 +31,7 @@ typedef float8 real8;
 #define NBR(i, k, n, cap) ((i) * (cap) + (k))
 #endif
 
-// Per-pair coefficient record (real8), see contact_model.h:
-//   s0 E*   s1 G*   s2 gamma_n   s3 mu_s   s4 mu_r
-#define PAIR_ESTAR(c) ((c).s0)
-#define PAIR_GSTAR(c) ((c).s1)
-#define PAIR_GAMMA(c) ((c).s2)
-#define PAIR_MUS(c) ((c).s3)
-#define PAIR_MUR(c) ((c).s4)
+// Per-pair coefficient record: 8 reals, see contact_law.cl (PAIR).
 
 // Wall record: four real4 per wall:
 //   [0] point (xyz, relative to origin)  w: shape (0 plane, 1 rectangle)
@@ -78,4 +71,45 @@ inline void add_compensated(real4* hi, float4* lo, real3 d) {
 #define POS_LO_ARG , __global const real4* pos_lo_unused
 #define POS_LO_CARG , __global const real4* pos_lo_unused
 #define LO(i)
+#endif
+
+// ---------------------------------------------------------------------------
+// Scalar 3-vectors for the hot kernels. OpenCL's built-in vector types are
+// not widened by LLVM's loop vectoriser, which is what turns PoCL's loop over
+// work items into SIMD code on CPUs; a struct of three scalars is split into
+// scalars by the compiler and vectorises across work items. On GPUs both
+// forms compile to the same scalar code. Records stay 4-wide in memory
+// (xyz + one packed constant) and are read component by component.
+typedef struct { real x, y, z; } v3;
+
+inline v3 V3(real x, real y, real z) { v3 r; r.x = x; r.y = y; r.z = z; return r; }
+inline v3 v_add(v3 a, v3 b) { return V3(a.x + b.x, a.y + b.y, a.z + b.z); }
+inline v3 v_sub(v3 a, v3 b) { return V3(a.x - b.x, a.y - b.y, a.z - b.z); }
+inline v3 v_mul(real s, v3 a) { return V3(s * a.x, s * a.y, s * a.z); }
+inline v3 v_neg(v3 a) { return V3(-a.x, -a.y, -a.z); }
+inline real v_dot(v3 a, v3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline v3 v_cross(v3 a, v3 b) {
+  return V3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+inline v3 v_select(bool c, v3 a, v3 b) { return V3(c ? a.x : b.x, c ? a.y : b.y, c ? a.z : b.z); }
+inline v3 v_zero() { return V3(0, 0, 0); }
+
+inline v3 load3(__global const real* p, int i) { return V3(p[4 * i], p[4 * i + 1], p[4 * i + 2]); }
+inline real load_w(__global const real* p, int i) { return p[4 * i + 3]; }
+inline void store4(__global real* p, int i, v3 v, real w) {
+  p[4 * i] = v.x; p[4 * i + 1] = v.y; p[4 * i + 2] = v.z; p[4 * i + 3] = w;
+}
+
+// Separation x_b - x_a of two compensated positions, scalar form.
+#ifdef POS_COMPENSATED
+inline v3 rel3(__global const real* pos, __global const float* lo, int a, int b) {
+  return V3((pos[4 * b] - pos[4 * a]) + (lo[4 * b] - lo[4 * a]),
+            (pos[4 * b + 1] - pos[4 * a + 1]) + (lo[4 * b + 1] - lo[4 * a + 1]),
+            (pos[4 * b + 2] - pos[4 * a + 2]) + (lo[4 * b + 2] - lo[4 * a + 2]));
+}
+#define POS_LO_SARG , __global const float* restrict pos_lo
+#define REL3(a, b) rel3(pos, pos_lo, a, b)
+#else
+#define POS_LO_SARG , __global const real* pos_lo_unused
+#define REL3(a, b) v_sub(load3(pos, b), load3(pos, a))
 #endif
