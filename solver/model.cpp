@@ -72,9 +72,10 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
   }
   skin_ = scene_.numerics.skin > 0 ? scene_.numerics.skin : 0.2 * rmax;
   cell_size_ = 2 * rmax + skin_;
-  // The float frame is centred on the initial packing, rounded to a cell so
-  // that origins are exact and reproducible.
-  for (int a = 0; a < 3; ++a) origin_[a] = std::round(0.5 * (lo[a] + hi[a]) / cell_size_) * cell_size_;
+  // The float frame is centred on the initial packing, rounded to the largest
+  // diameter: reproducible, and independent of numerics such as the skin
+  // (the origin changes how positions round, hence results in the last bits).
+  for (int a = 0; a < 3; ++a) origin_[a] = std::round(0.25 * (lo[a] + hi[a]) / rmax) * 2 * rmax;
 
   pairs_ = make_pair_table(scene_);
   const bool dbl = config().double_precision;

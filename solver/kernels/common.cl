@@ -13,6 +13,11 @@
 // separation instead of ~1e-7 of the distance to the origin, so slow motions
 // (1e-10 m per step) are not lost and overlaps of 1e-7 m are resolved far
 // from the origin. In double runs lo is absent.
+// No fused multiply-add contraction: the same expression rounds the same way
+// in every code path (scalar, SIMD, remainder loops), which keeps results
+// independent of list length, work-group layout and skin.
+#pragma OPENCL FP_CONTRACT OFF
+
 #ifdef SIMSOLS_DOUBLE
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 typedef double real;

@@ -1,0 +1,135 @@
+#!/usr/bin/env bash
+# SimSols set-up: installs what is missing (Debian 12, apt), builds Release,
+# then runs the default experiment (`./setup.sh`) or the test suite
+# (`./setup.sh test`). See README.md.
+set -euo pipefail
+
+# Debian 12 packages the build, the tests and the headless run need.
+# Later issues (the renderer) add their GL/windowing packages here.
+PACKAGES=(
+  build-essential
+  cmake
+  pkg-config
+  ocl-icd-opencl-dev
+  opencl-headers
+  pocl-opencl-icd
+  libtomlplusplus-dev
+  libcli11-dev
+  libgtest-dev
+  clinfo
+)
+
+PRESET=release
+BIN=build/release/app/simsols
+DEFAULT_SCENE=assets/scenes/default.toml
+DEFAULT_OUT=results/default
+JOBS=${JOBS:-2}
+
+cd "$(dirname "${BASH_SOURCE[0]}")"
+
+say() { printf '==> %s\n' "$*"; }
+die() { printf 'setup.sh: %s\n' "$*" >&2; exit 1; }
+
+usage() {
+  cat <<EOF
+Usage: ./setup.sh [COMMAND] [ARGS...]
+
+Commands:
+  run [ARGS...]  (default) install missing packages, build Release, run the
+                 default experiment headless:
+                   $BIN run $DEFAULT_SCENE --out $DEFAULT_OUT [ARGS...]
+                 ARGS go to 'simsols run' (e.g. --duration 0.001).
+  test           install missing packages, build Release, run the whole
+                 test suite (ctest --preset $PRESET); exits with its status.
+  help           show this text.
+
+Environment:
+  JOBS               parallel build jobs (default 2)
+  SIMSOLS_CL_DEVICE  OpenCL device to use: gpu, cpu or part of its name
+EOF
+}
+
+# Prints the packages of PACKAGES that are not installed, one per line.
+need_packages() {
+  command -v dpkg-query >/dev/null 2>&1 ||
+    die "dpkg-query not found: this script supports Debian 12 (apt); install the equivalent of: ${PACKAGES[*]}"
+  local pkg
+  for pkg in "${PACKAGES[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed"; then
+      printf '%s\n' "$pkg"
+    fi
+  done
+}
+
+# Installs the missing packages with apt; does nothing (no network) when none are.
+install_packages() {
+  local missing
+  mapfile -t missing < <(need_packages)
+  if ((${#missing[@]} == 0)); then
+    say "All ${#PACKAGES[@]} required packages are installed"
+    return
+  fi
+  say "Installing missing packages: ${missing[*]}"
+  local -a as_root=()
+  if ((EUID != 0)); then
+    command -v sudo >/dev/null 2>&1 ||
+      die "missing packages (${missing[*]}) and not root, and sudo is not available; run as root or install them: apt-get install ${missing[*]}"
+    as_root=(sudo)
+  fi
+  local -a apt=(env DEBIAN_FRONTEND=noninteractive apt-get -o DPkg::Lock::Timeout=600)
+  "${as_root[@]}" "${apt[@]}" update
+  "${as_root[@]}" "${apt[@]}" install -y --no-install-recommends "${missing[@]}"
+}
+
+# Configures and builds Release with the CMake preset.
+build() {
+  say "Configuring (cmake --preset $PRESET)"
+  cmake --preset "$PRESET"
+  say "Building with $JOBS jobs"
+  cmake --build --preset "$PRESET" -j "$JOBS"
+}
+
+cmd_run() {
+  install_packages
+  build
+  if [[ -n "${DISPLAY:-}" || -n "${WAYLAND_DISPLAY:-}" ]]; then
+    say "Display found: the desktop window arrives with a later release; running headless for now"
+  fi
+  [[ -f "$DEFAULT_SCENE" ]] || die "default scene $DEFAULT_SCENE not found"
+  say "Running the default experiment: $BIN run $DEFAULT_SCENE --out $DEFAULT_OUT $*"
+  "$BIN" run "$DEFAULT_SCENE" --out "$DEFAULT_OUT" "$@"
+  say "Results are in $PWD/$DEFAULT_OUT (series.csv, particles_*.csv/.vtk for ParaView, checkpoint.bin, scene.toml)"
+  say "Resume with: $BIN run --resume --out $DEFAULT_OUT"
+}
+
+cmd_test() {
+  install_packages
+  build
+  say "Running the test suite (ctest --preset $PRESET)"
+  # Serial on purpose: each test drives PoCL, which already uses every core.
+  local rc=0
+  ctest --preset "$PRESET" || rc=$?
+  if ((rc == 0)); then say "All tests passed"; else say "Tests failed (ctest exit status $rc)"; fi
+  return "$rc"
+}
+
+main() {
+  local cmd=${1:-run}
+  (($# > 0)) && shift
+  case "$cmd" in
+    run) cmd_run "$@" ;;
+    test)
+      (($# == 0)) || { usage >&2; exit 2; }
+      cmd_test
+      ;;
+    help | -h | --help) usage ;;
+    -*) cmd_run "$cmd" "$@" ;; # ./setup.sh --duration 0.001 = ./setup.sh run --duration 0.001
+    *)
+      printf 'setup.sh: unknown command: %s\n\n' "$cmd" >&2
+      usage >&2
+      exit 2
+      ;;
+  esac
+}
+
+main "$@"

@@ -1,0 +1,72 @@
+// Contact detection (grid + Verlet lists): the contact history survives
+// every list rebuild, and memory grows linearly with N.
+#include <cmath>
+#include <cstdio>
+
+#include "test_support.h"
+
+namespace simsols::testing {
+namespace {
+
+// A frictional, rolling-resistant heap sliding down onto a floor: tangential
+// springs are loaded all the time.
+Scene sliding_heap(Precision p, double skin) {
+  Scene s = empty_scene(p, soft(0.6, 0.4, 1e-4));
+  s.effects.gravity = {2.0, 0, -9.81};  // tilted gravity: contacts slide and roll
+  const double R = 1e-3, spacing = 2e-3;
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < 6; ++j)
+      for (int i = 0; i < 6; ++i)
+        s.particles.push_back(sphere(R, {(i + 0.5 * (k % 2)) * spacing, (j + 0.5 * (k % 2)) * spacing,
+                                         R + k * 0.7072 * spacing},  // layers just touching
+                                     {0.02, 0, 0}));
+  s.walls = {plane("floor", {0, 0, 0}, {0, 0, 1})};
+  s.numerics.skin = skin;
+  return s;
+}
+
+class Neighbors : public PrecisionTest {};
+
+TEST_P(Neighbors, HistorySurvivesListRebuilds) {
+  // Same scene with a generous skin (few rebuilds) and a tiny one (a rebuild
+  // every few steps). Non-touching list entries contribute exact zeros and
+  // lists are sorted, so if every spring is carried over the two runs agree
+  // bit for bit.
+  Simulation few(default_device(), sliding_heap(GetParam(), 4e-4));
+  Simulation many(default_device(), sliding_heap(GetParam(), 2e-7));
+  few.advance(5000);
+  many.advance(5000);
+  std::printf("[measure] %s list builds: %lld (skin 0.4 mm) vs %lld (skin 0.2 um)\n",
+              precision_name(GetParam()), static_cast<long long>(few.state().list_builds),
+              static_cast<long long>(many.state().list_builds));
+  EXPECT_GT(many.state().list_builds, 20 * few.state().list_builds);
+  const ParticleSnapshot a = few.snapshot(), b = many.snapshot();
+  EXPECT_GT(few.observe().contacts, 144) << "the heap must be in contact";
+  for (size_t i = 0; i < a.position.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_EQ(a.position[i][c], b.position[i][c]) << "particle " << i;
+      ASSERT_EQ(a.angular_velocity[i][c], b.angular_velocity[i][c]) << "particle " << i;
+    }
+}
+
+TEST_P(Neighbors, MemoryGrowsLinearly) {
+  auto bytes_per_particle = [&](int side) {
+    Scene s = empty_scene(GetParam(), glass());
+    for (int i = 0; i < side; ++i)
+      for (int j = 0; j < side; ++j)
+        for (int k = 0; k < side; ++k)
+          s.particles.push_back(sphere(1e-3, {i * 2.5e-3, j * 2.5e-3, k * 2.5e-3}));
+    Simulation sim(default_device(), s);
+    sim.advance(2);
+    return double(sim.state().device_bytes()) / s.particles.size();
+  };
+  const double small = bytes_per_particle(10), large = bytes_per_particle(40);  // 1e3, 6.4e4
+  std::printf("[measure] %s device bytes per particle: %.0f (N=1000), %.0f (N=64000)\n",
+              precision_name(GetParam()), small, large);
+  EXPECT_NEAR(large / small, 1.0, 0.1);
+}
+
+SIMSOLS_BOTH_PRECISIONS(Neighbors);
+
+}  // namespace
+}  // namespace simsols::testing
