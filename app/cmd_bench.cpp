@@ -32,7 +32,11 @@ Scene bench_scene(int target, Precision precision) {
   s.numerics.precision = precision;
   s.numerics.duration = 1;
   const double d = 2.38125e-3, R = d / 2;
-  const double a = d * std::sqrt(2.0) * (1 - 1e-5);  // FCC cell, beads just touching
+  // FCC cell with every contact pre-loaded (overlap 2e-4 d ~ 0.5 um, i.e. a
+  // confining stress of order 100 kPa) and walls on all six sides pressing
+  // with the same overlap: the packing stays jammed for the whole run.
+  const double squeeze = 2e-4;
+  const double a = d * std::sqrt(2.0) * (1 - squeeze);
   const int side = std::max(1, static_cast<int>(std::ceil(std::cbrt(target / 4.0))));
   const Vec3 basis[4] = {{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
   for (int k = 0; k < side && int(s.particles.size()) < target; ++k)
@@ -42,10 +46,15 @@ Scene bench_scene(int target, Precision precision) {
           if (int(s.particles.size()) >= target) break;
           Particle p;
           p.radius = R;
-          p.position = {R + (i + b[0]) * a, R + (j + b[1]) * a, R + (k + b[2]) * a};
+          p.position = {R * (1 - 2 * squeeze) + (i + b[0]) * a,
+                        R * (1 - 2 * squeeze) + (j + b[1]) * a,
+                        R * (1 - 2 * squeeze) + (k + b[2]) * a};
           s.particles.push_back(p);
         }
-  const double L = side * a + R;
+  double top = 0;
+  for (const Particle& p : s.particles) top = std::max(top, p.position[2]);
+  const double L = R + (side - 1 + 0.5) * a + R * (1 - 2 * squeeze);
+  const double H = top + R * (1 - 2 * squeeze);
   auto plane = [](const char* name, Vec3 p, Vec3 n) {
     Wall w;
     w.name = name;
@@ -53,9 +62,9 @@ Scene bench_scene(int target, Precision precision) {
     w.normal = n;
     return w;
   };
-  s.walls = {plane("floor", {0, 0, 0}, {0, 0, 1}), plane("x0", {0, 0, 0}, {1, 0, 0}),
-             plane("x1", {L, 0, 0}, {-1, 0, 0}), plane("y0", {0, 0, 0}, {0, 1, 0}),
-             plane("y1", {0, L, 0}, {0, -1, 0})};
+  s.walls = {plane("floor", {0, 0, 0}, {0, 0, 1}),   plane("lid", {0, 0, H}, {0, 0, -1}),
+             plane("x0", {0, 0, 0}, {1, 0, 0}),      plane("x1", {L, 0, 0}, {-1, 0, 0}),
+             plane("y0", {0, 0, 0}, {0, 1, 0}),      plane("y1", {0, L, 0}, {0, -1, 0})};
   return s;
 }
 

@@ -84,7 +84,11 @@ int run(const RunOptions& opt) {
 
   const Scene& scene = sim->scene();
   const double dt = sim->dt();
-  const auto total = static_cast<std::int64_t>(std::ceil(scene.numerics.duration / dt - 1e-9));
+  if (opt.resume && opt.duration != 0 && !(opt.duration > 0 && std::isfinite(opt.duration)))
+    throw SceneError("out_of_range", "command line", 0, "--duration", "must be a finite time > 0 s");
+  // --duration also extends (or shortens) a resumed run
+  const double duration = opt.duration > 0 ? opt.duration : scene.numerics.duration;
+  const auto total = static_cast<std::int64_t>(std::ceil(duration / dt - 1e-9));
   const std::int64_t series_every = every(scene.outputs.series_interval, dt, std::max<std::int64_t>(1, total / 1000));
   const std::int64_t dump_every = every(scene.outputs.dump_interval, dt, 0);
   const std::int64_t ckpt_every = every(scene.outputs.checkpoint_interval, dt, 0);

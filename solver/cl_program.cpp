@@ -17,7 +17,6 @@ std::string KernelConfig::build_options() const {
   if (rolling) o += " -DHAS_ROLLING";
   if (walls) o += " -DHAS_WALLS";
   if (interleaved_lists) o += " -DNBR_INTERLEAVED";
-  if (uniform_loops) o += " -DWG_UNIFORM_LOOP";
   if (!extra_options.empty()) o += " " + extra_options;
   return o;
 }
@@ -44,8 +43,8 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
   c.friction = scene.effects.tangential_friction && any_friction;
   c.rolling = scene.effects.rolling_friction && any_rolling;
   c.walls = !scene.walls.empty();
-  c.interleaved_lists = device.is_gpu() || std::getenv("SIMSOLS_INTERLEAVED") != nullptr;
-  c.uniform_loops = !device.is_gpu() && std::getenv("SIMSOLS_NO_UNIFORM") == nullptr;
+  c.interleaved_lists = device.is_gpu();
+  // extra OpenCL build options for experiments, e.g. "-cl-fast-relaxed-math"
   if (const char* x = std::getenv("SIMSOLS_CL_OPTIONS")) c.extra_options = x;
   return c;
 }

@@ -22,7 +22,6 @@ struct KernelConfig {
   bool rolling = true;
   bool walls = true;
   bool interleaved_lists = false;  // neighbour slot layout k*n+i (GPUs)
-  bool uniform_loops = false;      // work-group lock-step neighbour loops (CPU SIMD)
   std::string extra_options;       // appended verbatim (diagnostics, tests)
 
   std::string build_options() const;

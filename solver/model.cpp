@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <vector>
 
 #include "errors.h"
@@ -97,6 +98,7 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
   }
   wall_buf_ = device_->alloc(wk.bytes().size(), wk.bytes().data());
   local_size_ = 64;
+  if (const char* ls = std::getenv("SIMSOLS_LOCAL_SIZE")) local_size_ = std::max(1, std::atoi(ls));
 }
 
 size_t Model::device_bytes() const {

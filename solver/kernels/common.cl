@@ -4,7 +4,6 @@
 //   SIMSOLS_DOUBLE     real = double; otherwise real = float
 //   HAS_GRAVITY, HAS_DAMPING, HAS_FRICTION, HAS_ROLLING, HAS_WALLS
 //   NBR_INTERLEAVED    neighbour slot k of particle i at k*n+i (GPU) instead of i*cap+k (CPU)
-//   WG_UNIFORM_LOOP    neighbour loops run in lock step across a work group (CPU SIMD)
 //
 // Positions in float runs are stored as an unevaluated sum hi + lo of two
 // floats ("double-float"): hi is a normal float position relative to the scene
