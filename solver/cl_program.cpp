@@ -17,6 +17,7 @@ std::string KernelConfig::build_options() const {
   if (rolling) o += " -DHAS_ROLLING";
   if (walls) o += " -DHAS_WALLS";
   if (interleaved_lists) o += " -DNBR_INTERLEAVED";
+  o += " -DLANES=" + std::to_string(lanes);
   if (!extra_options.empty()) o += " " + extra_options;
   return o;
 }
@@ -44,6 +45,13 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
   c.rolling = scene.effects.rolling_friction && any_rolling;
   c.walls = !scene.walls.empty();
   c.interleaved_lists = device.is_gpu();
+  // CPUs: SIMD lanes, 8 floats or 4 doubles per work item (256-bit
+  // registers; measured fastest with PoCL 3.1 on AVX-512, docs/performance.md).
+  // GPUs already run one particle per SIMD lane.
+  c.lanes = device.is_gpu() ? 1 : (c.double_precision ? 4 : 8);
+  if (const char* l = std::getenv("SIMSOLS_LANES")) c.lanes = std::atoi(l);
+  if (c.lanes != 1 && c.lanes != 2 && c.lanes != 4 && c.lanes != 8 && c.lanes != 16)
+    throw DeviceError("SIMSOLS_LANES must be 1, 2, 4, 8 or 16");
   // extra OpenCL build options for experiments, e.g. "-cl-fast-relaxed-math"
   if (const char* x = std::getenv("SIMSOLS_CL_OPTIONS")) c.extra_options = x;
   return c;

@@ -22,6 +22,7 @@ struct KernelConfig {
   bool rolling = true;
   bool walls = true;
   bool interleaved_lists = false;  // neighbour slot layout k*n+i (GPUs)
+  int lanes = 1;                   // particles per work item in the contact kernels
   std::string extra_options;       // appended verbatim (diagnostics, tests)
 
   std::string build_options() const;

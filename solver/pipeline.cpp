@@ -74,7 +74,7 @@ void contact_forces(const Model& m, State& s) {
   const Kernels& k = m.kernels();
   set_args(m, k.contact_forces, s.pos, s.pos_lo, s.vel, s.omega, s.nbr_count, s.nbr, s.spring,
            m.pair_buffer(), s.force, s.torque, Real{m.dt()}, s.cap, s.n, m.pairs().n);
-  launch(m, k.contact_forces, s.n);
+  launch(m, k.contact_forces, (s.n + m.config().lanes - 1) / m.config().lanes);
 }
 
 void wall_forces(const Model& m, State& s) {
@@ -89,7 +89,7 @@ void wall_forces(const Model& m, State& s) {
              s.wall_point_lo, s.wall_vel, s.wall_spring, s.wall_force, m.pair_buffer(), s.force,
              s.torque, Real{m.dt()}, s.n, m.walls(), m.pairs().n);
   }
-  launch(m, k.wall_forces, s.n);
+  launch(m, k.wall_forces, (s.n + m.config().lanes - 1) / m.config().lanes);
 }
 
 void integrate(const Model& m, State& s) {

@@ -12,6 +12,9 @@
 // separation instead of ~1e-7 of the distance to the origin, so slow motions
 // (1e-10 m per step) are not lost and overlaps of 1e-7 m are resolved far
 // from the origin. In double runs lo is absent.
+// Helpers are always inlined (PoCL otherwise keeps some as calls in hot loops).
+#define INLINE inline __attribute__((always_inline))
+
 // No fused multiply-add contraction: the same expression rounds the same way
 // in every code path (scalar, SIMD, remainder loops), which keeps results
 // independent of list length, work-group layout and skin.
@@ -19,10 +22,12 @@
 
 #ifdef SIMSOLS_DOUBLE
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#define REAL_NAME double
 typedef double real;
 typedef double3 real3;
 typedef double4 real4;
 #else
+#define REAL_NAME float
 typedef float real;
 typedef float3 real3;
 typedef float4 real4;
@@ -45,7 +50,7 @@ typedef float4 real4;
 #define WALL_RECORD 4
 
 // Separation vector b - a of two compensated positions.
-inline real3 rel_pos(real4 a, real4 b
+INLINE real3 rel_pos(real4 a, real4 b
 #ifdef POS_COMPENSATED
                      , float4 a_lo, float4 b_lo
 #endif
@@ -59,7 +64,7 @@ inline real3 rel_pos(real4 a, real4 b
 
 #ifdef POS_COMPENSATED
 // (hi, lo) += d with Knuth's two-sum: no rounding error is lost.
-inline void add_compensated(real4* hi, float4* lo, real3 d) {
+INLINE void add_compensated(real4* hi, float4* lo, real3 d) {
   const real3 a = (*hi).xyz;
   const real3 b = d + (*lo).xyz;
   const real3 s = a + b;
@@ -70,50 +75,123 @@ inline void add_compensated(real4* hi, float4* lo, real3 d) {
 }
 #define POS_LO_ARG , __global float4* pos_lo
 #define POS_LO_CARG , __global const float4* pos_lo
+#define POS_LO_SARG , __global const float* restrict pos_lo
+#define POS_LO_SARG_FN , __global const float* pos_lo
+#define POS_LO_PASS , pos_lo
 #define LO(i) , pos_lo[i]
 #else
 #define POS_LO_ARG , __global const real4* pos_lo_unused
 #define POS_LO_CARG , __global const real4* pos_lo_unused
+#define POS_LO_SARG , __global const real* pos_lo_unused
+#define POS_LO_SARG_FN
+#define POS_LO_PASS
 #define LO(i)
 #endif
 
 // ---------------------------------------------------------------------------
-// Scalar 3-vectors for the hot kernels. OpenCL's built-in vector types are
-// not widened by LLVM's loop vectoriser, which is what turns PoCL's loop over
-// work items into SIMD code on CPUs; a struct of three scalars is split into
-// scalars by the compiler and vectorises across work items. On GPUs both
-// forms compile to the same scalar code. Records stay 4-wide in memory
-// (xyz + one packed constant) and are read component by component.
-typedef struct { real x, y, z; } v3;
+// Lanes: the contact kernels process LANES particles per work item (LANES is
+// a build option: 1 on GPUs, 8 or 16 on CPUs). A `lane` holds one value for
+// each of them (real, real8 or real16) and maps onto SIMD registers; the
+// contact law is written once on lanes. Memory stays per particle: lanes are
+// gathered from and scattered to the 4-wide particle records.
+// Conditions are lane masks (`lmask`); SEL(c, a, b) picks a where c holds.
+#ifndef LANES
+#define LANES 1
+#endif
+#define CAT_(a, b) a##b
+#define CAT(a, b) CAT_(a, b)
+#if LANES == 1
+typedef real lane;
+typedef int lmask;
+typedef int lmask_elem;
+#define SEL(c, a, b) ((c) ? (a) : (b))
+#define ANY(c) (c)
+#define LANE_LOAD(p) ((p)[0])
+#define LANE_STORE(v, p) ((p)[0] = (v))
+#else
+typedef CAT(REAL_NAME, LANES) lane;
+#ifdef SIMSOLS_DOUBLE
+typedef CAT(long, LANES) lmask;
+typedef long lmask_elem;
+#else
+typedef CAT(int, LANES) lmask;
+typedef int lmask_elem;
+#endif
+#define SEL(c, a, b) select((b), (a), (c))
+#define ANY(c) any(c)
+#define LANE_LOAD(p) CAT(vload, LANES)(0, (p))
+#define LANE_STORE(v, p) CAT(vstore, LANES)((v), 0, (p))
+#endif
 
-inline v3 V3(real x, real y, real z) { v3 r; r.x = x; r.y = y; r.z = z; return r; }
-inline v3 v_add(v3 a, v3 b) { return V3(a.x + b.x, a.y + b.y, a.z + b.z); }
-inline v3 v_sub(v3 a, v3 b) { return V3(a.x - b.x, a.y - b.y, a.z - b.z); }
-inline v3 v_mul(real s, v3 a) { return V3(s * a.x, s * a.y, s * a.z); }
-inline v3 v_neg(v3 a) { return V3(-a.x, -a.y, -a.z); }
-inline real v_dot(v3 a, v3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline v3 v_cross(v3 a, v3 b) {
+// 3-vectors of lanes (a struct of scalars: compilers split it into registers).
+typedef struct { lane x, y, z; } v3;
+
+INLINE v3 V3(lane x, lane y, lane z) { v3 r; r.x = x; r.y = y; r.z = z; return r; }
+INLINE v3 v_add(v3 a, v3 b) { return V3(a.x + b.x, a.y + b.y, a.z + b.z); }
+INLINE v3 v_sub(v3 a, v3 b) { return V3(a.x - b.x, a.y - b.y, a.z - b.z); }
+INLINE v3 v_mul(lane s, v3 a) { return V3(s * a.x, s * a.y, s * a.z); }
+INLINE v3 v_neg(v3 a) { return V3(-a.x, -a.y, -a.z); }
+INLINE lane v_dot(v3 a, v3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+INLINE v3 v_cross(v3 a, v3 b) {
   return V3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
 }
-inline v3 v_select(bool c, v3 a, v3 b) { return V3(c ? a.x : b.x, c ? a.y : b.y, c ? a.z : b.z); }
-inline v3 v_zero() { return V3(0, 0, 0); }
+INLINE v3 v_sel(lmask c, v3 a, v3 b) { return V3(SEL(c, a.x, b.x), SEL(c, a.y, b.y), SEL(c, a.z, b.z)); }
+INLINE v3 v_zero() { return V3((lane)0, (lane)0, (lane)0); }
 
-inline v3 load3(__global const real* p, int i) { return V3(p[4 * i], p[4 * i + 1], p[4 * i + 2]); }
-inline real load_w(__global const real* p, int i) { return p[4 * i + 3]; }
-inline void store4(__global real* p, int i, v3 v, real w) {
-  p[4 * i] = v.x; p[4 * i + 1] = v.y; p[4 * i + 2] = v.z; p[4 * i + 3] = w;
+// Component `c` of the 4-wide record of each lane's particle idx[l].
+INLINE lane gather(__global const real* p, const int* idx, int c) {
+  real t[LANES];
+  #pragma unroll
+  for (int l = 0; l < LANES; ++l) t[l] = p[4 * idx[l] + c];
+  return LANE_LOAD(t);
 }
-
-// Separation x_b - x_a of two compensated positions, scalar form.
+INLINE v3 gather3(__global const real* p, const int* idx) {
+  return V3(gather(p, idx, 0), gather(p, idx, 1), gather(p, idx, 2));
+}
 #ifdef POS_COMPENSATED
-inline v3 rel3(__global const real* pos, __global const float* lo, int a, int b) {
-  return V3((pos[4 * b] - pos[4 * a]) + (lo[4 * b] - lo[4 * a]),
-            (pos[4 * b + 1] - pos[4 * a + 1]) + (lo[4 * b + 1] - lo[4 * a + 1]),
-            (pos[4 * b + 2] - pos[4 * a + 2]) + (lo[4 * b + 2] - lo[4 * a + 2]));
+INLINE lane gather_lo(__global const float* p, const int* idx, int c) {
+  real t[LANES];
+  #pragma unroll
+  for (int l = 0; l < LANES; ++l) t[l] = p[4 * idx[l] + c];
+  return LANE_LOAD(t);
 }
-#define POS_LO_SARG , __global const float* restrict pos_lo
-#define REL3(a, b) rel3(pos, pos_lo, a, b)
-#else
-#define POS_LO_SARG , __global const real* pos_lo_unused
-#define REL3(a, b) v_sub(load3(pos, b), load3(pos, a))
 #endif
+// Writes (v, w) to record idx[l] of every lane with keep[l] != 0.
+INLINE void scatter4(__global real* p, const int* idx, const int* keep, v3 v, lane w) {
+  real x[LANES], y[LANES], z[LANES], q[LANES];
+  LANE_STORE(v.x, x); LANE_STORE(v.y, y); LANE_STORE(v.z, z); LANE_STORE(w, q);
+  #pragma unroll
+  for (int l = 0; l < LANES; ++l) {
+    if (!keep[l]) continue;
+    __global real* r = p + 4 * idx[l];
+    r[0] = x[l]; r[1] = y[l]; r[2] = z[l]; r[3] = q[l];
+  }
+}
+// A lane mask from per-lane flags.
+INLINE lmask mask_of(const int* flag) {
+  lmask_elem t[LANES];
+  #pragma unroll
+  for (int l = 0; l < LANES; ++l) t[l] = flag[l] ? (lmask_elem)-1 : (lmask_elem)0;
+#if LANES == 1
+  return t[0] != 0;
+#else
+  return LANE_LOAD(t);
+#endif
+}
+
+// Position of each lane's particle (compensated in float runs): separations
+// are formed as (hi_j - hi_i) + (lo_j - lo_i).
+typedef struct { v3 hi; v3 lo; } LanePos;
+INLINE LanePos gather_pos(__global const real* pos POS_LO_SARG_FN, const int* idx) {
+  LanePos r;
+  r.hi = gather3(pos, idx);
+#ifdef POS_COMPENSATED
+  r.lo = V3(gather_lo(pos_lo, idx, 0), gather_lo(pos_lo, idx, 1), gather_lo(pos_lo, idx, 2));
+#else
+  r.lo = v_zero();
+#endif
+  return r;
+}
+INLINE v3 separation(LanePos a, LanePos b) {
+  return v_add(v_sub(b.hi, a.hi), v_sub(b.lo, a.lo));
+}

@@ -18,30 +18,44 @@
 //   rolling  M   = -min(mu_r F_n, I* |w_r| / dt) w_r / |w_r|,
 //            w_r = wrel without its component along n
 //
-// Pair coefficients are read from the pair table `pairs` (8 reals per pair):
+// Each argument is a lane (one contact per lane, see common.cl). Pair
+// coefficients come from the pair table (8 reals per pair):
 //   [0] E*  [1] G*  [2] gamma_n  [3] mu_s  [4] mu_r
 typedef struct {
   v3 force;     // on i
   v3 torque;    // on i, about its centre
-  real energy;  // elastic normal energy 2/5 K_n d^{5/2}
+  lane energy;  // elastic normal energy 2/5 K_n d^{5/2}
 } ContactResult;
 
-#define PAIR(p, k) pairs[8 * (p) + (k)]
+// Coefficients of each lane's material pair.
+typedef struct { lane estar, gstar, gamma, mu_s, mu_r; } PairLanes;
 
-inline ContactResult contact_law(real delta, v3 n, v3 vrel, v3 wrel, real lever, real rstar,
-                                 real mstar, real istar, __global const real* pairs, int pair,
-                                 real dt, v3* spring) {
+INLINE PairLanes gather_pairs(__global const real* pairs, const int* pair) {
+  real t[5][LANES];
+  #pragma unroll
+  for (int l = 0; l < LANES; ++l)
+    for (int k = 0; k < 5; ++k) t[k][l] = pairs[8 * pair[l] + k];
+  PairLanes c;
+  c.estar = LANE_LOAD(t[0]);
+  c.gstar = LANE_LOAD(t[1]);
+  c.gamma = LANE_LOAD(t[2]);
+  c.mu_s = LANE_LOAD(t[3]);
+  c.mu_r = LANE_LOAD(t[4]);
+  return c;
+}
+
+INLINE ContactResult contact_law(lane delta, v3 n, v3 vrel, v3 wrel, lane lever, lane rstar,
+                                 lane mstar, lane istar, PairLanes c, real dt, v3* spring) {
   ContactResult out;
   const real tiny = (real)1e-30;
-  const real sd = sqrt(delta);
-  const real sqrt_r = sqrt(rstar);
-  const real kn = (real)(4.0 / 3.0) * PAIR(pair, 0) * sqrt_r;
-  real fn = kn * delta * sd;
+  const lane sd = sqrt(delta);
+  const lane sqrt_r = sqrt(rstar);
+  const lane kn = (real)(4.0 / 3.0) * c.estar * sqrt_r;
+  lane fn = kn * delta * sd;
   out.energy = (real)0.4 * fn * delta;
-  const real vn = v_dot(vrel, n);
+  const lane vn = v_dot(vrel, n);
 #ifdef HAS_DAMPING
-  const real gamma = PAIR(pair, 2);
-  fn = fmax(fn + gamma * sqrt(mstar * kn) * sqrt(sd) * vn, (real)0);
+  fn = fmax(fn + c.gamma * sqrt(mstar * kn) * sqrt(sd) * vn, (real)0);
 #endif
   out.force = v_mul(-fn, n);
   out.torque = v_zero();
@@ -50,24 +64,24 @@ inline ContactResult contact_law(real delta, v3 n, v3 vrel, v3 wrel, real lever,
   const v3 vt = v_sub(vrel, v_mul(vn, n));
   v3 xi = *spring;
   // rotate the stored spring into the current tangent plane, keeping its length
-  const real xi2 = v_dot(xi, xi);
+  const lane xi2 = v_dot(xi, xi);
   const v3 xp = v_sub(xi, v_mul(v_dot(xi, n), n));
-  const real p2 = v_dot(xp, xp);
-  xi = v_mul(p2 > tiny ? sqrt(xi2 / fmax(p2, tiny)) : (real)0, xp);
-  xi = v_add(xi, v_mul(dt, vt));
-  const real kt = (real)8 * PAIR(pair, 1) * sqrt_r * sd;
+  const lane p2 = v_dot(xp, xp);
+  xi = v_mul(SEL(p2 > tiny, sqrt(xi2 / fmax(p2, tiny)), (lane)0), xp);
+  xi = v_add(xi, v_mul((lane)dt, vt));
+  const lane kt = (real)8 * c.gstar * sqrt_r * sd;
   v3 ft = v_mul(-kt, xi);
 #ifdef HAS_DAMPING
-  const real ct = gamma * sqrt(mstar * kt);
+  const lane ct = c.gamma * sqrt(mstar * kt);
   ft = v_sub(ft, v_mul(ct, vt));
 #else
-  const real ct = 0;
+  const lane ct = (lane)0;
 #endif
-  const real ftmax = PAIR(pair, 3) * fn;
-  const real ft2 = v_dot(ft, ft);
-  const bool sliding = ft2 > ftmax * ftmax;  // Coulomb limit: scale, make the spring consistent
-  ft = v_mul(sliding ? ftmax / sqrt(fmax(ft2, tiny)) : (real)1, ft);
-  xi = v_select(sliding, v_mul(-1 / kt, v_add(ft, v_mul(ct, vt))), xi);
+  const lane ftmax = c.mu_s * fn;
+  const lane ft2 = v_dot(ft, ft);
+  const lmask sliding = ft2 > ftmax * ftmax;  // Coulomb limit: scale, make the spring consistent
+  ft = v_mul(SEL(sliding, ftmax / sqrt(fmax(ft2, tiny)), (lane)1), ft);
+  xi = v_sel(sliding, v_mul(-1 / kt, v_add(ft, v_mul(ct, vt))), xi);
   *spring = xi;
   out.force = v_add(out.force, ft);
   out.torque = v_cross(v_mul(lever, n), ft);
@@ -75,11 +89,11 @@ inline ContactResult contact_law(real delta, v3 n, v3 vrel, v3 wrel, real lever,
 
 #ifdef HAS_ROLLING
   const v3 wr = v_sub(wrel, v_mul(v_dot(wrel, n), n));
-  const real wm = sqrt(v_dot(wr, wr));
+  const lane wm = sqrt(v_dot(wr, wr));
   // Constant torque mu_r F_n, but never more than what stops the relative
   // rolling within this step: no chatter around w_r = 0 and no creep.
-  const real m = fmin(PAIR(pair, 4) * fn, istar * wm / dt);
-  out.torque = v_sub(out.torque, v_mul(wm > tiny ? m / wm : (real)0, wr));
+  const lane m = fmin(c.mu_r * fn, istar * wm / dt);
+  out.torque = v_sub(out.torque, v_mul(SEL(wm > tiny, m / fmax(wm, tiny), (lane)0), wr));
 #endif
   return out;
 }

@@ -12,11 +12,11 @@
 // on atomics and is NOT deterministic; build_neighbors sorts each list by
 // particle index, so nothing downstream depends on it.
 
-inline int3 cell_of(real3 x, real inv_cell) {
+INLINE int3 cell_of(real3 x, real inv_cell) {
   return convert_int3_rtn(x * inv_cell);
 }
 
-inline uint hash_cell(int3 c, uint table) {
+INLINE uint hash_cell(int3 c, uint table) {
   const uint h = ((uint)c.x * 73856093u) ^ ((uint)c.y * 19349663u) ^ ((uint)c.z * 83492791u);
   return h & (table - 1u);
 }

@@ -5,81 +5,101 @@
 // written by contact_forces. Each (wall, particle) slot w*n+i keeps its
 // tangential spring and the force the particle exerts ON the wall, which
 // reduce_walls sums into the wall's reaction.
+// One work item handles LANES particles (see forces.cl).
 // Wall records (4 x real4 per wall, see common.cl): [0] reference point and
 // shape, [1] normal and material, [2] axis_u and half_u, [3] axis_v and half_v.
 // Wall state: point/point_lo = current position of the reference point
 // (moved by advance_walls), vel = its velocity.
 #ifdef HAS_WALLS
 
-__kernel void wall_forces(__global const real* pos POS_LO_SARG,
-                          __global const real* vel, __global const real* omega,
-                          __global const real* walls, __global const real* wall_point
+__kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
+                          __global const real* restrict vel, __global const real* restrict omega,
+                          __global const real* restrict walls,
+                          __global const real* restrict wall_point
 #ifdef POS_COMPENSATED
-                          , __global const float* wall_point_lo
+                          , __global const float* restrict wall_point_lo
 #endif
-                          , __global const real* wall_vel, __global real* wall_spring,
-                          __global real* wall_force, __global const real* pairs,
-                          __global real* force, __global real* torque,
-                          real dt, int n, int nwalls, int nmat) {
-  const int i = get_global_id(0);
-  if (i >= n) return;
-  const v3 xi = load3(pos, i);
-  const real ri = load_w(pos, i);
-  const v3 vi = load3(vel, i);
-  const real mi = load_w(vel, i);
-  const v3 wi = load3(omega, i);
-  const real ii = (real)0.4 * mi * ri * ri;
-  const int row = (int)load_w(omega, i) * nmat;
-  v3 f = load3(force, i);
-  real count = load_w(force, i);
-  v3 t = load3(torque, i);
-  real e = load_w(torque, i);
+                          , __global const real* restrict wall_vel,
+                          __global real* restrict wall_spring, __global real* restrict wall_force,
+                          __global const real* restrict pairs, __global real* restrict force,
+                          __global real* restrict torque, real dt, int n, int nwalls, int nmat) {
+  const int base = get_global_id(0) * LANES;
+  if (base >= n) return;
+  int ii[LANES], valid[LANES], pair[LANES];
+  #pragma unroll
+  for (int l = 0; l < LANES; ++l) {
+    valid[l] = base + l < n;
+    ii[l] = valid[l] ? base + l : n - 1;
+  }
+  const LanePos pi = gather_pos(pos POS_LO_PASS, ii);
+  const lane ri = gather(pos, ii, 3);
+  const v3 vi = gather3(vel, ii);
+  const lane mi = gather(vel, ii, 3);
+  const v3 wi = gather3(omega, ii);
+  real mat_i[LANES];
+  LANE_STORE(gather(omega, ii, 3), mat_i);
+  const lane inertia = (real)0.4 * mi * ri * ri;
+  v3 f = gather3(force, ii);
+  lane count = gather(force, ii, 3);
+  v3 t = gather3(torque, ii);
+  lane e = gather(torque, ii, 3);
 
   for (int w = 0; w < nwalls; ++w) {
-    const int slot = w * n + i;
-    const int rec = WALL_RECORD * w;
-    // d: from the particle centre to the wall's reference point
-    v3 d = v_sub(load3(wall_point, w), xi);
+    const int rec = 4 * WALL_RECORD * w;  // reals
+    int slot[LANES];
+    #pragma unroll
+    for (int l = 0; l < LANES; ++l) slot[l] = w * n + ii[l];
+    // d: from each particle centre to the wall's reference point
+    LanePos wp;
+    wp.hi = V3((lane)wall_point[4 * w], (lane)wall_point[4 * w + 1], (lane)wall_point[4 * w + 2]);
 #ifdef POS_COMPENSATED
-    d = v_add(d, V3(wall_point_lo[4 * w] - pos_lo[4 * i], wall_point_lo[4 * w + 1] - pos_lo[4 * i + 1],
-                    wall_point_lo[4 * w + 2] - pos_lo[4 * i + 2]));
+    wp.lo = V3((lane)wall_point_lo[4 * w], (lane)wall_point_lo[4 * w + 1],
+               (lane)wall_point_lo[4 * w + 2]);
+#else
+    wp.lo = v_zero();
 #endif
-    const v3 nrm = load3(walls, rec + 1);
+    const v3 d = separation(pi, wp);
+    const v3 nrm = V3((lane)walls[rec + 4], (lane)walls[rec + 5], (lane)walls[rec + 6]);
     v3 to_wall;  // from the centre to the closest wall point
-    if (load_w(walls, rec) == (real)0) {
-      const real s = -v_dot(d, nrm);  // signed distance of the centre
-      to_wall = (s > -ri) ? v_mul(-s, nrm) : V3(2 * ri, 0, 0);  // behind the plane: ignored
+    if (walls[rec + 3] == (real)0) {
+      const lane s = -v_dot(d, nrm);  // signed distance of the centre
+      // behind the plane (s <= -r): ignored
+      to_wall = v_sel(s > -ri, v_mul(-s, nrm), V3(2 * ri, (lane)0, (lane)0));
     } else {
-      const v3 au = load3(walls, rec + 2);
-      const v3 av = load3(walls, rec + 3);
-      const real hu = load_w(walls, rec + 2), hv = load_w(walls, rec + 3);
-      const real u = clamp(-v_dot(d, au), -hu, hu);
-      const real v = clamp(-v_dot(d, av), -hv, hv);
+      const v3 au = V3((lane)walls[rec + 8], (lane)walls[rec + 9], (lane)walls[rec + 10]);
+      const v3 av = V3((lane)walls[rec + 12], (lane)walls[rec + 13], (lane)walls[rec + 14]);
+      const real hu = walls[rec + 11], hv = walls[rec + 15];
+      const lane u = clamp(-v_dot(d, au), -hu, hu);
+      const lane v = clamp(-v_dot(d, av), -hv, hv);
       to_wall = v_add(d, v_add(v_mul(u, au), v_mul(v, av)));
     }
-    const real dist2 = v_dot(to_wall, to_wall);
-    if (dist2 >= ri * ri || dist2 == (real)0) {
-      store4(wall_spring, slot, v_zero(), 0);
-      store4(wall_force, slot, v_zero(), 0);
+    const lane dist2 = v_dot(to_wall, to_wall);
+    const lmask on = (dist2 < ri * ri) & (dist2 > (real)0);
+    if (!ANY(on)) {  // no lane touches this wall: clear its slots, skip the law
+      scatter4(wall_spring, slot, valid, v_zero(), (lane)0);
+      scatter4(wall_force, slot, valid, v_zero(), (lane)0);
       continue;
     }
-    const real dist = sqrt(dist2);
-    const v3 nv = v_mul(1 / dist, to_wall);
-    const real delta = ri - dist;
-    const real a = ri - (real)0.5 * delta;
-    const v3 vrel = v_sub(v_add(vi, v_cross(wi, v_mul(a, nv))), load3(wall_vel, w));
-    v3 sp = load3(wall_spring, slot);
-    const ContactResult c = contact_law(delta, nv, vrel, wi, a, ri, mi, ii, pairs,
-                                        row + (int)load_w(walls, rec + 1), dt, &sp);
-    store4(wall_spring, slot, sp, 0);
-    store4(wall_force, slot, v_neg(c.force), 1);
-    f = v_add(f, c.force);
-    t = v_add(t, c.torque);
-    e += c.energy;
-    count += 1;
+    const lane dist = SEL(on, sqrt(dist2), (real)0.5 * ri);
+    const v3 nv = v_sel(on, v_mul(1 / dist, to_wall), V3((lane)1, (lane)0, (lane)0));
+    const lane delta = ri - dist;
+    const lane a = ri - (real)0.5 * delta;
+    const v3 vw = V3((lane)wall_vel[4 * w], (lane)wall_vel[4 * w + 1], (lane)wall_vel[4 * w + 2]);
+    const v3 vrel = v_sub(v_add(vi, v_cross(wi, v_mul(a, nv))), vw);
+    v3 sp = gather3(wall_spring, slot);
+    #pragma unroll
+    for (int l = 0; l < LANES; ++l) pair[l] = (int)mat_i[l] * nmat + (int)walls[rec + 7];
+    const ContactResult c = contact_law(delta, nv, vrel, wi, a, ri, mi, inertia,
+                                        gather_pairs(pairs, pair), dt, &sp);
+    scatter4(wall_spring, slot, valid, v_sel(on, sp, v_zero()), (lane)0);
+    scatter4(wall_force, slot, valid, v_sel(on, v_neg(c.force), v_zero()), SEL(on, (lane)1, (lane)0));
+    f = v_add(f, v_sel(on, c.force, v_zero()));
+    t = v_add(t, v_sel(on, c.torque, v_zero()));
+    e += SEL(on, c.energy, (lane)0);
+    count += SEL(on, (lane)1, (lane)0);
   }
-  store4(force, i, f, count);
-  store4(torque, i, t, e);
+  scatter4(force, ii, valid, f, count);
+  scatter4(torque, ii, valid, t, e);
 }
 
 // Walls move with their prescribed velocity (compensated in float runs).
