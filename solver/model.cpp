@@ -51,7 +51,9 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
   kernels_.scan_apply = p.kernel("scan_apply");
   kernels_.grid_scatter = p.kernel("grid_scatter");
   kernels_.build_neighbors = p.kernel("build_neighbors");
-  kernels_.contact_forces = p.kernel("contact_forces");
+  kernels_.build_mirrors = p.kernel("build_mirrors");
+  kernels_.pair_forces = p.kernel("pair_forces");
+  kernels_.collect_pairs = p.kernel("collect_pairs");
   kernels_.integrate = p.kernel("integrate");
   kernels_.reduce_observables = p.kernel("reduce_observables");
   if (config().walls) {

@@ -18,7 +18,8 @@ namespace simsols {
 
 struct Kernels {
   ClKernel grid_clear, grid_count, scan_chunks, scan_totals, scan_apply, grid_scatter;
-  ClKernel build_neighbors, contact_forces, wall_forces, advance_walls, integrate;
+  ClKernel build_neighbors, build_mirrors, pair_forces, collect_pairs, wall_forces, advance_walls,
+      integrate;
   ClKernel reduce_observables, reduce_walls;
 };
 

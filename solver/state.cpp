@@ -94,6 +94,8 @@ State::State(const Model& model) {
   old_count = make(d, n * sizeof(int));
   old_nbr = make(d, size_t(n) * cap * sizeof(int));
   old_spring = make(d, spring_bytes(model));
+  nbr_split = make(d, n * sizeof(int));
+  make_pair_buffers(model);
 
   bucket = make(d, n * sizeof(std::uint32_t));
   slot = make(d, n * sizeof(std::uint32_t));
@@ -128,7 +130,8 @@ State::State(const Model& model) {
 size_t State::device_bytes() const {
   size_t total = 0;
   for (const Buffer* b : {&pos, &pos_lo, &vel, &omega, &force, &torque, &pos_build, &nbr_count,
-                          &nbr, &spring, &old_count, &old_nbr, &old_spring, &bucket, &slot,
+                          &nbr, &spring, &old_count, &old_nbr, &old_spring, &nbr_split, &mirror,
+                          &pair_force, &pair_torque, &bucket, &slot,
                           &cell_count, &cell_start, &sorted, &chunk_sum, &wall_point,
                           &wall_point_lo, &wall_vel, &wall_spring, &wall_force, &flags,
                           &obs_partial, &wall_partial})
@@ -141,7 +144,7 @@ std::vector<std::pair<std::string, Buffer*>> State::dynamic_buffers() {
   return {{"pos", &pos},           {"pos_lo", &pos_lo},         {"vel", &vel},
           {"omega", &omega},       {"force", &force},           {"torque", &torque},
           {"pos_build", &pos_build}, {"nbr_count", &nbr_count}, {"nbr", &nbr},
-          {"spring", &spring},     {"wall_point", &wall_point}, {"wall_point_lo", &wall_point_lo},
+          {"spring", &spring},     {"nbr_split", &nbr_split}, {"mirror", &mirror},     {"wall_point", &wall_point}, {"wall_point_lo", &wall_point_lo},
           {"wall_vel", &wall_vel}, {"wall_spring", &wall_spring}, {"wall_force", &wall_force},
           {"flags", &flags}};
 }
@@ -159,7 +162,7 @@ void State::grow_lists(const Model& model, int new_cap) {
   d.read(old_nbr.get(), ids.size() * sizeof(int), ids.data());
   d.read(old_spring.get(), spr.size(), spr.data());
   std::vector<int> ids2(size_t(n) * new_cap, 0);
-  std::vector<unsigned char> spr2(size_t(n + 1) * new_cap * r4, 0);
+  std::vector<unsigned char> spr2(size_t(n) * new_cap * r4, 0);
   for (int i = 0; i < n; ++i)
     for (int k = 0; k < cnt[i]; ++k) {
       ids2[index(i, k, new_cap)] = ids[index(i, k, cap)];
@@ -170,6 +173,14 @@ void State::grow_lists(const Model& model, int new_cap) {
   old_spring = make(d, spr2.size(), spr2.data());
   nbr = make(d, ids2.size() * sizeof(int));
   spring = make(d, spr2.size());
+  make_pair_buffers(model);
+}
+
+void State::make_pair_buffers(const Model& model) {
+  Device& d = model.device();
+  mirror = make(d, size_t(n) * cap * sizeof(int));
+  pair_force = make(d, size_t(n) * cap * 4 * model.real_size());
+  pair_torque = make(d, size_t(n) * cap * 4 * model.real_size());
 }
 
 void State::resize_lists(const Model& model, int new_cap) {
@@ -180,11 +191,11 @@ void State::resize_lists(const Model& model, int new_cap) {
   spring = make(d, spring_bytes(model));
   old_nbr = make(d, size_t(n) * cap * sizeof(int));
   old_spring = make(d, spring_bytes(model));
+  make_pair_buffers(model);
 }
 
 size_t State::spring_bytes(const Model& model) const {
-  // one spare row of slots for the padding work items of contact_forces
-  return size_t(n + 1) * cap * 4 * model.real_size();
+  return size_t(n) * cap * 4 * model.real_size();
 }
 
 }  // namespace simsols

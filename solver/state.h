@@ -33,8 +33,11 @@ class State {
 
   // hot, per particle
   Buffer pos, pos_lo, vel, omega, force, torque;
-  // neighbour lists (current and previous, for carrying springs over)
+  // neighbour lists (current and previous, for carrying springs over);
+  // nbr_split: partners below the particle's index; mirror: where the lower
+  // partner left this particle's share; pair_*: those shares (per slot)
   Buffer pos_build, nbr_count, nbr, spring, old_count, old_nbr, old_spring;
+  Buffer nbr_split, mirror, pair_force, pair_torque;
   // grid
   Buffer bucket, slot, cell_count, cell_start, sorted, chunk_sum;
   // walls: current reference point (+ float compensation), velocity, slots
@@ -61,7 +64,12 @@ class State {
   void grow_lists(const Model& model, int new_cap);
   // Reallocates all neighbour-list buffers, zeroed, with `new_cap` slots.
   void resize_lists(const Model& model, int new_cap);
-  size_t spring_bytes(const Model& model) const;  // (n + 1) * cap slots
+  size_t spring_bytes(const Model& model) const;
+
+ private:
+  void make_pair_buffers(const Model& model);  // mirror, pair_force, pair_torque for `cap`
+
+ public:
 
  private:
   Buffer make(Device& d, size_t bytes, const void* init = nullptr);

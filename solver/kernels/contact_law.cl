@@ -4,11 +4,10 @@
 //
 // Conventions: n is the unit normal from particle i towards its partner,
 // delta > 0 the overlap, vrel the velocity of i's contact point relative to
-// the partner's, wrel = w_i - w_partner, lever the distance from i's centre
-// to the contact point. The returned force and torque act on i; the partner
-// receives the opposite force and, for a sphere pair, the opposite torque
-// when computed from its own side (the law is antisymmetric under i <-> j,
-// which is what makes the per-particle gather conserve momentum).
+// the partner's, wrel = w_i - w_partner. The returned force acts on i, the
+// partner receives exactly its opposite (the pair is computed once), and the
+// torques are built from n x F_t and the rolling torque (see ContactResult),
+// so linear and angular momentum are conserved to round-off.
 //
 //   normal   F_n = K_n d^{3/2} + gamma sqrt(m* K_n) d^{1/4} v_n, clamped >= 0
 //            K_n = 4/3 E* sqrt(R*)
@@ -21,10 +20,13 @@
 // Each argument is a lane (one contact per lane, see common.cl). Pair
 // coefficients come from the pair table (8 reals per pair):
 //   [0] E*  [1] G*  [2] gamma_n  [3] mu_s  [4] mu_r
+// The torque on i about its centre is lever_i n x F_t + rolling; the
+// partner (a sphere) receives lever_j n x F_t - rolling.
 typedef struct {
-  v3 force;     // on i
-  v3 torque;    // on i, about its centre
-  lane energy;  // elastic normal energy 2/5 K_n d^{5/2}
+  v3 force;        // on i
+  v3 n_cross_ft;   // n x F_t
+  v3 rolling;      // rolling-resistance torque on i
+  lane energy;     // elastic normal energy 2/5 K_n d^{5/2}
 } ContactResult;
 
 // Coefficients of each lane's material pair.
@@ -44,7 +46,7 @@ INLINE PairLanes gather_pairs(__global const real* pairs, const int* pair) {
   return c;
 }
 
-INLINE ContactResult contact_law(lane delta, v3 n, v3 vrel, v3 wrel, lane lever, lane rstar,
+INLINE ContactResult contact_law(lane delta, v3 n, v3 vrel, v3 wrel, lane rstar,
                                  lane mstar, lane istar, PairLanes c, real dt, v3* spring) {
   ContactResult out;
   const real tiny = (real)1e-30;
@@ -58,7 +60,8 @@ INLINE ContactResult contact_law(lane delta, v3 n, v3 vrel, v3 wrel, lane lever,
   fn = fmax(fn + c.gamma * sqrt(mstar * kn) * sqrt(sd) * vn, (real)0);
 #endif
   out.force = v_mul(-fn, n);
-  out.torque = v_zero();
+  out.n_cross_ft = v_zero();
+  out.rolling = v_zero();
 
 #ifdef HAS_FRICTION
   const v3 vt = v_sub(vrel, v_mul(vn, n));
@@ -84,7 +87,7 @@ INLINE ContactResult contact_law(lane delta, v3 n, v3 vrel, v3 wrel, lane lever,
   xi = v_sel(sliding, v_mul(-1 / kt, v_add(ft, v_mul(ct, vt))), xi);
   *spring = xi;
   out.force = v_add(out.force, ft);
-  out.torque = v_cross(v_mul(lever, n), ft);
+  out.n_cross_ft = v_cross(n, ft);
 #endif
 
 #ifdef HAS_ROLLING
@@ -93,7 +96,7 @@ INLINE ContactResult contact_law(lane delta, v3 n, v3 vrel, v3 wrel, lane lever,
   // Constant torque mu_r F_n, but never more than what stops the relative
   // rolling within this step: no chatter around w_r = 0 and no creep.
   const lane m = fmin(c.mu_r * fn, istar * wm / dt);
-  out.torque = v_sub(out.torque, v_mul(SEL(wm > tiny, m / fmax(wm, tiny), (lane)0), wr));
+  out.rolling = v_mul(-SEL(wm > tiny, m / fmax(wm, tiny), (lane)0), wr);
 #endif
   return out;
 }

@@ -1,56 +1,63 @@
-// forces.cl — stage: contact forces between particles.
+// forces.cl — stage: contact forces between particles, in two passes.
 //
-// One work item handles LANES consecutive particles (one lane each) and
-// gathers the forces of all their listed neighbours; pairs are computed from
-// both sides (see contact_law.cl). Output per particle: force.xyz and
-// force.w = number of touching neighbours; torque.xyz and torque.w = half the
-// elastic energy of its contacts. Particle records: pos = (x, radius),
-// vel = (v, mass), omega = (w, material).
+// pair_forces: every pair is computed once, by its lower-index particle,
+//   from the upper part of its sorted list (partners j > i). The particle
+//   keeps its own share in registers and leaves the partner's share (the
+//   opposite force, its torque, half the elastic energy, a contact flag) in
+//   the pair's list slot.
+// collect_pairs: every particle adds the shares waiting for it in the slots
+//   of its lower partners (found through `mirror`, built with the lists).
+// No atomics: the sums have a fixed order and runs are reproducible bit for
+// bit. Output per particle: force.xyz and force.w = number of touching
+// neighbours; torque.xyz and torque.w = half the elastic energy of its
+// contacts. Particle records: pos = (x, radius), vel = (v, mass),
+// omega = (w, material).
 //
-// The lanes walk their lists in step: slot k of every lane at once, up to
-// the longest list. A lane whose list is shorter, or whose neighbour does not
-// touch, runs the law on stand-in values (half-overlapping spheres) and adds
-// zero: no branches inside the SIMD arithmetic.
+// One work item handles LANES consecutive particles (one lane each). The
+// lanes walk their lists in step, up to the longest; a lane past its list, or
+// whose neighbour does not touch, runs the law on stand-in values
+// (half-overlapping spheres) and adds zero: no branches in the arithmetic.
 
-__kernel void contact_forces(__global const real* restrict pos POS_LO_SARG,
-                             __global const real* restrict vel,
-                             __global const real* restrict omega,
-                             __global const int* restrict nbr_count,
-                             __global const int* restrict nbr, __global real* restrict spring,
-                             __global const real* restrict pairs, __global real* restrict force,
-                             __global real* restrict torque,
-                             real dt, int cap, int n, int nmat) {
+__kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
+                          __global const real* restrict vel, __global const real* restrict omega,
+                          __global const int* restrict nbr_count, __global const int* restrict nbr,
+                          __global const int* restrict nbr_split, __global real* restrict spring,
+                          __global const real* restrict pairs, __global real* restrict pair_force,
+                          __global real* restrict pair_torque, __global real* restrict force,
+                          __global real* restrict torque, real dt, int cap, int n, int nmat) {
   const int base = get_global_id(0) * LANES;
   if (base >= n) return;
-  int ii[LANES], valid[LANES], len[LANES];
+  int ii[LANES], valid[LANES], first[LANES], len[LANES];
   int longest = 0;
-  #pragma unroll
+#pragma unroll
   for (int l = 0; l < LANES; ++l) {
     valid[l] = base + l < n;
     ii[l] = valid[l] ? base + l : n - 1;
+    first[l] = valid[l] ? nbr_split[ii[l]] : 0;
     len[l] = valid[l] ? nbr_count[ii[l]] : 0;
-    longest = max(longest, len[l]);
+    longest = max(longest, len[l] - first[l]);
   }
   const LanePos pi = gather_pos(pos POS_LO_PASS, ii);
   const lane ri = gather(pos, ii, 3);
   const v3 vi = gather3(vel, ii);
   const lane mi = gather(vel, ii, 3);
   const v3 wi = gather3(omega, ii);
-  const lane mat_i = gather(omega, ii, 3);
   const lane inertia_i = (real)0.4 * mi * ri * ri;
   real row_t[LANES];
-  LANE_STORE(mat_i, row_t);
+  LANE_STORE(gather(omega, ii, 3), row_t);
 
   v3 f = v_zero();
   v3 t = v_zero();
   lane e = (lane)0;
   lane touching = (lane)0;
-  for (int k = 0; k < longest; ++k) {
-    int jj[LANES], slot[LANES], listed[LANES], pair[LANES];
-    #pragma unroll
+  for (int q = 0; q < longest; ++q) {
+    int jj[LANES], slot[LANES], listed[LANES], keep[LANES], pair[LANES];
+#pragma unroll
     for (int l = 0; l < LANES; ++l) {
+      const int k = first[l] + q;
       listed[l] = k < len[l];
-      slot[l] = NBR(ii[l], k, n, cap);
+      keep[l] = listed[l] && valid[l];
+      slot[l] = NBR(ii[l], min(k, cap - 1), n, cap);
       jj[l] = listed[l] ? nbr[slot[l]] : ii[l];
     }
     const LanePos pj = gather_pos(pos POS_LO_PASS, jj);
@@ -67,7 +74,7 @@ __kernel void contact_forces(__global const real* restrict pos POS_LO_SARG,
     const v3 wj = gather3(omega, jj);
     real mat_j[LANES];
     LANE_STORE(gather(omega, jj, 3), mat_j);
-    #pragma unroll
+#pragma unroll
     for (int l = 0; l < LANES; ++l) pair[l] = (int)row_t[l] * nmat + (int)mat_j[l];
     const lane inertia_j = (real)0.4 * mj * rj * rj;
     const lane ai = ri - (real)0.5 * delta;  // lever arms to the common contact point
@@ -79,22 +86,45 @@ __kernel void contact_forces(__global const real* restrict pos POS_LO_SARG,
 #else
     v3 sp = v_zero();
 #endif
-    const ContactResult c = contact_law(delta, nv, vrel, v_sub(wi, wj), ai, ri * rj / rsum,
+    const ContactResult c = contact_law(delta, nv, vrel, v_sub(wi, wj), ri * rj / rsum,
                                         mi * mj / (mi + mj),
                                         inertia_i * inertia_j / (inertia_i + inertia_j),
                                         gather_pairs(pairs, pair), dt, &sp);
 #ifdef HAS_FRICTION
-    // a contact that is lost ends its history
-    int keep[LANES];
-    #pragma unroll
-    for (int l = 0; l < LANES; ++l) keep[l] = listed[l] && valid[l];
-    scatter4(spring, slot, keep, v_sel(on, sp, v_zero()), (lane)0);
+    scatter4(spring, slot, keep, v_sel(on, sp, v_zero()), (lane)0);  // lost contacts end their history
 #endif
-    f = v_add(f, v_sel(on, c.force, v_zero()));
-    t = v_add(t, v_sel(on, c.torque, v_zero()));
-    e += SEL(on, (real)0.5 * c.energy, (lane)0);
-    touching += SEL(on, (lane)1, (lane)0);
+    const lane half_e = SEL(on, (real)0.5 * c.energy, (lane)0);
+    const lane flag = SEL(on, (lane)1, (lane)0);
+    const v3 fi = v_sel(on, c.force, v_zero());
+    const v3 ti = v_sel(on, v_add(v_mul(ai, c.n_cross_ft), c.rolling), v_zero());
+    const v3 tj = v_sel(on, v_sub(v_mul(aj, c.n_cross_ft), c.rolling), v_zero());
+    scatter4(pair_force, slot, keep, v_neg(fi), flag);
+    scatter4(pair_torque, slot, keep, tj, half_e);
+    f = v_add(f, fi);
+    t = v_add(t, ti);
+    e += half_e;
+    touching += flag;
   }
   scatter4(force, ii, valid, f, touching);
   scatter4(torque, ii, valid, t, e);
+}
+
+__kernel void collect_pairs(__global const int* restrict nbr_split,
+                            __global const int* restrict mirror,
+                            __global const real4* restrict pair_force,
+                            __global const real4* restrict pair_torque,
+                            __global real4* restrict force, __global real4* restrict torque,
+                            int cap, int n) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  real4 f = force[i];
+  real4 t = torque[i];
+  const int split = nbr_split[i];
+  for (int k = 0; k < split; ++k) {
+    const int slot = mirror[NBR(i, k, n, cap)];
+    f += pair_force[slot];
+    t += pair_torque[slot];
+  }
+  force[i] = f;
+  torque[i] = t;
 }

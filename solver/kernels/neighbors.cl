@@ -8,8 +8,11 @@
 // so contact history survives every rebuild. The list is rebuilt when some
 // particle has moved more than skin/2 since the last build (integrate.cl).
 //
-// flags[1] receives the largest list length requested when a list overflows
-// its capacity; the host then grows the capacity and rebuilds.
+// Lists are sorted, so the partners j < i come first: nbr_split[i] counts
+// them. Each pair is computed once, by its lower particle, from the upper
+// part of its list; build_mirrors tells the upper particle where to collect
+// its share. flags[1] receives the largest list length requested when a list
+// overflows its capacity; the host then grows the capacity and rebuilds.
 
 #define MAX_CAP 256
 
@@ -19,6 +22,7 @@ __kernel void build_neighbors(__global const real4* pos POS_LO_CARG,
                               __global const int* old_count, __global const int* old_nbr,
                               __global const real4* old_spring,
                               __global int* nbr_count, __global int* nbr, __global real4* spring,
+                              __global int* nbr_split,
                               __global real4* pos_build, __global volatile int* flags,
                               real inv_cell, real skin, uint table, int cap, int n) {
   const int i = get_global_id(0);
@@ -61,7 +65,9 @@ __kernel void build_neighbors(__global const real4* pos POS_LO_CARG,
   // Carry the springs over: both lists are sorted by j.
   const int olen = old_count[i];
   int o = 0;
+  int split = 0;
   for (int k = 0; k < len; ++k) {
+    split += list[k] < i;
     const int j = list[k];
     while (o < olen && old_nbr[NBR(i, o, n, cap)] < j) ++o;
     real4 sp = (real4)(0);
@@ -70,5 +76,25 @@ __kernel void build_neighbors(__global const real4* pos POS_LO_CARG,
     spring[NBR(i, k, n, cap)] = sp;
   }
   nbr_count[i] = len;
+  nbr_split[i] = split;
   pos_build[i] = pi;
+}
+
+// For every lower partner j < i of particle i (list entries k < split[i]),
+// the slot of i in j's list, where j computed the pair (see forces.cl).
+__kernel void build_mirrors(__global const int* nbr_count, __global const int* nbr,
+                            __global const int* nbr_split, __global int* mirror, int cap, int n) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  const int split = nbr_split[i];
+  for (int k = 0; k < split; ++k) {
+    const int j = nbr[NBR(i, k, n, cap)];
+    // i > j lies in the upper, sorted part of j's list: binary search
+    int lo = nbr_split[j], hi = nbr_count[j] - 1;
+    while (lo < hi) {
+      const int mid = (lo + hi) / 2;
+      if (nbr[NBR(j, mid, n, cap)] < i) lo = mid + 1; else hi = mid;
+    }
+    mirror[NBR(i, k, n, cap)] = NBR(j, lo, n, cap);
+  }
 }

@@ -89,12 +89,12 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
     v3 sp = gather3(wall_spring, slot);
     #pragma unroll
     for (int l = 0; l < LANES; ++l) pair[l] = (int)mat_i[l] * nmat + (int)walls[rec + 7];
-    const ContactResult c = contact_law(delta, nv, vrel, wi, a, ri, mi, inertia,
+    const ContactResult c = contact_law(delta, nv, vrel, wi, ri, mi, inertia,
                                         gather_pairs(pairs, pair), dt, &sp);
     scatter4(wall_spring, slot, valid, v_sel(on, sp, v_zero()), (lane)0);
     scatter4(wall_force, slot, valid, v_sel(on, v_neg(c.force), v_zero()), SEL(on, (lane)1, (lane)0));
     f = v_add(f, v_sel(on, c.force, v_zero()));
-    t = v_add(t, v_sel(on, c.torque, v_zero()));
+    t = v_add(t, v_sel(on, v_add(v_mul(a, c.n_cross_ft), c.rolling), v_zero()));
     e += SEL(on, c.energy, (lane)0);
     count += SEL(on, (lane)1, (lane)0);
   }
