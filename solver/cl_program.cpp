@@ -44,7 +44,10 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
   c.friction = scene.effects.tangential_friction && any_friction;
   c.rolling = scene.effects.rolling_friction && any_rolling;
   c.walls = !scene.walls.empty();
-  c.interleaved_lists = device.is_gpu();
+  // Slot k of particle i at k*n + i: consecutive particles (GPU threads or
+  // CPU SIMD lanes) touch consecutive slots. 2x faster than i*cap + k on PoCL.
+  c.interleaved_lists = true;
+  if (const char* v = std::getenv("SIMSOLS_INTERLEAVED")) c.interleaved_lists = std::atoi(v) != 0;
   // CPUs: SIMD lanes, 8 floats or 4 doubles per work item (256-bit
   // registers; measured fastest with PoCL 3.1 on AVX-512, docs/performance.md).
   // GPUs already run one particle per SIMD lane.

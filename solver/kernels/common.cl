@@ -145,9 +145,21 @@ INLINE lane gather(__global const real* p, const int* idx, int c) {
   for (int l = 0; l < LANES; ++l) t[l] = p[4 * idx[l] + c];
   return LANE_LOAD(t);
 }
-INLINE v3 gather3(__global const real* p, const int* idx) {
-  return V3(gather(p, idx, 0), gather(p, idx, 1), gather(p, idx, 2));
+// All four components of each lane's record, one 4-wide load per lane.
+typedef struct { v3 xyz; lane w; } Lane4;
+INLINE Lane4 gather4(__global const real* p, const int* idx) {
+  real x[LANES], y[LANES], z[LANES], w[LANES];
+#pragma unroll
+  for (int l = 0; l < LANES; ++l) {
+    const real4 r = vload4(idx[l], p);
+    x[l] = r.x; y[l] = r.y; z[l] = r.z; w[l] = r.w;
+  }
+  Lane4 out;
+  out.xyz = V3(LANE_LOAD(x), LANE_LOAD(y), LANE_LOAD(z));
+  out.w = LANE_LOAD(w);
+  return out;
 }
+INLINE v3 gather3(__global const real* p, const int* idx) { return gather4(p, idx).xyz; }
 #ifdef POS_COMPENSATED
 INLINE lane gather_lo(__global const float* p, const int* idx, int c) {
   real t[LANES];

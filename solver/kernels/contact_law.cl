@@ -32,12 +32,20 @@ typedef struct {
 // Coefficients of each lane's material pair.
 typedef struct { lane estar, gstar, gamma, mu_s, mu_r; } PairLanes;
 
-INLINE PairLanes gather_pairs(__global const real* pairs, const int* pair) {
+INLINE PairLanes gather_pairs(__global const real* pairs, const int* pair, int nmat) {
+  PairLanes c;
+  if (nmat == 1) {  // one material: the same coefficients in every lane
+    c.estar = (lane)pairs[0];
+    c.gstar = (lane)pairs[1];
+    c.gamma = (lane)pairs[2];
+    c.mu_s = (lane)pairs[3];
+    c.mu_r = (lane)pairs[4];
+    return c;
+  }
   real t[5][LANES];
   #pragma unroll
   for (int l = 0; l < LANES; ++l)
     for (int k = 0; k < 5; ++k) t[k][l] = pairs[8 * pair[l] + k];
-  PairLanes c;
   c.estar = LANE_LOAD(t[0]);
   c.gstar = LANE_LOAD(t[1]);
   c.gamma = LANE_LOAD(t[2]);

@@ -39,12 +39,12 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
   }
   const LanePos pi = gather_pos(pos POS_LO_PASS, ii);
   const lane ri = gather(pos, ii, 3);
-  const v3 vi = gather3(vel, ii);
-  const lane mi = gather(vel, ii, 3);
-  const v3 wi = gather3(omega, ii);
+  const Lane4 vmi = gather4(vel, ii), wmi = gather4(omega, ii);
+  const v3 vi = vmi.xyz, wi = wmi.xyz;
+  const lane mi = vmi.w;
   const lane inertia_i = (real)0.4 * mi * ri * ri;
   real row_t[LANES];
-  LANE_STORE(gather(omega, ii, 3), row_t);
+  LANE_STORE(wmi.w, row_t);
 
   v3 f = v_zero();
   v3 t = v_zero();
@@ -60,20 +60,27 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
       slot[l] = NBR(ii[l], min(k, cap - 1), n, cap);
       jj[l] = listed[l] ? nbr[slot[l]] : ii[l];
     }
-    const LanePos pj = gather_pos(pos POS_LO_PASS, jj);
+    const Lane4 pr = gather4(pos, jj);
+    LanePos pj;
+    pj.hi = pr.xyz;
+#ifdef POS_COMPENSATED
+    pj.lo = gather4((__global const real*)pos_lo, jj).xyz;
+#else
+    pj.lo = v_zero();
+#endif
     const v3 d = separation(pi, pj);
-    const lane rj = gather(pos, jj, 3);
+    const lane rj = pr.w;
     const lane rsum = ri + rj;
     const lane d2 = v_dot(d, d);
     const lmask on = mask_of(listed) & (d2 < rsum * rsum) & (d2 > (real)0);
     const lane dist = SEL(on, sqrt(d2), (real)0.5 * rsum);
     const v3 nv = v_sel(on, v_mul(1 / dist, d), V3((lane)1, (lane)0, (lane)0));
     const lane delta = rsum - dist;
-    const v3 vj = gather3(vel, jj);
-    const lane mj = gather(vel, jj, 3);
-    const v3 wj = gather3(omega, jj);
+    const Lane4 vmj = gather4(vel, jj), wmj = gather4(omega, jj);
+    const v3 vj = vmj.xyz, wj = wmj.xyz;
+    const lane mj = vmj.w;
     real mat_j[LANES];
-    LANE_STORE(gather(omega, jj, 3), mat_j);
+    LANE_STORE(wmj.w, mat_j);
 #pragma unroll
     for (int l = 0; l < LANES; ++l) pair[l] = (int)row_t[l] * nmat + (int)mat_j[l];
     const lane inertia_j = (real)0.4 * mj * rj * rj;
@@ -89,7 +96,7 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
     const ContactResult c = contact_law(delta, nv, vrel, v_sub(wi, wj), ri * rj / rsum,
                                         mi * mj / (mi + mj),
                                         inertia_i * inertia_j / (inertia_i + inertia_j),
-                                        gather_pairs(pairs, pair), dt, &sp);
+                                        gather_pairs(pairs, pair, nmat), dt, &sp);
 #ifdef HAS_FRICTION
     scatter4(spring, slot, keep, v_sel(on, sp, v_zero()), (lane)0);  // lost contacts end their history
 #endif

@@ -90,7 +90,7 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
     #pragma unroll
     for (int l = 0; l < LANES; ++l) pair[l] = (int)mat_i[l] * nmat + (int)walls[rec + 7];
     const ContactResult c = contact_law(delta, nv, vrel, wi, ri, mi, inertia,
-                                        gather_pairs(pairs, pair), dt, &sp);
+                                        gather_pairs(pairs, pair, nmat), dt, &sp);
     scatter4(wall_spring, slot, valid, v_sel(on, sp, v_zero()), (lane)0);
     scatter4(wall_force, slot, valid, v_sel(on, v_neg(c.force), v_zero()), SEL(on, (lane)1, (lane)0));
     f = v_add(f, v_sel(on, c.force, v_zero()));
