@@ -91,11 +91,11 @@ void wall_forces(const Model& m, State& s) {
   if (m.config().double_precision) {
     set_args(m, k.wall_forces, s.pos, s.pos_lo, s.vel, s.omega, m.wall_buffer(), s.wall_point,
              s.wall_vel, s.wall_spring, s.wall_force, m.pair_buffer(), s.force, s.torque,
-             Real{m.dt()}, s.n, m.walls(), m.pairs().n);
+             s.wall_touch, Real{m.dt()}, s.n, m.walls(), m.pairs().n);
   } else {
     set_args(m, k.wall_forces, s.pos, s.pos_lo, s.vel, s.omega, m.wall_buffer(), s.wall_point,
              s.wall_point_lo, s.wall_vel, s.wall_spring, s.wall_force, m.pair_buffer(), s.force,
-             s.torque, Real{m.dt()}, s.n, m.walls(), m.pairs().n);
+             s.torque, s.wall_touch, Real{m.dt()}, s.n, m.walls(), m.pairs().n);
   }
   launch(m, k.wall_forces, (s.n + m.config().lanes - 1) / m.config().lanes);
 }

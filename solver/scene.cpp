@@ -271,6 +271,10 @@ void check_wall_pair(const Scene& s, size_t i, size_t j) {
 }
 
 void check_walls(const Scene& s) {
+  if (s.walls.size() > kMaxWalls)
+    fail("out_of_range", at("walls", kMaxWalls),
+         std::to_string(s.walls.size()) + " walls; at most " + std::to_string(kMaxWalls) +
+             " are allowed");
   std::set<std::string> names;
   for (size_t i = 0; i < s.walls.size(); ++i) check_wall(s, i, names);
   for (size_t j = 0; j < s.walls.size(); ++j)

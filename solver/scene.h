@@ -88,6 +88,9 @@ struct Numerics {
   int neighbor_capacity = 0;   // neighbours per particle; 0 = automatic
 };
 
+// Walls per scene (each particle keeps a bitmask of the walls it touches).
+inline constexpr size_t kMaxWalls = 32;
+
 // Limit on dt: a requested step larger than this fraction of the Rayleigh
 // step is refused unless Numerics::force_dt is set.
 inline constexpr double kMaxDtFraction = 0.5;

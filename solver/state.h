@@ -41,7 +41,7 @@ class State {
   // grid
   Buffer bucket, slot, cell_count, cell_start, sorted, chunk_sum;
   // walls: current reference point (+ float compensation), velocity, slots
-  Buffer wall_point, wall_point_lo, wall_vel, wall_spring, wall_force;
+  Buffer wall_point, wall_point_lo, wall_vel, wall_spring, wall_force, wall_touch;
   // flags[0]: list rebuild needed, flags[1]: longest list asked for
   Buffer flags, obs_partial, wall_partial;
 

@@ -22,14 +22,17 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
                           , __global const real* restrict wall_vel,
                           __global real* restrict wall_spring, __global real* restrict wall_force,
                           __global const real* restrict pairs, __global real* restrict force,
-                          __global real* restrict torque, real dt, int n, int nwalls, int nmat) {
+                          __global real* restrict torque, __global int* restrict wall_touch,
+                          real dt, int n, int nwalls, int nmat) {
   const int base = get_global_id(0) * LANES;
   if (base >= n) return;
-  int ii[LANES], valid[LANES], pair[LANES];
-  #pragma unroll
+  int ii[LANES], valid[LANES], pair[LANES], was[LANES], now[LANES];
+#pragma unroll
   for (int l = 0; l < LANES; ++l) {
     valid[l] = base + l < n;
     ii[l] = valid[l] ? base + l : n - 1;
+    was[l] = valid[l] ? wall_touch[ii[l]] : 0;  // walls touched last step (bit w)
+    now[l] = 0;
   }
   const LanePos pi = gather_pos(pos POS_LO_PASS, ii);
   const lane ri = gather(pos, ii, 3);
@@ -75,11 +78,23 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
     }
     const lane dist2 = v_dot(to_wall, to_wall);
     const lmask on = (dist2 < ri * ri) & (dist2 > (real)0);
-    if (!ANY(on)) {  // no lane touches this wall: clear its slots, skip the law
-      scatter4(wall_spring, slot, valid, v_zero(), (lane)0);
-      scatter4(wall_force, slot, valid, v_zero(), (lane)0);
-      continue;
+    // Slots are written only where the wall is or was touched: a slot that
+    // stays out of contact keeps its zeros without memory traffic.
+    int on_l[LANES], keep[LANES], any_keep = 0;
+    lmask_elem on_t[LANES];
+#if LANES == 1
+    on_t[0] = on;
+#else
+    LANE_STORE(on, on_t);
+#endif
+#pragma unroll
+    for (int l = 0; l < LANES; ++l) {
+      on_l[l] = on_t[l] != 0;
+      keep[l] = valid[l] && (on_l[l] || ((was[l] >> w) & 1));
+      now[l] |= on_l[l] << w;
+      any_keep |= keep[l];
     }
+    if (!any_keep) continue;
     const lane dist = SEL(on, sqrt(dist2), (real)0.5 * ri);
     const v3 nv = v_sel(on, v_mul(1 / dist, to_wall), V3((lane)1, (lane)0, (lane)0));
     const lane delta = ri - dist;
@@ -91,8 +106,8 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
     for (int l = 0; l < LANES; ++l) pair[l] = (int)mat_i[l] * nmat + (int)walls[rec + 7];
     const ContactResult c = contact_law(delta, nv, vrel, wi, ri, mi, inertia,
                                         gather_pairs(pairs, pair, nmat), dt, &sp);
-    scatter4(wall_spring, slot, valid, v_sel(on, sp, v_zero()), (lane)0);
-    scatter4(wall_force, slot, valid, v_sel(on, v_neg(c.force), v_zero()), SEL(on, (lane)1, (lane)0));
+    scatter4(wall_spring, slot, keep, v_sel(on, sp, v_zero()), (lane)0);
+    scatter4(wall_force, slot, keep, v_sel(on, v_neg(c.force), v_zero()), SEL(on, (lane)1, (lane)0));
     f = v_add(f, v_sel(on, c.force, v_zero()));
     t = v_add(t, v_sel(on, v_add(v_mul(a, c.n_cross_ft), c.rolling), v_zero()));
     e += SEL(on, c.energy, (lane)0);
@@ -100,6 +115,9 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
   }
   scatter4(force, ii, valid, f, count);
   scatter4(torque, ii, valid, t, e);
+#pragma unroll
+  for (int l = 0; l < LANES; ++l)
+    if (valid[l]) wall_touch[ii[l]] = now[l];
 }
 
 // Walls move with their prescribed velocity (compensated in float runs).
