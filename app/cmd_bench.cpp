@@ -6,7 +6,8 @@
 //   cubic  simple cubic lattice, 6 contacts per bead: the coordination of a
 //          settled shear-box packing (default)
 //   fcc    face-centred cubic, 12 contacts per bead: twice the contact load
-// The first steps (first list build, kernel warm-up) are not timed.
+// The first steps (first list build, kernel warm-up) are not timed; each case
+// is then timed `repeat` times and the median rate is printed with the range.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -77,14 +78,16 @@ struct BenchOptions {
   std::vector<int> sizes{5000, 50000, 500000};
   std::vector<std::string> precisions{"float", "double"};
   std::string packing = "cubic";
-  double budget = 3e7;  // particle-steps timed per case
+  double budget = 3e7;  // particle-steps timed per repetition
+  int repeat = 5;       // timed repetitions per case; the median is reported
 };
 
 int bench(const BenchOptions& opt) {
   auto device = default_device();
   std::printf("device: %s\npacking: %s\n", device->description().c_str(), opt.packing.c_str());
-  std::printf("%10s %9s %8s %16s %14s %12s %10s %12s\n", "particles", "precision", "steps",
-              "particle-steps/s", "bytes/particle", "build (s)", "lists", "contacts/p");
+  std::printf("%10s %9s %8s %16s %20s %14s %10s %7s %11s\n", "particles", "precision", "steps",
+              "particle-steps/s", "(min..max)", "bytes/particle", "build (s)", "lists",
+              "contacts/p");
   for (const std::string& prec : opt.precisions) {
     const Precision p = prec == "float" ? Precision::Float : Precision::Double;
     if (p == Precision::Double && !device->has_double()) {
@@ -97,14 +100,22 @@ int bench(const BenchOptions& opt) {
       device->finish();
       const auto steps = static_cast<std::int64_t>(std::clamp(opt.budget / n, 20.0, 5000.0));
       const std::int64_t builds0 = sim.state().list_builds;
-      const auto t0 = std::chrono::steady_clock::now();
-      sim.advance(steps);
-      device->finish();
-      const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::vector<double> rates;
+      for (int r = 0; r < opt.repeat; ++r) {
+        const auto t0 = std::chrono::steady_clock::now();
+        sim.advance(steps);
+        device->finish();
+        const double sec =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        rates.push_back(double(n) * steps / sec);
+      }
+      std::sort(rates.begin(), rates.end());
       const Observables o = sim.observe();
       const double bytes = double(sim.state().device_bytes() + sim.model().device_bytes()) / n;
-      std::printf("%10d %9s %8lld %16.4g %14.0f %12.2f %10lld %12.2f\n", n, prec.c_str(),
-                  static_cast<long long>(steps), double(n) * steps / sec, bytes,
+      char spread[64];
+      std::snprintf(spread, sizeof spread, "(%.3g..%.3g)", rates.front(), rates.back());
+      std::printf("%10d %9s %8lld %16.4g %20s %14.0f %10.2f %7lld %11.2f\n", n, prec.c_str(),
+                  static_cast<long long>(steps), rates[rates.size() / 2], spread, bytes,
                   sim.model().program().build_seconds(),
                   static_cast<long long>(sim.state().list_builds - builds0), o.contacts / n);
       std::fflush(stdout);
@@ -124,8 +135,10 @@ CommandRunner add_bench_command(CLI::App& app) {
       ->check(CLI::IsMember({"float", "double"}));
   cmd->add_option("--packing", opt->packing, "cubic (6 contacts per bead, default) or fcc (12)")
       ->check(CLI::IsMember({"cubic", "fcc"}));
-  cmd->add_option("--budget", opt->budget, "Particle-steps timed per case (default 3e7)")
+  cmd->add_option("--budget", opt->budget, "Particle-steps per timed repetition (default 3e7)")
       ->check(CLI::Range(1e4, 1e11));
+  cmd->add_option("--repeat", opt->repeat, "Timed repetitions per case; the median is printed (default 5)")
+      ->check(CLI::Range(1, 100));
   return [opt] { return bench(*opt); };
 }
 

@@ -12,14 +12,59 @@
 // (moved by advance_walls), vel = its velocity.
 #ifdef HAS_WALLS
 
+#ifdef POS_COMPENSATED
+#define WALL_LO_ARG , __global const float* restrict wall_point_lo
+#define WALL_LO_PASS , wall_point_lo
+#else
+#define WALL_LO_ARG
+#define WALL_LO_PASS
+#endif
+
+// Vector from each lane's centre to the closest point of wall w; returns its
+// squared length (>= r^2 or 0: no contact).
+INLINE lane wall_gap(__global const real* walls, __global const real* wall_point WALL_LO_ARG,
+                     int w, LanePos pi, lane ri, v3* to_wall) {
+  const int rec = 4 * WALL_RECORD * w;  // reals
+  LanePos wp;
+  wp.hi = V3((lane)wall_point[4 * w], (lane)wall_point[4 * w + 1], (lane)wall_point[4 * w + 2]);
+#ifdef POS_COMPENSATED
+  wp.lo = V3((lane)wall_point_lo[4 * w], (lane)wall_point_lo[4 * w + 1],
+             (lane)wall_point_lo[4 * w + 2]);
+#else
+  wp.lo = v_zero();
+#endif
+  const v3 d = separation(pi, wp);  // centre -> wall reference point
+  const v3 nrm = V3((lane)walls[rec + 4], (lane)walls[rec + 5], (lane)walls[rec + 6]);
+  if (walls[rec + 3] == (real)0) {
+    const lane s = -v_dot(d, nrm);  // signed distance of the centre; behind the plane: ignored
+    *to_wall = v_sel(s > -ri, v_mul(-s, nrm), V3(2 * ri, (lane)0, (lane)0));
+  } else {
+    const v3 au = V3((lane)walls[rec + 8], (lane)walls[rec + 9], (lane)walls[rec + 10]);
+    const v3 av = V3((lane)walls[rec + 12], (lane)walls[rec + 13], (lane)walls[rec + 14]);
+    const real hu = walls[rec + 11], hv = walls[rec + 15];
+    const lane u = clamp(-v_dot(d, au), -hu, hu);
+    const lane v = clamp(-v_dot(d, av), -hv, hv);
+    *to_wall = v_add(d, v_add(v_mul(u, au), v_mul(v, av)));
+  }
+  return v_dot(*to_wall, *to_wall);
+}
+
+INLINE void lane_flags(lmask m, int* out) {
+  lmask_elem t[LANES];
+#if LANES == 1
+  t[0] = m;
+#else
+  LANE_STORE(m, t);
+#endif
+#pragma unroll
+  for (int l = 0; l < LANES; ++l) out[l] = t[l] != 0;
+}
+
 __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
                           __global const real* restrict vel, __global const real* restrict omega,
                           __global const real* restrict walls,
-                          __global const real* restrict wall_point
-#ifdef POS_COMPENSATED
-                          , __global const float* restrict wall_point_lo
-#endif
-                          , __global const real* restrict wall_vel,
+                          __global const real* restrict wall_point WALL_LO_ARG,
+                          __global const real* restrict wall_vel,
                           __global real* restrict wall_spring, __global real* restrict wall_force,
                           __global const real* restrict pairs, __global real* restrict force,
                           __global real* restrict torque, __global int* restrict wall_touch,
@@ -36,65 +81,45 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
   }
   const LanePos pi = gather_pos(pos POS_LO_PASS, ii);
   const lane ri = gather(pos, ii, 3);
-  const v3 vi = gather3(vel, ii);
-  const lane mi = gather(vel, ii, 3);
-  const v3 wi = gather3(omega, ii);
+
+  // Geometry first: most particles touch no wall and leave at once.
+  int busy = 0;
+  for (int w = 0; w < nwalls; ++w) {
+    v3 to_wall;
+    const lane dist2 = wall_gap(walls, wall_point WALL_LO_PASS, w, pi, ri, &to_wall);
+    int on[LANES];
+    lane_flags((dist2 < ri * ri) & (dist2 > (real)0), on);
+#pragma unroll
+    for (int l = 0; l < LANES; ++l) now[l] |= on[l] << w;
+  }
+#pragma unroll
+  for (int l = 0; l < LANES; ++l) busy |= valid[l] && (now[l] | was[l]);
+  if (!busy) return;
+
+  const Lane4 vm = gather4(vel, ii), wm = gather4(omega, ii);
+  const v3 vi = vm.xyz, wi = wm.xyz;
+  const lane mi = vm.w;
   real mat_i[LANES];
-  LANE_STORE(gather(omega, ii, 3), mat_i);
+  LANE_STORE(wm.w, mat_i);
   const lane inertia = (real)0.4 * mi * ri * ri;
-  v3 f = gather3(force, ii);
-  lane count = gather(force, ii, 3);
-  v3 t = gather3(torque, ii);
-  lane e = gather(torque, ii, 3);
+  const Lane4 f0 = gather4(force, ii), t0 = gather4(torque, ii);
+  v3 f = f0.xyz, t = t0.xyz;
+  lane count = f0.w, e = t0.w;
 
   for (int w = 0; w < nwalls; ++w) {
-    const int rec = 4 * WALL_RECORD * w;  // reals
-    int slot[LANES];
-    #pragma unroll
-    for (int l = 0; l < LANES; ++l) slot[l] = w * n + ii[l];
-    // d: from each particle centre to the wall's reference point
-    LanePos wp;
-    wp.hi = V3((lane)wall_point[4 * w], (lane)wall_point[4 * w + 1], (lane)wall_point[4 * w + 2]);
-#ifdef POS_COMPENSATED
-    wp.lo = V3((lane)wall_point_lo[4 * w], (lane)wall_point_lo[4 * w + 1],
-               (lane)wall_point_lo[4 * w + 2]);
-#else
-    wp.lo = v_zero();
-#endif
-    const v3 d = separation(pi, wp);
-    const v3 nrm = V3((lane)walls[rec + 4], (lane)walls[rec + 5], (lane)walls[rec + 6]);
-    v3 to_wall;  // from the centre to the closest wall point
-    if (walls[rec + 3] == (real)0) {
-      const lane s = -v_dot(d, nrm);  // signed distance of the centre
-      // behind the plane (s <= -r): ignored
-      to_wall = v_sel(s > -ri, v_mul(-s, nrm), V3(2 * ri, (lane)0, (lane)0));
-    } else {
-      const v3 au = V3((lane)walls[rec + 8], (lane)walls[rec + 9], (lane)walls[rec + 10]);
-      const v3 av = V3((lane)walls[rec + 12], (lane)walls[rec + 13], (lane)walls[rec + 14]);
-      const real hu = walls[rec + 11], hv = walls[rec + 15];
-      const lane u = clamp(-v_dot(d, au), -hu, hu);
-      const lane v = clamp(-v_dot(d, av), -hv, hv);
-      to_wall = v_add(d, v_add(v_mul(u, au), v_mul(v, av)));
-    }
-    const lane dist2 = v_dot(to_wall, to_wall);
-    const lmask on = (dist2 < ri * ri) & (dist2 > (real)0);
     // Slots are written only where the wall is or was touched: a slot that
     // stays out of contact keeps its zeros without memory traffic.
-    int on_l[LANES], keep[LANES], any_keep = 0;
-    lmask_elem on_t[LANES];
-#if LANES == 1
-    on_t[0] = on;
-#else
-    LANE_STORE(on, on_t);
-#endif
+    int keep[LANES], slot[LANES], any_keep = 0;
 #pragma unroll
     for (int l = 0; l < LANES; ++l) {
-      on_l[l] = on_t[l] != 0;
-      keep[l] = valid[l] && (on_l[l] || ((was[l] >> w) & 1));
-      now[l] |= on_l[l] << w;
+      keep[l] = valid[l] && (((now[l] | was[l]) >> w) & 1);
       any_keep |= keep[l];
+      slot[l] = w * n + ii[l];
     }
     if (!any_keep) continue;
+    v3 to_wall;
+    const lane dist2 = wall_gap(walls, wall_point WALL_LO_PASS, w, pi, ri, &to_wall);
+    const lmask on = (dist2 < ri * ri) & (dist2 > (real)0);
     const lane dist = SEL(on, sqrt(dist2), (real)0.5 * ri);
     const v3 nv = v_sel(on, v_mul(1 / dist, to_wall), V3((lane)1, (lane)0, (lane)0));
     const lane delta = ri - dist;
@@ -102,8 +127,9 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
     const v3 vw = V3((lane)wall_vel[4 * w], (lane)wall_vel[4 * w + 1], (lane)wall_vel[4 * w + 2]);
     const v3 vrel = v_sub(v_add(vi, v_cross(wi, v_mul(a, nv))), vw);
     v3 sp = gather3(wall_spring, slot);
-    #pragma unroll
-    for (int l = 0; l < LANES; ++l) pair[l] = (int)mat_i[l] * nmat + (int)walls[rec + 7];
+    const int wall_mat = (int)walls[4 * WALL_RECORD * w + 7];
+#pragma unroll
+    for (int l = 0; l < LANES; ++l) pair[l] = (int)mat_i[l] * nmat + wall_mat;
     const ContactResult c = contact_law(delta, nv, vrel, wi, ri, mi, inertia,
                                         gather_pairs(pairs, pair, nmat), dt, &sp);
     scatter4(wall_spring, slot, keep, v_sel(on, sp, v_zero()), (lane)0);
