@@ -85,7 +85,7 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
   RealPacker pk(dbl);
   for (const PairCoefficients& c : pairs_.pairs) {
     pk.push4(c.e_star, c.g_star, c.gamma_n, c.sliding_friction);
-    pk.push4(c.rolling_friction, 0, 0, 0);
+    pk.push4(c.rolling_friction, std::sqrt(6 * c.g_star / c.e_star), 0, 0);
   }
   pair_buf_ = device_->alloc(pk.bytes().size(), pk.bytes().data());
 

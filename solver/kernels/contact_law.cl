@@ -19,7 +19,7 @@
 //
 // Each argument is a lane (one contact per lane, see common.cl). Pair
 // coefficients come from the pair table (8 reals per pair):
-//   [0] E*  [1] G*  [2] gamma_n  [3] mu_s  [4] mu_r
+//   [0] E*  [1] G*  [2] gamma_n  [3] mu_s  [4] mu_r  [5] sqrt(6 G*/E*)
 // The torque on i about its centre is lever_i n x F_t + rolling; the
 // partner (a sphere) receives lever_j n x F_t - rolling.
 typedef struct {
@@ -29,8 +29,8 @@ typedef struct {
   lane energy;     // elastic normal energy 2/5 K_n d^{5/2}
 } ContactResult;
 
-// Coefficients of each lane's material pair.
-typedef struct { lane estar, gstar, gamma, mu_s, mu_r; } PairLanes;
+// Coefficients of each lane's material pair (kt_ratio = sqrt(6 G*/E*)).
+typedef struct { lane estar, gstar, gamma, mu_s, mu_r, kt_ratio; } PairLanes;
 
 INLINE PairLanes gather_pairs(__global const real* pairs, const int* pair, int nmat) {
   PairLanes c;
@@ -40,17 +40,19 @@ INLINE PairLanes gather_pairs(__global const real* pairs, const int* pair, int n
     c.gamma = (lane)pairs[2];
     c.mu_s = (lane)pairs[3];
     c.mu_r = (lane)pairs[4];
+    c.kt_ratio = (lane)pairs[5];
     return c;
   }
-  real t[5][LANES];
+  real t[6][LANES];
   #pragma unroll
   for (int l = 0; l < LANES; ++l)
-    for (int k = 0; k < 5; ++k) t[k][l] = pairs[8 * pair[l] + k];
+    for (int k = 0; k < 6; ++k) t[k][l] = pairs[8 * pair[l] + k];
   c.estar = LANE_LOAD(t[0]);
   c.gstar = LANE_LOAD(t[1]);
   c.gamma = LANE_LOAD(t[2]);
   c.mu_s = LANE_LOAD(t[3]);
   c.mu_r = LANE_LOAD(t[4]);
+  c.kt_ratio = LANE_LOAD(t[5]);
   return c;
 }
 
@@ -65,7 +67,9 @@ INLINE ContactResult contact_law(lane delta, v3 n, v3 vrel, v3 wrel, lane rstar,
   out.energy = (real)0.4 * fn * delta;
   const lane vn = v_dot(vrel, n);
 #ifdef HAS_DAMPING
-  fn = fmax(fn + c.gamma * sqrt(mstar * kn) * sqrt(sd) * vn, (real)0);
+  const lane qd = sqrt(sd);              // d^{1/4}
+  const lane cn = c.gamma * sqrt(mstar * kn);
+  fn = fmax(fn + cn * qd * vn, (real)0);
 #endif
   out.force = v_mul(-fn, n);
   out.n_cross_ft = v_zero();
@@ -83,7 +87,8 @@ INLINE ContactResult contact_law(lane delta, v3 n, v3 vrel, v3 wrel, lane rstar,
   const lane kt = (real)8 * c.gstar * sqrt_r * sd;
   v3 ft = v_mul(-kt, xi);
 #ifdef HAS_DAMPING
-  const lane ct = c.gamma * sqrt(mstar * kt);
+  // gamma sqrt(m* k_t) = gamma sqrt(m* K_n) sqrt(k_t / K_n), k_t / K_n = 6 G*/E* sqrt(d)
+  const lane ct = cn * c.kt_ratio * qd;
   ft = v_sub(ft, v_mul(ct, vt));
 #else
   const lane ct = (lane)0;
@@ -91,7 +96,7 @@ INLINE ContactResult contact_law(lane delta, v3 n, v3 vrel, v3 wrel, lane rstar,
   const lane ftmax = c.mu_s * fn;
   const lane ft2 = v_dot(ft, ft);
   const lmask sliding = ft2 > ftmax * ftmax;  // Coulomb limit: scale, make the spring consistent
-  ft = v_mul(SEL(sliding, ftmax / sqrt(fmax(ft2, tiny)), (lane)1), ft);
+  ft = v_mul(SEL(sliding, ftmax * rsqrt(fmax(ft2, tiny)), (lane)1), ft);
   xi = v_sel(sliding, v_mul(-1 / kt, v_add(ft, v_mul(ct, vt))), xi);
   *spring = xi;
   out.force = v_add(out.force, ft);
@@ -100,11 +105,13 @@ INLINE ContactResult contact_law(lane delta, v3 n, v3 vrel, v3 wrel, lane rstar,
 
 #ifdef HAS_ROLLING
   const v3 wr = v_sub(wrel, v_mul(v_dot(wrel, n), n));
-  const lane wm = sqrt(v_dot(wr, wr));
+  const lane wr2 = v_dot(wr, wr);
+  const real tiny2 = (real)1e-36;  // representable in float
+  const lane inv_wm = rsqrt(fmax(wr2, tiny2));
   // Constant torque mu_r F_n, but never more than what stops the relative
   // rolling within this step: no chatter around w_r = 0 and no creep.
-  const lane m = fmin(c.mu_r * fn, istar * wm / dt);
-  out.rolling = v_mul(-SEL(wm > tiny, m / fmax(wm, tiny), (lane)0), wr);
+  const lane m = fmin(c.mu_r * fn, istar * (wr2 * inv_wm) * (1 / dt));
+  out.rolling = v_mul(-SEL(wr2 > tiny2, m * inv_wm, (lane)0), wr);
 #endif
   return out;
 }

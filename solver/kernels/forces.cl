@@ -73,8 +73,9 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
     const lane rsum = ri + rj;
     const lane d2 = v_dot(d, d);
     const lmask on = mask_of(listed) & (d2 < rsum * rsum) & (d2 > (real)0);
-    const lane dist = SEL(on, sqrt(d2), (real)0.5 * rsum);
-    const v3 nv = v_sel(on, v_mul(1 / dist, d), V3((lane)1, (lane)0, (lane)0));
+    const lane inv_dist = SEL(on, rsqrt(d2), 2 / rsum);
+    const lane dist = SEL(on, d2 * inv_dist, (real)0.5 * rsum);
+    const v3 nv = v_sel(on, v_mul(inv_dist, d), V3((lane)1, (lane)0, (lane)0));
     const lane delta = rsum - dist;
     const Lane4 vmj = gather4(vel, jj), wmj = gather4(omega, jj);
     const v3 vj = vmj.xyz, wj = wmj.xyz;
