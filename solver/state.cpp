@@ -34,10 +34,11 @@ int default_capacity(const Scene& scene) {
     rmin = std::min(rmin, p.radius);
     rmax = std::max(rmax, p.radius);
   }
-  // 24 slots cover a dense monodisperse packing with a 0.1 d skin; size
-  // ratios raise it (roughly the surface ratio). Overflow grows it anyway.
+  // 16 slots cover a dense monodisperse packing with a 0.1 d skin (12 in a
+  // close packing); size ratios raise it (roughly the surface ratio).
+  // Overflow grows it anyway (pipeline.cpp).
   const double ratio = rmax / rmin;
-  return std::clamp(static_cast<int>(std::ceil(24 * std::min(ratio * ratio, 8.0))), 24, 192);
+  return std::clamp(static_cast<int>(std::ceil(16 * std::min(ratio * ratio, 12.0))), 16, 192);
 }
 
 std::uint32_t next_pow2(std::uint64_t v) {
