@@ -24,15 +24,7 @@ namespace {
 Scene bench_scene(int target, Precision precision, bool fcc) {
   Scene s;
   s.name = "bench";
-  Material glass;
-  glass.name = "glass";
-  glass.young_modulus = 62.784e9;
-  glass.poisson_ratio = 0.2;
-  glass.density = 2230;
-  glass.restitution = 0.87;
-  glass.sliding_friction = 0.02;
-  glass.rolling_friction = 5e-5;
-  s.materials = {glass};
+  s.materials = {paper_glass()};
   s.numerics.precision = precision;
   s.numerics.duration = 1;
   const double d = 2.38125e-3, R = d / 2;

@@ -61,6 +61,12 @@ void set_args(const Model& m, const ClKernel& k, const Args&... args) {
   (detail::set_one(m, k.get(), i++, args), ...);
 }
 
+// Gravity as a real4 kernel argument.
+inline Real4 gravity_arg(const Model& m) {
+  const Vec3& g = m.scene().effects.gravity;
+  return {g[0], g[1], g[2], 0};
+}
+
 // Enqueues a 1-D range over `n` items, padded to the model's local size.
 inline void launch(const Model& m, const ClKernel& k, size_t n) {
   if (n == 0) return;

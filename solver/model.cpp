@@ -6,31 +6,10 @@
 #include <vector>
 
 #include "errors.h"
+#include "real_packer.h"
 
 namespace simsols {
 namespace {
-
-// Host-side packing of doubles into the device's real type.
-class RealPacker {
- public:
-  explicit RealPacker(bool dbl) : dbl_(dbl) {}
-  void push(double v) {
-    if (dbl_) {
-      const auto* p = reinterpret_cast<const unsigned char*>(&v);
-      bytes_.insert(bytes_.end(), p, p + sizeof v);
-    } else {
-      const float f = static_cast<float>(v);
-      const auto* p = reinterpret_cast<const unsigned char*>(&f);
-      bytes_.insert(bytes_.end(), p, p + sizeof f);
-    }
-  }
-  void push4(double a, double b, double c, double d) { push(a); push(b); push(c); push(d); }
-  const std::vector<unsigned char>& bytes() const { return bytes_; }
-
- private:
-  bool dbl_;
-  std::vector<unsigned char> bytes_;
-};
 
 Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
@@ -84,19 +63,19 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
   const bool dbl = config().double_precision;
   RealPacker pk(dbl);
   for (const PairCoefficients& c : pairs_.pairs) {
-    pk.push4(c.e_star, c.g_star, c.gamma_n, c.sliding_friction);
-    pk.push4(c.rolling_friction, std::sqrt(6 * c.g_star / c.e_star), 0, 0);
+    pk.put4(c.e_star, c.g_star, c.gamma_n, c.sliding_friction);
+    pk.put4(c.rolling_friction, std::sqrt(6 * c.g_star / c.e_star), 0, 0);
   }
   pair_buf_ = device_->alloc(pk.bytes().size(), pk.bytes().data());
 
   RealPacker wk(dbl);
   for (const Wall& w : scene_.walls) {
     const Vec3 v = cross(w.normal, w.axis_u);
-    wk.push4(w.point[0] - origin_[0], w.point[1] - origin_[1], w.point[2] - origin_[2],
+    wk.put4(w.point[0] - origin_[0], w.point[1] - origin_[1], w.point[2] - origin_[2],
              w.shape == WallShape::Plane ? 0 : 1);
-    wk.push4(w.normal[0], w.normal[1], w.normal[2], w.material);
-    wk.push4(w.axis_u[0], w.axis_u[1], w.axis_u[2], w.half_u);
-    wk.push4(v[0], v[1], v[2], w.half_v);
+    wk.put4(w.normal[0], w.normal[1], w.normal[2], w.material);
+    wk.put4(w.axis_u[0], w.axis_u[1], w.axis_u[2], w.half_u);
+    wk.put4(v[0], v[1], v[2], w.half_v);
   }
   wall_buf_ = device_->alloc(wk.bytes().size(), wk.bytes().data());
   local_size_ = 64;

@@ -26,10 +26,6 @@ std::vector<float> read_floats(const Model& m, const Buffer& b, size_t count) {
   return f;
 }
 
-Real4 gravity4(const Model& m) {
-  const Vec3& g = m.scene().effects.gravity;
-  return {g[0], g[1], g[2], 0};
-}
 
 }  // namespace
 
@@ -37,7 +33,7 @@ Observables observe(const Model& m, State& s) {
   constexpr int kObs = 12;  // NOBS in reduce.cl
   const Kernels& k = m.kernels();
   set_args(m, k.reduce_observables, s.pos, s.pos_lo, s.vel, s.omega, s.force, s.torque,
-           s.obs_partial, gravity4(m), Real{m.dt()}, s.n,
+           s.obs_partial, gravity_arg(m), Real{m.dt()}, s.n,
            Local{m.local_size() * kObs * m.real_size()});
   launch(m, k.reduce_observables, s.n);
   const size_t groups = m.global_size(s.n) / m.local_size();

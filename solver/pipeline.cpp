@@ -9,10 +9,6 @@ namespace {
 
 constexpr int kMaxNeighbors = 256;  // MAX_CAP in neighbors.cl
 
-Real4 gravity4(const Model& m) {
-  const Vec3& g = m.scene().effects.gravity;
-  return {g[0], g[1], g[2], 0};
-}
 
 void build_grid(const Model& m, State& s) {
   const Kernels& k = m.kernels();
@@ -104,7 +100,7 @@ void integrate(const Model& m, State& s) {
   const Kernels& k = m.kernels();
   const double half_skin = 0.5 * m.skin();
   set_args(m, k.integrate, s.pos, s.pos_lo, s.vel, s.omega, s.force, s.torque, s.pos_build,
-           s.flags, gravity4(m), Real{m.dt()}, Real{half_skin * half_skin}, s.n);
+           s.flags, gravity_arg(m), Real{m.dt()}, Real{half_skin * half_skin}, s.n);
   launch(m, k.integrate, s.n);
   if (m.config().walls) {
     if (m.config().double_precision)

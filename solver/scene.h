@@ -42,6 +42,12 @@ struct PairOverride {
   std::optional<double> rolling_friction;
 };
 
+// The glass beads of the reference paper, its Table 2: E = 62.784 GPa,
+// nu = 0.2, rho = 2230 kg/m^3, e = 0.87, mu_s = 0.02, mu_r = 5e-5 m.
+inline Material paper_glass() {
+  return {"glass", 62.784e9, 0.2, 2230, 0.87, 0.02, 5e-5};
+}
+
 struct Particle {
   int material = 0;   // index into Scene::materials
   double radius = 0;  // m

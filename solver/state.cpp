@@ -5,27 +5,10 @@
 #include <cstring>
 #include <numbers>
 
+#include "real_packer.h"
+
 namespace simsols {
 namespace {
-
-// Packs doubles as the device's real type, or as float for compensation terms.
-struct Packer {
-  explicit Packer(bool as_double) : dbl(as_double) {}
-  bool dbl;
-  std::vector<unsigned char> bytes;
-  void put(double v, bool as_double) {
-    if (as_double) {
-      const auto* p = reinterpret_cast<const unsigned char*>(&v);
-      bytes.insert(bytes.end(), p, p + 8);
-    } else {
-      const float f = static_cast<float>(v);
-      const auto* p = reinterpret_cast<const unsigned char*>(&f);
-      bytes.insert(bytes.end(), p, p + 4);
-    }
-  }
-  void real4(double a, double b, double c, double d) { put(a, dbl); put(b, dbl); put(c, dbl); put(d, dbl); }
-  void float4(double a, double b, double c, double d) { put(a, false); put(b, false); put(c, false); put(d, false); }
-};
 
 int default_capacity(const Scene& scene) {
   if (scene.numerics.neighbor_capacity > 0) return scene.numerics.neighbor_capacity;
@@ -66,25 +49,25 @@ State::State(const Model& model) {
   table = next_pow2(2ull * n);
   chunk_len = (table + chunks - 1) / chunks;
 
-  Packer p(dbl), lo(false), v(dbl), w(dbl);
+  RealPacker p(dbl), lo(false), v(dbl), w(dbl);
   const Vec3& o = model.origin();
   for (const Particle& q : s.particles) {
     const Material& m = s.materials[q.material];
     const double mass = m.density * 4.0 / 3.0 * std::numbers::pi * q.radius * q.radius * q.radius;
     double rel[3];
     for (int a = 0; a < 3; ++a) rel[a] = q.position[a] - o[a];
-    p.real4(rel[0], rel[1], rel[2], q.radius);
+    p.put4(rel[0], rel[1], rel[2], q.radius);
     if (!dbl) {  // compensation: what the float position could not hold
-      lo.float4(rel[0] - static_cast<float>(rel[0]), rel[1] - static_cast<float>(rel[1]),
+      lo.put_float4(rel[0] - static_cast<float>(rel[0]), rel[1] - static_cast<float>(rel[1]),
                 rel[2] - static_cast<float>(rel[2]), 0);
     }
-    v.real4(q.velocity[0], q.velocity[1], q.velocity[2], mass);
-    w.real4(q.angular_velocity[0], q.angular_velocity[1], q.angular_velocity[2], q.material);
+    v.put4(q.velocity[0], q.velocity[1], q.velocity[2], mass);
+    w.put4(q.angular_velocity[0], q.angular_velocity[1], q.angular_velocity[2], q.material);
   }
-  pos = make(d, n * r4, p.bytes.data());
-  pos_lo = make(d, dbl ? 16 : n * 16, dbl ? nullptr : lo.bytes.data());
-  vel = make(d, n * r4, v.bytes.data());
-  omega = make(d, n * r4, w.bytes.data());
+  pos = make(d, n * r4, p.data());
+  pos_lo = make(d, dbl ? 16 : n * 16, dbl ? nullptr : lo.data());
+  vel = make(d, n * r4, v.data());
+  omega = make(d, n * r4, w.data());
   force = make(d, n * r4);
   torque = make(d, n * r4);
   pos_build = make(d, n * r4);
@@ -106,18 +89,18 @@ State::State(const Model& model) {
   chunk_sum = make(d, chunks * sizeof(std::uint32_t));
 
   const int nw = model.walls();
-  Packer wp(dbl), wlo(false), wv(dbl);
+  RealPacker wp(dbl), wlo(false), wv(dbl);
   for (const Wall& wall : s.walls) {
     double rel[3];
     for (int a = 0; a < 3; ++a) rel[a] = wall.point[a] - o[a];
-    wp.real4(rel[0], rel[1], rel[2], 0);
-    wlo.float4(rel[0] - static_cast<float>(rel[0]), rel[1] - static_cast<float>(rel[1]),
+    wp.put4(rel[0], rel[1], rel[2], 0);
+    wlo.put_float4(rel[0] - static_cast<float>(rel[0]), rel[1] - static_cast<float>(rel[1]),
                rel[2] - static_cast<float>(rel[2]), 0);
-    wv.real4(wall.velocity[0], wall.velocity[1], wall.velocity[2], 0);
+    wv.put4(wall.velocity[0], wall.velocity[1], wall.velocity[2], 0);
   }
-  wall_point = make(d, nw * r4, wp.bytes.data());
-  wall_point_lo = make(d, nw * 16, dbl ? nullptr : wlo.bytes.data());
-  wall_vel = make(d, nw * r4, wv.bytes.data());
+  wall_point = make(d, nw * r4, wp.data());
+  wall_point_lo = make(d, nw * 16, dbl ? nullptr : wlo.data());
+  wall_vel = make(d, nw * r4, wv.data());
   wall_spring = make(d, size_t(nw) * n * r4);
   wall_force = make(d, size_t(nw) * n * r4);
   wall_touch = make(d, n * sizeof(int));
@@ -188,7 +171,6 @@ void State::make_pair_buffers(const Model& model) {
 
 void State::resize_lists(const Model& model, int new_cap) {
   Device& d = model.device();
-  const size_t r4 = 4 * model.real_size();
   cap = new_cap;
   nbr = make(d, size_t(n) * cap * sizeof(int));
   spring = make(d, spring_bytes(model));

@@ -12,11 +12,7 @@ void report(const std::string& what, double measured, double theory) {
 }
 
 Material glass(double restitution, double mu_s, double mu_r) {
-  Material m;
-  m.name = "glass";
-  m.young_modulus = 62.784e9;
-  m.poisson_ratio = 0.2;
-  m.density = 2230;
+  Material m = paper_glass();
   m.restitution = restitution;
   m.sliding_friction = mu_s;
   m.rolling_friction = mu_r;
