@@ -31,13 +31,14 @@ void build_grid(const Model& m, State& s) {
 int build_lists(const Model& m, State& s) {
   const Kernels& k = m.kernels();
   set_args(m, k.build_neighbors, s.pos, s.pos_lo, s.cell_count, s.cell_start, s.sorted,
-           s.old_count, s.old_nbr, s.old_spring, s.nbr_count, s.nbr, s.spring, s.nbr_split,
+           s.old_count, s.old_upper, s.old_nbr, s.old_spring, s.nbr_count, s.nbr, s.spring,
+           s.nbr_upper,
            s.pos_build, s.flags, Real{1.0 / m.cell_size()}, Real{m.skin()}, s.table, s.cap, s.n);
   launch(m, k.build_neighbors, s.n);
   int flags[2] = {0, 0};
   m.device().read(s.flags.get(), sizeof flags, flags);
   if (flags[1] <= s.cap) {
-    set_args(m, k.build_mirrors, s.nbr_count, s.nbr, s.nbr_split, s.mirror, s.cap, s.n);
+    set_args(m, k.build_mirrors, s.nbr_count, s.nbr, s.nbr_upper, s.mirror, s.cap, s.n);
     launch(m, k.build_mirrors, s.n);
   }
   return flags[1];
@@ -57,6 +58,7 @@ void detect_contacts(const Model& m, State& s, bool force_rebuild) {
   s.nbr.mem.swap(s.old_nbr.mem);
   s.spring.mem.swap(s.old_spring.mem);
   s.nbr_count.mem.swap(s.old_count.mem);
+  s.nbr_upper.mem.swap(s.old_upper.mem);
   int wanted = build_lists(m, s);
   while (wanted > s.cap) {
     if (wanted > kMaxNeighbors)
@@ -72,11 +74,11 @@ void detect_contacts(const Model& m, State& s, bool force_rebuild) {
 
 void contact_forces(const Model& m, State& s) {
   const Kernels& k = m.kernels();
-  set_args(m, k.pair_forces, s.pos, s.pos_lo, s.vel, s.omega, s.nbr_count, s.nbr, s.nbr_split,
+  set_args(m, k.pair_forces, s.pos, s.pos_lo, s.vel, s.omega, s.nbr, s.nbr_upper,
            s.spring, m.pair_buffer(), s.pair_force, s.pair_torque, s.force, s.torque,
            Real{m.dt()}, s.cap, s.n, m.pairs().n);
   launch(m, k.pair_forces, (s.n + m.config().lanes - 1) / m.config().lanes);
-  set_args(m, k.collect_pairs, s.nbr_split, s.mirror, s.pair_force, s.pair_torque, s.force,
+  set_args(m, k.collect_pairs, s.nbr_count, s.nbr_upper, s.mirror, s.pair_force, s.pair_torque, s.force,
            s.torque, s.cap, s.n);
   launch(m, k.collect_pairs, s.n);
 }

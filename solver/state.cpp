@@ -78,7 +78,8 @@ State::State(const Model& model) {
   old_count = make(d, n * sizeof(int));
   old_nbr = make(d, size_t(n) * cap * sizeof(int));
   old_spring = make(d, spring_bytes(model));
-  nbr_split = make(d, n * sizeof(int));
+  nbr_upper = make(d, n * sizeof(int));
+  old_upper = make(d, n * sizeof(int));
   make_pair_buffers(model);
 
   bucket = make(d, n * sizeof(std::uint32_t));
@@ -115,7 +116,7 @@ State::State(const Model& model) {
 size_t State::device_bytes() const {
   size_t total = 0;
   for (const Buffer* b : {&pos, &pos_lo, &vel, &omega, &force, &torque, &pos_build, &nbr_count,
-                          &nbr, &spring, &old_count, &old_nbr, &old_spring, &nbr_split, &mirror,
+                          &nbr, &spring, &old_count, &old_nbr, &old_spring, &nbr_upper, &old_upper, &mirror,
                           &pair_force, &pair_torque, &bucket, &slot,
                           &cell_count, &cell_start, &sorted, &chunk_sum, &wall_point,
                           &wall_point_lo, &wall_vel, &wall_spring, &wall_force, &wall_touch, &flags,
@@ -129,7 +130,7 @@ std::vector<std::pair<std::string, Buffer*>> State::dynamic_buffers() {
   return {{"pos", &pos},           {"pos_lo", &pos_lo},         {"vel", &vel},
           {"omega", &omega},       {"force", &force},           {"torque", &torque},
           {"pos_build", &pos_build}, {"nbr_count", &nbr_count}, {"nbr", &nbr},
-          {"spring", &spring},     {"nbr_split", &nbr_split}, {"mirror", &mirror},     {"wall_point", &wall_point}, {"wall_point_lo", &wall_point_lo},
+          {"spring", &spring},     {"nbr_upper", &nbr_upper}, {"mirror", &mirror},     {"wall_point", &wall_point}, {"wall_point_lo", &wall_point_lo},
           {"wall_vel", &wall_vel}, {"wall_spring", &wall_spring}, {"wall_force", &wall_force},
           {"wall_touch", &wall_touch},
           {"flags", &flags}};

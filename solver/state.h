@@ -34,10 +34,10 @@ class State {
   // hot, per particle
   Buffer pos, pos_lo, vel, omega, force, torque;
   // neighbour lists (current and previous, for carrying springs over);
-  // nbr_split: partners below the particle's index; mirror: where the lower
-  // partner left this particle's share; pair_*: those shares (per slot)
+  // nbr_upper: partners above the particle's index (listed first); mirror:
+  // where the lower partner left this particle's share; pair_*: those shares
   Buffer pos_build, nbr_count, nbr, spring, old_count, old_nbr, old_spring;
-  Buffer nbr_split, mirror, pair_force, pair_torque;
+  Buffer nbr_upper, old_upper, mirror, pair_force, pair_torque;
   // grid
   Buffer bucket, slot, cell_count, cell_start, sorted, chunk_sum;
   // walls: current reference point (+ float compensation), velocity, slots

@@ -1,7 +1,7 @@
 // forces.cl — stage: contact forces between particles, in two passes.
 //
 // pair_forces: every pair is computed once, by its lower-index particle,
-//   from the upper part of its sorted list (partners j > i). The particle
+//   from the upper part of its list (partners j > i, slots 0..upper-1). The particle
 //   keeps its own share in registers and leaves the partner's share (the
 //   opposite force, its torque, half the elastic energy, a contact flag) in
 //   the pair's list slot.
@@ -20,22 +20,20 @@
 
 __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
                           __global const real* restrict vel, __global const real* restrict omega,
-                          __global const int* restrict nbr_count, __global const int* restrict nbr,
-                          __global const int* restrict nbr_split, __global real* restrict spring,
+                          __global const int* restrict nbr, __global const int* restrict nbr_upper, __global real* restrict spring,
                           __global const real* restrict pairs, __global real* restrict pair_force,
                           __global real* restrict pair_torque, __global real* restrict force,
                           __global real* restrict torque, real dt, int cap, int n, int nmat) {
   const int base = get_global_id(0) * LANES;
   if (base >= n) return;
-  int ii[LANES], valid[LANES], first[LANES], len[LANES];
+  int ii[LANES], valid[LANES], len[LANES];
   int longest = 0;
 #pragma unroll
   for (int l = 0; l < LANES; ++l) {
     valid[l] = base + l < n;
     ii[l] = valid[l] ? base + l : n - 1;
-    first[l] = valid[l] ? nbr_split[ii[l]] : 0;
-    len[l] = valid[l] ? nbr_count[ii[l]] : 0;
-    longest = max(longest, len[l] - first[l]);
+    len[l] = valid[l] ? nbr_upper[ii[l]] : 0;  // the pairs this particle owns
+    longest = max(longest, len[l]);
   }
   const LanePos pi = gather_pos(pos POS_LO_PASS, ii);
   const lane ri = gather(pos, ii, 3);
@@ -54,10 +52,9 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
     int jj[LANES], slot[LANES], listed[LANES], keep[LANES], pair[LANES];
 #pragma unroll
     for (int l = 0; l < LANES; ++l) {
-      const int k = first[l] + q;
-      listed[l] = k < len[l];
+      listed[l] = q < len[l];
       keep[l] = listed[l] && valid[l];
-      slot[l] = NBR(ii[l], min(k, cap - 1), n, cap);
+      slot[l] = NBR(ii[l], q, n, cap);
       jj[l] = listed[l] ? nbr[slot[l]] : ii[l];
     }
     const Lane4 pr = gather4(pos, jj);
@@ -117,7 +114,8 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
   scatter4(torque, ii, valid, t, e);
 }
 
-__kernel void collect_pairs(__global const int* restrict nbr_split,
+__kernel void collect_pairs(__global const int* restrict nbr_count,
+                            __global const int* restrict nbr_upper,
                             __global const int* restrict mirror,
                             __global const real4* restrict pair_force,
                             __global const real4* restrict pair_torque,
@@ -127,8 +125,8 @@ __kernel void collect_pairs(__global const int* restrict nbr_split,
   if (i >= n) return;
   real4 f = force[i];
   real4 t = torque[i];
-  const int split = nbr_split[i];
-  for (int k = 0; k < split; ++k) {
+  const int len = nbr_count[i];
+  for (int k = nbr_upper[i]; k < len; ++k) {
     const int slot = mirror[NBR(i, k, n, cap)];
     f += pair_force[slot];
     t += pair_torque[slot];

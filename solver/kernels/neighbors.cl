@@ -8,10 +8,11 @@
 // so contact history survives every rebuild. The list is rebuilt when some
 // particle has moved more than skin/2 since the last build (integrate.cl).
 //
-// Lists are sorted, so the partners j < i come first: nbr_split[i] counts
-// them. Each pair is computed once, by its lower particle, from the upper
-// part of its list; build_mirrors tells the upper particle where to collect
-// its share. flags[1] receives the largest list length requested when a list
+// Each list holds its upper part (partners j > i, sorted; nbr_upper[i] of
+// them) in slots 0.. and then its lower part (j < i, sorted). Each pair is
+// computed once, by its lower particle, from the upper part of its list, so
+// slot q of consecutive particles is consecutive memory in the interleaved
+// layout; build_mirrors tells the upper particle where to collect its share. flags[1] receives the largest list length requested when a list
 // overflows its capacity; the host then grows the capacity and rebuilds.
 
 #define MAX_CAP 256
@@ -19,10 +20,10 @@
 __kernel void build_neighbors(__global const real4* pos POS_LO_CARG,
                               __global const uint* count, __global const uint* start,
                               __global const int* sorted,
-                              __global const int* old_count, __global const int* old_nbr,
-                              __global const real4* old_spring,
+                              __global const int* old_count, __global const int* old_upper,
+                              __global const int* old_nbr, __global const real4* old_spring,
                               __global int* nbr_count, __global int* nbr, __global real4* spring,
-                              __global int* nbr_split,
+                              __global int* nbr_upper,
                               __global real4* pos_build, __global volatile int* flags,
                               real inv_cell, real skin, uint table, int cap, int n) {
   const int i = get_global_id(0);
@@ -62,35 +63,39 @@ __kernel void build_neighbors(__global const real4* pos POS_LO_CARG,
       }
   if (wanted > cap) atomic_max(&flags[1], wanted);
 
-  // Carry the springs over: both lists are sorted by j.
-  const int olen = old_count[i];
+  // Store the upper part (j > i, where i owns the pair and its spring) first,
+  // then the lower part; both stay sorted. Springs of the upper part are
+  // carried over from the old upper part by a merge join on j.
+  int lower = 0;
+  while (lower < len && list[lower] < i) ++lower;
+  const int upper = len - lower;
+  const int old_up = old_upper[i];
   int o = 0;
-  int split = 0;
-  for (int k = 0; k < len; ++k) {
-    split += list[k] < i;
-    const int j = list[k];
-    while (o < olen && old_nbr[NBR(i, o, n, cap)] < j) ++o;
+  for (int u = 0; u < upper; ++u) {
+    const int j = list[lower + u];
+    while (o < old_up && old_nbr[NBR(i, o, n, cap)] < j) ++o;
     real4 sp = (real4)(0);
-    if (o < olen && old_nbr[NBR(i, o, n, cap)] == j) sp = old_spring[NBR(i, o, n, cap)];
-    nbr[NBR(i, k, n, cap)] = j;
-    spring[NBR(i, k, n, cap)] = sp;
+    if (o < old_up && old_nbr[NBR(i, o, n, cap)] == j) sp = old_spring[NBR(i, o, n, cap)];
+    nbr[NBR(i, u, n, cap)] = j;
+    spring[NBR(i, u, n, cap)] = sp;
   }
+  for (int t = 0; t < lower; ++t) nbr[NBR(i, upper + t, n, cap)] = list[t];
   nbr_count[i] = len;
-  nbr_split[i] = split;
+  nbr_upper[i] = upper;
   pos_build[i] = pi;
 }
 
-// For every lower partner j < i of particle i (list entries k < split[i]),
+// For every lower partner j < i of particle i (list entries k >= upper[i]),
 // the slot of i in j's list, where j computed the pair (see forces.cl).
 __kernel void build_mirrors(__global const int* nbr_count, __global const int* nbr,
-                            __global const int* nbr_split, __global int* mirror, int cap, int n) {
+                            __global const int* nbr_upper, __global int* mirror, int cap, int n) {
   const int i = get_global_id(0);
   if (i >= n) return;
-  const int split = nbr_split[i];
-  for (int k = 0; k < split; ++k) {
+  const int len = nbr_count[i];
+  for (int k = nbr_upper[i]; k < len; ++k) {
     const int j = nbr[NBR(i, k, n, cap)];
     // i > j lies in the upper, sorted part of j's list: binary search
-    int lo = nbr_split[j], hi = nbr_count[j] - 1;
+    int lo = 0, hi = nbr_upper[j] - 1;
     while (lo < hi) {
       const int mid = (lo + hi) / 2;
       if (nbr[NBR(j, mid, n, cap)] < i) lo = mid + 1; else hi = mid;
