@@ -132,6 +132,11 @@ int run(const RunOptions& opt) {
   progress.finish(sim->steps());
   save_checkpoint(*sim, (dir / "checkpoint.bin").string());
   if (!stopped && (dump_every == 0 || sim->steps() % dump_every != 0)) dump(*sim, dir);
+  if (sim->state().late_builds > 0)
+    std::fprintf(stderr,
+                 "warning: %lld neighbour-list checks found a particle beyond skin/2 (lists may "
+                 "have missed contacts); raise numerics.skin or lower the time step\n",
+                 static_cast<long long>(sim->state().late_builds));
   char hash[32];
   std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sim->hash()));
   std::printf("%s at step %lld, t = %.6g s; state hash %s; results in %s\n",

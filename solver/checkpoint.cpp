@@ -13,7 +13,7 @@ namespace simsols {
 namespace {
 
 constexpr char kMagic[12] = {'S', 'I', 'M', 'S', 'O', 'L', 'S', '-', 'C', 'K', 'P', 'T'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;
 
 class Writer {
  public:
@@ -67,6 +67,8 @@ void save_checkpoint(Simulation& sim, const std::string& path) {
     State& s = sim.state();
     w.pod<std::int64_t>(s.step);
     w.pod<std::int64_t>(s.list_builds);
+    w.pod<std::int64_t>(s.next_check);
+    w.pod<std::int64_t>(s.late_builds);
     w.pod<std::int32_t>(s.cap);
     std::vector<char> data;
     for (auto& [name, buf] : s.dynamic_buffers()) {
@@ -96,6 +98,8 @@ std::unique_ptr<Simulation> load_checkpoint(std::shared_ptr<Device> device, cons
   s.step = r.pod<std::int64_t>();
   s.time = s.step * sim->dt();
   s.list_builds = r.pod<std::int64_t>();
+  s.next_check = r.pod<std::int64_t>();
+  s.late_builds = r.pod<std::int64_t>();
   const int cap = r.pod<std::int32_t>();
   if (cap != s.cap) s.resize_lists(sim->model(), cap);
   for (auto& [name, buf] : s.dynamic_buffers()) {

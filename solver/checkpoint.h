@@ -3,7 +3,8 @@
 // precision).
 //
 // File layout (little endian): "SIMSOLS-CKPT" magic, format version, the
-// scene as exact TOML (to_toml), step, list builds, neighbour capacity, then
+// scene as exact TOML (to_toml), step, list builds, next list check, late
+// builds, neighbour capacity, then
 // every dynamic buffer as (name, byte count, bytes). Files are written to a
 // temporary name and renamed, so a crash never leaves half a checkpoint.
 #pragma once

@@ -1,6 +1,8 @@
 #include "pipeline.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
 
 #include "kernel_args.h"
 
@@ -44,14 +46,33 @@ int build_lists(const Model& m, State& s) {
   return flags[1];
 }
 
+// Steps until the next look at the flags: the fastest particle, at twice
+// its speed, must not cover the skin/4 that separates the rebuild trigger
+// (skin/4) from the validity limit (skin/2).
+std::int64_t check_interval(const Model& m, double vmax) {
+  constexpr std::int64_t kMax = 64;
+  if (vmax <= 0) return kMax;
+  const double steps = 0.25 * m.skin() / (2.0 * vmax * m.dt());
+  return std::clamp<std::int64_t>(static_cast<std::int64_t>(steps), 1, kMax);
+}
+
 }  // namespace
 
 void detect_contacts(const Model& m, State& s, bool force_rebuild) {
-  int flags[2] = {0, 0};
+  if (s.step < s.next_check && !force_rebuild) return;
+  int flags[4] = {0, 0, 0, 0};
   m.device().read(s.flags.get(), sizeof flags, flags);
-  if (!flags[0] && !force_rebuild) return;
-  const int zero[2] = {0, 0};
+  float v2 = 0;
+  std::memcpy(&v2, &flags[2], sizeof v2);
+  if (flags[3]) ++s.late_builds;
+  const int zero[4] = {0, 0, 0, 0};
+  if (!flags[0] && !force_rebuild) {
+    if (flags[2] || flags[3]) m.device().write(s.flags.get(), sizeof zero, zero);
+    s.next_check = s.step + check_interval(m, std::sqrt(double(v2)));
+    return;
+  }
   m.device().write(s.flags.get(), sizeof zero, zero);
+  s.next_check = s.step + check_interval(m, std::sqrt(double(v2)));
 
   build_grid(m, s);
   // The lists in use become the "old" ones the springs are carried from.
@@ -100,9 +121,8 @@ void wall_forces(const Model& m, State& s) {
 
 void integrate(const Model& m, State& s) {
   const Kernels& k = m.kernels();
-  const double half_skin = 0.5 * m.skin();
   set_args(m, k.integrate, s.pos, s.pos_lo, s.vel, s.omega, s.force, s.torque, s.pos_build,
-           s.flags, gravity_arg(m), Real{m.dt()}, Real{half_skin * half_skin}, s.n);
+           s.flags, gravity_arg(m), Real{m.dt()}, Real{m.skin()}, s.n);
   launch(m, k.integrate, s.n);
   if (m.config().walls) {
     if (m.config().double_precision)

@@ -42,7 +42,8 @@ class State {
   Buffer bucket, slot, cell_count, cell_start, sorted, chunk_sum;
   // walls: current reference point (+ float compensation), velocity, slots
   Buffer wall_point, wall_point_lo, wall_vel, wall_spring, wall_force, wall_touch;
-  // flags[0]: list rebuild needed, flags[1]: longest list asked for
+  // flags[0]: list rebuild needed, flags[1]: longest list asked for,
+  // flags[2]: max |v|^2 since the last check, flags[3]: late (see integrate.cl)
   Buffer flags, obs_partial, wall_partial;
 
   int n = 0;             // particles
@@ -53,6 +54,8 @@ class State {
   std::int64_t step = 0;
   double time = 0;
   std::int64_t list_builds = 0;
+  std::int64_t next_check = 0;   // step at which detect_contacts next reads the flags
+  std::int64_t late_builds = 0;  // checks that found a particle beyond skin/2 (should stay 0)
 
   size_t device_bytes() const;
 

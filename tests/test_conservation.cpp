@@ -91,6 +91,7 @@ TEST_P(Conservation, ElasticGasKeepsEnergy) {
               precision_name(GetParam()), worst,
               static_cast<long long>(sim.state().list_builds), contacts / 100);
   EXPECT_GT(contacts, 0) << "the gas must collide";
+  EXPECT_EQ(sim.state().late_builds, 0) << "lists must never go stale between checks";
   EXPECT_LT(worst, 1e-3);
 }
 

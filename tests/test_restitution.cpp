@@ -47,6 +47,7 @@ TEST_P(Restitution, SphereSphere) {
   const double measured = (p.velocity[1][0] - p.velocity[0][0]) / v;
   report("restitution", measured, e);
   EXPECT_NEAR(measured / e, 1.0, 0.02) << "measured e = " << measured;
+  EXPECT_EQ(sim.state().late_builds, 0);
 }
 
 TEST_P(Restitution, SphereWall) {

@@ -4,13 +4,16 @@
 //   x_{n+1}   = x_n + v_{n+1/2} dt              (compensated in float runs)
 //
 // Velocities in the state are the half-step ones; observables (reduce.cl)
-// re-centre them to v_n. Also raises flags[0] when a particle has moved more
-// than skin/2 since the last neighbour-list build.
+// re-centre them to v_n. Also keeps the neighbour-list bookkeeping that the
+// host reads every few steps (pipeline.cpp, detect_contacts):
+//   flags[0] = 1  a particle moved more than skin/4 since the last build: rebuild
+//   flags[2]      largest |v|^2 since the last check (float bits, atomic max)
+//   flags[3] = 1  a particle moved more than skin/2: the lists were stale (late)
 
 __kernel void integrate(__global real4* pos POS_LO_ARG, __global real4* vel,
                         __global real4* omega, __global const real4* force,
                         __global const real4* torque, __global const real4* pos_build,
-                        __global int* flags, real4 gravity, real dt, real half_skin2, int n) {
+                        __global int* flags, real4 gravity, real dt, real skin, int n) {
   const int i = get_global_id(0);
   if (i >= n) return;
   real4 v = vel[i];
@@ -34,5 +37,8 @@ __kernel void integrate(__global real4* pos POS_LO_ARG, __global real4* vel,
   omega[i] = w;
   pos[i] = x;
   const real3 moved = x.xyz - pos_build[i].xyz;
-  if (dot(moved, moved) > half_skin2) flags[0] = 1;
+  const real moved2 = dot(moved, moved);
+  if (moved2 > (real)0.0625 * skin * skin) flags[0] = 1;
+  if (moved2 > (real)0.25 * skin * skin) flags[3] = 1;
+  atomic_max(&flags[2], as_int((float)dot(v.xyz, v.xyz)));  // >= 0: int order = float order
 }
