@@ -105,7 +105,6 @@ typedef real lane;
 typedef int lmask;
 typedef int lmask_elem;
 #define SEL(c, a, b) ((c) ? (a) : (b))
-#define ANY(c) (c)
 #define LANE_LOAD(p) ((p)[0])
 #define LANE_STORE(v, p) ((p)[0] = (v))
 #else
@@ -118,7 +117,6 @@ typedef CAT(int, LANES) lmask;
 typedef int lmask_elem;
 #endif
 #define SEL(c, a, b) select((b), (a), (c))
-#define ANY(c) any(c)
 #define LANE_LOAD(p) CAT(vload, LANES)(0, (p))
 #define LANE_STORE(v, p) CAT(vstore, LANES)((v), 0, (p))
 #endif
