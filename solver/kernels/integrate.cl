@@ -13,7 +13,7 @@
 __kernel void integrate(__global real4* pos POS_LO_ARG, __global real4* vel,
                         __global real4* omega, __global const real4* force,
                         __global const real4* torque, __global const real4* pos_build,
-                        __global int* flags, real4 gravity, real dt, real skin, int n) {
+                        __global volatile int* flags, real4 gravity, real dt, real skin, int n) {
   const int i = get_global_id(0);
   if (i >= n) return;
   real4 v = vel[i];
@@ -40,5 +40,8 @@ __kernel void integrate(__global real4* pos POS_LO_ARG, __global real4* vel,
   const real moved2 = dot(moved, moved);
   if (moved2 > (real)0.0625 * skin * skin) flags[0] = 1;
   if (moved2 > (real)0.25 * skin * skin) flags[3] = 1;
-  atomic_max(&flags[2], as_int((float)dot(v.xyz, v.xyz)));  // >= 0: int order = float order
+  // |v|^2 >= 0, so its float bits order like ints; only a new maximum pays
+  // for the atomic (one shared word: contended if every particle wrote it)
+  const int v2 = as_int((float)dot(v.xyz, v.xyz));
+  if (v2 > flags[2]) atomic_max(&flags[2], v2);
 }
