@@ -16,6 +16,7 @@ std::string KernelConfig::build_options() const {
   if (friction) o += " -DHAS_FRICTION";
   if (rolling) o += " -DHAS_ROLLING";
   if (walls) o += " -DHAS_WALLS";
+  if (servo) o += " -DHAS_SERVO";
   if (interleaved_lists) o += " -DNBR_INTERLEAVED";
   o += " -DLANES=" + std::to_string(lanes);
   if (!extra_options.empty()) o += " " + extra_options;
@@ -44,6 +45,7 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
   c.friction = scene.effects.tangential_friction && any_friction;
   c.rolling = scene.effects.rolling_friction && any_rolling;
   c.walls = !scene.walls.empty();
+  for (const Wall& w : scene.walls) c.servo = c.servo || w.servo.enabled;
   // Slot k of particle i at k*n + i: consecutive particles (GPU threads or
   // CPU SIMD lanes) touch consecutive slots. 2x faster than i*cap + k on PoCL.
   c.interleaved_lists = true;

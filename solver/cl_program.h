@@ -21,6 +21,7 @@ struct KernelConfig {
   bool friction = true;
   bool rolling = true;
   bool walls = true;
+  bool servo = false;  // some wall is servo-controlled
   bool interleaved_lists = true;   // neighbour slot layout k*n+i (else i*cap+k)
   int lanes = 1;                   // particles per work item in the contact kernels
   std::string extra_options;       // appended verbatim (diagnostics, tests)

@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "kernel_args.h"
+#include "pipeline.h"
 
 namespace simsols {
 namespace {
@@ -56,15 +57,7 @@ Observables observe(const Model& m, State& s) {
 std::vector<WallReaction> wall_reactions(const Model& m, State& s) {
   std::vector<WallReaction> out(m.walls());
   if (out.empty()) return out;
-  const Kernels& k = m.kernels();
-  set_args(m, k.reduce_walls, s.wall_force, s.wall_partial, s.n,
-           Local{m.local_size() * 4 * m.real_size()});
-  const size_t global[2] = {m.global_size(s.n), size_t(m.walls())};
-  const size_t local[2] = {m.local_size(), 1};
-  check(clEnqueueNDRangeKernel(m.device().queue(), k.reduce_walls.get(), 2, nullptr, global, local,
-                               0, nullptr, nullptr),
-        "clEnqueueNDRangeKernel(reduce_walls)");
-  const size_t groups = global[0] / local[0];
+  const size_t groups = reduce_wall_forces(m, s);
   const std::vector<double> part = read_reals(m, s.wall_partial, groups * m.walls() * 4);
   for (int w = 0; w < m.walls(); ++w) {
     double c = 0;

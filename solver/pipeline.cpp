@@ -124,6 +124,12 @@ void integrate(const Model& m, State& s) {
   set_args(m, k.integrate, s.pos, s.pos_lo, s.vel, s.omega, s.force, s.torque, s.pos_build,
            s.flags, gravity_arg(m), Real{m.dt()}, Real{m.skin()}, s.n);
   launch(m, k.integrate, s.n);
+  if (m.config().servo) {
+    const size_t groups = reduce_wall_forces(m, s);
+    set_args(m, k.servo_walls, m.wall_buffer(), m.servo_buffer(), s.wall_partial, s.wall_vel,
+             s.wall_reaction, static_cast<int>(groups), m.walls());
+    launch_exact(m, k.servo_walls, 1);
+  }
   if (m.config().walls) {
     if (m.config().double_precision)
       set_args(m, k.advance_walls, s.wall_point, s.wall_vel, Real{m.dt()}, m.walls());
@@ -134,6 +140,18 @@ void integrate(const Model& m, State& s) {
   }
   ++s.step;
   s.time = s.step * m.dt();
+}
+
+size_t reduce_wall_forces(const Model& m, State& s) {
+  const Kernels& k = m.kernels();
+  set_args(m, k.reduce_walls, s.wall_force, s.wall_partial, s.n,
+           Local{m.local_size() * 4 * m.real_size()});
+  const size_t global[2] = {m.global_size(s.n), size_t(m.walls())};
+  const size_t local[2] = {m.local_size(), 1};
+  check(clEnqueueNDRangeKernel(m.device().queue(), k.reduce_walls.get(), 2, nullptr, global, local,
+                               0, nullptr, nullptr),
+        "clEnqueueNDRangeKernel(reduce_walls)");
+  return global[0] / local[0];
 }
 
 void step(const Model& m, State& s) {

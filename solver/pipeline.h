@@ -5,7 +5,8 @@
 //   contact_forces   particle-particle forces and torques      forces.cl
 //   wall_forces      particle-wall forces; returns early when
 //                    the scene has no walls                     walls.cl
-//   integrate        leapfrog kick-drift, walls advanced        integrate.cl
+//   integrate        leapfrog kick-drift; servo walls set their
+//                    velocity from the wall reaction; walls advanced  integrate.cl, walls.cl
 //
 // step() runs the four in this order. Stages only enqueue kernels on the
 // device's in-order queue; detect_contacts reads one flag back per step.
@@ -23,5 +24,9 @@ void wall_forces(const Model& model, State& state);
 void integrate(const Model& model, State& state);
 
 void step(const Model& model, State& state);
+
+// Enqueues the per-wall sums of the forces particles exert on walls into
+// state.wall_partial (groups x walls); returns the number of groups.
+size_t reduce_wall_forces(const Model& model, State& state);
 
 }  // namespace simsols

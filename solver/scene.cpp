@@ -208,6 +208,14 @@ void check_wall(const Scene& s, size_t i, std::set<std::string>& names) {
   check_vector(f + ".point", w.point);
   check_vector(f + ".velocity", w.velocity);
   check_unit(f + ".normal", w.normal, "zero_normal");
+  if (w.servo.enabled) {
+    check_number(f + ".servo.target_force", w.servo.target_force, kPositive);
+    check_number(f + ".servo.gain", w.servo.gain, kPositive);
+    check_number(f + ".servo.max_speed", w.servo.max_speed, kPositive);
+    if (norm(w.velocity) != 0)
+      fail("conflicting_keys", f + ".velocity",
+           "a servo-controlled wall moves by itself; remove its velocity");
+  }
   if (w.shape != WallShape::Rectangle) return;
   check_unit(f + ".axis_u", w.axis_u, "bad_vector");
   const double d = dot(w.normal, w.axis_u);

@@ -58,7 +58,18 @@ struct Particle {
 
 enum class WallShape : std::uint8_t { Plane, Rectangle };
 
-// A rigid wall moving with a prescribed constant velocity.
+// Servo control of a wall: it moves along its normal so that the force the
+// particles exert on it, F = -(force on the wall) . normal, tends to
+// target_force:  v = clamp(gain (target_force - F), -max_speed, max_speed) normal.
+// A servo wall has no prescribed velocity.
+struct WallServo {
+  bool enabled = false;
+  double target_force = 0;  // N, > 0
+  double gain = 0;          // m/(s N), > 0
+  double max_speed = 0;     // m/s, > 0
+};
+
+// A rigid wall moving with a prescribed constant velocity, or servo-controlled.
 // Plane: infinite, one-sided; particles live on the side `normal` points to.
 // Rectangle: finite, two-sided thin plate centred at `point`, spanned by
 //   axis_u (unit) and axis_v = normal x axis_u, half sizes half_u, half_v.
@@ -72,6 +83,7 @@ struct Wall {
   double half_u = 0;   // rectangle only, m
   double half_v = 0;   // rectangle only, m
   Vec3 velocity{};     // m/s, prescribed
+  WallServo servo;     // when enabled, moves to hold a normal force instead
 };
 
 // Optional physics. What is off is compiled out of the kernels.

@@ -615,7 +615,7 @@ class Loader {
     for (size_t i = 0; i < tables.size(); ++i) {
       Reader r(*tables[i], item("walls", i), ctx_,
                {"name", "type", "material", "point", "normal", "axis_u", "half_u", "half_v",
-                "velocity"});
+                "velocity", "servo"});
       Wall w;
       w.name = r.string("name", "wall" + std::to_string(i));
       const bool rectangle = r.choice("type", "plane", {"plane", "rectangle"}) == "rectangle";
@@ -625,6 +625,13 @@ class Loader {
       w.point = r.vec3("point");
       w.normal = normalized(r.vec3("normal"));
       w.velocity = r.vec3("velocity", {});
+      if (r.has("servo")) {
+        Reader sv(r.table("servo"), r.field("servo"), ctx_, {"target_force", "gain", "max_speed"});
+        w.servo.enabled = true;
+        w.servo.target_force = sv.number("target_force");
+        w.servo.gain = sv.number("gain");
+        w.servo.max_speed = sv.number("max_speed");
+      }
       if (rectangle) {
         w.shape = WallShape::Rectangle;
         w.axis_u = normalized(r.vec3("axis_u"));
@@ -825,6 +832,10 @@ class Writer {
       line("half_v", w.half_v);
     }
     if (!is_default_zero(w.velocity)) line("velocity", w.velocity);
+    if (w.servo.enabled)
+      line("servo", "{ target_force = " + toml_float(w.servo.target_force) +
+                        ", gain = " + toml_float(w.servo.gain) +
+                        ", max_speed = " + toml_float(w.servo.max_speed) + " }");
   }
 
   void write_effects() {

@@ -105,6 +105,7 @@ State::State(const Model& model) {
   wall_spring = make(d, size_t(nw) * n * r4);
   wall_force = make(d, size_t(nw) * n * r4);
   wall_touch = make(d, n * sizeof(int));
+  wall_reaction = make(d, std::max(1, nw) * model.real_size());
 
   const int init_flags[4] = {1, 0, 0, 0};  // first step builds the lists
   flags = make(d, sizeof init_flags, init_flags);
@@ -119,7 +120,7 @@ size_t State::device_bytes() const {
                           &nbr, &spring, &old_count, &old_nbr, &old_spring, &nbr_upper, &old_upper, &mirror,
                           &pair_force, &pair_torque, &bucket, &slot,
                           &cell_count, &cell_start, &sorted, &chunk_sum, &wall_point,
-                          &wall_point_lo, &wall_vel, &wall_spring, &wall_force, &wall_touch, &flags,
+                          &wall_point_lo, &wall_vel, &wall_spring, &wall_force, &wall_touch, &wall_reaction, &flags,
                           &obs_partial, &wall_partial})
     total += b->bytes;
   return total;
@@ -132,7 +133,7 @@ std::vector<std::pair<std::string, Buffer*>> State::dynamic_buffers() {
           {"pos_build", &pos_build}, {"nbr_count", &nbr_count}, {"nbr", &nbr},
           {"spring", &spring},     {"nbr_upper", &nbr_upper}, {"mirror", &mirror},     {"wall_point", &wall_point}, {"wall_point_lo", &wall_point_lo},
           {"wall_vel", &wall_vel}, {"wall_spring", &wall_spring}, {"wall_force", &wall_force},
-          {"wall_touch", &wall_touch},
+          {"wall_touch", &wall_touch}, {"wall_reaction", &wall_reaction},
           {"flags", &flags}};
 }
 

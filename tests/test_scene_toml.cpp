@@ -693,5 +693,42 @@ TEST(ValidateScene, TouchingParticlesWithinOnePercentAreAccepted) {
   EXPECT_EQ(expect_error([&] { validate_scene(s, "code"); }).code, "overlapping_particles");
 }
 
+TEST(SceneToml, ServoWallReadsAndRoundTrips) {
+  const std::string text = R"(
+[[materials]]
+name = "glass"
+young_modulus = 6e10
+poisson_ratio = 0.2
+density = 2500
+restitution = 0.9
+
+[[particles]]
+material = "glass"
+radius = 0.001
+position = [0, 0, 0.001]
+
+[[walls]]
+name = "platen"
+material = "glass"
+point = [0, 0, 0.01]
+normal = [0, 0, -1]
+servo = { target_force = 2.5, gain = 0.01, max_speed = 0.02 }
+
+[numerics]
+duration = 0.01
+)";
+  const Scene a = parse_scene(text, "servo.toml");
+  ASSERT_EQ(a.walls.size(), 1u);
+  EXPECT_TRUE(a.walls[0].servo.enabled);
+  EXPECT_EQ(a.walls[0].servo.target_force, 2.5);
+  EXPECT_EQ(a.walls[0].servo.gain, 0.01);
+  EXPECT_EQ(a.walls[0].servo.max_speed, 0.02);
+  const Scene b = parse_scene(to_toml(a), "round_trip.toml");
+  EXPECT_TRUE(b.walls[0].servo.enabled);
+  EXPECT_EQ(b.walls[0].servo.target_force, 2.5);
+  EXPECT_EQ(b.walls[0].servo.gain, 0.01);
+  EXPECT_EQ(b.walls[0].servo.max_speed, 0.02);
+}
+
 }  // namespace
 }  // namespace simsols

@@ -2,7 +2,9 @@
 // and not beyond; walls move with their prescribed velocity; float runs keep
 // slow motions far from the origin (compensated positions).
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
+#include <vector>
 
 #include "test_support.h"
 
@@ -83,6 +85,43 @@ TEST_P(Walls, SlowMotionFarFromTheOriginIsNotLost) {
   const double moved = sim.snapshot().position[1][0] - x0;
   report("drift over 1e4 steps of 1e-10 m (m)", moved, 1e-6);
   EXPECT_NEAR(moved, 1e-6, 1e-6 * 1e-4);
+}
+
+TEST_P(Walls, ServoPlatenHoldsItsTargetForce) {
+  // A platen above a sphere resting on a floor, asked for 1 N: it comes down
+  // at its speed cap, then holds 1 N; the floor carries 1 N + the weight.
+  const Material m = soft(0.5, 0.3, 0.0);
+  Scene s = empty_scene(GetParam(), m);
+  s.effects.gravity = {0, 0, -9.81};
+  const double R = 5e-3, target = 1.0;
+  s.particles = {sphere(R, {0, 0, R})};
+  Wall platen = plane("platen", {0, 0, 2 * R + 1e-4}, {0, 0, -1});
+  platen.servo.enabled = true;
+  platen.servo.target_force = target;
+  platen.servo.gain = 0.015;  // m/(s N): ~1 ms response on this contact
+  platen.servo.max_speed = 0.05;
+  s.walls = {plane("floor", {0, 0, 0}, {0, 0, 1}), platen};
+  Simulation sim(default_device(), s);
+  EXPECT_TRUE(sim.model().config().servo);
+  sim.advance(6000);
+  double f_min = 1e9, f_max = 0, floor_sum = 0;
+  const int samples = 100;
+  for (int i = 0; i < samples; ++i) {
+    sim.advance(20);
+    const std::vector<WallReaction> w = sim.wall_reactions();
+    const double f = w[1].force[2];  // the particle pushes the platen up
+    f_min = std::min(f_min, f);
+    f_max = std::max(f_max, f);
+    floor_sum += -w[0].force[2];
+  }
+  const double weight = mass(s, s.particles[0]) * 9.81;
+  report("platen force, min (N)", f_min, target);
+  report("platen force, max (N)", f_max, target);
+  report("floor force, mean (N)", floor_sum / samples, target + weight);
+  EXPECT_NEAR(f_min / target, 1.0, 0.01);
+  EXPECT_NEAR(f_max / target, 1.0, 0.01);
+  EXPECT_NEAR(floor_sum / samples / (target + weight), 1.0, 0.01);
+  EXPECT_LT(wall_points(sim.model(), sim.state())[1][2], 2 * R) << "the platen came down";
 }
 
 SIMSOLS_BOTH_PRECISIONS(Walls);

@@ -165,4 +165,27 @@ __kernel void advance_walls(__global real4* wall_point
 #endif
 }
 
-#endif  // HAS_WALLS
+#endif  // HAS_WALLS (servo_walls below needs it too)
+
+#ifdef HAS_SERVO
+// Servo-controlled walls (one work item): sums the group partials of
+// reduce_walls into each servo wall's reaction F = -(force on wall) . n and
+// sets its velocity v = clamp(gain (target - F), +-max_speed) n. `servo`
+// holds per wall (target_force, gain, max_speed, enabled).
+__kernel void servo_walls(__global const real4* walls, __global const real4* servo,
+                          __global const real4* partial, __global real4* wall_vel,
+                          __global real* reaction, int groups, int nwalls) {
+  if (get_global_id(0) != 0) return;
+  for (int w = 0; w < nwalls; ++w) {
+    const real4 c = servo[w];
+    if (c.w == (real)0) continue;
+    real4 sum = (real4)(0);
+    for (int g = 0; g < groups; ++g) sum += partial[w * groups + g];
+    const real3 n = walls[WALL_RECORD * w + 1].xyz;
+    const real f = -dot(sum.xyz, n);
+    reaction[w] = f;
+    const real v = clamp(c.y * (c.x - f), -c.z, c.z);
+    wall_vel[w] = (real4)(v * n, 0);
+  }
+}
+#endif  // HAS_SERVO
