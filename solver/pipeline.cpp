@@ -11,6 +11,10 @@ namespace {
 
 constexpr int kMaxNeighbors = 256;  // MAX_CAP in neighbors.cl
 
+// Work items of the lane kernels (LANES particles each).
+size_t lane_groups(const Model& m, int n) {
+  return (n + m.config().lanes - 1) / m.config().lanes;
+}
 
 void build_grid(const Model& m, State& s) {
   const Kernels& k = m.kernels();
@@ -34,8 +38,8 @@ int build_lists(const Model& m, State& s) {
   const Kernels& k = m.kernels();
   set_args(m, k.build_neighbors, s.pos, s.pos_lo, s.cell_count, s.cell_start, s.sorted,
            s.old_count, s.old_upper, s.old_nbr, s.old_spring, s.nbr_count, s.nbr, s.spring,
-           s.nbr_upper,
-           s.pos_build, s.flags, Real{1.0 / m.cell_size()}, Real{m.skin()}, s.table, s.cap, s.n);
+           s.nbr_upper, s.pos_build, s.flags, Real{1.0 / m.cell_size()}, Real{m.skin()},
+           s.table, s.cap, s.n);
   launch(m, k.build_neighbors, s.n);
   int flags[2] = {0, 0};
   m.device().read(s.flags.get(), sizeof flags, flags);
@@ -65,14 +69,11 @@ void detect_contacts(const Model& m, State& s, bool force_rebuild) {
   float v2 = 0;
   std::memcpy(&v2, &flags[2], sizeof v2);
   if (flags[3]) ++s.late_builds;
-  const int zero[4] = {0, 0, 0, 0};
-  if (!flags[0] && !force_rebuild) {
-    if (flags[2] || flags[3]) m.device().write(s.flags.get(), sizeof zero, zero);
-    s.next_check = s.step + check_interval(m, std::sqrt(double(v2)));
-    return;
-  }
-  m.device().write(s.flags.get(), sizeof zero, zero);
   s.next_check = s.step + check_interval(m, std::sqrt(double(v2)));
+  const int zero[4] = {0, 0, 0, 0};
+  if (flags[0] || flags[2] || flags[3] || force_rebuild)
+    m.device().write(s.flags.get(), sizeof zero, zero);
+  if (!flags[0] && !force_rebuild) return;
 
   build_grid(m, s);
   // The lists in use become the "old" ones the springs are carried from.
@@ -98,9 +99,9 @@ void contact_forces(const Model& m, State& s) {
   set_args(m, k.pair_forces, s.pos, s.pos_lo, s.vel, s.omega, s.nbr, s.nbr_upper,
            s.spring, m.pair_buffer(), s.pair_force, s.pair_torque, s.force, s.torque,
            Real{m.dt()}, s.cap, s.n, m.pairs().n);
-  launch(m, k.pair_forces, (s.n + m.config().lanes - 1) / m.config().lanes);
-  set_args(m, k.collect_pairs, s.nbr_count, s.nbr_upper, s.mirror, s.pair_force, s.pair_torque, s.force,
-           s.torque, s.cap, s.n);
+  launch(m, k.pair_forces, lane_groups(m, s.n));
+  set_args(m, k.collect_pairs, s.nbr_count, s.nbr_upper, s.mirror, s.pair_force,
+           s.pair_torque, s.force, s.torque, s.cap, s.n);
   launch(m, k.collect_pairs, s.n);
 }
 
@@ -116,7 +117,7 @@ void wall_forces(const Model& m, State& s) {
              s.wall_point_lo, s.wall_vel, s.wall_spring, s.wall_force, m.pair_buffer(), s.force,
              s.torque, s.wall_touch, Real{m.dt()}, s.n, m.walls(), m.pairs().n);
   }
-  launch(m, k.wall_forces, (s.n + m.config().lanes - 1) / m.config().lanes);
+  launch(m, k.wall_forces, lane_groups(m, s.n));
 }
 
 void integrate(const Model& m, State& s) {
