@@ -73,14 +73,10 @@ State::State(const Model& model) {
   pos_build = make(d, n * r4);
 
   nbr_count = make(d, n * sizeof(int));
-  nbr = make(d, size_t(n) * cap * sizeof(int));
-  spring = make(d, spring_bytes(model));
   old_count = make(d, n * sizeof(int));
-  old_nbr = make(d, size_t(n) * cap * sizeof(int));
-  old_spring = make(d, spring_bytes(model));
   nbr_upper = make(d, n * sizeof(int));
   old_upper = make(d, n * sizeof(int));
-  make_pair_buffers(model);
+  resize_lists(model, cap);  // the buffers sized by the list capacity
 
   bucket = make(d, n * sizeof(std::uint32_t));
   slot = make(d, n * sizeof(std::uint32_t));
@@ -150,7 +146,7 @@ void State::grow_lists(const Model& model, int new_cap) {
   d.read(old_nbr.get(), ids.size() * sizeof(int), ids.data());
   d.read(old_spring.get(), spr.size(), spr.data());
   std::vector<int> ids2(size_t(n) * new_cap, 0);
-  std::vector<unsigned char> spr2(size_t(n) * new_cap * r4, 0);
+  std::vector<unsigned char> spr2(size_t(n) * new_cap * r4, 0);  // spring_bytes at new_cap
   for (int i = 0; i < n; ++i)
     for (int k = 0; k < cnt[i]; ++k) {
       ids2[index(i, k, new_cap)] = ids[index(i, k, cap)];
