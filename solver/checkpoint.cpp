@@ -13,7 +13,7 @@ namespace simsols {
 namespace {
 
 constexpr char kMagic[12] = {'S', 'I', 'M', 'S', 'O', 'L', 'S', '-', 'C', 'K', 'P', 'T'};
-constexpr std::uint32_t kVersion = 2;
+constexpr std::uint32_t kVersion = 3;
 
 class Writer {
  public:

@@ -79,10 +79,6 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
     wk.put4(v[0], v[1], v[2], w.half_v);
   }
   wall_buf_ = device_->alloc(wk.bytes().size(), wk.bytes().data());
-  RealPacker sk(dbl);
-  for (const Wall& w : scene_.walls)
-    sk.put4(w.servo.target_force, w.servo.gain, w.servo.max_speed, w.servo.enabled ? 1 : 0);
-  servo_buf_ = device_->alloc(sk.size(), sk.data());
   local_size_ = 64;
   if (const char* ls = std::getenv("SIMSOLS_LOCAL_SIZE")) local_size_ = std::max(1, std::atoi(ls));
 }

@@ -49,7 +49,6 @@ class Model {
 
   cl_mem pair_buffer() const { return pair_buf_.get(); }
   cl_mem wall_buffer() const { return wall_buf_.get(); }
-  cl_mem servo_buffer() const { return servo_buf_.get(); }  // per wall: target, gain, max speed, on
   size_t device_bytes() const;  // of the constant buffers
 
  private:
@@ -61,7 +60,7 @@ class Model {
   double dt_ = 0, rayleigh_dt_ = 0, skin_ = 0, cell_size_ = 0;
   Vec3 origin_{};
   size_t local_size_ = 64;
-  ClMem pair_buf_, wall_buf_, servo_buf_;
+  ClMem pair_buf_, wall_buf_;
 };
 
 }  // namespace simsols

@@ -127,8 +127,8 @@ void integrate(const Model& m, State& s) {
   launch(m, k.integrate, s.n);
   if (m.config().servo) {
     const size_t groups = reduce_wall_forces(m, s);
-    set_args(m, k.servo_walls, m.wall_buffer(), m.servo_buffer(), s.wall_partial, s.wall_vel,
-             s.wall_reaction, static_cast<int>(groups), m.walls());
+    set_args(m, k.servo_walls, m.wall_buffer(), s.servo, s.wall_partial, s.wall_vel,
+             s.wall_reaction, Real{m.dt()}, static_cast<int>(groups), m.walls());
     launch_exact(m, k.servo_walls, 1);
   }
   if (m.config().walls) {

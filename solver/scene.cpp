@@ -212,6 +212,7 @@ void check_wall(const Scene& s, size_t i, std::set<std::string>& names) {
     check_number(f + ".servo.target_force", w.servo.target_force, kPositive);
     check_number(f + ".servo.gain", w.servo.gain, kPositive);
     check_number(f + ".servo.max_speed", w.servo.max_speed, kPositive);
+    check_number(f + ".servo.integral_time", w.servo.integral_time, kNonNegative);
     if (norm(w.velocity) != 0)
       fail("conflicting_keys", f + ".velocity",
            "a servo-controlled wall moves by itself; remove its velocity");

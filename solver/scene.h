@@ -60,13 +60,16 @@ enum class WallShape : std::uint8_t { Plane, Rectangle };
 
 // Servo control of a wall: it moves along its normal so that the force the
 // particles exert on it, F = -(force on the wall) . normal, tends to
-// target_force:  v = clamp(gain (target_force - F), -max_speed, max_speed) normal.
+// target_force, with a proportional-integral law on e = target_force - F:
+//   v = clamp(gain e + v_i, -max_speed, max_speed) normal,
+//   dv_i/dt = gain e / integral_time   (off when integral_time = 0).
 // A servo wall has no prescribed velocity.
 struct WallServo {
   bool enabled = false;
-  double target_force = 0;  // N, > 0
-  double gain = 0;          // m/(s N), > 0
-  double max_speed = 0;     // m/s, > 0
+  double target_force = 0;   // N, > 0
+  double gain = 0;           // m/(s N), > 0
+  double max_speed = 0;      // m/s, > 0
+  double integral_time = 0;  // s, >= 0; 0 = proportional only
 };
 
 // A rigid wall moving with a prescribed constant velocity, or servo-controlled.

@@ -626,11 +626,12 @@ class Loader {
       w.normal = normalized(r.vec3("normal"));
       w.velocity = r.vec3("velocity", {});
       if (r.has("servo")) {
-        Reader sv(r.table("servo"), r.field("servo"), ctx_, {"target_force", "gain", "max_speed"});
+        Reader sv(r.table("servo"), r.field("servo"), ctx_, {"target_force", "gain", "max_speed", "integral_time"});
         w.servo.enabled = true;
         w.servo.target_force = sv.number("target_force");
         w.servo.gain = sv.number("gain");
         w.servo.max_speed = sv.number("max_speed");
+        w.servo.integral_time = sv.number("integral_time", 0);
       }
       if (rectangle) {
         w.shape = WallShape::Rectangle;
@@ -835,7 +836,11 @@ class Writer {
     if (w.servo.enabled)
       line("servo", "{ target_force = " + toml_float(w.servo.target_force) +
                         ", gain = " + toml_float(w.servo.gain) +
-                        ", max_speed = " + toml_float(w.servo.max_speed) + " }");
+                        ", max_speed = " + toml_float(w.servo.max_speed) +
+                        (w.servo.integral_time > 0
+                             ? ", integral_time = " + toml_float(w.servo.integral_time)
+                             : std::string()) +
+                        " }");
   }
 
   void write_effects() {

@@ -1,6 +1,10 @@
 #include "simulation.h"
 
+#include <array>
 #include <mutex>
+#include <stdexcept>
+
+#include "real_packer.h"
 
 namespace simsols {
 
@@ -10,6 +14,74 @@ Simulation::Simulation(std::shared_ptr<Device> device, const Scene& scene)
 
 void Simulation::advance(std::int64_t steps) {
   for (std::int64_t i = 0; i < steps; ++i) step(*model_, *state_);
+}
+
+namespace {
+
+void check_wall(const Model& m, int wall, const char* what) {
+  if (wall < 0 || wall >= m.walls())
+    throw std::out_of_range(std::string(what) + ": wall " + std::to_string(wall) +
+                            " does not exist (the scene has " + std::to_string(m.walls()) +
+                            " walls)");
+}
+
+// Writes one real4 at record `index` of `buf`.
+void write_real4(const Model& m, const Buffer& buf, size_t index, double a, double b, double c,
+                 double d) {
+  RealPacker p(m.config().double_precision);
+  p.put4(a, b, c, d);
+  m.device().write(buf.get(), p.size(), p.data(), index * p.size());
+}
+
+std::array<double, 4> read_real4(const Model& m, const Buffer& buf, size_t index) {
+  std::array<double, 4> out{};
+  if (m.config().double_precision) {
+    m.device().read(buf.get(), sizeof out, out.data(), index * sizeof out);
+  } else {
+    float f[4];
+    m.device().read(buf.get(), sizeof f, f, index * sizeof f);
+    for (int k = 0; k < 4; ++k) out[k] = f[k];
+  }
+  return out;
+}
+
+}  // namespace
+
+void Simulation::set_wall_velocity(int wall, const Vec3& v) {
+  check_wall(*model_, wall, "set_wall_velocity");
+  write_real4(*model_, state_->wall_vel, wall, v[0], v[1], v[2], 0);
+}
+
+void Simulation::set_servo(int wall, const WallServo& c) {
+  check_wall(*model_, wall, "set_servo");
+  if (c.enabled && !model_->config().servo)
+    throw std::logic_error("set_servo: the kernels were built without servo walls");
+  if (!model_->config().servo) return;
+  write_real4(*model_, state_->servo, 2 * wall, c.target_force, c.gain, c.max_speed,
+              c.enabled ? 1 : 0);
+  write_real4(*model_, state_->servo, 2 * wall + 1, c.integral_time > 0 ? 1 / c.integral_time : 0,
+              0, 0, 0);
+  if (!c.enabled) {
+    set_wall_velocity(wall, {0, 0, 0});
+    const auto r = read_real4(*model_, state_->wall_reaction, wall);
+    write_real4(*model_, state_->wall_reaction, wall, r[0], r[1], 0, r[3]);  // no stale integral
+  }
+}
+
+Simulation::ServoReading Simulation::read_servo(int wall) {
+  check_wall(*model_, wall, "read_servo");
+  const auto r = read_real4(*model_, state_->wall_reaction, wall);
+  write_real4(*model_, state_->wall_reaction, wall, r[0], 0, r[2], 0);
+  ServoReading out;
+  out.last = r[0];
+  out.steps = static_cast<std::int64_t>(r[3]);
+  out.mean = out.steps > 0 ? r[1] / r[3] : r[0];
+  return out;
+}
+
+Vec3 Simulation::wall_point(int wall) {
+  check_wall(*model_, wall, "wall_point");
+  return wall_points(*model_, *state_)[wall];
 }
 
 std::shared_ptr<Device> default_device() {

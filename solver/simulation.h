@@ -26,6 +26,19 @@ class Simulation {
   std::int64_t steps() const { return state_->step; }
   double dt() const { return model_->dt(); }
 
+  // Run-time control of the walls (the loading program): a prescribed
+  // velocity, and a servo's settings (switching it on or off, retargeting).
+  void set_wall_velocity(int wall, const Vec3& velocity);
+  void set_servo(int wall, const WallServo& servo);
+  // What the servo of `wall` measured: the reaction of the last step and its
+  // mean over the steps since the previous call (which restarts the mean).
+  struct ServoReading {
+    double last = 0, mean = 0;
+    std::int64_t steps = 0;
+  };
+  ServoReading read_servo(int wall);
+  Vec3 wall_point(int wall);  // current reference point, absolute
+
   Observables observe() { return simsols::observe(*model_, *state_); }
   std::vector<WallReaction> wall_reactions() { return simsols::wall_reactions(*model_, *state_); }
   ParticleSnapshot snapshot() { return download(*model_, *state_); }

@@ -101,7 +101,14 @@ State::State(const Model& model) {
   wall_spring = make(d, size_t(nw) * n * r4);
   wall_force = make(d, size_t(nw) * n * r4);
   wall_touch = make(d, n * sizeof(int));
-  wall_reaction = make(d, std::max(1, nw) * model.real_size());
+  wall_reaction = make(d, std::max(1, nw) * r4);
+  RealPacker sv(dbl);
+  for (const Wall& wall : s.walls) {
+    const WallServo& c = wall.servo;
+    sv.put4(c.target_force, c.gain, c.max_speed, c.enabled ? 1 : 0);
+    sv.put4(c.integral_time > 0 ? 1 / c.integral_time : 0, 0, 0, 0);
+  }
+  servo = make(d, std::max(1, nw) * 2 * r4, nw ? sv.data() : nullptr);
 
   const int init_flags[4] = {1, 0, 0, 0};  // first step builds the lists
   flags = make(d, sizeof init_flags, init_flags);
@@ -116,7 +123,7 @@ size_t State::device_bytes() const {
                           &nbr, &spring, &old_count, &old_nbr, &old_spring, &nbr_upper, &old_upper, &mirror,
                           &pair_force, &pair_torque, &bucket, &slot,
                           &cell_count, &cell_start, &sorted, &chunk_sum, &wall_point,
-                          &wall_point_lo, &wall_vel, &wall_spring, &wall_force, &wall_touch, &wall_reaction, &flags,
+                          &wall_point_lo, &wall_vel, &wall_spring, &wall_force, &wall_touch, &wall_reaction, &servo, &flags,
                           &obs_partial, &wall_partial})
     total += b->bytes;
   return total;
@@ -129,7 +136,7 @@ std::vector<std::pair<std::string, Buffer*>> State::dynamic_buffers() {
           {"pos_build", &pos_build}, {"nbr_count", &nbr_count}, {"nbr", &nbr},
           {"spring", &spring},     {"nbr_upper", &nbr_upper}, {"mirror", &mirror},     {"wall_point", &wall_point}, {"wall_point_lo", &wall_point_lo},
           {"wall_vel", &wall_vel}, {"wall_spring", &wall_spring}, {"wall_force", &wall_force},
-          {"wall_touch", &wall_touch}, {"wall_reaction", &wall_reaction},
+          {"wall_touch", &wall_touch}, {"wall_reaction", &wall_reaction}, {"servo", &servo},
           {"flags", &flags}};
 }
 

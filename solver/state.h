@@ -42,7 +42,10 @@ class State {
   Buffer bucket, slot, cell_count, cell_start, sorted, chunk_sum;
   // walls: current reference point (+ float compensation), velocity, slots
   Buffer wall_point, wall_point_lo, wall_vel, wall_spring, wall_force, wall_touch;
-  Buffer wall_reaction;  // servo walls: the normal force the servo saw last step
+  // servo walls: per wall (target, gain, max speed, on), (1/T_i, 0, 0, 0), set
+  // by the scene and changed at run time (set_servo); and what the servo saw:
+  // (F last step, sum of F since the last read, integral velocity, steps)
+  Buffer servo, wall_reaction;
   // flags[0]: list rebuild needed, flags[1]: longest list asked for,
   // flags[2]: max |v|^2 since the last check, flags[3]: late (see integrate.cl)
   Buffer flags, obs_partial, wall_partial;
