@@ -16,6 +16,7 @@ PACKAGES=(
   libtomlplusplus-dev
   libcli11-dev
   libgtest-dev
+  zlib1g-dev
   clinfo
 )
 

@@ -18,6 +18,7 @@
 #include "output.h"
 #include "progress.h"
 #include "scene_toml.h"
+#include "shear_run.h"
 #include "simulation.h"
 
 namespace simsols {
@@ -51,9 +52,36 @@ void dump(Simulation& sim, const std::filesystem::path& dir) {
   if (o.dump_vtk) write_particles_vtk(dir / step_name("particles", sim.steps(), "vtk"), snap, sim.time());
 }
 
+void print_summary(const ShearRunResult& r, const std::string& dir) {
+  const ShearSummary& s = r.summary;
+  std::printf(
+      "shear test %s: sigma = %.0f kPa, d = %.4g mm, %d beads, %lld steps in %.0f s\n"
+      "  peak     tau/sigma = %.3f  phi_peak     = %.2f deg  (tau = %.2f kPa at %.2f mm)\n"
+      "  residual tau/sigma = %.3f  phi_residual = %.2f deg  (tau = %.2f kPa)\n"
+      "  max dilatancy angle %.2f deg; inertial number <= %.2g; sigma band %+.2f%% / %+.2f%%; "
+      "beads outside %d\n"
+      "  results in %s\n",
+      r.finished ? "finished" : "stopped (resume with --resume)", s.normal_stress_target * 1e-3,
+      s.bead_diameter * 1e3, r.particles, r.steps, s.wall_seconds, s.peak_ratio, s.peak_angle,
+      s.peak_tau * 1e-3, s.peak_displacement * 1e3, s.residual_ratio, s.residual_angle,
+      s.residual_tau * 1e-3, s.max_dilatancy_angle, s.max_inertial_number,
+      100 * (s.sigma_min / s.normal_stress_target - 1),
+      100 * (s.sigma_max / s.normal_stress_target - 1), s.max_outside, dir.c_str());
+}
+
 int run(const RunOptions& opt) {
   const std::filesystem::path dir = opt.out_dir;
   std::unique_ptr<Simulation> sim;
+  ShearRunOptions shear;
+  shear.out_dir = opt.out_dir;
+  shear.quiet = opt.quiet;
+  shear.stop_after = opt.stop_after;
+  shear.label = "shear";
+  if (opt.resume && std::filesystem::exists(dir / "shear.csv")) {
+    shear.resume = true;
+    print_summary(run_shear(Scene{}, shear), opt.out_dir);
+    return 0;
+  }
   if (opt.resume) {
     const auto ck = dir / "checkpoint.bin";
     if (!std::filesystem::exists(ck))
@@ -76,6 +104,14 @@ int run(const RunOptions& opt) {
       scene.numerics.duration = opt.duration;
     }
     validate_scene(scene, scene.source_path);
+    if (scene.shear_box) {
+      if (opt.duration != 0)
+        throw SceneError("conflicting_keys", "command line", 0, "--duration",
+                         "a shear test's loading program sets its duration "
+                         "(shear_box.shear_displacement)");
+      print_summary(run_shear(scene, shear), opt.out_dir);
+      return 0;
+    }
     sim = std::make_unique<Simulation>(default_device(), scene);
     std::filesystem::create_directories(dir);
     write_file_atomic((dir / "scene.toml").string(), scene.source_text);

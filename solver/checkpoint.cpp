@@ -55,7 +55,7 @@ class Reader {
 
 }  // namespace
 
-void save_checkpoint(Simulation& sim, const std::string& path) {
+void save_checkpoint(Simulation& sim, const std::string& path, const std::string& extra) {
   const std::string tmp = path + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
@@ -77,13 +77,15 @@ void save_checkpoint(Simulation& sim, const std::string& path) {
       w.str(name);
       w.bytes(data.data(), data.size());
     }
+    w.str(extra);
     out.flush();
     if (!out) throw DeviceError("failed writing checkpoint " + tmp);
   }
   std::filesystem::rename(tmp, path);
 }
 
-std::unique_ptr<Simulation> load_checkpoint(std::shared_ptr<Device> device, const std::string& path) {
+std::unique_ptr<Simulation> load_checkpoint(std::shared_ptr<Device> device, const std::string& path,
+                                            std::string* extra) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError("io", path, 0, "", "cannot open checkpoint");
   Reader r(in, path);
@@ -108,6 +110,8 @@ std::unique_ptr<Simulation> load_checkpoint(std::shared_ptr<Device> device, cons
     if (data.size() != buf->bytes) r.fail("buffer '" + name + "' has the wrong size");
     sim->model().device().write(buf->get(), data.size(), data.data());
   }
+  const std::string rest = r.str();
+  if (extra) *extra = rest;
   return sim;
 }
 

@@ -114,6 +114,34 @@ ParticleSnapshot download(const Model& m, State& s) {
   return p;
 }
 
+std::vector<ContactForce> contact_list(const Model& m, State& s) {
+  const int n = s.n, cap = s.cap;
+  std::vector<ContactForce> out;
+  if (n == 0) return out;
+  std::vector<int> upper(n), nbr(size_t(n) * cap);
+  m.device().read(s.nbr_upper.get(), n * sizeof(int), upper.data());
+  m.device().read(s.nbr.get(), nbr.size() * sizeof(int), nbr.data());
+  const std::vector<double> pf = read_reals(m, s.pair_force, size_t(n) * cap * 4);
+  const bool inter = m.config().interleaved_lists;
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < upper[i]; ++k) {
+      const size_t slot = inter ? size_t(k) * n + i : size_t(i) * cap + k;
+      if (pf[slot * 4 + 3] == 0) continue;  // listed, not touching
+      out.push_back({i, nbr[slot], {-pf[slot * 4], -pf[slot * 4 + 1], -pf[slot * 4 + 2]}});
+    }
+  if (m.config().walls) {
+    const int nw = m.walls();
+    const std::vector<double> wf = read_reals(m, s.wall_force, size_t(nw) * n * 4);
+    for (int w = 0; w < nw; ++w)
+      for (int i = 0; i < n; ++i) {
+        const double* f = &wf[(size_t(w) * n + i) * 4];
+        if (f[3] == 0) continue;
+        out.push_back({i, -1 - w, {-f[0], -f[1], -f[2]}});
+      }
+  }
+  return out;
+}
+
 std::uint64_t state_hash(const Model& m, State& s) {
   std::uint64_t h = 1469598103934665603ull;
   std::vector<unsigned char> bytes;

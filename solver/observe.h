@@ -51,6 +51,15 @@ struct ParticleSnapshot {
 
 ParticleSnapshot download(const Model& model, State& state);
 
+// Every touching contact of the last force evaluation: bead pairs once
+// (a < b) and bead-wall contacts (b = -1 - wall index). `force` is what b
+// exerts on a. Used by the stress measurement and the force-chain view.
+struct ContactForce {
+  int a = 0, b = 0;
+  Vec3 force{};
+};
+std::vector<ContactForce> contact_list(const Model& model, State& state);
+
 // FNV-1a over the dynamic buffers (positions, velocities, springs, lists...).
 std::uint64_t state_hash(const Model& model, State& state);
 

@@ -128,7 +128,7 @@ void integrate(const Model& m, State& s) {
   if (m.config().servo) {
     const size_t groups = reduce_wall_forces(m, s);
     set_args(m, k.servo_walls, m.wall_buffer(), s.servo, s.wall_partial, s.wall_vel,
-             s.wall_reaction, Real{m.dt()}, static_cast<int>(groups), m.walls());
+             s.wall_reaction, s.wall_mean, Real{m.dt()}, static_cast<int>(groups), m.walls());
     launch_exact(m, k.servo_walls, 1);
   }
   if (m.config().walls) {

@@ -124,6 +124,51 @@ struct Outputs {
   bool dump_vtk = true;
 };
 
+// The direct shear apparatus of the reference paper (its section 5) and its
+// loading program. The box is x in [0, length] (the shear direction),
+// y in [0, width], floor at z = 0, split at z = split_height into a lower and
+// an upper half with `gap` between them. The lower half (floor and four side
+// plates) moves in +x at the shear speed; the upper half and the platen are
+// held horizontally; the platen is servo-controlled to the normal stress.
+// build_shear_box() (shear_box.h) turns this into walls (and particles) and
+// resolves the automatic values (0 below) into numbers.
+struct ShearSpecimen {
+  enum class Method : std::uint8_t { Layers, Pour, Given };
+  enum class Clearance : std::uint8_t { Shift, Spread };
+  Method method = Method::Layers;  // Table 1 layers / random pour / the scene's particles
+  int material = 0;                // the beads' material
+  double diameter = 0;             // m (Layers, Pour)
+  int layers = 0;                  // Layers: layers; Pour: beads for that many layers
+  Clearance clearance = Clearance::Shift;  // Layers: how the row-wall clearance is used
+  std::int64_t seed = 1;
+};
+
+struct ShearBox {
+  double length = 60.23e-3;        // m, inside, along the shear direction x
+  double width = 60.07e-3;         // m, inside, along y
+  double split_height = 0;         // m; 0 = mid-height of the specimen
+  double gap = 0;                  // m between the halves; 0 = 0.2 x smallest diameter
+  int wall_material = -1;          // the box's material; -1 = "steel" (added when absent)
+  double normal_stress = 160e3;    // Pa, the platen's target
+  double shear_speed = 0;          // m/s; 0 = from inertial_number
+  double inertial_number = 5e-4;   // target I = (v/H) d sqrt(rho/sigma) for the automatic speed
+  double shear_displacement = 6e-3;  // m of horizontal displacement to shear
+  double servo_gain = 0;           // m/(s N); 0 = automatic (from the Hertz stiffness)
+  double servo_max_speed = 0.1;    // m/s, the platen's speed cap
+  double servo_integral_time = 0;  // s; 0 = automatic
+  double settle_time = 0.01;       // s, longest settling under gravity
+  double consolidate_time = 0.1;   // s, longest consolidation under the platen
+  int rows = 400;                  // output rows over the shear displacement
+  ShearSpecimen specimen;
+  int first_wall = 0;  // set by build_shear_box: its 10 walls (ShearBoxWall order)
+};
+
+// The apparatus walls, in this order from ShearBox::first_wall.
+enum ShearBoxWall : int {
+  kFloor = 0, kLowerX0, kLowerX1, kLowerY0, kLowerY1,
+  kUpperX0, kUpperX1, kUpperY0, kUpperY1, kPlaten, kShearBoxWalls
+};
+
 struct Scene {
   std::string name = "unnamed";
   std::string description;
@@ -134,6 +179,7 @@ struct Scene {
   Effects effects;
   Numerics numerics;
   Outputs outputs;
+  std::optional<ShearBox> shear_box;  // a direct shear test (walls included in `walls`)
 
   // Where it came from (empty for scenes built in code).
   std::string source_path;

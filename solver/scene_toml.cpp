@@ -1,6 +1,7 @@
 // TOML scene files: loader, particle generators and writer. See scene_toml.h
 // for the design and docs/scene-format.md for the format.
 #include "scene_toml.h"
+#include "shear_box.h"
 
 #include <toml++/toml.h>
 
@@ -389,13 +390,14 @@ class Loader {
     root_ = &root;
     Reader r(root, "", ctx_,
              {"scene", "materials", "interactions", "particles", "generators", "walls", "effects",
-              "numerics", "output"});
+              "numerics", "output", "shear_box"});
     read_info(r);
     read_materials(r);
     read_interactions(r);
     read_particles(r);
     read_generators(r);
     read_walls(r);
+    read_shear_box(r);
     read_effects(r);
     read_numerics(r);
     read_outputs(r);
@@ -643,6 +645,69 @@ class Loader {
     }
   }
 
+  void read_shear_box(const Reader& root) {
+    if (!root.has("shear_box")) return;
+    Reader r(root.table("shear_box"), "shear_box", ctx_,
+             {"length", "width", "split_height", "gap", "wall_material", "normal_stress",
+              "shear_speed", "inertial_number", "shear_displacement", "servo_gain",
+              "servo_max_speed", "servo_integral_time", "settle_time", "consolidate_time", "rows",
+              "specimen"});
+    ShearBox b;
+    b.length = r.number("length", b.length);
+    b.width = r.number("width", b.width);
+    b.split_height = r.number("split_height", b.split_height);
+    b.gap = r.number("gap", b.gap);
+    if (r.has("wall_material")) {
+      const std::string name = r.string("wall_material");
+      // "steel" is built in (default_box_steel) unless the scene defines it
+      if (name != "steel" || scene_.material_index(name) >= 0)
+        b.wall_material = r.material("wall_material", scene_);
+    }
+    b.normal_stress = r.number("normal_stress", b.normal_stress);
+    b.shear_speed = r.number("shear_speed", b.shear_speed);
+    b.inertial_number = r.number("inertial_number", b.inertial_number);
+    b.shear_displacement = r.number("shear_displacement", b.shear_displacement);
+    b.servo_gain = r.number("servo_gain", b.servo_gain);
+    b.servo_max_speed = r.number("servo_max_speed", b.servo_max_speed);
+    b.servo_integral_time = r.number("servo_integral_time", b.servo_integral_time);
+    b.settle_time = r.number("settle_time", b.settle_time);
+    b.consolidate_time = r.number("consolidate_time", b.consolidate_time);
+    const std::int64_t rows = r.optional_integer("rows").value_or(b.rows);
+    if (rows < 10 || rows > 1000000)
+      r.fail("out_of_range", "rows", std::to_string(rows) + " is out of range, allowed [10, 1000000]");
+    b.rows = static_cast<int>(rows);
+
+    Reader sp(r.table("specimen"), "shear_box.specimen", ctx_,
+              {"method", "material", "diameter", "layers", "clearance", "seed"});
+    ShearSpecimen& s = b.specimen;
+    const std::string method = sp.choice("method", "layers", {"layers", "pour", "given"});
+    s.method = method == "layers" ? ShearSpecimen::Method::Layers
+               : method == "pour" ? ShearSpecimen::Method::Pour
+                                  : ShearSpecimen::Method::Given;
+    if (s.method == ShearSpecimen::Method::Given) {
+      sp.forbid({"material", "diameter", "layers", "clearance", "seed"},
+                "only allowed when method = \"layers\" or \"pour\"");
+    } else {
+      s.material = sp.material("material", scene_);
+      s.diameter = sp.number("diameter");
+      const std::int64_t layers = sp.integer("layers");
+      if (layers < 1 || layers > 200)
+        sp.fail("out_of_range", "layers", std::to_string(layers) + " is out of range, allowed [1, 200]");
+      s.layers = static_cast<int>(layers);
+      if (s.method == ShearSpecimen::Method::Pour)
+        sp.forbid({"clearance"}, "only allowed when method = \"layers\"");
+      s.clearance = sp.choice("clearance", "shift", {"shift", "spread"}) == "shift"
+                        ? ShearSpecimen::Clearance::Shift
+                        : ShearSpecimen::Clearance::Spread;
+      const std::int64_t seed = sp.optional_integer("seed").value_or(1);
+      if (seed < 0)
+        sp.fail("out_of_range", "seed", std::to_string(seed) + " is out of range, allowed [0, 2^63)");
+      s.seed = seed;
+    }
+    scene_.shear_box = b;
+    if (auto issue = build_shear_box(scene_)) fail(std::move(*issue));
+  }
+
   void read_effects(const Reader& root) {
     Reader r(root.table("effects"), "effects", ctx_,
              {"gravity", "damping", "tangential_friction", "rolling_friction"});
@@ -782,7 +847,9 @@ class Writer {
     if (!s_.description.empty()) line("description", toml_string(s_.description));
     for (const Material& m : s_.materials) write(m);
     for (size_t i = 0; i < s_.pair_overrides.size(); ++i) write(s_.pair_overrides[i], i);
-    for (size_t i = 0; i < s_.walls.size(); ++i) write(s_.walls[i], i);
+    for (size_t i = 0; i < s_.walls.size(); ++i)
+      if (!is_box_wall(i)) write(s_.walls[i], i);
+    if (s_.shear_box) write_shear_box(*s_.shear_box);
     write_effects();
     write_numerics();
     write_outputs();
@@ -841,6 +908,34 @@ class Writer {
                              ? ", integral_time = " + toml_float(w.servo.integral_time)
                              : std::string()) +
                         " }");
+  }
+
+  bool is_box_wall(size_t i) const {
+    return s_.shear_box && static_cast<int>(i) >= s_.shear_box->first_wall &&
+           static_cast<int>(i) < s_.shear_box->first_wall + kShearBoxWalls;
+  }
+
+  // The apparatus with its resolved values; its specimen is the explicit
+  // particles below, so reading it back rebuilds the same walls.
+  void write_shear_box(const ShearBox& b) {
+    header("[shear_box]");
+    line("length", b.length);
+    line("width", b.width);
+    line("split_height", b.split_height);
+    line("gap", b.gap);
+    line("wall_material", toml_string(material_name(s_, b.wall_material, "shear_box.wall_material")));
+    line("normal_stress", b.normal_stress);
+    line("shear_speed", b.shear_speed);
+    line("inertial_number", b.inertial_number);
+    line("shear_displacement", b.shear_displacement);
+    line("servo_gain", b.servo_gain);
+    line("servo_max_speed", b.servo_max_speed);
+    line("servo_integral_time", b.servo_integral_time);
+    line("settle_time", b.settle_time);
+    line("consolidate_time", b.consolidate_time);
+    line("rows", std::to_string(b.rows));
+    header("[shear_box.specimen]");
+    line("method", toml_string("given"));
   }
 
   void write_effects() {

@@ -84,6 +84,35 @@ Vec3 Simulation::wall_point(int wall) {
   return wall_points(*model_, *state_)[wall];
 }
 
+void Simulation::set_wall_point(int wall, const Vec3& p) {
+  check_wall(*model_, wall, "set_wall_point");
+  const Vec3& o = model_->origin();
+  double rel[3];
+  for (int a = 0; a < 3; ++a) rel[a] = p[a] - o[a];
+  write_real4(*model_, state_->wall_point, wall, rel[0], rel[1], rel[2], 0);
+  if (!model_->config().double_precision) {
+    const float lo[4] = {static_cast<float>(rel[0] - static_cast<float>(rel[0])),
+                         static_cast<float>(rel[1] - static_cast<float>(rel[1])),
+                         static_cast<float>(rel[2] - static_cast<float>(rel[2])), 0};
+    model_->device().write(state_->wall_point_lo.get(), sizeof lo, lo, wall * sizeof lo);
+  }
+}
+
+std::vector<Simulation::WallMean> Simulation::read_wall_means() {
+  std::vector<WallMean> out;
+  if (!model_->config().servo) return out;
+  for (int w = 0; w < model_->walls(); ++w) {
+    const auto r = read_real4(*model_, state_->wall_mean, w);
+    WallMean m;
+    m.steps = static_cast<std::int64_t>(r[3]);
+    for (int k = 0; k < 3; ++k) m.force[k] = m.steps > 0 ? r[k] / r[3] : 0;
+    out.push_back(m);
+  }
+  std::vector<unsigned char> zero(state_->wall_mean.bytes, 0);
+  model_->device().write(state_->wall_mean.get(), zero.size(), zero.data());
+  return out;
+}
+
 std::shared_ptr<Device> default_device() {
   static std::mutex mutex;
   static std::shared_ptr<Device> device;

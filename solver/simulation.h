@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "model.h"
 #include "observe.h"
@@ -38,6 +39,17 @@ class Simulation {
   };
   ServoReading read_servo(int wall);
   Vec3 wall_point(int wall);  // current reference point, absolute
+  // Moves a wall at once (no sweep: the caller makes sure it lands clear of
+  // the particles, e.g. a platen lowered onto a specimen).
+  void set_wall_point(int wall, const Vec3& point);
+  // Mean force the particles exerted on each wall over the steps since the
+  // previous call (which restarts the means); needs a servo wall in the
+  // scene (the servo stage keeps the sums). Empty when there is none.
+  struct WallMean {
+    Vec3 force{};
+    std::int64_t steps = 0;
+  };
+  std::vector<WallMean> read_wall_means();
 
   Observables observe() { return simsols::observe(*model_, *state_); }
   std::vector<WallReaction> wall_reactions() { return simsols::wall_reactions(*model_, *state_); }

@@ -102,6 +102,7 @@ State::State(const Model& model) {
   wall_force = make(d, size_t(nw) * n * r4);
   wall_touch = make(d, n * sizeof(int));
   wall_reaction = make(d, std::max(1, nw) * r4);
+  wall_mean = make(d, std::max(1, nw) * r4);
   RealPacker sv(dbl);
   for (const Wall& wall : s.walls) {
     const WallServo& c = wall.servo;
@@ -123,7 +124,7 @@ size_t State::device_bytes() const {
                           &nbr, &spring, &old_count, &old_nbr, &old_spring, &nbr_upper, &old_upper, &mirror,
                           &pair_force, &pair_torque, &bucket, &slot,
                           &cell_count, &cell_start, &sorted, &chunk_sum, &wall_point,
-                          &wall_point_lo, &wall_vel, &wall_spring, &wall_force, &wall_touch, &wall_reaction, &servo, &flags,
+                          &wall_point_lo, &wall_vel, &wall_spring, &wall_force, &wall_touch, &wall_reaction, &wall_mean, &servo, &flags,
                           &obs_partial, &wall_partial})
     total += b->bytes;
   return total;
@@ -136,7 +137,7 @@ std::vector<std::pair<std::string, Buffer*>> State::dynamic_buffers() {
           {"pos_build", &pos_build}, {"nbr_count", &nbr_count}, {"nbr", &nbr},
           {"spring", &spring},     {"nbr_upper", &nbr_upper}, {"mirror", &mirror},     {"wall_point", &wall_point}, {"wall_point_lo", &wall_point_lo},
           {"wall_vel", &wall_vel}, {"wall_spring", &wall_spring}, {"wall_force", &wall_force},
-          {"wall_touch", &wall_touch}, {"wall_reaction", &wall_reaction}, {"servo", &servo},
+          {"wall_touch", &wall_touch}, {"wall_reaction", &wall_reaction}, {"wall_mean", &wall_mean}, {"servo", &servo},
           {"flags", &flags}};
 }
 

@@ -45,7 +45,9 @@ class State {
   // servo walls: per wall (target, gain, max speed, on), (1/T_i, 0, 0, 0), set
   // by the scene and changed at run time (set_servo); and what the servo saw:
   // (F last step, sum of F since the last read, integral velocity, steps)
-  Buffer servo, wall_reaction;
+  // wall_mean: per wall the force summed over steps (xyz) and the steps (w),
+  // kept when the kernels have servo walls (read_wall_means)
+  Buffer servo, wall_reaction, wall_mean;
   // flags[0]: list rebuild needed, flags[1]: longest list asked for,
   // flags[2]: max |v|^2 since the last check, flags[3]: late (see integrate.cl)
   Buffer flags, obs_partial, wall_partial;

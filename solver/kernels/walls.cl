@@ -169,24 +169,28 @@ __kernel void advance_walls(__global real4* wall_point
 
 #ifdef HAS_SERVO
 // Servo-controlled walls (one work item): sums the group partials of
-// reduce_walls into each servo wall's reaction F = -(force on wall) . n and
-// sets its velocity along n from a PI law on the error e = target - F:
+// reduce_walls into each wall's force, adds it to the wall's running sum
+// (mean: sum, steps in w) for the host's averaged readings, and for a servo
+// wall turns its reaction F = -(force on wall) . n into a velocity along n
+// with a PI law on the error e = target - F:
 //   v = clamp(gain e + v_i, +-max_speed),  v_i += gain e dt / T_i,
 // where v_i (clamped to +-max_speed) integrates only while the proportional
 // part alone is below the cap (no wind-up during the approach).
 // servo: 2 real4 per wall, (target, gain, max_speed, on) and (1/T_i, 0, 0, 0).
 // reading: 1 real4 per wall, (F this step, sum of F since the host last
-// reset it, v_i, steps in the sum): the host's averaged reaction.
+// reset it, v_i, steps in the sum).
 __kernel void servo_walls(__global const real4* walls, __global const real4* servo,
                           __global const real4* partial, __global real4* wall_vel,
-                          __global real4* reading, real dt, int groups, int nwalls) {
+                          __global real4* reading, __global real4* mean, real dt, int groups,
+                          int nwalls) {
   if (get_global_id(0) != 0) return;
   for (int w = 0; w < nwalls; ++w) {
+    real4 sum = (real4)(0);
+    for (int g = 0; g < groups; ++g) sum += partial[w * groups + g];
+    mean[w] += (real4)(sum.xyz, 1);
     const real4 c = servo[2 * w];
     if (c.w == (real)0) continue;
     const real inv_ti = servo[2 * w + 1].x;
-    real4 sum = (real4)(0);
-    for (int g = 0; g < groups; ++g) sum += partial[w * groups + g];
     const real3 n = walls[WALL_RECORD * w + 1].xyz;
     const real f = -dot(sum.xyz, n);
     real4 r = reading[w];

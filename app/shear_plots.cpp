@@ -1,0 +1,139 @@
+#include "shear_plots.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "chart.h"
+
+namespace simsols {
+namespace {
+
+std::string fixed(double v, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+
+plot::Series column(const std::string& label, const std::vector<ShearRow>& rows,
+                    double (*y)(const ShearRow&)) {
+  plot::Series s;
+  s.label = label;
+  for (const ShearRow& r : rows) {
+    s.x.push_back(r.displacement * 1e3);
+    s.y.push_back(y(r));
+  }
+  return s;
+}
+
+double tau_kpa(const ShearRow& r) { return r.tau * 1e-3; }
+double ratio(const ShearRow& r) { return r.sigma > 0 ? r.tau / r.sigma : NAN; }
+double dilation_mm(const ShearRow& r) { return r.dilation * 1e3; }
+
+}  // namespace
+
+void write_shear_plots(const std::string& dir, const std::string& title,
+                       const std::vector<ShearRow>& rows, const ShearSummary& s) {
+  const std::filesystem::path d = dir;
+  const std::string x_label = "Horizontal displacement (mm)";
+  plot::Chart tau;
+  tau.title = title + ": shear stress";
+  tau.x_label = x_label;
+  tau.y_label = "Shear stress τ (kPa)";
+  tau.series.push_back(column("τ on the nominal area", rows, tau_kpa));
+  tau.markers.push_back({s.peak_displacement * 1e3, s.peak_ratio * 0, ""});
+  // the peak of tau/sigma, on the tau curve
+  for (const ShearRow& r : rows)
+    if (std::fabs(r.displacement - s.peak_displacement) < 1e-12)
+      tau.markers.back() = {r.displacement * 1e3, r.tau * 1e-3,
+                            "peak φ = " + fixed(s.peak_angle, 1) + "°"};
+  tau.legend = false;
+  tau.y_min = 0;
+  plot::write_chart_png(tau, (d / "shear_stress.png").string());
+
+  plot::Chart rat;
+  rat.title = title + ": stress ratio";
+  rat.x_label = x_label;
+  rat.y_label = "τ/σ";
+  rat.series.push_back(column("τ/σ", rows, ratio));
+  for (const ShearRow& r : rows)
+    if (std::fabs(r.displacement - s.peak_displacement) < 1e-12)
+      rat.markers.push_back({r.displacement * 1e3, s.peak_ratio,
+                             "peak " + fixed(s.peak_ratio, 3) + " (φ = " + fixed(s.peak_angle, 1) +
+                                 "°)"});
+  plot::Series residual;
+  residual.label = "residual " + fixed(s.residual_ratio, 3) + " (φ = " + fixed(s.residual_angle, 1) + "°)";
+  if (!rows.empty()) {
+    const double end = rows.back().displacement * 1e3;
+    residual.x = {0.8 * end, end};
+    residual.y = {s.residual_ratio, s.residual_ratio};
+    residual.dashed = true;
+    rat.series.push_back(residual);
+  }
+  rat.y_min = 0;
+  plot::write_chart_png(rat, (d / "shear_ratio.png").string());
+
+  plot::Chart dil;
+  dil.title = title + ": dilation";
+  dil.x_label = x_label;
+  dil.y_label = "Vertical displacement (mm), dilation +";
+  dil.series.push_back(column("platen", rows, dilation_mm));
+  dil.legend = false;
+  plot::write_chart_png(dil, (d / "dilation.png").string());
+}
+
+void write_size_plots(const std::string& stress_png, const std::string& dilation_png,
+                      const std::string& title, const std::vector<ShearCurve>& curves) {
+  plot::Chart tau, dil;
+  tau.title = title;
+  tau.x_label = dil.x_label = "Horizontal displacement (mm)";
+  tau.y_label = "Shear stress τ (kPa)";
+  dil.title = title;
+  dil.y_label = "Vertical displacement (mm), dilation +";
+  for (const ShearCurve& c : curves) {
+    tau.series.push_back(column(c.label, c.rows, tau_kpa));
+    dil.series.push_back(column(c.label, c.rows, dilation_mm));
+    for (const ShearRow& r : c.rows)
+      if (std::fabs(r.displacement - c.summary.peak_displacement) < 1e-12)
+        tau.markers.push_back({r.displacement * 1e3, r.tau * 1e-3, ""});
+  }
+  tau.y_min = 0;
+  plot::write_chart_png(tau, stress_png);
+  plot::write_chart_png(dil, dilation_png);
+}
+
+void write_envelope_plot(const std::string& png, const std::vector<EnvelopeSeries>& sizes) {
+  plot::Chart c;
+  c.title = "Mohr-Coulomb envelopes (peak)";
+  c.x_label = "Normal stress σ (kPa)";
+  c.y_label = "Peak shear stress τ (kPa)";
+  double s_max = 0;
+  for (const EnvelopeSeries& e : sizes)
+    for (double v : e.sigma) s_max = std::max(s_max, v);
+  for (size_t k = 0; k < sizes.size(); ++k) {
+    const EnvelopeSeries& e = sizes[k];
+    plot::Series pts;
+    pts.label = e.label + ": φ = " + fixed(std::atan(e.tan_phi) * 180 / M_PI, 1) + "°, c = " +
+                fixed(e.cohesion * 1e-3, 1) + " kPa";
+    pts.color = plot::palette_color(k);
+    pts.line = false;
+    pts.markers = true;
+    for (size_t i = 0; i < e.sigma.size(); ++i) {
+      pts.x.push_back(e.sigma[i] * 1e-3);
+      pts.y.push_back(e.tau[i] * 1e-3);
+    }
+    plot::Series fit;
+    fit.color = plot::palette_color(k);
+    fit.dashed = true;
+    fit.x = {0, s_max * 1e-3 * 1.05};
+    fit.y = {e.cohesion * 1e-3, (e.cohesion + s_max * 1.05 * e.tan_phi) * 1e-3};
+    c.series.push_back(pts);
+    c.series.push_back(fit);
+  }
+  c.x_min = 0;
+  c.y_min = 0;
+  plot::write_chart_png(c, png);
+}
+
+}  // namespace simsols

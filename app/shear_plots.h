@@ -1,0 +1,36 @@
+// The direct shear test's pictures, drawn like the reference paper's
+// Figures 3-7 (render/chart.h rasterises them to PNG):
+//   one test:      shear_stress.png   tau (kPa) vs horizontal displacement (mm), peak marked
+//                  shear_ratio.png    tau/sigma vs horizontal displacement
+//                  dilation.png       vertical vs horizontal displacement (dilation up)
+//   a bead size:   <size>_stress.png / <size>_dilation.png, one curve per normal stress
+//   the envelope:  mohr_coulomb.png   peak tau vs sigma with the fitted lines
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "shear_test.h"
+
+namespace simsols {
+
+void write_shear_plots(const std::string& dir, const std::string& title,
+                       const std::vector<ShearRow>& rows, const ShearSummary& summary);
+
+struct ShearCurve {
+  std::string label;  // e.g. "160 kPa"
+  std::vector<ShearRow> rows;
+  ShearSummary summary;
+};
+// Curves of one bead size on common axes: tau and dilation vs displacement.
+void write_size_plots(const std::string& stress_png, const std::string& dilation_png,
+                      const std::string& title, const std::vector<ShearCurve>& curves);
+
+struct EnvelopeSeries {
+  std::string label;                  // bead size
+  std::vector<double> sigma, tau;     // Pa, the peaks
+  double cohesion = 0, tan_phi = 0;   // fitted tau = c + sigma tan(phi)
+};
+void write_envelope_plot(const std::string& png, const std::vector<EnvelopeSeries>& sizes);
+
+}  // namespace simsols

@@ -1,0 +1,151 @@
+#include "shear_run.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "checkpoint.h"
+#include "errors.h"
+#include "output.h"
+#include "scene_toml.h"
+#include "shear_plots.h"
+#include "simulation.h"
+
+namespace simsols {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+class ProgressLine {
+ public:
+  ProgressLine(std::string label, bool quiet)
+      : label_(std::move(label)), quiet_(quiet), tty_(isatty(fileno(stderr)) != 0) {}
+  void show(const ShearTest& test, const Simulation& sim, double wall, bool force) {
+    if (quiet_) return;
+    if (!force && seconds_since(last_) < (tty_ ? 0.5 : 10.0)) return;
+    last_ = Clock::now();
+    const double p = test.progress();
+    const double eta = p > 0.01 ? wall * (1 - p) / p : 0;
+    std::fprintf(stderr, tty_ ? "\r[%s] %5.1f%%  %s  step %lld  t = %.4f s  ETA %.0f s\033[K"
+                              : "[%s] %5.1f%%  %s  step %lld  t = %.4f s  ETA %.0f s\n",
+                 label_.c_str(), 100 * p, test.status().c_str(),
+                 static_cast<long long>(sim.steps()), sim.time(), eta);
+    std::fflush(stderr);
+  }
+  void end() {
+    if (!quiet_ && tty_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  std::string label_;
+  bool quiet_, tty_;
+  Clock::time_point last_ = Clock::now() - std::chrono::hours(1);
+};
+
+void save(Simulation& sim, const ShearTest& test, const fs::path& dir) {
+  write_file_atomic((dir / "shear.csv").string(), shear_rows_csv(test.rows()));
+  save_checkpoint(sim, (dir / "checkpoint.bin").string(), test.save_state());
+}
+
+}  // namespace
+
+bool shear_finished(const std::string& out_dir) {
+  return fs::exists(fs::path(out_dir) / "summary.txt");
+}
+
+ShearRunResult run_shear(const Scene& scene_in, const ShearRunOptions& opt) {
+  const fs::path dir = opt.out_dir;
+  std::unique_ptr<Simulation> sim;
+  std::unique_ptr<ShearTest> test;
+  if (opt.resume) {
+    const fs::path ck = dir / "checkpoint.bin";
+    if (!fs::exists(ck))
+      throw SceneError("io", ck.string(), 0, "--resume", "no checkpoint to resume from");
+    std::string state;
+    sim = load_checkpoint(default_device(), ck.string(), &state);
+    if (!sim->scene().shear_box)
+      throw SceneError("io", ck.string(), 0, "--resume", "the checkpoint is not a shear test");
+    test = std::make_unique<ShearTest>(*sim);
+    try {
+      test->restore_state(state);
+    } catch (const std::exception& e) {
+      throw SceneError("io", ck.string(), 0, "--resume", e.what());
+    }
+  } else {
+    sim = std::make_unique<Simulation>(default_device(), scene_in);
+    test = std::make_unique<ShearTest>(*sim);
+    fs::create_directories(dir);
+    fs::remove(dir / "summary.txt");
+    write_file_atomic((dir / "scene.toml").string(),
+                      scene_in.source_text.empty() ? to_toml(scene_in) : scene_in.source_text);
+    write_file_atomic((dir / "scene.resolved.toml").string(), to_toml(scene_in));
+  }
+  const Scene& scene = sim->scene();
+  if (!opt.quiet)
+    std::fprintf(stderr,
+                 "[%s] %s: %d beads, dt = %.4g s (%.3g x Rayleigh), %s on %s; servo gain %.3g "
+                 "m/(s N), integral time %.3g s\n",
+                 opt.label.c_str(), scene.name.c_str(), sim->model().particles(), sim->dt(),
+                 sim->dt() / sim->model().rayleigh_dt(),
+                 sim->model().config().double_precision ? "double" : "float",
+                 sim->model().device().description().c_str(), test->servo_gain(),
+                 test->servo_integral_time());
+
+  ProgressLine progress(opt.label, opt.quiet);
+  const auto start = Clock::now();
+  auto last_checkpoint = start;
+  const long long first = sim->steps();
+  bool announced = test->phase() == ShearPhase::Shear;
+  ShearRunResult result;
+  while (!test->done()) {
+    const long long budget =
+        opt.stop_after > 0 ? opt.stop_after - (sim->steps() - first) : 1LL << 40;
+    if (budget <= 0) break;
+    test->advance(std::min<long long>(budget, 2000));
+    if (!announced && test->phase() == ShearPhase::Shear) {
+      announced = true;
+      if (!opt.quiet)
+        std::fprintf(stderr,
+                     "%s[%s] shearing at %.4g mm/s (inertial number %.2g at the start; target "
+                     "< 1e-3), specimen height %.2f mm\n",
+                     isatty(fileno(stderr)) ? "\r" : "", opt.label.c_str(),
+                     test->shear_speed() * 1e3,
+                     test->shear_speed() / test->summary().specimen_height *
+                         test->summary().bead_diameter *
+                         std::sqrt(scene.materials[scene.particles[0].material].density /
+                                   test->normal_stress()),
+                     test->summary().specimen_height * 1e3);
+    }
+    progress.show(*test, *sim, seconds_since(start), false);
+    if (seconds_since(last_checkpoint) > opt.checkpoint_seconds) {
+      save(*sim, *test, dir);
+      last_checkpoint = Clock::now();
+    }
+  }
+  progress.show(*test, *sim, seconds_since(start), true);
+  progress.end();
+  save(*sim, *test, dir);
+  result.rows = test->rows();
+  result.summary = test->summary();
+  result.summary.wall_seconds = seconds_since(start);
+  result.finished = test->done();
+  result.steps = sim->steps();
+  result.particles = sim->model().particles();
+  result.dt = sim->dt();
+  if (result.finished) {
+    write_particles_vtk((dir / "particles_final.vtk").string(), sim->snapshot(), sim->time());
+    write_shear_plots(dir.string(), scene.name, result.rows, result.summary);
+    write_file_atomic((dir / "summary.txt").string(), shear_summary_text(result.summary));
+  }
+  return result;
+}
+
+}  // namespace simsols

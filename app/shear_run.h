@@ -1,0 +1,47 @@
+// One direct shear test run headless into a folder, shared by `simsols run`
+// (a scene with a [shear_box]) and `simsols campaign` (many of them).
+//
+// Folder layout:
+//   scene.toml, scene.resolved.toml   the scene as given / as used (explicit beads)
+//   shear.csv                         one row per measurement (see ShearRow)
+//   summary.txt                       peak / residual / dilatancy / servo band
+//   shear_stress.png, shear_ratio.png, dilation.png   the paper's Figures 3-7 axes
+//   particles_final.vtk               the specimen at the end, for ParaView
+//   checkpoint.bin                    latest state; `--resume` continues from it
+// summary.txt is written last: its presence means the test finished.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "scene.h"
+#include "shear_test.h"
+
+namespace simsols {
+
+struct ShearRunOptions {
+  std::string out_dir;
+  std::string label;           // progress-line prefix
+  bool resume = false;         // continue from out_dir/checkpoint.bin
+  bool quiet = false;
+  long long stop_after = 0;    // stop (checkpointed) after this many steps; 0 = no limit
+  double checkpoint_seconds = 60;  // wall time between checkpoints
+};
+
+struct ShearRunResult {
+  ShearSummary summary;
+  std::vector<ShearRow> rows;
+  bool finished = false;       // false: stopped by stop_after (resumable)
+  long long steps = 0;
+  int particles = 0;
+  double dt = 0;
+};
+
+// Runs (or resumes) the test of `scene` (ignored when resuming). Throws
+// SceneError / DeviceError like the other commands.
+ShearRunResult run_shear(const Scene& scene, const ShearRunOptions& options);
+
+// True when out_dir holds a finished test (its summary.txt).
+bool shear_finished(const std::string& out_dir);
+
+}  // namespace simsols

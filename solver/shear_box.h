@@ -1,0 +1,47 @@
+// Shear box: the direct shear apparatus as walls, and its specimen.
+//
+// build_shear_box() is to a [shear_box] what a generator is to particles: it
+// expands the apparatus of Scene::shear_box (scene.h) into ten rectangle
+// walls appended to Scene::walls (floor, the lower half's four side plates,
+// the upper half's four, the platen) and, unless the specimen is given,
+// places the beads:
+//   Layers  the paper's preparation (its section 5 and Table 1): square
+//           layers of floor(length/d) x floor(width/d) touching beads, the
+//           row-to-wall clearance used either by shifting each layer as a
+//           whole by a seeded random amount within it (Shift) or by spreading
+//           it evenly between the rows (Spread); layers stacked 0.1% of d apart
+//           so nothing overlaps before settling under gravity.
+//   Pour    the same number of beads placed at random, without overlap, in a
+//           column three specimen heights tall: rained in and settled.
+//   Given   the scene's own particles (listed or generated).
+// The halves are rectangles, not planes, so a bead in the gap meets their
+// edges: with gap < the smallest radius no bead centre can pass a wall.
+// Automatic values (gap, split height, wall material) are resolved into the
+// ShearBox, so to_toml() writes a scene that rebuilds the same walls.
+#pragma once
+
+#include <optional>
+
+#include "scene.h"
+#include "scene_toml.h"
+
+namespace simsols {
+
+// The box's default material when the scene names none: steel. The paper
+// gives no wall properties; restitution and friction are the glass values
+// of its Table 2, so a glass-steel pair behaves as glass-glass but stiffer.
+Material default_box_steel();
+
+// Appends the apparatus (and the specimen) to `scene`; returns the first
+// problem, with its field under "shear_box".
+std::optional<SceneIssue> build_shear_box(Scene& scene);
+
+// Inside area of the box (m^2) and its corrected value after a relative
+// displacement dx of the halves.
+double shear_area(const ShearBox& box);
+double shear_area_corrected(const ShearBox& box, double dx);
+
+// Beads per layer the box allows for diameter d: floor(length/d) x floor(width/d).
+int beads_per_layer(const ShearBox& box, double d);
+
+}  // namespace simsols

@@ -1,0 +1,427 @@
+#include "shear_test.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <stdexcept>
+
+#include "contact_model.h"
+#include "shear_box.h"
+
+namespace simsols {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kRad = 180.0 / kPi;
+
+// Servo tuning (see docs/shear-box.md): the proportional gain makes the
+// platen's contacts relax in ~1/kGainFraction steps; the integral removes the
+// steady error while the specimen dilates, over kIntegralPeriods of the
+// specimen's vertical oscillation period.
+constexpr double kGainFraction = 0.2;
+constexpr double kIntegralPeriods = 5.0;
+
+const ShearBox& box_of(const Simulation& sim) {
+  if (!sim.scene().shear_box) throw std::invalid_argument("ShearTest: the scene has no shear box");
+  return *sim.scene().shear_box;
+}
+
+// Slope of y(x) by least squares over rows [a, b).
+double slope(const std::vector<ShearRow>& r, size_t a, size_t b) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = static_cast<double>(b - a);
+  for (size_t i = a; i < b; ++i) {
+    sx += r[i].displacement;
+    sy += r[i].dilation;
+    sxx += r[i].displacement * r[i].displacement;
+    sxy += r[i].displacement * r[i].dilation;
+  }
+  const double den = n * sxx - sx * sx;
+  return den > 0 ? (n * sxy - sx * sy) / den : 0;
+}
+
+}  // namespace
+
+const char* phase_name(ShearPhase p) {
+  switch (p) {
+    case ShearPhase::Settle: return "settle";
+    case ShearPhase::Consolidate: return "consolidate";
+    case ShearPhase::Shear: return "shear";
+    case ShearPhase::Done: return "done";
+  }
+  return "?";
+}
+
+ShearTest::ShearTest(Simulation& sim) : sim_(sim), box_(box_of(sim)) {
+  const Scene& scene = sim.scene();
+  double d = 0, mass = 0;
+  for (const Particle& p : scene.particles) {
+    d += 2 * p.radius;
+    mass += scene.materials[p.material].density * 4.0 / 3.0 * kPi * std::pow(p.radius, 3);
+  }
+  const double n = static_cast<double>(scene.particles.size());
+  diameter_ = d / n;
+  bead_mass_ = mass / n;
+  density_ = scene.materials[scene.particles[0].material].density;
+  sigma_target_ = box_.normal_stress;
+
+  // Automatic servo settings from the Hertz stiffness of the platen's
+  // contacts at the target stress, one bead per d^2 of platen.
+  const PairTable pairs = make_pair_table(scene);
+  const double e_star = pairs.at(scene.particles[0].material, box_.wall_material).e_star;
+  const double k_hertz = 4.0 / 3.0 * e_star * std::sqrt(diameter_ / 2);
+  const double contacts = shear_area(box_) / (diameter_ * diameter_);
+  const double f_contact = sigma_target_ * diameter_ * diameter_;
+  const double k_contact = 1.5 * std::cbrt(f_contact) * std::pow(k_hertz, 2.0 / 3.0);
+  const double k_platen = contacts * k_contact;
+  gain_ = box_.servo_gain > 0 ? box_.servo_gain : kGainFraction / (k_platen * sim.dt());
+  double top = 0;
+  for (const Particle& p : scene.particles) top = std::max(top, p.position[2] + p.radius);
+  const double layers = std::max(1.0, top / diameter_);
+  const double period = 2 * kPi * std::sqrt(mass / (k_platen / layers));
+  integral_time_ = box_.servo_integral_time > 0 ? box_.servo_integral_time
+                                                : kIntegralPeriods * period;
+}
+
+std::int64_t ShearTest::steps_for(double seconds) const {
+  return std::max<std::int64_t>(1, std::llround(seconds / sim_.dt()));
+}
+
+void ShearTest::apply_servo(bool on) {
+  WallServo s;
+  s.enabled = on;
+  s.target_force = sigma_target_ * shear_area(box_);
+  s.gain = gain_;
+  s.max_speed = box_.servo_max_speed;
+  s.integral_time = integral_time_;
+  sim_.set_servo(box_.first_wall + kPlaten, s);
+}
+
+void ShearTest::set_normal_stress(double pascals) {
+  if (!(pascals > 0) || !std::isfinite(pascals))
+    throw std::invalid_argument("normal stress must be > 0 Pa");
+  sigma_target_ = pascals;
+  if (phase_ == ShearPhase::Consolidate || phase_ == ShearPhase::Shear) apply_servo(true);
+}
+
+void ShearTest::enter(ShearPhase p) {
+  const std::int64_t now = sim_.steps();
+  const double elapsed = (now - phase_start_) * sim_.dt();
+  if (phase_ == ShearPhase::Settle) settle_seconds_ = elapsed;
+  if (phase_ == ShearPhase::Consolidate) consolidate_seconds_ = elapsed;
+  phase_ = p;
+  phase_start_ = now;
+  quiet_checks_ = 0;
+  next_check_ = now + std::max<std::int64_t>(50, steps_for(0.5e-3));
+  switch (p) {
+    case ShearPhase::Settle:
+      apply_servo(false);
+      break;
+    case ShearPhase::Consolidate: {
+      // The platen is lowered onto the settled specimen (a tenth of a
+      // diameter above its highest bead) and its servo switched on.
+      const ParticleSnapshot snap = sim_.snapshot();
+      double top = 0;
+      for (size_t i = 0; i < snap.position.size(); ++i)
+        top = std::max(top, snap.position[i][2] + snap.radius[i]);
+      Vec3 p = sim_.wall_point(box_.first_wall + kPlaten);
+      p[2] = std::min(p[2], top + 0.1 * diameter_);
+      sim_.set_wall_point(box_.first_wall + kPlaten, p);
+      sim_.read_servo(box_.first_wall + kPlaten);
+      apply_servo(true);
+      break;
+    }
+    case ShearPhase::Shear: {
+      x0_ = sim_.wall_point(box_.first_wall + kFloor)[0];
+      z0_ = sim_.wall_point(box_.first_wall + kPlaten)[2];
+      height0_ = z0_ - sim_.wall_point(box_.first_wall + kFloor)[2];
+      speed_ = box_.shear_speed > 0 ? box_.shear_speed
+                                    : box_.inertial_number * (height0_ / diameter_) *
+                                          std::sqrt(sigma_target_ / density_);
+      shear_steps_ = std::max<std::int64_t>(
+          box_.rows, std::llround(box_.shear_displacement / (speed_ * sim_.dt())));
+      row_steps_ = std::max<std::int64_t>(1, shear_steps_ / box_.rows);
+      shear_steps_ = row_steps_ * box_.rows;
+      for (int w = kFloor; w <= kLowerY1; ++w)
+        sim_.set_wall_velocity(box_.first_wall + w, {speed_, 0, 0});
+      sim_.read_wall_means();
+      sim_.read_servo(box_.first_wall + kPlaten);
+      next_row_ = now + row_steps_;
+      break;
+    }
+    case ShearPhase::Done:
+      for (int w = kFloor; w <= kLowerY1; ++w) sim_.set_wall_velocity(box_.first_wall + w, {0, 0, 0});
+      apply_servo(false);
+      break;
+  }
+}
+
+bool ShearTest::settled() {
+  const std::int64_t now = sim_.steps();
+  const double elapsed = (now - phase_start_) * sim_.dt();
+  if (elapsed >= box_.settle_time) return true;
+  const bool gravity = sim_.scene().has_gravity();
+  if (gravity && elapsed < 2e-3) return false;
+  const Observables o = sim_.observe();
+  const double scale = o.particles * bead_mass_ * 9.81 * diameter_;
+  return o.kinetic() < 1e-4 * scale;
+}
+
+bool ShearTest::consolidated() {
+  const std::int64_t now = sim_.steps();
+  const double elapsed = (now - phase_start_) * sim_.dt();
+  if (elapsed >= box_.consolidate_time) return true;
+  const double target = sigma_target_ * shear_area(box_);
+  const Simulation::ServoReading r = sim_.read_servo(box_.first_wall + kPlaten);
+  const Observables o = sim_.observe();
+  const double v_rms = std::sqrt(2 * o.kinetic_translational / (o.particles * bead_mass_));
+  const double height = sim_.wall_point(box_.first_wall + kPlaten)[2];
+  const double v_shear = box_.shear_speed > 0 ? box_.shear_speed
+                                              : box_.inertial_number * (height / diameter_) *
+                                                    std::sqrt(sigma_target_ / density_);
+  const bool quiet = std::fabs(r.mean - target) < 0.01 * target && v_rms < 0.1 * v_shear;
+  quiet_checks_ = quiet ? quiet_checks_ + 1 : 0;
+  if (std::getenv("SIMSOLS_DEBUG_SHEAR"))
+    std::fprintf(stderr, "consolidate t=%.4f mean=%.2f last=%.2f target=%.2f vrms=%.4g vshear=%.4g platen_z=%.5f\n",
+                 elapsed, r.mean, r.last, target, v_rms, v_shear, height);
+  return quiet_checks_ >= 2;
+}
+
+void ShearTest::measure_row() {
+  const auto means = sim_.read_wall_means();
+  sim_.read_servo(box_.first_wall + kPlaten);
+  const int f = box_.first_wall;
+  ShearRow row;
+  row.time = sim_.time();
+  row.step = sim_.steps();
+  const Vec3 floor = sim_.wall_point(f + kFloor);
+  const Vec3 platen = sim_.wall_point(f + kPlaten);
+  row.displacement = floor[0] - x0_;
+  for (int w = kFloor; w <= kLowerY1; ++w) row.shear_force -= means[f + w].force[0];
+  for (int w = kUpperX0; w <= kPlaten; ++w) row.shear_force_upper += means[f + w].force[0];
+  row.normal_force = means[f + kPlaten].force[2];
+  const double area = shear_area(box_);
+  row.tau = row.shear_force / area;
+  row.tau_corrected = row.shear_force / shear_area_corrected(box_, row.displacement);
+  row.sigma = row.normal_force / area;
+  row.dilation = platen[2] - z0_;
+  row.friction_angle = row.sigma > 0 ? std::atan(row.tau / row.sigma) * kRad : 0;
+  const Observables o = sim_.observe();
+  row.coordination = o.particles > 0 ? o.contacts / o.particles : 0;
+  row.kinetic_energy = o.kinetic();
+  const double height = platen[2] - floor[2];
+  row.inertial_number =
+      row.sigma > 0 ? speed_ / height * diameter_ * std::sqrt(density_ / row.sigma) : 0;
+  // Escaped beads: centre outside the lower frame (below the split), the
+  // upper frame (above it) or both (in the gap band), or above the platen.
+  const ParticleSnapshot snap = sim_.snapshot();
+  const double zs = box_.split_height, g = box_.gap / 2, L = box_.length, W = box_.width;
+  const double dx = row.displacement;
+  for (const Vec3& p : snap.position) {
+    const double lo_x = p[2] > zs + g ? 0 : p[2] < zs - g ? dx : std::min(0.0, dx);
+    const double hi_x = p[2] > zs + g ? L : p[2] < zs - g ? L + dx : std::max(L, L + dx);
+    const bool in = p[0] >= lo_x && p[0] <= hi_x && p[1] >= 0 && p[1] <= W &&
+                    p[2] >= floor[2] && p[2] <= platen[2];
+    row.outside += in ? 0 : 1;
+  }
+  rows_.push_back(row);
+}
+
+bool ShearTest::advance(std::int64_t max_steps) {
+  if (!started_) {
+    started_ = true;
+    phase_start_ = sim_.steps();
+    enter(box_.settle_time > 0 ? ShearPhase::Settle : ShearPhase::Consolidate);
+  }
+  std::int64_t left = max_steps;
+  while (left > 0 && phase_ != ShearPhase::Done) {
+    const std::int64_t event = phase_ == ShearPhase::Shear ? next_row_ : next_check_;
+    const std::int64_t n = std::min(left, event - sim_.steps());
+    if (n > 0) sim_.advance(n);
+    left -= std::max<std::int64_t>(n, 0);
+    if (sim_.steps() < event) break;
+    const std::int64_t every = std::max<std::int64_t>(50, steps_for(0.5e-3));
+    switch (phase_) {
+      case ShearPhase::Settle:
+        if (settled()) enter(ShearPhase::Consolidate);
+        else next_check_ = sim_.steps() + every;
+        return false;
+      case ShearPhase::Consolidate:
+        if (consolidated()) enter(ShearPhase::Shear);
+        else next_check_ = sim_.steps() + every;
+        return false;
+      case ShearPhase::Shear:
+        measure_row();
+        next_row_ = sim_.steps() + row_steps_;
+        if (static_cast<int>(rows_.size()) >= box_.rows) enter(ShearPhase::Done);
+        return true;
+      case ShearPhase::Done: break;
+    }
+  }
+  return false;
+}
+
+double ShearTest::progress() const {
+  const double dt = sim_.dt();
+  const double settle = box_.settle_time / dt, consolidate = 0.3 * box_.consolidate_time / dt;
+  const double shear = shear_steps_ > 0 ? double(shear_steps_)
+                                        : box_.shear_displacement /
+                                              (box_.inertial_number * 4 *
+                                               std::sqrt(sigma_target_ / density_) * dt);
+  const double total = 0.3 * settle + consolidate + shear;
+  const double elapsed = double(sim_.steps() - phase_start_);
+  switch (phase_) {
+    case ShearPhase::Settle: return std::min(0.3 * settle, elapsed) / total;
+    case ShearPhase::Consolidate:
+      return (0.3 * settle + std::min(consolidate, elapsed)) / total;
+    case ShearPhase::Shear:
+      return (0.3 * settle + consolidate + std::min(shear, elapsed)) / total;
+    case ShearPhase::Done: return 1;
+  }
+  return 0;
+}
+
+std::string ShearTest::status() const {
+  char buf[200];
+  if (phase_ == ShearPhase::Shear && !rows_.empty()) {
+    const ShearRow& r = rows_.back();
+    std::snprintf(buf, sizeof buf, "shear dx = %.3f/%.3f mm, tau/sigma = %.3f, sigma = %.1f kPa",
+                  r.displacement * 1e3, box_.shear_displacement * 1e3,
+                  r.sigma > 0 ? r.tau / r.sigma : 0, r.sigma * 1e-3);
+  } else {
+    std::snprintf(buf, sizeof buf, "%s t = %.2f ms", phase_name(phase_),
+                  (sim_.steps() - phase_start_) * sim_.dt() * 1e3);
+  }
+  return buf;
+}
+
+ShearSummary ShearTest::summary() const {
+  ShearSummary s;
+  s.normal_stress_target = sigma_target_;
+  s.shear_speed = speed_;
+  s.specimen_height = height0_;
+  s.bead_diameter = diameter_;
+  s.settle_time = settle_seconds_;
+  s.consolidate_time = consolidate_seconds_;
+  if (rows_.empty()) return s;
+  s.sigma_min = s.sigma_max = rows_[0].sigma;
+  for (const ShearRow& r : rows_) {
+    // a platen that lost contact (sigma far below target) gives no ratio
+    const double ratio = r.sigma > 0.5 * sigma_target_ ? r.tau / r.sigma : 0;
+    if (ratio > s.peak_ratio) {
+      s.peak_ratio = ratio;
+      s.peak_displacement = r.displacement;
+    }
+    s.peak_tau = std::max(s.peak_tau, r.tau);
+    s.max_inertial_number = std::max(s.max_inertial_number, r.inertial_number);
+    s.sigma_min = std::min(s.sigma_min, r.sigma);
+    s.sigma_max = std::max(s.sigma_max, r.sigma);
+    s.max_outside = std::max(s.max_outside, r.outside);
+  }
+  s.peak_angle = std::atan(s.peak_ratio) * kRad;
+  const double end = rows_.back().displacement;
+  double sum_tau = 0, sum_ratio = 0;
+  int count = 0;
+  for (const ShearRow& r : rows_)
+    if (r.displacement >= 0.8 * end && r.sigma > 0.5 * sigma_target_) {
+      sum_tau += r.tau;
+      sum_ratio += r.tau / r.sigma;
+      ++count;
+    }
+  if (count > 0) {
+    s.residual_tau = sum_tau / count;
+    s.residual_ratio = sum_ratio / count;
+    s.residual_angle = std::atan(s.residual_ratio) * kRad;
+  }
+  // Dilatancy: least-squares slope of dz(dx) over a sliding window of
+  // ~1/40 of the test (at least 3 rows), the steepest rise.
+  const size_t w = std::max<size_t>(3, rows_.size() / 40);
+  double steepest = 0;
+  for (size_t a = 0; a + w <= rows_.size(); ++a) steepest = std::max(steepest, slope(rows_, a, a + w));
+  s.max_dilatancy_angle = std::atan(steepest) * kRad;
+  return s;
+}
+
+std::string ShearTest::save_state() const {
+  std::ostringstream o;
+  o.precision(17);
+  o << "shear_test 1\n"
+    << started_ << ' ' << static_cast<int>(phase_) << ' ' << phase_start_ << ' ' << next_check_
+    << ' ' << next_row_ << ' ' << row_steps_ << ' ' << shear_steps_ << ' ' << quiet_checks_
+    << '\n'
+    << sigma_target_ << ' ' << speed_ << ' ' << gain_ << ' ' << integral_time_ << ' ' << x0_
+    << ' ' << z0_ << ' ' << height0_ << ' ' << settle_seconds_ << ' ' << consolidate_seconds_
+    << '\n'
+    << rows_.size() << '\n';
+  for (const ShearRow& r : rows_)
+    o << r.time << ' ' << r.step << ' ' << r.displacement << ' ' << r.shear_force << ' '
+      << r.shear_force_upper << ' ' << r.tau << ' ' << r.tau_corrected << ' ' << r.normal_force
+      << ' ' << r.sigma << ' ' << r.dilation << ' ' << r.friction_angle << ' ' << r.coordination
+      << ' ' << r.kinetic_energy << ' ' << r.inertial_number << ' ' << r.outside << '\n';
+  return o.str();
+}
+
+void ShearTest::restore_state(const std::string& text) {
+  std::istringstream in(text);
+  std::string tag;
+  int version = 0, phase = 0;
+  size_t count = 0;
+  in >> tag >> version;
+  if (tag != "shear_test" || version != 1)
+    throw std::runtime_error("the checkpoint holds no shear-test state");
+  in >> started_ >> phase >> phase_start_ >> next_check_ >> next_row_ >> row_steps_ >>
+      shear_steps_ >> quiet_checks_ >> sigma_target_ >> speed_ >> gain_ >> integral_time_ >>
+      x0_ >> z0_ >> height0_ >> settle_seconds_ >> consolidate_seconds_ >> count;
+  if (!in || phase < 0 || phase > 3) throw std::runtime_error("malformed shear-test state");
+  phase_ = static_cast<ShearPhase>(phase);
+  rows_.assign(count, {});
+  for (ShearRow& r : rows_)
+    in >> r.time >> r.step >> r.displacement >> r.shear_force >> r.shear_force_upper >> r.tau >>
+        r.tau_corrected >> r.normal_force >> r.sigma >> r.dilation >> r.friction_angle >>
+        r.coordination >> r.kinetic_energy >> r.inertial_number >> r.outside;
+  if (!in) throw std::runtime_error("malformed shear-test rows");
+}
+
+std::string shear_rows_csv(const std::vector<ShearRow>& rows) {
+  std::string out =
+      "time_s,step,displacement_mm,shear_force_N,shear_force_upper_N,tau_kPa,tau_corrected_kPa,"
+      "normal_force_N,sigma_kPa,dilation_mm,tau_over_sigma,friction_angle_deg,coordination,"
+      "kinetic_energy_J,inertial_number,outside\n";
+  char buf[512];
+  for (const ShearRow& r : rows) {
+    std::snprintf(buf, sizeof buf,
+                  "%.9g,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d\n",
+                  r.time, static_cast<long long>(r.step), r.displacement * 1e3, r.shear_force,
+                  r.shear_force_upper, r.tau * 1e-3, r.tau_corrected * 1e-3, r.normal_force,
+                  r.sigma * 1e-3, r.dilation * 1e3, r.sigma > 0 ? r.tau / r.sigma : 0,
+                  r.friction_angle, r.coordination, r.kinetic_energy, r.inertial_number,
+                  r.outside);
+    out += buf;
+  }
+  return out;
+}
+
+std::string shear_summary_text(const ShearSummary& s) {
+  char buf[2048];
+  std::snprintf(
+      buf, sizeof buf,
+      "normal_stress_kPa = %.6g\nbead_diameter_mm = %.6g\nspecimen_height_mm = %.6g\n"
+      "shear_speed_mm_s = %.6g\npeak_tau_kPa = %.6g\npeak_tau_over_sigma = %.6g\n"
+      "peak_friction_angle_deg = %.4f\npeak_displacement_mm = %.6g\nresidual_tau_kPa = %.6g\n"
+      "residual_tau_over_sigma = %.6g\nresidual_friction_angle_deg = %.4f\n"
+      "max_dilatancy_angle_deg = %.4f\nmax_inertial_number = %.4g\nsigma_min_kPa = %.6g\n"
+      "sigma_max_kPa = %.6g\nsigma_band_percent = %+.3f %+.3f\nmax_beads_outside = %d\n"
+      "settle_time_s = %.6g\nconsolidate_time_s = %.6g\nwall_seconds = %.1f\n",
+      s.normal_stress_target * 1e-3, s.bead_diameter * 1e3, s.specimen_height * 1e3,
+      s.shear_speed * 1e3, s.peak_tau * 1e-3, s.peak_ratio, s.peak_angle,
+      s.peak_displacement * 1e3, s.residual_tau * 1e-3, s.residual_ratio, s.residual_angle,
+      s.max_dilatancy_angle, s.max_inertial_number, s.sigma_min * 1e-3, s.sigma_max * 1e-3,
+      100 * (s.sigma_min / s.normal_stress_target - 1),
+      100 * (s.sigma_max / s.normal_stress_target - 1), s.max_outside, s.settle_time,
+      s.consolidate_time, s.wall_seconds);
+  return buf;
+}
+
+}  // namespace simsols

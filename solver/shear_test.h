@@ -1,0 +1,131 @@
+// ShearTest: the direct shear test's loading program and measurements.
+//
+// A Simulation of a scene with a [shear_box] is an apparatus; ShearTest
+// operates it as a technician would, in three named phases:
+//   Settle       gravity only, platen held above the beads, until the kinetic
+//                energy has died down (or settle_time has passed);
+//   Consolidate  the platen's servo brings the normal force to sigma x area
+//                and holds it, until the reaction is within 1% of the target
+//                and the beads are quiet (or consolidate_time has passed);
+//   Shear        the lower half moves in +x at the shear speed while the
+//                servo holds sigma; a row is measured every
+//                shear_displacement / rows until shear_displacement.
+// The driver only talks to the Simulation's run-time controls (wall
+// velocities, servo settings) and its readings; the physics stays in the
+// pipeline. Its own state is a few numbers and the rows, saved with the
+// checkpoint (save_state / restore_state), so an interrupted test resumes
+// exactly.
+//
+// Measurements (ShearRow): forces are means over the steps of the row
+// (kept on the device every step), not one-step samples: the shear force T
+// is what the actuator pushes the lower half with (minus the x-force of the
+// beads on the floor and the lower plates), N the platen's reaction.
+// tau = T / A, sigma = N / A on the nominal area A = length x width (and
+// tau on the corrected area (length - dx) width); dilation = rise of the
+// platen since shearing started (positive up); the mobilised friction angle
+// atan(tau / sigma); the inertial number I = (v / H) d sqrt(rho / sigma).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "simulation.h"
+
+namespace simsols {
+
+enum class ShearPhase : int { Settle = 0, Consolidate = 1, Shear = 2, Done = 3 };
+const char* phase_name(ShearPhase p);
+
+struct ShearRow {
+  double time = 0;               // s
+  std::int64_t step = 0;
+  double displacement = 0;       // m, of the lower half since shearing started
+  double shear_force = 0;        // N, on the moving (lower) half, mean over the row
+  double shear_force_upper = 0;  // N, held by the upper half and platen (check of inertia)
+  double tau = 0;                // Pa, T / nominal area
+  double tau_corrected = 0;      // Pa, T / corrected area
+  double normal_force = 0;       // N, platen reaction, mean over the row
+  double sigma = 0;              // Pa, N / nominal area
+  double dilation = 0;           // m, platen rise since shearing started (up +)
+  double friction_angle = 0;     // deg, atan(tau / sigma)
+  double coordination = 0;       // contacts per bead (bead and wall contacts)
+  double kinetic_energy = 0;     // J
+  double inertial_number = 0;
+  int outside = 0;               // bead centres outside the box (must stay 0)
+};
+
+struct ShearSummary {
+  double normal_stress_target = 0;  // Pa
+  double shear_speed = 0;           // m/s
+  double specimen_height = 0;       // m, at the start of shearing
+  double bead_diameter = 0;         // m, mean
+  double peak_tau = 0, peak_ratio = 0, peak_angle = 0, peak_displacement = 0;
+  double residual_tau = 0, residual_ratio = 0, residual_angle = 0;  // mean over the last 20%
+  double max_dilatancy_angle = 0;   // deg, steepest rise of dz/dx (smoothed)
+  double max_inertial_number = 0;
+  double sigma_min = 0, sigma_max = 0;  // Pa, band of the row means during shear
+  int max_outside = 0;
+  double settle_time = 0, consolidate_time = 0;  // s spent in each phase
+  double wall_seconds = 0;          // filled in by the caller
+};
+
+class ShearTest {
+ public:
+  // `sim` must hold a scene with a shear box; it is not owned.
+  explicit ShearTest(Simulation& sim);
+
+  // Runs at most `max_steps` steps, stopping early at a phase change or a
+  // new row; returns true when a new row was measured.
+  bool advance(std::int64_t max_steps);
+  bool done() const { return phase_ == ShearPhase::Done; }
+  ShearPhase phase() const { return phase_; }
+
+  const std::vector<ShearRow>& rows() const { return rows_; }
+  ShearSummary summary() const;
+
+  double shear_speed() const { return speed_; }
+  double servo_gain() const { return gain_; }
+  double servo_integral_time() const { return integral_time_; }
+  // Rough fraction of the whole test done (phases weighted by their caps).
+  double progress() const;
+  // A one-line description of where the test is, for progress lines.
+  std::string status() const;
+
+  // The target normal stress can change while shearing (the servo follows).
+  void set_normal_stress(double pascals);
+  double normal_stress() const { return sigma_target_; }
+
+  std::string save_state() const;
+  void restore_state(const std::string& text);  // throws std::runtime_error when malformed
+
+ private:
+  void enter(ShearPhase p);
+  void apply_servo(bool on);
+  bool settled();
+  bool consolidated();
+  void measure_row();
+  std::int64_t steps_for(double seconds) const;
+
+  Simulation& sim_;
+  const ShearBox& box_;
+  bool started_ = false;
+  ShearPhase phase_ = ShearPhase::Settle;
+  std::int64_t phase_start_ = 0;   // step the phase began
+  std::int64_t next_check_ = 0;    // step of the next look at the phase's end condition
+  std::int64_t next_row_ = 0;      // step of the next row (Shear)
+  std::int64_t row_steps_ = 1;
+  std::int64_t shear_steps_ = 0;   // steps the shear takes
+  double sigma_target_ = 0;
+  double speed_ = 0, gain_ = 0, integral_time_ = 0;
+  double x0_ = 0, z0_ = 0, height0_ = 0, diameter_ = 0, density_ = 0, bead_mass_ = 0;
+  double settle_seconds_ = 0, consolidate_seconds_ = 0;
+  int quiet_checks_ = 0;
+  std::vector<ShearRow> rows_;
+};
+
+// Writes the rows as CSV (SI units plus mm and kPa columns people read).
+std::string shear_rows_csv(const std::vector<ShearRow>& rows);
+std::string shear_summary_text(const ShearSummary& s);  // key = value lines
+
+}  // namespace simsols
