@@ -146,7 +146,7 @@ struct ShearSpecimen {
 struct ShearBox {
   double length = 60.23e-3;        // m, inside, along the shear direction x
   double width = 60.07e-3;         // m, inside, along y
-  double split_height = 0;         // m; 0 = mid-height of the specimen
+  double split_height = 0;         // m; 0 = mid-height of the specimen (see shear_box.h)
   double gap = 0;                  // m between the halves; 0 = 0.2 x smallest diameter
   int wall_material = -1;          // the box's material; -1 = "steel" (added when absent)
   double normal_stress = 160e3;    // Pa, the platen's target
@@ -154,7 +154,7 @@ struct ShearBox {
   double inertial_number = 5e-4;   // target I = (v/H) d sqrt(rho/sigma) for the automatic speed
   double shear_displacement = 6e-3;  // m of horizontal displacement to shear
   double servo_gain = 0;           // m/(s N); 0 = automatic (from the Hertz stiffness)
-  double servo_max_speed = 0.1;    // m/s, the platen's speed cap
+  double servo_max_speed = 0.5;    // m/s, the platen's speed cap
   double servo_integral_time = 0;  // s; 0 = automatic
   double settle_time = 0.01;       // s, longest settling under gravity
   double consolidate_time = 0.1;   // s, longest consolidation under the platen

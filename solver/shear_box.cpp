@@ -186,17 +186,32 @@ void build(Scene& scene) {
   if (b.gap == 0) b.gap = 0.2 * 2 * r_min;
   require(b.gap < r_min, "gap", b.gap, "[0, " + num(r_min) + ") m (below the smallest radius)");
   if (b.split_height == 0) {
-    // Mid-height of the specimen as prepared: of the ideal stack of layers,
-    // or of the given or poured beads once settled (estimated by volume at a
-    // solid fraction of 0.6 for a pour).
-    double height = top - bottom;
-    if (s.method == ShearSpecimen::Method::Layers) height = s.layers * s.diameter;
-    if (s.method == ShearSpecimen::Method::Pour) {
-      double volume = 0;
-      for (const Particle& p : scene.particles) volume += 4.0 / 3.0 * M_PI * std::pow(p.radius, 3);
-      height = volume / (0.6 * b.length * b.width);
+    if (s.method == ShearSpecimen::Method::Layers) {
+      // Between the two layers nearest mid-height (the lower half holds
+      // floor(layers/2)), at the height they reach once every layer has
+      // nested into the one below as far as the row-wall clearance lets it
+      // shift (at most half a diameter each way: d/sqrt(2) apart).
+      const double d = s.diameter;
+      const int nx = static_cast<int>(std::floor(b.length / (d * (1 + 1e-6))));
+      const int ny = static_cast<int>(std::floor(b.width / (d * (1 + 1e-6))));
+      const double cx = std::min(0.5 * d, b.length - nx * d), cy = std::min(0.5 * d, b.width - ny * d);
+      const double spacing = s.clearance == ShearSpecimen::Clearance::Spread
+                                 ? d
+                                 : std::sqrt(d * d - cx * cx - cy * cy);
+      const int lower = std::max(1, s.layers / 2);
+      b.split_height = s.layers == 1 ? d / 2 : d / 2 + (lower - 0.5) * spacing;
+    } else {
+      // Mid-height of the given beads, or of a pour once settled (its
+      // volume at a solid fraction of 0.6).
+      double height = top - bottom;
+      if (s.method == ShearSpecimen::Method::Pour) {
+        double volume = 0;
+        for (const Particle& p : scene.particles)
+          volume += 4.0 / 3.0 * M_PI * std::pow(p.radius, 3);
+        height = volume / (0.6 * b.length * b.width);
+      }
+      b.split_height = bottom + 0.5 * height;
     }
-    b.split_height = 0.5 * height;
   }
   require(b.split_height > b.gap && b.split_height < top, "split_height", b.split_height,
           "(" + num(b.gap) + ", " + num(top) + ") m (inside the specimen)");

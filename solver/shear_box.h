@@ -16,6 +16,12 @@
 //   Given   the scene's own particles (listed or generated).
 // The halves are rectangles, not planes, so a bead in the gap meets their
 // edges: with gap < the smallest radius no bead centre can pass a wall.
+// The default split height is mid-height of the specimen: for Layers between
+// the two layers nearest mid-height, at the height they reach once each layer
+// has nested into the one below as far as its clearance lets it shift (an
+// estimate made before settling: d/sqrt(2) apart when the clearance allows
+// half a diameter, d apart for Spread); for Given / Pour beads half their
+// (settled) height.
 // Automatic values (gap, split height, wall material) are resolved into the
 // ShearBox, so to_toml() writes a scene that rebuilds the same walls.
 #pragma once

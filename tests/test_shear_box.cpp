@@ -1,0 +1,309 @@
+// The direct shear apparatus (shear_box.h) and its loading program
+// (shear_test.h): the specimen the paper describes, the servo, the measured
+// stresses against the contact forces inside, and a geometry with an
+// analytic peak.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <numbers>
+
+#include "errors.h"
+#include "scene_toml.h"
+#include "shear_box.h"
+#include "shear_test.h"
+#include "stress.h"
+#include "test_support.h"
+
+namespace simsols {
+namespace {
+
+using testing::report;
+
+constexpr double kD = 6.35e-3;  // the paper's largest beads (Table 1, test 5)
+
+std::string box_toml(const std::string& specimen, const std::string& extra = "") {
+  return R"(
+[[materials]]
+name = "glass"
+young_modulus = 62.784e9
+poisson_ratio = 0.2
+density = 2230
+restitution = 0.87
+sliding_friction = 0.02
+rolling_friction = 5e-5
+
+[shear_box]
+)" + extra + R"(
+[shear_box.specimen]
+)" + specimen + R"(
+
+[numerics]
+duration = 1
+)";
+}
+
+TEST(ShearBoxScene, Table1SpecimensHaveTheLayersAndBeadCounts) {
+  // Table 1: diameter -> layers; beads per layer = floor(60.23/d) x floor(60.07/d).
+  const struct {
+    double d;
+    int layers, per_layer;
+  } table[] = {{2.38125e-3, 8, 25 * 25}, {3.175e-3, 6, 18 * 18}, {3.96875e-3, 5, 15 * 15},
+               {4.7625e-3, 4, 12 * 12}, {6.35e-3, 4, 9 * 9}};
+  for (const auto& t : table) {
+    char spec[200];
+    std::snprintf(spec, sizeof spec, "material = \"glass\"\ndiameter = %.17g\nlayers = %d\nseed = 3",
+                  t.d, t.layers);
+    const Scene s = parse_scene(box_toml(spec), "table1.toml");
+    ASSERT_TRUE(s.shear_box);
+    const ShearBox& b = *s.shear_box;
+    EXPECT_EQ(static_cast<int>(s.particles.size()), t.layers * t.per_layer) << t.d;
+    EXPECT_EQ(static_cast<int>(s.walls.size()), int(kShearBoxWalls));
+    EXPECT_DOUBLE_EQ(b.gap, 0.2 * t.d);
+    EXPECT_DOUBLE_EQ(b.split_height, 0.5 * t.layers * t.d);
+    EXPECT_LT(b.gap, t.d / 2);
+    EXPECT_EQ(s.walls[b.first_wall + kPlaten].name, "platen");
+    EXPECT_EQ(s.materials[b.wall_material].name, "steel");  // built in
+    // Every bead inside the box, the clearance used by shifting whole layers.
+    for (const Particle& p : s.particles) {
+      EXPECT_GE(p.position[0], p.radius);
+      EXPECT_LE(p.position[0], b.length - p.radius);
+      EXPECT_GE(p.position[1], p.radius);
+      EXPECT_LE(p.position[1], b.width - p.radius);
+    }
+  }
+}
+
+TEST(ShearBoxScene, RoundTripRebuildsTheSameApparatus) {
+  const Scene a = parse_scene(
+      box_toml("material = \"glass\"\ndiameter = 4.7625e-3\nlayers = 4\nclearance = \"spread\""),
+      "a.toml");
+  const Scene b = parse_scene(to_toml(a), "b.toml");
+  ASSERT_EQ(a.walls.size(), b.walls.size());
+  ASSERT_EQ(a.particles.size(), b.particles.size());
+  for (size_t w = 0; w < a.walls.size(); ++w) {
+    EXPECT_EQ(a.walls[w].name, b.walls[w].name);
+    EXPECT_EQ(a.walls[w].point, b.walls[w].point) << a.walls[w].name;
+    EXPECT_EQ(a.walls[w].half_u, b.walls[w].half_u);
+    EXPECT_EQ(a.walls[w].half_v, b.walls[w].half_v);
+  }
+  for (size_t i = 0; i < a.particles.size(); ++i)
+    EXPECT_EQ(a.particles[i].position, b.particles[i].position);
+  EXPECT_EQ(to_toml(a), to_toml(b));
+}
+
+TEST(ShearBoxScene, PourPlacesTheSameNumberOfBeadsWithoutOverlap) {
+  const Scene s = parse_scene(
+      box_toml("method = \"pour\"\nmaterial = \"glass\"\ndiameter = 6.35e-3\nlayers = 4\nseed = 9"),
+      "pour.toml");
+  EXPECT_EQ(s.particles.size(), 324u);  // validation refuses overlaps
+}
+
+void expect_error(const std::string& text, const std::string& code, const std::string& field) {
+  try {
+    parse_scene(text, "bad.toml");
+    ADD_FAILURE() << "accepted, expected " << code << " at " << field;
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.code, code) << e.what();
+    EXPECT_EQ(e.field, field) << e.what();
+    EXPECT_NE(std::string(e.what()).find("bad.toml"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ShearBoxScene, BadValuesNameTheFieldAndRange) {
+  const std::string spec = "material = \"glass\"\ndiameter = 6.35e-3\nlayers = 4";
+  expect_error(box_toml(spec, "gap = 4e-3"), "out_of_range", "shear_box.gap");
+  expect_error(box_toml(spec, "normal_stress = -5"), "out_of_range", "shear_box.normal_stress");
+  expect_error(box_toml(spec, "inertial_number = 2"), "out_of_range", "shear_box.inertial_number");
+  expect_error(box_toml(spec, "shear_displacement = 0.05"), "out_of_range",
+               "shear_box.shear_displacement");
+  expect_error(box_toml("material = \"glass\"\ndiameter = 6.35e-3\nlayers = 0"), "out_of_range",
+               "shear_box.specimen.layers");
+  expect_error(box_toml("material = \"glass\"\ndiameter = 0.1\nlayers = 2"), "out_of_range",
+               "shear_box.specimen.diameter");
+  expect_error(box_toml("material = \"sand\"\ndiameter = 6.35e-3\nlayers = 2"),
+               "unknown_material", "shear_box.specimen.material");
+  expect_error(box_toml(spec, "wall_material = \"wood\""), "unknown_material",
+               "shear_box.wall_material");
+  expect_error(box_toml(spec + "\nmethod = \"heap\""), "bad_enum", "shear_box.specimen.method");
+  expect_error(box_toml(spec, "colour = 1"), "unknown_key", "shear_box.colour");
+}
+
+// --- Running tests -----------------------------------------------------------
+
+// A reduced specimen of the paper's beads for the test suite: 5 x 5 beads
+// per layer in a box with the paper's relative clearance, 4 layers.
+Scene small_box(double sigma, double displacement, Precision p = Precision::Float,
+                ShearSpecimen::Method method = ShearSpecimen::Method::Layers) {
+  Scene s;
+  s.name = "small_box";
+  s.materials.push_back(paper_glass());
+  s.numerics.precision = p;
+  s.numerics.duration = 1;
+  ShearBox b;
+  b.length = 5.27 * kD;
+  b.width = 5.26 * kD;
+  b.normal_stress = sigma;
+  b.shear_displacement = displacement;
+  b.rows = 100;
+  b.settle_time = 0.005;
+  b.specimen.material = 0;
+  b.specimen.diameter = kD;
+  b.specimen.layers = 4;
+  b.specimen.seed = 5;
+  b.specimen.method = method;
+  if (method == ShearSpecimen::Method::Pour) b.settle_time = 0.1;
+  s.shear_box = b;
+  if (auto issue = build_shear_box(s)) ADD_FAILURE() << issue->field << ": " << issue->message;
+  validate_scene(s, "small_box");
+  return s;
+}
+
+struct Outcome {
+  std::vector<ShearRow> rows;
+  ShearSummary summary;
+  double lw_tau = 0, lw_sigma = 0, wall_tau = 0, wall_sigma = 0;  // at the peak
+};
+
+// Runs the whole loading program; at every row compares the instantaneous
+// wall stresses with the Love-Weber stress on the shear plane.
+Outcome run_test(const Scene& scene, bool love_weber = false) {
+  Simulation sim(default_device(), scene);
+  ShearTest test(sim);
+  Outcome out;
+  const ShearBox& b = *scene.shear_box;
+  double best = -1;
+  while (!test.done()) {
+    if (!test.advance(1 << 20) || !love_weber) continue;
+    const auto reactions = sim.wall_reactions();
+    double t = 0;
+    for (int w = kFloor; w <= kLowerY1; ++w) t -= reactions[b.first_wall + w].force[0];
+    const double n = reactions[b.first_wall + kPlaten].force[2];
+    const double area = shear_area(b);
+    if (n <= 0 || t / n <= best) continue;
+    best = t / n;
+    const Tensor3 s = love_weber_slab(sim, b.split_height - b.gap / 2,
+                                      b.split_height + b.gap / 2, area);
+    out.wall_tau = t / area;
+    out.wall_sigma = n / area;
+    out.lw_tau = s[0][2];
+    out.lw_sigma = s[2][2];
+  }
+  out.rows = test.rows();
+  out.summary = test.summary();
+  return out;
+}
+
+void check_servo(double sigma) {
+  const Outcome o = run_test(small_box(sigma, 1.5e-3), true);
+  const ShearSummary& s = o.summary;
+  ASSERT_EQ(o.rows.size(), 100u);
+  const double lo = s.sigma_min / sigma - 1, hi = s.sigma_max / sigma - 1;
+  std::printf("[measure] sigma %.0f kPa: servo band %+.3f%% / %+.3f%% of target, peak tau/sigma "
+              "%.3f, max inertial number %.2e\n",
+              sigma * 1e-3, 100 * lo, 100 * hi, s.peak_ratio, s.max_inertial_number);
+  EXPECT_GT(lo, -0.02);
+  EXPECT_LT(hi, 0.02);
+  EXPECT_EQ(s.max_outside, 0);
+  EXPECT_LT(s.max_inertial_number, 1e-3);
+  EXPECT_NEAR(o.rows.back().displacement, 1.5e-3, 0.02e-3);  // sheared all the way
+  // The wall measurement against the contact forces on the shear plane.
+  report("tau on the shear plane (Love-Weber) vs T/A at the peak", o.lw_tau, o.wall_tau);
+  report("sigma on the shear plane (Love-Weber) vs N/A at the peak", o.lw_sigma, o.wall_sigma);
+  EXPECT_NEAR(o.lw_tau, o.wall_tau, 0.05 * o.wall_tau);
+  EXPECT_NEAR(o.lw_sigma, o.wall_sigma, 0.05 * o.wall_sigma);
+}
+
+TEST(ShearTest, ServoHoldsSigmaWithin2PercentAt50kPa) { check_servo(50e3); }
+TEST(ShearTest, ServoHoldsSigmaWithin2PercentAt400kPa) { check_servo(400e3); }
+
+TEST(ShearTest, SameTestTwiceGivesTheSameCsv) {
+  const Scene s = small_box(400e3, 0.5e-3);
+  const std::string a = shear_rows_csv(run_test(s).rows);
+  const std::string b = shear_rows_csv(run_test(s).rows);
+  EXPECT_EQ(a, b);
+  EXPECT_GT(a.size(), 1000u);
+}
+
+// On a poured (random) specimen: in the paper's layered specimens the peak is
+// set by the layers' geometry and its glass friction (0.02) changes it by a
+// few per cent only (docs/shear-box.md).
+TEST(ShearTest, FrictionlessRollingFreeSpecimenHasALowerPeak) {
+  Scene glass = small_box(160e3, 2.5e-3, Precision::Float, ShearSpecimen::Method::Pour);
+  Scene slick = glass;
+  for (Material& m : slick.materials) m.sliding_friction = m.rolling_friction = 0;
+  slick.effects.tangential_friction = false;
+  slick.effects.rolling_friction = false;
+  const double with = run_test(glass).summary.peak_ratio;
+  const double without = run_test(slick).summary.peak_ratio;
+  std::printf("[measure] peak tau/sigma: paper glass %.3f, frictionless rolling-free %.3f\n",
+              with, without);
+  EXPECT_LT(without, 0.85 * with);
+}
+
+// Analytic case. A lower layer of 4 x 4 beads fills the lower half exactly;
+// an upper layer of 3 x 3 sits in its hollows (each upper bead on four lower
+// ones, centres d/sqrt(2) higher). Frictionless, no gravity. The upper layer
+// rides along until its row meets the upper half's wall (after d/2), then
+// must climb over the two lower beads ahead of it: with contact normals
+// n = (d/2 - x, +-d/2, -h)/d the force ratio is tau/sigma = (d/2 - x)/h, largest
+// at the start, x = 0, h = d/sqrt(2): tau/sigma = 1/sqrt(2) (35.26 degrees).
+TEST(ShearTest, FrictionlessNestedLayerPeakIsOneOverSqrt2) {
+  Scene s;
+  s.name = "nested_layer";
+  Material m = testing::glass(0.87, 0, 0);
+  m.young_modulus = 1e9;  // softer: larger steps; overlaps stay < 0.5% of d
+  s.materials.push_back(m);
+  s.effects.gravity = {0, 0, 0};
+  s.effects.tangential_friction = false;
+  s.effects.rolling_friction = false;
+  s.numerics.precision = Precision::Double;
+  s.numerics.duration = 1;
+  const double d = kD, r = d / 2, pitch = d * (1 + 1e-6), h = d / std::sqrt(2.0);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) s.particles.push_back(testing::sphere(r, {r + i * pitch, r + j * pitch, r}));
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i)
+      s.particles.push_back(testing::sphere(r, {r + (i + 0.5) * pitch, r + (j + 0.5) * pitch, r + h * (1 + 1e-6)}));
+  ShearBox b;
+  b.length = b.width = 4 * pitch;
+  b.split_height = 1.1 * d;  // lower beads wholly below, upper equators above
+  b.gap = 0.1 * d;
+  b.wall_material = 0;
+  b.normal_stress = 100e3;
+  b.shear_speed = 0.01;
+  b.shear_displacement = 0.75 * d;
+  b.rows = 150;
+  b.settle_time = 0;
+  b.specimen.method = ShearSpecimen::Method::Given;
+  s.shear_box = b;
+  if (auto issue = build_shear_box(s)) FAIL() << issue->field << ": " << issue->message;
+  validate_scene(s, "nested_layer");
+  const Outcome o = run_test(s);
+  if (const char* dump = std::getenv("SIMSOLS_TEST_DUMP")) {
+    std::FILE* f = std::fopen(dump, "w");
+    std::fputs(shear_rows_csv(o.rows).c_str(), f);
+    std::fclose(f);
+  }
+  const double theory = 1 / std::sqrt(2.0);
+  report("frictionless nested layer: peak tau/sigma", o.summary.peak_ratio, theory);
+  EXPECT_NEAR(o.summary.peak_ratio, theory, 0.05 * theory);
+  // Past the peak the ratio follows the climb: with the platen's rise dz,
+  // h = d/sqrt(2) + dz and tau/sigma = sqrt(3 d^2/4 - h^2) / h.
+  int checked = 0;
+  for (const ShearRow& row : o.rows) {
+    if (row.dilation < 0.05 * d || row.dilation > 0.3 * d) continue;
+    const double hh = h + row.dilation;
+    const double expected = std::sqrt(0.75 * d * d - hh * hh) / hh;
+    EXPECT_NEAR(row.tau / row.sigma, expected, 0.03 * expected) << "dz = " << row.dilation;
+    ++checked;
+  }
+  EXPECT_GT(checked, 10);
+  // The peak comes once the upper row is held, after d/2 of travel.
+  EXPECT_GT(o.summary.peak_displacement, 0.45 * d);
+  EXPECT_EQ(o.summary.max_outside, 0);
+}
+
+}  // namespace
+}  // namespace simsols
