@@ -2,6 +2,7 @@
 //
 //   simsols run SCENE.toml --out DIR     headless run (time series, dumps, checkpoints)
 //   simsols run --resume DIR             continue a run from its last checkpoint
+//   simsols campaign --out DIR           the paper's 20 direct shear tests (resumable)
 //   simsols bench                        particle-steps per second and memory
 //
 // Exit status: 0 success, 2 bad input, 3 device or I/O failure.
@@ -22,6 +23,7 @@ int main(int argc, char** argv) {
   };
   add(simsols::add_run_command);
   add(simsols::add_bench_command);
+  add(simsols::add_campaign_command);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -145,14 +145,11 @@ void integrate(const Model& m, State& s) {
 
 size_t reduce_wall_forces(const Model& m, State& s) {
   const Kernels& k = m.kernels();
-  set_args(m, k.reduce_walls, s.wall_force, s.wall_partial, s.n,
-           Local{m.local_size() * 4 * m.real_size()});
-  const size_t global[2] = {m.global_size(s.n), size_t(m.walls())};
-  const size_t local[2] = {m.local_size(), 1};
-  check(clEnqueueNDRangeKernel(m.device().queue(), k.reduce_walls.get(), 2, nullptr, global, local,
-                               0, nullptr, nullptr),
-        "clEnqueueNDRangeKernel(reduce_walls)");
-  return global[0] / local[0];
+  const int chunk = kWallChunk;
+  const int chunks = std::max(1, (s.n + chunk - 1) / chunk);
+  set_args(m, k.reduce_walls, s.wall_force, s.wall_partial, s.n, chunk, chunks, m.walls());
+  launch(m, k.reduce_walls, size_t(chunks) * m.walls());
+  return static_cast<size_t>(chunks);
 }
 
 void step(const Model& m, State& s) {

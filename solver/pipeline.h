@@ -26,7 +26,9 @@ void integrate(const Model& model, State& state);
 void step(const Model& model, State& state);
 
 // Enqueues the per-wall sums of the forces particles exert on walls into
-// state.wall_partial (groups x walls); returns the number of groups.
+// state.wall_partial (walls x chunks of kWallChunk particles, each summed in
+// index order); returns the number of chunks.
+inline constexpr int kWallChunk = 128;
 size_t reduce_wall_forces(const Model& model, State& state);
 
 }  // namespace simsols

@@ -20,7 +20,7 @@ constexpr double kRad = 180.0 / kPi;
 // platen's contacts relax in ~1/kGainFraction steps; the integral removes the
 // steady error while the specimen dilates, over kIntegralPeriods of the
 // specimen's vertical oscillation period.
-constexpr double kGainFraction = 0.2;
+constexpr double kGainFraction = 0.5;
 constexpr double kIntegralPeriods = 5.0;
 
 const ShearBox& box_of(const Simulation& sim) {
@@ -422,6 +422,145 @@ std::string shear_summary_text(const ShearSummary& s) {
       100 * (s.sigma_max / s.normal_stress_target - 1), s.max_outside, s.settle_time,
       s.consolidate_time, s.wall_seconds);
   return buf;
+}
+
+}  // namespace simsols
+
+namespace simsols {
+namespace {
+
+std::vector<std::string> split(const std::string& line, char sep) {
+  std::vector<std::string> out;
+  std::string cur;
+  for (char c : line) {
+    if (c == sep) {
+      out.push_back(cur);
+      cur.clear();
+    } else if (c != '\r') {
+      cur += c;
+    }
+  }
+  out.push_back(cur);
+  return out;
+}
+
+double to_double(const std::string& s, const std::string& what) {
+  try {
+    size_t used = 0;
+    const double v = std::stod(s, &used);
+    if (used == 0) throw std::invalid_argument(s);
+    return v;
+  } catch (const std::exception&) {
+    throw std::runtime_error("malformed number '" + s + "' in " + what);
+  }
+}
+
+}  // namespace
+
+std::vector<ShearRow> parse_shear_rows_csv(const std::string& text) {
+  std::istringstream in(text);
+  std::string line;
+  std::getline(in, line);
+  if (line.rfind("time_s,step,displacement_mm", 0) != 0)
+    throw std::runtime_error("not a shear.csv (header differs)");
+  std::vector<ShearRow> rows;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    const auto f = split(line, ',');
+    if (f.size() != 16)
+      throw std::runtime_error("shear.csv row " + std::to_string(rows.size() + 1) + " has " +
+                               std::to_string(f.size()) + " fields, expected 16");
+    const std::string where = "shear.csv row " + std::to_string(rows.size() + 1);
+    std::vector<double> v;
+    for (const std::string& x : f) v.push_back(to_double(x, where));
+    ShearRow r;
+    r.time = v[0];
+    r.step = static_cast<std::int64_t>(v[1]);
+    r.displacement = v[2] * 1e-3;
+    r.shear_force = v[3];
+    r.shear_force_upper = v[4];
+    r.tau = v[5] * 1e3;
+    r.tau_corrected = v[6] * 1e3;
+    r.normal_force = v[7];
+    r.sigma = v[8] * 1e3;
+    r.dilation = v[9] * 1e-3;
+    r.friction_angle = v[11];
+    r.coordination = v[12];
+    r.kinetic_energy = v[13];
+    r.inertial_number = v[14];
+    r.outside = static_cast<int>(v[15]);
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+ShearSummary parse_shear_summary(const std::string& text) {
+  std::istringstream in(text);
+  std::string line;
+  ShearSummary s;
+  int seen = 0;
+  while (std::getline(in, line)) {
+    const size_t eq = line.find(" = ");
+    if (eq == std::string::npos) continue;
+    const std::string key = line.substr(0, eq), value = line.substr(eq + 3);
+    const struct {
+      const char* key;
+      double* target;
+      double scale;
+    } fields[] = {{"normal_stress_kPa", &s.normal_stress_target, 1e3},
+                  {"bead_diameter_mm", &s.bead_diameter, 1e-3},
+                  {"specimen_height_mm", &s.specimen_height, 1e-3},
+                  {"shear_speed_mm_s", &s.shear_speed, 1e-3},
+                  {"peak_tau_kPa", &s.peak_tau, 1e3},
+                  {"peak_tau_over_sigma", &s.peak_ratio, 1},
+                  {"peak_friction_angle_deg", &s.peak_angle, 1},
+                  {"peak_displacement_mm", &s.peak_displacement, 1e-3},
+                  {"residual_tau_kPa", &s.residual_tau, 1e3},
+                  {"residual_tau_over_sigma", &s.residual_ratio, 1},
+                  {"residual_friction_angle_deg", &s.residual_angle, 1},
+                  {"max_dilatancy_angle_deg", &s.max_dilatancy_angle, 1},
+                  {"max_inertial_number", &s.max_inertial_number, 1},
+                  {"sigma_min_kPa", &s.sigma_min, 1e3},
+                  {"sigma_max_kPa", &s.sigma_max, 1e3},
+                  {"settle_time_s", &s.settle_time, 1},
+                  {"consolidate_time_s", &s.consolidate_time, 1},
+                  {"wall_seconds", &s.wall_seconds, 1}};
+    for (const auto& f : fields)
+      if (key == f.key) {
+        *f.target = to_double(value, "summary key " + key) * f.scale;
+        ++seen;
+      }
+    if (key == "max_beads_outside") s.max_outside = static_cast<int>(to_double(value, key));
+  }
+  if (seen < 10) throw std::runtime_error("not a shear-test summary (too few keys)");
+  return s;
+}
+
+MohrCoulomb fit_mohr_coulomb(const std::vector<double>& sigma, const std::vector<double>& tau) {
+  MohrCoulomb m;
+  const size_t n = std::min(sigma.size(), tau.size());
+  if (n < 2) return m;
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (size_t i = 0; i < n; ++i) {
+    sx += sigma[i];
+    sy += tau[i];
+    sxx += sigma[i] * sigma[i];
+    sxy += sigma[i] * tau[i];
+  }
+  const double den = n * sxx - sx * sx;
+  if (den <= 0) return m;
+  m.tan_phi = (n * sxy - sx * sy) / den;
+  m.cohesion = (sy - m.tan_phi * sx) / n;
+  m.phi_deg = std::atan(m.tan_phi) * kRad;
+  const double mean = sy / n;
+  double ss_res = 0, ss_tot = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const double e = tau[i] - (m.cohesion + m.tan_phi * sigma[i]);
+    ss_res += e * e;
+    ss_tot += (tau[i] - mean) * (tau[i] - mean);
+  }
+  m.r2 = ss_tot > 0 ? 1 - ss_res / ss_tot : 1;
+  return m;
 }
 
 }  // namespace simsols

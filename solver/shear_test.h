@@ -124,8 +124,21 @@ class ShearTest {
   std::vector<ShearRow> rows_;
 };
 
-// Writes the rows as CSV (SI units plus mm and kPa columns people read).
+// The rows as CSV (mm, kPa, N, J) and back; the summary as "key = value"
+// lines and back. The parsers throw std::runtime_error on malformed text.
 std::string shear_rows_csv(const std::vector<ShearRow>& rows);
-std::string shear_summary_text(const ShearSummary& s);  // key = value lines
+std::vector<ShearRow> parse_shear_rows_csv(const std::string& text);
+std::string shear_summary_text(const ShearSummary& s);
+ShearSummary parse_shear_summary(const std::string& text);
+
+// Mohr-Coulomb envelope tau = c + sigma tan(phi) by least squares over
+// (sigma, tau) points (Pa), with the coefficient of determination R^2.
+struct MohrCoulomb {
+  double cohesion = 0;   // Pa
+  double tan_phi = 0;
+  double phi_deg = 0;
+  double r2 = 0;
+};
+MohrCoulomb fit_mohr_coulomb(const std::vector<double>& sigma, const std::vector<double>& tau);
 
 }  // namespace simsols

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <numbers>
 
+#include "pipeline.h"
 #include "real_packer.h"
 
 namespace simsols {
@@ -115,7 +116,8 @@ State::State(const Model& model) {
   flags = make(d, sizeof init_flags, init_flags);
   const size_t groups = model.global_size(n) / model.local_size();
   obs_partial = make(d, groups * 12 * model.real_size());
-  wall_partial = make(d, std::max(1, nw) * groups * r4);
+  const size_t wall_chunks = std::max<size_t>(1, (n + kWallChunk - 1) / kWallChunk);
+  wall_partial = make(d, std::max(1, nw) * wall_chunks * r4);
 }
 
 size_t State::device_bytes() const {

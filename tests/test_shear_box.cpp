@@ -61,7 +61,11 @@ TEST(ShearBoxScene, Table1SpecimensHaveTheLayersAndBeadCounts) {
     EXPECT_EQ(static_cast<int>(s.particles.size()), t.layers * t.per_layer) << t.d;
     EXPECT_EQ(static_cast<int>(s.walls.size()), int(kShearBoxWalls));
     EXPECT_DOUBLE_EQ(b.gap, 0.2 * t.d);
-    EXPECT_DOUBLE_EQ(b.split_height, 0.5 * t.layers * t.d);
+    // Between the two middle layers: layer centres are d/sqrt(2) (nested)
+    // to d (stacked) apart.
+    const double lower = t.layers / 2 - 0.5;
+    EXPECT_GE(b.split_height, t.d / 2 + lower * t.d / std::sqrt(2.0) - 1e-12) << t.d;
+    EXPECT_LE(b.split_height, t.d / 2 + lower * t.d + 1e-12) << t.d;
     EXPECT_LT(b.gap, t.d / 2);
     EXPECT_EQ(s.walls[b.first_wall + kPlaten].name, "platen");
     EXPECT_EQ(s.materials[b.wall_material].name, "steel");  // built in

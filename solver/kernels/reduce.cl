@@ -58,19 +58,18 @@ __kernel void reduce_observables(__global const real4* pos POS_LO_CARG,
 }
 
 #ifdef HAS_WALLS
-// 2-D range: dim 0 particles, dim 1 walls. partial[(w * groups + g) * 4 + c].
+// One work item per (wall, chunk of `chunk` particles): sums the chunk's
+// slots in index order, without barriers (cheap on CPUs, deterministic).
+// partial[w * chunks + c]; global size nwalls * chunks.
 __kernel void reduce_walls(__global const real4* wall_force, __global real4* partial, int n,
-                           __local real4* scratch) {
-  const int i = get_global_id(0);
-  const int w = get_global_id(1);
-  const int l = get_local_id(0);
-  const int size = get_local_size(0);
-  scratch[l] = (i < n) ? wall_force[w * n + i] : (real4)(0);
-  barrier(CLK_LOCAL_MEM_FENCE);
-  for (int s = size / 2; s > 0; s >>= 1) {
-    if (l < s) scratch[l] += scratch[l + s];
-    barrier(CLK_LOCAL_MEM_FENCE);
-  }
-  if (l == 0) partial[w * get_num_groups(0) + get_group_id(0)] = scratch[0];
+                           int chunk, int chunks, int nwalls) {
+  const int g = get_global_id(0);
+  if (g >= nwalls * chunks) return;
+  const int w = g / chunks, c = g % chunks;
+  const int lo = c * chunk, hi = min(n, lo + chunk);
+  __global const real4* f = wall_force + (size_t)w * n;
+  real4 sum = (real4)(0);
+  for (int i = lo; i < hi; ++i) sum += f[i];
+  partial[g] = sum;
 }
 #endif

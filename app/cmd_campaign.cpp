@@ -1,0 +1,278 @@
+// simsols campaign: the reference paper's programme of direct shear tests,
+// 5 bead sizes (its Table 1) x 4 normal stresses (50, 160, 280, 400 kPa),
+// or any subset, any sizes and stresses.
+//
+// Every test runs from a base scene (default assets/scenes/shear_box.toml)
+// with specimen.diameter, specimen.layers (Table 1, or --layers) and
+// normal_stress replaced, in OUT/d<size>mm_<stress>kPa/ (see shear_run.h).
+// Resumable: a test whose summary.txt exists is not rerun, an interrupted
+// one continues from its checkpoint. Afterwards, per bead size, the curves
+// of its stresses on common axes (the paper's Figures 3-7), the
+// Mohr-Coulomb envelope fitted to the peaks, and OUT/summary.csv / .md.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "commands.h"
+#include "contact_model.h"
+#include "errors.h"
+#include "output.h"
+#include "scene_toml.h"
+#include "shear_box.h"
+#include "shear_plots.h"
+#include "shear_run.h"
+
+namespace simsols {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CampaignOptions {
+  std::string base = "assets/scenes/shear_box.toml";
+  std::string out_dir;
+  std::vector<double> sizes_mm{2.38125, 3.175, 3.96875, 4.7625, 6.35};
+  std::vector<double> stresses_kpa{50, 160, 280, 400};
+  int layers = 0;  // 0 = Table 1
+  std::string precision;
+  double displacement_mm = 0;  // 0 = the base scene's
+  bool quiet = false;
+};
+
+// The paper's Table 1: bead diameter (mm) -> number of layers.
+int table1_layers(double d_mm) {
+  const std::pair<double, int> table[] = {
+      {2.38125, 8}, {3.175, 6}, {3.96875, 5}, {4.7625, 4}, {6.35, 4}};
+  for (const auto& [d, n] : table)
+    if (std::fabs(d - d_mm) < 1e-6) return n;
+  return 0;
+}
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::string test_name(double d_mm, double s_kpa) {
+  return "d" + fmt("%g", d_mm) + "mm_" + fmt("%g", s_kpa) + "kPa";
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct Test {
+  double d_mm = 0, s_kpa = 0;
+  Scene scene;
+  fs::path dir;
+  double cost = 0;  // estimated particle-steps
+  ShearRunResult result;
+};
+
+// Particle-steps the test will take: preparation (~60 ms simulated) and the
+// shear at the speed the inertial number sets (height ~ layers x 0.8 d).
+double estimated_cost(const Scene& s) {
+  const ShearBox& b = *s.shear_box;
+  const double dt = effective_time_step(s);
+  const double d = 2 * s.particles[0].radius;
+  const double rho = s.materials[s.particles[0].material].density;
+  const double height = 0.8 * d * std::max(1, b.specimen.layers);
+  const double v = b.shear_speed > 0 ? b.shear_speed
+                                     : b.inertial_number * height / d * std::sqrt(b.normal_stress / rho);
+  return s.particles.size() * (0.06 + b.shear_displacement / v) / dt;
+}
+
+int campaign(const CampaignOptions& opt) {
+  // Everything is checked and every scene built before anything runs.
+  Scene base = load_scene(opt.base);
+  if (!base.shear_box)
+    throw SceneError("missing_field", opt.base, 0, "shear_box",
+                     "the campaign's base scene must describe a shear box");
+  for (double d : opt.sizes_mm)
+    if (!(d > 0 && d < 60))
+      throw SceneError("out_of_range", "command line", 0, "--sizes",
+                       fmt("%g", d) + " mm is out of range, allowed (0, 60) mm");
+  for (double s : opt.stresses_kpa)
+    if (!(s > 0 && s <= 1e6))
+      throw SceneError("out_of_range", "command line", 0, "--stresses",
+                       fmt("%g", s) + " kPa is out of range, allowed (0, 1e6] kPa");
+  if (opt.layers < 0 || opt.layers > 200)
+    throw SceneError("out_of_range", "command line", 0, "--layers",
+                     std::to_string(opt.layers) + " is out of range, allowed [1, 200] (0 = Table 1)");
+  if (!opt.precision.empty() && opt.precision != "float" && opt.precision != "double")
+    throw SceneError("bad_enum", "command line", 0, "--precision",
+                     "'" + opt.precision + "' is not one of: float, double");
+  if (opt.displacement_mm < 0)
+    throw SceneError("out_of_range", "command line", 0, "--displacement", "must be > 0 mm");
+
+  std::vector<Test> tests;
+  for (double d : opt.sizes_mm) {
+    const int layers = opt.layers > 0 ? opt.layers : table1_layers(d);
+    if (layers == 0)
+      throw SceneError("out_of_range", "command line", 0, "--sizes",
+                       fmt("%g", d) +
+                           " mm is not a Table 1 size (2.38125, 3.175, 3.96875, 4.7625, 6.35); "
+                           "give --layers for other sizes");
+    for (double s : opt.stresses_kpa) {
+      Test t;
+      t.d_mm = d;
+      t.s_kpa = s;
+      Scene sc = base;
+      sc.particles.clear();
+      sc.walls.erase(sc.walls.begin() + base.shear_box->first_wall,
+                     sc.walls.begin() + base.shear_box->first_wall + kShearBoxWalls);
+      ShearBox b = *base.shear_box;
+      if (b.specimen.method == ShearSpecimen::Method::Given)
+        throw SceneError("bad_enum", opt.base, 0, "shear_box.specimen.method",
+                         "the campaign prepares its own specimens: use \"layers\" or \"pour\"");
+      b.specimen.diameter = d * 1e-3;
+      b.specimen.layers = layers;
+      b.normal_stress = s * 1e3;
+      b.split_height = 0;
+      b.gap = 0;
+      if (opt.displacement_mm > 0) b.shear_displacement = opt.displacement_mm * 1e-3;
+      sc.shear_box = b;
+      if (!opt.precision.empty())
+        sc.numerics.precision = opt.precision == "float" ? Precision::Float : Precision::Double;
+      sc.name = test_name(d, s);
+      sc.source_text.clear();
+      if (auto issue = build_shear_box(sc))
+        throw SceneError(issue->code, opt.base + " (" + sc.name + ")", 0, issue->field,
+                         issue->message);
+      validate_scene(sc, opt.base + " (" + sc.name + ")");
+      t.scene = std::move(sc);
+      t.dir = fs::path(opt.out_dir) / t.scene.name;
+      t.cost = estimated_cost(t.scene);
+      tests.push_back(std::move(t));
+    }
+  }
+  fs::create_directories(opt.out_dir);
+
+  double total_cost = 0, done_cost = 0, spent = 0;
+  for (const Test& t : tests) total_cost += t.cost;
+  for (size_t k = 0; k < tests.size(); ++k) {
+    Test& t = tests[k];
+    const std::string label = "campaign " + std::to_string(k + 1) + "/" +
+                              std::to_string(tests.size()) + " " + t.scene.name;
+    if (shear_finished(t.dir.string())) {
+      t.result.rows = parse_shear_rows_csv(read_text(t.dir / "shear.csv"));
+      t.result.summary = parse_shear_summary(read_text(t.dir / "summary.txt"));
+      t.result.finished = true;
+      total_cost -= t.cost;
+      if (!opt.quiet) std::fprintf(stderr, "[%s] finished earlier, kept\n", label.c_str());
+      continue;
+    }
+    if (!opt.quiet && done_cost > 0) {
+      const double rate = spent / done_cost;
+      std::fprintf(stderr, "[campaign] %zu/%zu tests, %.0f s so far, ETA %.0f s\n", k,
+                   tests.size(), spent, rate * (total_cost - done_cost));
+    }
+    ShearRunOptions o;
+    o.out_dir = t.dir.string();
+    o.label = label;
+    o.quiet = opt.quiet;
+    o.resume = fs::exists(t.dir / "checkpoint.bin") && fs::exists(t.dir / "shear.csv");
+    const auto t0 = std::chrono::steady_clock::now();
+    t.result = run_shear(t.scene, o);
+    spent += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    done_cost += t.cost;
+    const ShearSummary& s = t.result.summary;
+    std::printf("%-22s peak tau/sigma %.3f (phi %.2f deg), residual %.3f (phi %.2f deg), "
+                "max dilatancy %.2f deg, %.0f s\n",
+                t.scene.name.c_str(), s.peak_ratio, s.peak_angle, s.residual_ratio,
+                s.residual_angle, s.max_dilatancy_angle, s.wall_seconds);
+    std::fflush(stdout);
+  }
+
+  // Per size: curves and envelope; the tables.
+  std::ostringstream csv, md;
+  csv << "diameter_mm,layers,normal_stress_kPa,peak_tau_kPa,peak_tau_over_sigma,"
+         "peak_friction_angle_deg,peak_displacement_mm,residual_tau_kPa,"
+         "residual_friction_angle_deg,max_dilatancy_angle_deg,max_inertial_number,"
+         "sigma_band_min_percent,sigma_band_max_percent,beads,wall_seconds\n";
+  md << "# Direct shear campaign\n\nBase scene: `" << opt.base << "`; "
+     << tests.size() << " tests; wall time of the tests run now: " << fmt("%.0f", spent)
+     << " s.\n\n| d (mm) | σ (kPa) | τ peak (kPa) | φ peak (°) | φ residual (°) | ψ max (°) | "
+        "σ band (%) | I max | wall (s) |\n|---|---|---|---|---|---|---|---|---|\n";
+  std::vector<EnvelopeSeries> envelopes;
+  std::ostringstream fits;
+  fits << "\n## Mohr-Coulomb envelopes (peak), τ = c + σ tan φ\n\n| d (mm) | φ (°) | c (kPa) | "
+          "R² | points |\n|---|---|---|---|---|\n";
+  for (double d : opt.sizes_mm) {
+    std::vector<ShearCurve> curves;
+    EnvelopeSeries env;
+    env.label = fmt("%g mm", d);
+    for (const Test& t : tests) {
+      if (t.d_mm != d) continue;
+      const ShearSummary& s = t.result.summary;
+      const int beads = static_cast<int>(t.scene.particles.size());
+      csv << fmt("%g", d) << ',' << t.scene.shear_box->specimen.layers << ',' << fmt("%g", t.s_kpa)
+          << ',' << fmt("%.6g", s.peak_tau * 1e-3) << ',' << fmt("%.6g", s.peak_ratio) << ','
+          << fmt("%.4f", s.peak_angle) << ',' << fmt("%.6g", s.peak_displacement * 1e3) << ','
+          << fmt("%.6g", s.residual_tau * 1e-3) << ',' << fmt("%.4f", s.residual_angle) << ','
+          << fmt("%.4f", s.max_dilatancy_angle) << ',' << fmt("%.4g", s.max_inertial_number)
+          << ',' << fmt("%.3f", 100 * (s.sigma_min / s.normal_stress_target - 1)) << ','
+          << fmt("%.3f", 100 * (s.sigma_max / s.normal_stress_target - 1)) << ',' << beads << ','
+          << fmt("%.1f", s.wall_seconds) << '\n';
+      md << "| " << fmt("%g", d) << " | " << fmt("%g", t.s_kpa) << " | "
+         << fmt("%.1f", s.peak_tau * 1e-3) << " | " << fmt("%.2f", s.peak_angle) << " | "
+         << fmt("%.2f", s.residual_angle) << " | " << fmt("%.2f", s.max_dilatancy_angle) << " | "
+         << fmt("%+.2f", 100 * (s.sigma_min / s.normal_stress_target - 1)) << " / "
+         << fmt("%+.2f", 100 * (s.sigma_max / s.normal_stress_target - 1)) << " | "
+         << fmt("%.2g", s.max_inertial_number) << " | " << fmt("%.0f", s.wall_seconds) << " |\n";
+      curves.push_back({fmt("%g kPa", t.s_kpa), t.result.rows, s});
+      env.sigma.push_back(s.normal_stress_target);
+      env.tau.push_back(s.peak_tau);
+    }
+    const fs::path out = opt.out_dir;
+    const std::string stem = fmt("d%gmm", d);
+    write_size_plots((out / (stem + "_stress.png")).string(),
+                     (out / (stem + "_dilation.png")).string(),
+                     fmt("Glass beads d = %g mm", d), curves);
+    const MohrCoulomb mc = fit_mohr_coulomb(env.sigma, env.tau);
+    env.cohesion = mc.cohesion;
+    env.tan_phi = mc.tan_phi;
+    envelopes.push_back(env);
+    fits << "| " << fmt("%g", d) << " | " << fmt("%.2f", mc.phi_deg) << " | "
+         << fmt("%.2f", mc.cohesion * 1e-3) << " | " << fmt("%.4f", mc.r2) << " | "
+         << env.sigma.size() << " |\n";
+    std::printf("Mohr-Coulomb d = %g mm: phi = %.2f deg, c = %.2f kPa, R^2 = %.4f\n", d,
+                mc.phi_deg, mc.cohesion * 1e-3, mc.r2);
+  }
+  write_envelope_plot((fs::path(opt.out_dir) / "mohr_coulomb.png").string(), envelopes);
+  write_file_atomic((fs::path(opt.out_dir) / "summary.csv").string(), csv.str());
+  write_file_atomic((fs::path(opt.out_dir) / "summary.md").string(), md.str() + fits.str());
+  std::printf("campaign done: %zu tests in %s (summary.md, summary.csv, *.png)\n", tests.size(),
+              opt.out_dir.c_str());
+  return 0;
+}
+
+}  // namespace
+
+CommandRunner add_campaign_command(CLI::App& app) {
+  auto opt = std::make_shared<CampaignOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "campaign", "Run the paper's direct shear programme (5 sizes x 4 stresses), resumable");
+  cmd->add_option("base", opt->base, "Base shear-box scene (default assets/scenes/shear_box.toml)");
+  cmd->add_option("--out,-o", opt->out_dir, "Output folder (rerun to resume)")->required();
+  cmd->add_option("--sizes", opt->sizes_mm, "Bead diameters in mm (default: Table 1)")
+      ->delimiter(',');
+  cmd->add_option("--stresses", opt->stresses_kpa, "Normal stresses in kPa (default 50,160,280,400)")
+      ->delimiter(',');
+  cmd->add_option("--layers", opt->layers, "Layers for every size (default: Table 1)");
+  cmd->add_option("--precision", opt->precision, "float or double (default: the base scene's)");
+  cmd->add_option("--displacement", opt->displacement_mm,
+                  "Horizontal displacement to shear, mm (default: the base scene's)");
+  cmd->add_flag("--quiet,-q", opt->quiet, "No progress lines");
+  return [opt] { return campaign(*opt); };
+}
+
+}  // namespace simsols
