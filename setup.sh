@@ -22,8 +22,8 @@ PACKAGES=(
 
 PRESET=release
 BIN=build/release/app/simsols
-DEFAULT_SCENE=assets/scenes/default.toml
-DEFAULT_OUT=results/default
+DEFAULT_SCENE=assets/scenes/shear_box.toml
+DEFAULT_OUT=results/shear_box
 JOBS=${JOBS:-2}
 
 cd "$(dirname "${BASH_SOURCE[0]}")"
@@ -39,7 +39,7 @@ Commands:
   run [ARGS...]  (default) install missing packages, build Release, run the
                  default experiment headless:
                    $BIN run $DEFAULT_SCENE --out $DEFAULT_OUT [ARGS...]
-                 ARGS go to 'simsols run' (e.g. --duration 0.001).
+                 ARGS go to 'simsols run' (e.g. --precision double).
   test           install missing packages, build Release, run the whole
                  test suite (ctest --preset $PRESET); exits with its status.
   help           show this text.
@@ -99,7 +99,7 @@ cmd_run() {
   [[ -f "$DEFAULT_SCENE" ]] || die "default scene $DEFAULT_SCENE not found"
   say "Running the default experiment: $BIN run $DEFAULT_SCENE --out $DEFAULT_OUT $*"
   "$BIN" run "$DEFAULT_SCENE" --out "$DEFAULT_OUT" "$@"
-  say "Results are in $PWD/$DEFAULT_OUT (series.csv, particles_*.csv/.vtk for ParaView, checkpoint.bin, scene.toml)"
+  say "Results are in $PWD/$DEFAULT_OUT (summary.txt, shear.csv, shear_stress.png, shear_ratio.png, dilation.png, particles_final.vtk for ParaView, checkpoint.bin, scene.toml)"
   say "Resume with: $BIN run --resume --out $DEFAULT_OUT"
 }
 
@@ -124,7 +124,7 @@ main() {
       cmd_test
       ;;
     help | -h | --help) usage ;;
-    -*) cmd_run "$cmd" "$@" ;; # ./setup.sh --duration 0.001 = ./setup.sh run --duration 0.001
+    -*) cmd_run "$cmd" "$@" ;; # ./setup.sh --precision double = ./setup.sh run --precision double
     *)
       printf 'setup.sh: unknown command: %s\n\n' "$cmd" >&2
       usage >&2

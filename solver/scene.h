@@ -151,7 +151,7 @@ struct ShearBox {
   int wall_material = -1;          // the box's material; -1 = "steel" (added when absent)
   double normal_stress = 160e3;    // Pa, the platen's target
   double shear_speed = 0;          // m/s; 0 = from inertial_number
-  double inertial_number = 5e-4;   // target I = (v/H) d sqrt(rho/sigma) for the automatic speed
+  double inertial_number = 8e-4;   // target I = (v/H) d sqrt(rho/sigma) for the automatic speed
   double shear_displacement = 6e-3;  // m of horizontal displacement to shear
   double servo_gain = 0;           // m/(s N); 0 = automatic (from the Hertz stiffness)
   double servo_max_speed = 0.5;    // m/s, the platen's speed cap

@@ -83,4 +83,73 @@ TEST(Cli, StopAndResumeIsBitForBit) {
   EXPECT_EQ(ta, tb);
 }
 
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+const std::string kShear = std::string(SIMSOLS_ASSETS_DIR) + "/tests/shear_small.toml";
+
+// A shear test stopped in the middle of its loading program and resumed
+// writes the same rows as the uninterrupted one.
+TEST(Cli, ShearTestStopAndResumeGivesTheSameRows) {
+  const fs::path a = fresh_dir("shear_straight"), b = fresh_dir("shear_resumed");
+  const Result straight = run("run " + kShear + " --out " + a.string() + " -q");
+  ASSERT_EQ(straight.status, 0) << straight.out;
+  EXPECT_NE(straight.out.find("phi_peak"), std::string::npos) << straight.out;
+  const Result first = run("run " + kShear + " --out " + b.string() + " -q --stop-after 30000");
+  ASSERT_EQ(first.status, 0) << first.out;
+  EXPECT_NE(first.out.find("stopped"), std::string::npos) << first.out;
+  EXPECT_FALSE(fs::exists(b / "summary.txt"));
+  const Result second = run("run --resume --out " + b.string() + " -q");
+  ASSERT_EQ(second.status, 0) << second.out;
+  EXPECT_EQ(read(a / "shear.csv"), read(b / "shear.csv"));
+  EXPECT_EQ(read(a / "summary.txt").substr(0, 600), read(b / "summary.txt").substr(0, 600));
+  for (const char* f : {"summary.txt", "shear.csv", "shear_stress.png", "shear_ratio.png",
+                        "dilation.png", "particles_final.vtk", "checkpoint.bin"})
+    EXPECT_TRUE(fs::exists(b / f)) << f;
+  EXPECT_EQ(read(a / "shear.csv").substr(0, 20), "time_s,step,displace");
+}
+
+TEST(Cli, ShearRunRefusesDuration) {
+  const fs::path out = fresh_dir("shear_duration");
+  const Result r = run("run " + kShear + " --out " + out.string() + " --duration 1");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("--duration"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Cli, CampaignBadInputWritesNothing) {
+  const fs::path out = fresh_dir("campaign_bad");
+  Result r = run("campaign " + kShear + " --out " + out.string() + " --sizes 7");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("--sizes"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Table 1"), std::string::npos) << r.out;
+  r = run("campaign " + kShear + " --out " + out.string() + " --stresses -50");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("--stresses"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// Two tests of a campaign, then the campaign again: nothing is rerun.
+TEST(Cli, CampaignWritesItsTablesAndResumes) {
+  const fs::path out = fresh_dir("campaign");
+  const std::string args = "campaign " + kShear + " --out " + out.string() +
+                           " --sizes 6.35 --stresses 100,300 --displacement 0.2 -q";
+  const Result first = run(args);
+  ASSERT_EQ(first.status, 0) << first.out;
+  EXPECT_NE(first.out.find("Mohr-Coulomb d = 6.35 mm"), std::string::npos) << first.out;
+  for (const char* f : {"summary.md", "summary.csv", "mohr_coulomb.png", "d6.35mm_stress.png",
+                        "d6.35mm_dilation.png", "d6.35mm_100kPa/shear.csv",
+                        "d6.35mm_300kPa/summary.txt"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  const std::string table = read(out / "summary.csv");
+  const Result again = run("campaign " + kShear + " --out " + out.string() +
+                           " --sizes 6.35 --stresses 100,300 --displacement 0.2");
+  ASSERT_EQ(again.status, 0) << again.out;
+  EXPECT_NE(again.out.find("finished earlier, kept"), std::string::npos) << again.out;
+  // the same numbers (wall times aside: they are kept from the first run too)
+  EXPECT_EQ(read(out / "summary.csv"), table);
+}
+
 }  // namespace

@@ -134,6 +134,50 @@ TEST(ShearBoxScene, BadValuesNameTheFieldAndRange) {
   expect_error(box_toml(spec, "colour = 1"), "unknown_key", "shear_box.colour");
 }
 
+TEST(ShearAnalysis, MohrCoulombFitRecoversTheLine) {
+  const double c = 5e3, t = std::tan(30 * std::numbers::pi / 180);
+  std::vector<double> sigma{50e3, 160e3, 280e3, 400e3}, tau;
+  for (double s : sigma) tau.push_back(c + s * t);
+  MohrCoulomb m = fit_mohr_coulomb(sigma, tau);
+  EXPECT_NEAR(m.cohesion, c, 1e-6);
+  EXPECT_NEAR(m.phi_deg, 30, 1e-9);
+  EXPECT_NEAR(m.r2, 1, 1e-12);
+  tau[1] += 10e3;  // scatter lowers R^2
+  m = fit_mohr_coulomb(sigma, tau);
+  EXPECT_LT(m.r2, 0.999);
+  EXPECT_GT(m.r2, 0.9);
+}
+
+TEST(ShearAnalysis, RowsAndSummaryRoundTripThroughText) {
+  std::vector<ShearRow> rows(3);
+  for (int i = 0; i < 3; ++i) {
+    ShearRow& r = rows[i];
+    r.time = 0.1 * i;
+    r.step = 1000 * i;
+    r.displacement = 1e-4 * i;
+    r.shear_force = 12.5 + i;
+    r.tau = 3456.5 * i;
+    r.sigma = 50e3;
+    r.dilation = -2e-5 * i;
+    r.outside = i;
+  }
+  const std::string csv = shear_rows_csv(rows);
+  EXPECT_EQ(shear_rows_csv(parse_shear_rows_csv(csv)), csv);
+  EXPECT_THROW(parse_shear_rows_csv("a,b\n1,2\n"), std::runtime_error);
+  ShearSummary s;
+  s.normal_stress_target = 160e3;
+  s.peak_ratio = 0.7071;
+  s.peak_angle = 35.26;
+  s.residual_angle = 20.5;
+  s.sigma_min = 159e3;
+  s.sigma_max = 161e3;
+  const ShearSummary back = parse_shear_summary(shear_summary_text(s));
+  EXPECT_DOUBLE_EQ(back.normal_stress_target, 160e3);
+  EXPECT_NEAR(back.peak_angle, 35.26, 1e-9);
+  EXPECT_NEAR(back.sigma_max, 161e3, 1e-6);
+  EXPECT_THROW(parse_shear_summary("hello = 1\n"), std::runtime_error);
+}
+
 // --- Running tests -----------------------------------------------------------
 
 // A reduced specimen of the paper's beads for the test suite: 5 x 5 beads
