@@ -42,14 +42,12 @@ void write_shear_plots(const std::string& dir, const std::string& title,
   tau.x_label = x_label;
   tau.y_label = "Shear stress τ (kPa)";
   tau.series.push_back(column("τ on the nominal area", rows, tau_kpa));
-  tau.markers.push_back({s.peak_displacement * 1e3, s.peak_ratio * 0, ""});
   // the peak of tau/sigma, on the tau curve
   for (const ShearRow& r : rows)
     if (std::fabs(r.displacement - s.peak_displacement) < 1e-12)
-      tau.markers.back() = {r.displacement * 1e3, r.tau * 1e-3,
-                            "peak φ = " + fixed(s.peak_angle, 1) + "°"};
+      tau.markers.push_back({r.displacement * 1e3, r.tau * 1e-3,
+                             "peak φ = " + fixed(s.peak_angle, 1) + "°"});
   tau.legend = false;
-  tau.y_min = 0;
   plot::write_chart_png(tau, (d / "shear_stress.png").string());
 
   plot::Chart rat;
@@ -71,7 +69,6 @@ void write_shear_plots(const std::string& dir, const std::string& title,
     residual.dashed = true;
     rat.series.push_back(residual);
   }
-  rat.y_min = 0;
   plot::write_chart_png(rat, (d / "shear_ratio.png").string());
 
   plot::Chart dil;
@@ -98,7 +95,6 @@ void write_size_plots(const std::string& stress_png, const std::string& dilation
       if (std::fabs(r.displacement - c.summary.peak_displacement) < 1e-12)
         tau.markers.push_back({r.displacement * 1e3, r.tau * 1e-3, ""});
   }
-  tau.y_min = 0;
   plot::write_chart_png(tau, stress_png);
   plot::write_chart_png(dil, dilation_png);
 }
