@@ -133,6 +133,11 @@ ShearRunResult run_shear(const Scene& scene_in, const ShearRunOptions& opt) {
   progress.show(*test, *sim, seconds_since(start), true);
   progress.end();
   save(*sim, *test, dir);
+  if (sim->state().late_builds > 0)
+    std::fprintf(stderr,
+                 "warning: %lld neighbour-list checks found a bead beyond skin/2 (contacts may "
+                 "have been missed); raise numerics.skin or lower the time step\n",
+                 static_cast<long long>(sim->state().late_builds));
   result.rows = test->rows();
   result.summary = test->summary();
   result.summary.wall_seconds = seconds_since(start);

@@ -130,7 +130,7 @@ struct Outputs {
 // an upper half with `gap` between them. The lower half (floor and four side
 // plates) moves in +x at the shear speed; the upper half and the platen are
 // held horizontally; the platen is servo-controlled to the normal stress.
-// build_shear_box() (shear_box.h) turns this into walls (and particles) and
+// build_shear_box() (shear_box.h) turns this into twelve walls (and particles) and
 // resolves the automatic values (0 below) into numbers.
 struct ShearSpecimen {
   enum class Method : std::uint8_t { Layers, Pour, Given };
@@ -160,13 +160,17 @@ struct ShearBox {
   double consolidate_time = 0.1;   // s, longest consolidation under the platen
   int rows = 400;                  // output rows over the shear displacement
   ShearSpecimen specimen;
-  int first_wall = 0;  // set by build_shear_box: its 10 walls (ShearBoxWall order)
+  int first_wall = 0;  // set by build_shear_box: its 12 walls (ShearBoxWall order)
 };
 
-// The apparatus walls, in this order from ShearBox::first_wall.
+// The apparatus walls, in this order from ShearBox::first_wall: the lower
+// half [kFloor, kLowerLast], the upper half and platen [kUpperX0, kPlaten].
+// The frames are the top face of the lower half's x0 wall and the bottom
+// face of the upper half's x1 wall (see shear_box.h).
 enum ShearBoxWall : int {
-  kFloor = 0, kLowerX0, kLowerX1, kLowerY0, kLowerY1,
-  kUpperX0, kUpperX1, kUpperY0, kUpperY1, kPlaten, kShearBoxWalls
+  kFloor = 0, kLowerX0, kLowerX1, kLowerY0, kLowerY1, kLowerFrame,
+  kUpperX0, kUpperX1, kUpperY0, kUpperY1, kUpperFrame, kPlaten, kShearBoxWalls,
+  kLowerLast = kLowerFrame
 };
 
 struct Scene {

@@ -241,11 +241,20 @@ void build(Scene& scene) {
   w.push_back(rectangle("lower_x1", m, {L, W / 2, low_h / 2}, {-1, 0, 0}, ey, W / 2, low_h / 2));
   w.push_back(rectangle("lower_y0", m, {L / 2, 0, low_h / 2}, ey, ex, L / 2, low_h / 2));
   w.push_back(rectangle("lower_y1", m, {L / 2, W, low_h / 2}, {0, -1, 0}, ex, L / 2, low_h / 2));
+  // Real halves are frames with thick walls: once the lower half has moved
+  // by dx, the top face of its x0 wall closes the opening x in [0, dx] under
+  // the upper half, and the bottom face of the upper half's x1 wall closes
+  // x in [L, L + dx] over the lower half. Plates as wide as the travel.
+  const double frame = b.shear_displacement + 2 * r_max;
+  w.push_back(rectangle("lower_frame", m, {-frame / 2, W / 2, zs - g / 2}, ez, ex, frame / 2,
+                        W / 2));
   const double zu = up_lo + up_h / 2;
   w.push_back(rectangle("upper_x0", m, {0, W / 2, zu}, ex, ey, W / 2, up_h / 2));
   w.push_back(rectangle("upper_x1", m, {L, W / 2, zu}, {-1, 0, 0}, ey, W / 2, up_h / 2));
   w.push_back(rectangle("upper_y0", m, {L / 2, 0, zu}, ey, ex, L / 2, up_h / 2));
   w.push_back(rectangle("upper_y1", m, {L / 2, W, zu}, {0, -1, 0}, ex, L / 2, up_h / 2));
+  w.push_back(rectangle("upper_frame", m, {L + frame / 2, W / 2, zs + g / 2}, {0, 0, -1}, ex,
+                        frame / 2, W / 2));
   Wall platen = rectangle("platen", m, {L / 2, W / 2, platen_z}, {0, 0, -1}, ex, L / 2, W / 2);
   // Switched on by the loading program (shear_test.h); its settings are set
   // there too, from the specimen's stiffness.

@@ -1,10 +1,14 @@
 // Shear box: the direct shear apparatus as walls, and its specimen.
 //
 // build_shear_box() is to a [shear_box] what a generator is to particles: it
-// expands the apparatus of Scene::shear_box (scene.h) into ten rectangle
-// walls appended to Scene::walls (floor, the lower half's four side plates,
-// the upper half's four, the platen) and, unless the specimen is given,
-// places the beads:
+// expands the apparatus of Scene::shear_box (scene.h) into twelve rectangle
+// walls appended to Scene::walls (floor, the lower half's four side plates
+// and frame, the upper half's four and frame, the platen) and, unless the
+// specimen is given, places the beads. The frames stand for the thickness of
+// a real box's walls: without them, shearing by dx opens a slot dx wide
+// under the upper half's x0 wall and over the lower half's x1 wall, and
+// beads smaller than dx pour out through it.
+// Specimens:
 //   Layers  the paper's preparation (its section 5 and Table 1): square
 //           layers of floor(length/d) x floor(width/d) touching beads, the
 //           row-to-wall clearance used either by shifting each layer as a

@@ -144,7 +144,7 @@ void ShearTest::enter(ShearPhase p) {
           box_.rows, std::llround(box_.shear_displacement / (speed_ * sim_.dt())));
       row_steps_ = std::max<std::int64_t>(1, shear_steps_ / box_.rows);
       shear_steps_ = row_steps_ * box_.rows;
-      for (int w = kFloor; w <= kLowerY1; ++w)
+      for (int w = kFloor; w <= kLowerLast; ++w)
         sim_.set_wall_velocity(box_.first_wall + w, {speed_, 0, 0});
       sim_.read_wall_means();
       sim_.read_servo(box_.first_wall + kPlaten);
@@ -152,7 +152,7 @@ void ShearTest::enter(ShearPhase p) {
       break;
     }
     case ShearPhase::Done:
-      for (int w = kFloor; w <= kLowerY1; ++w) sim_.set_wall_velocity(box_.first_wall + w, {0, 0, 0});
+      for (int w = kFloor; w <= kLowerLast; ++w) sim_.set_wall_velocity(box_.first_wall + w, {0, 0, 0});
       apply_servo(false);
       break;
   }
@@ -199,7 +199,7 @@ void ShearTest::measure_row() {
   const Vec3 floor = sim_.wall_point(f + kFloor);
   const Vec3 platen = sim_.wall_point(f + kPlaten);
   row.displacement = floor[0] - x0_;
-  for (int w = kFloor; w <= kLowerY1; ++w) row.shear_force -= means[f + w].force[0];
+  for (int w = kFloor; w <= kLowerLast; ++w) row.shear_force -= means[f + w].force[0];
   for (int w = kUpperX0; w <= kPlaten; ++w) row.shear_force_upper += means[f + w].force[0];
   row.normal_force = means[f + kPlaten].force[2];
   const double area = shear_area(box_);

@@ -226,7 +226,7 @@ Outcome run_test(const Scene& scene, bool love_weber = false) {
     if (!test.advance(1 << 20) || !love_weber) continue;
     const auto reactions = sim.wall_reactions();
     double t = 0;
-    for (int w = kFloor; w <= kLowerY1; ++w) t -= reactions[b.first_wall + w].force[0];
+    for (int w = kFloor; w <= kLowerLast; ++w) t -= reactions[b.first_wall + w].force[0];
     const double n = reactions[b.first_wall + kPlaten].force[2];
     const double area = shear_area(b);
     if (n <= 0 || t / n <= best) continue;
@@ -301,7 +301,7 @@ TEST(ShearTest, FrictionlessNestedLayerPeakIsOneOverSqrt2) {
   Scene s;
   s.name = "nested_layer";
   Material m = testing::glass(0.87, 0, 0);
-  m.young_modulus = 1e9;  // softer: larger steps; overlaps stay < 0.5% of d
+  m.young_modulus = 1e10;  // softer than glass: larger steps; overlaps < 0.1% of d
   s.materials.push_back(m);
   s.effects.gravity = {0, 0, 0};
   s.effects.tangential_friction = false;
@@ -319,10 +319,10 @@ TEST(ShearTest, FrictionlessNestedLayerPeakIsOneOverSqrt2) {
   b.split_height = 1.1 * d;  // lower beads wholly below, upper equators above
   b.gap = 0.1 * d;
   b.wall_material = 0;
-  b.normal_stress = 100e3;
+  b.normal_stress = 50e3;
   b.shear_speed = 0.01;
   b.shear_displacement = 0.75 * d;
-  b.rows = 150;
+  b.rows = 400;
   b.settle_time = 0;
   b.specimen.method = ShearSpecimen::Method::Given;
   s.shear_box = b;
