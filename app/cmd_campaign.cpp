@@ -237,6 +237,11 @@ int campaign(const CampaignOptions& opt) {
     write_size_plots((out / (stem + "_stress.png")).string(),
                      (out / (stem + "_dilation.png")).string(),
                      fmt("Glass beads d = %g mm", d), curves);
+    if (env.sigma.size() < 2) {  // a line needs two normal stresses
+      fits << "| " << fmt("%g", d) << " | – | – | – | " << env.sigma.size() << " |\n";
+      std::printf("Mohr-Coulomb d = %g mm: needs two or more normal stresses\n", d);
+      continue;
+    }
     const MohrCoulomb mc = fit_mohr_coulomb(env.sigma, env.tau);
     env.cohesion = mc.cohesion;
     env.tan_phi = mc.tan_phi;
