@@ -4,6 +4,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <cstdio>
 #include <filesystem>
 
@@ -50,9 +52,15 @@ class ProgressLine {
   Clock::time_point last_ = Clock::now() - std::chrono::hours(1);
 };
 
-void save(Simulation& sim, const ShearTest& test, const fs::path& dir) {
+// The checkpoint carries the test's state and the wall time spent so far
+// (summed over interrupted invocations).
+constexpr const char* kWallKey = "\nwall_seconds_so_far ";
+
+void save(Simulation& sim, const ShearTest& test, const fs::path& dir, double wall) {
   write_file_atomic((dir / "shear.csv").string(), shear_rows_csv(test.rows()));
-  save_checkpoint(sim, (dir / "checkpoint.bin").string(), test.save_state());
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%s%.3f\n", kWallKey, wall);
+  save_checkpoint(sim, (dir / "checkpoint.bin").string(), test.save_state() + buf);
 }
 
 }  // namespace
@@ -65,6 +73,7 @@ ShearRunResult run_shear(const Scene& scene_in, const ShearRunOptions& opt) {
   const fs::path dir = opt.out_dir;
   std::unique_ptr<Simulation> sim;
   std::unique_ptr<ShearTest> test;
+  double wall_before = 0;  // of earlier, interrupted invocations
   if (opt.resume) {
     const fs::path ck = dir / "checkpoint.bin";
     if (!fs::exists(ck))
@@ -74,6 +83,8 @@ ShearRunResult run_shear(const Scene& scene_in, const ShearRunOptions& opt) {
     if (!sim->scene().shear_box)
       throw SceneError("io", ck.string(), 0, "--resume", "the checkpoint is not a shear test");
     test = std::make_unique<ShearTest>(*sim);
+    if (const size_t at = state.rfind(kWallKey); at != std::string::npos)
+      wall_before = std::atof(state.c_str() + at + std::strlen(kWallKey));
     try {
       test->restore_state(state);
     } catch (const std::exception& e) {
@@ -126,13 +137,13 @@ ShearRunResult run_shear(const Scene& scene_in, const ShearRunOptions& opt) {
     }
     progress.show(*test, *sim, seconds_since(start), false);
     if (seconds_since(last_checkpoint) > opt.checkpoint_seconds) {
-      save(*sim, *test, dir);
+      save(*sim, *test, dir, wall_before + seconds_since(start));
       last_checkpoint = Clock::now();
     }
   }
   progress.show(*test, *sim, seconds_since(start), true);
   progress.end();
-  save(*sim, *test, dir);
+  save(*sim, *test, dir, wall_before + seconds_since(start));
   if (sim->state().late_builds > 0)
     std::fprintf(stderr,
                  "warning: %lld neighbour-list checks found a bead beyond skin/2 (contacts may "
@@ -140,7 +151,7 @@ ShearRunResult run_shear(const Scene& scene_in, const ShearRunOptions& opt) {
                  static_cast<long long>(sim->state().late_builds));
   result.rows = test->rows();
   result.summary = test->summary();
-  result.summary.wall_seconds = seconds_since(start);
+  result.summary.wall_seconds = wall_before + seconds_since(start);
   result.finished = test->done();
   result.steps = sim->steps();
   result.particles = sim->model().particles();

@@ -104,7 +104,10 @@ TEST(Cli, ShearTestStopAndResumeGivesTheSameRows) {
   const Result second = run("run --resume --out " + b.string() + " -q");
   ASSERT_EQ(second.status, 0) << second.out;
   EXPECT_EQ(read(a / "shear.csv"), read(b / "shear.csv"));
-  EXPECT_EQ(read(a / "summary.txt").substr(0, 600), read(b / "summary.txt").substr(0, 600));
+  // the summaries agree up to the wall time (the last line)
+  const std::string sa = read(a / "summary.txt"), sb = read(b / "summary.txt");
+  EXPECT_EQ(sa.substr(0, sa.find("wall_seconds")), sb.substr(0, sb.find("wall_seconds")));
+  EXPECT_NE(sa.find("wall_seconds"), std::string::npos);
   for (const char* f : {"summary.txt", "shear.csv", "shear_stress.png", "shear_ratio.png",
                         "dilation.png", "particles_final.vtk", "checkpoint.bin"})
     EXPECT_TRUE(fs::exists(b / f)) << f;
