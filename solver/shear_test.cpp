@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 
@@ -183,9 +182,6 @@ bool ShearTest::consolidated() {
                                                     std::sqrt(sigma_target_ / density_);
   const bool quiet = std::fabs(r.mean - target) < 0.01 * target && v_rms < 0.1 * v_shear;
   quiet_checks_ = quiet ? quiet_checks_ + 1 : 0;
-  if (std::getenv("SIMSOLS_DEBUG_SHEAR"))
-    std::fprintf(stderr, "consolidate t=%.4f mean=%.2f last=%.2f target=%.2f vrms=%.4g vshear=%.4g platen_z=%.5f\n",
-                 elapsed, r.mean, r.last, target, v_rms, v_shear, height);
   return quiet_checks_ >= 2;
 }
 
