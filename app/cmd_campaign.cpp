@@ -86,7 +86,8 @@ double estimated_cost(const Scene& s) {
   const double rho = s.materials[s.particles[0].material].density;
   const double height = 0.8 * d * std::max(1, b.specimen.layers);
   const double v = b.shear_speed > 0 ? b.shear_speed
-                                     : b.inertial_number * height / d * std::sqrt(b.normal_stress / rho);
+                                     : speed_for_inertial_number(b.inertial_number, height, d, rho,
+                                                                 b.normal_stress);
   return s.particles.size() * (0.06 + b.shear_displacement / v) / dt;
 }
 

@@ -27,6 +27,14 @@ plot::Series column(const std::string& label, const std::vector<ShearRow>& rows,
   return s;
 }
 
+// The row the summary's peak came from (displacements increase, so at most
+// one matches); null when the test has no rows.
+const ShearRow* peak_row(const std::vector<ShearRow>& rows, const ShearSummary& s) {
+  for (const ShearRow& r : rows)
+    if (std::fabs(r.displacement - s.peak_displacement) < 1e-12) return &r;
+  return nullptr;
+}
+
 double tau_kpa(const ShearRow& r) { return r.tau * 1e-3; }
 double ratio(const ShearRow& r) { return r.sigma > 0 ? r.tau / r.sigma : NAN; }
 double dilation_mm(const ShearRow& r) { return r.dilation * 1e3; }
@@ -43,10 +51,10 @@ void write_shear_plots(const std::string& dir, const std::string& title,
   tau.y_label = "Shear stress τ (kPa)";
   tau.series.push_back(column("τ on the nominal area", rows, tau_kpa));
   // the peak of tau/sigma, on the tau curve
-  for (const ShearRow& r : rows)
-    if (std::fabs(r.displacement - s.peak_displacement) < 1e-12)
-      tau.markers.push_back({r.displacement * 1e3, r.tau * 1e-3,
-                             "peak φ = " + fixed(s.peak_angle, 1) + "°"});
+  const ShearRow* peak = peak_row(rows, s);
+  if (peak)
+    tau.markers.push_back({peak->displacement * 1e3, peak->tau * 1e-3,
+                           "peak φ = " + fixed(s.peak_angle, 1) + "°"});
   tau.legend = false;
   plot::write_chart_png(tau, (d / "shear_stress.png").string());
 
@@ -55,11 +63,10 @@ void write_shear_plots(const std::string& dir, const std::string& title,
   rat.x_label = x_label;
   rat.y_label = "τ/σ";
   rat.series.push_back(column("τ/σ", rows, ratio));
-  for (const ShearRow& r : rows)
-    if (std::fabs(r.displacement - s.peak_displacement) < 1e-12)
-      rat.markers.push_back({r.displacement * 1e3, s.peak_ratio,
-                             "peak " + fixed(s.peak_ratio, 3) + " (φ = " + fixed(s.peak_angle, 1) +
-                                 "°)"});
+  if (peak)
+    rat.markers.push_back({peak->displacement * 1e3, s.peak_ratio,
+                           "peak " + fixed(s.peak_ratio, 3) + " (φ = " + fixed(s.peak_angle, 1) +
+                               "°)"});
   plot::Series residual;
   residual.label = "residual " + fixed(s.residual_ratio, 3) + " (φ = " + fixed(s.residual_angle, 1) + "°)";
   if (!rows.empty()) {
@@ -91,9 +98,8 @@ void write_size_plots(const std::string& stress_png, const std::string& dilation
   for (const ShearCurve& c : curves) {
     tau.series.push_back(column(c.label, c.rows, tau_kpa));
     dil.series.push_back(column(c.label, c.rows, dilation_mm));
-    for (const ShearRow& r : c.rows)
-      if (std::fabs(r.displacement - c.summary.peak_displacement) < 1e-12)
-        tau.markers.push_back({r.displacement * 1e3, r.tau * 1e-3, ""});
+    if (const ShearRow* peak = peak_row(c.rows, c.summary))
+      tau.markers.push_back({peak->displacement * 1e3, peak->tau * 1e-3, ""});
   }
   plot::write_chart_png(tau, stress_png);
   plot::write_chart_png(dil, dilation_png);

@@ -128,11 +128,7 @@ ShearRunResult run_shear(const Scene& scene_in, const ShearRunOptions& opt) {
                      "%s[%s] shearing at %.4g mm/s (inertial number %.2g at the start; target "
                      "< 1e-3), specimen height %.2f mm\n",
                      isatty(fileno(stderr)) ? "\r" : "", opt.label.c_str(),
-                     test->shear_speed() * 1e3,
-                     test->shear_speed() / test->summary().specimen_height *
-                         test->summary().bead_diameter *
-                         std::sqrt(scene.materials[scene.particles[0].material].density /
-                                   test->normal_stress()),
+                     test->shear_speed() * 1e3, test->inertial_number(),
                      test->summary().specimen_height * 1e3);
     }
     progress.show(*test, *sim, seconds_since(start), false);

@@ -8,19 +8,6 @@
 namespace simsols {
 namespace {
 
-// Reads n real values (float or double on the device) as doubles.
-std::vector<double> read_reals(const Model& m, const Buffer& b, size_t count) {
-  std::vector<double> out(count);
-  if (m.config().double_precision) {
-    m.device().read(b.get(), count * sizeof(double), out.data());
-  } else {
-    std::vector<float> f(count);
-    m.device().read(b.get(), count * sizeof(float), f.data());
-    for (size_t i = 0; i < count; ++i) out[i] = f[i];
-  }
-  return out;
-}
-
 std::vector<float> read_floats(const Model& m, const Buffer& b, size_t count) {
   std::vector<float> f(count);
   m.device().read(b.get(), count * sizeof(float), f.data());
@@ -29,6 +16,18 @@ std::vector<float> read_floats(const Model& m, const Buffer& b, size_t count) {
 
 
 }  // namespace
+
+std::vector<double> read_reals(const Model& m, const Buffer& b, size_t count, size_t first) {
+  std::vector<double> out(count);
+  if (m.config().double_precision) {
+    m.device().read(b.get(), count * sizeof(double), out.data(), first * sizeof(double));
+  } else {
+    std::vector<float> f(count);
+    m.device().read(b.get(), count * sizeof(float), f.data(), first * sizeof(float));
+    for (size_t i = 0; i < count; ++i) out[i] = f[i];
+  }
+  return out;
+}
 
 Observables observe(const Model& m, State& s) {
   constexpr int kObs = 12;  // NOBS in reduce.cl

@@ -34,6 +34,11 @@ struct WallReaction {
   int contacts = 0;
 };
 
+// Reads `count` reals (float or double on the device) from element `first`
+// of a buffer, as doubles.
+std::vector<double> read_reals(const Model& model, const Buffer& buffer, size_t count,
+                               size_t first = 0);
+
 Observables observe(const Model& model, State& state);
 std::vector<WallReaction> wall_reactions(const Model& model, State& state);
 // Current position of each wall's reference point (absolute, m).

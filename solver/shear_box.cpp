@@ -84,9 +84,9 @@ void check_box(const ShearBox& b, const Scene& scene) {
 void place_layers(Scene& scene, const ShearBox& b) {
   const ShearSpecimen& s = b.specimen;
   const double d = s.diameter, r = d / 2;
-  const double pitch = d * (1 + 1e-6);  // touching, never overlapping by round-off
-  const int nx = static_cast<int>(std::floor(b.length / pitch));
-  const int ny = static_cast<int>(std::floor(b.width / pitch));
+  const LayerGrid grid = layer_grid(b, d);
+  const double pitch = grid.pitch;
+  const int nx = grid.nx, ny = grid.ny;
   const double cx = b.length - nx * pitch, cy = b.width - ny * pitch;  // clearances
   Prng prng(static_cast<std::uint64_t>(s.seed));
   for (int k = 0; k < s.layers; ++k) {
@@ -192,9 +192,9 @@ void build(Scene& scene) {
       // nested into the one below as far as the row-wall clearance lets it
       // shift (at most half a diameter each way: d/sqrt(2) apart).
       const double d = s.diameter;
-      const int nx = static_cast<int>(std::floor(b.length / (d * (1 + 1e-6))));
-      const int ny = static_cast<int>(std::floor(b.width / (d * (1 + 1e-6))));
-      const double cx = std::min(0.5 * d, b.length - nx * d), cy = std::min(0.5 * d, b.width - ny * d);
+      const LayerGrid grid = layer_grid(b, d);
+      const double cx = std::min(0.5 * d, b.length - grid.nx * d);
+      const double cy = std::min(0.5 * d, b.width - grid.ny * d);
       const double spacing = s.clearance == ShearSpecimen::Clearance::Spread
                                  ? d
                                  : std::sqrt(d * d - cx * cx - cy * cy);
@@ -285,10 +285,26 @@ double shear_area_corrected(const ShearBox& box, double dx) {
   return std::max(0.0, box.length - std::fabs(dx)) * box.width;
 }
 
+LayerGrid layer_grid(const ShearBox& box, double d) {
+  LayerGrid g;
+  g.pitch = d * (1 + 1e-6);
+  g.nx = static_cast<int>(std::floor(box.length / g.pitch));
+  g.ny = static_cast<int>(std::floor(box.width / g.pitch));
+  return g;
+}
+
 int beads_per_layer(const ShearBox& box, double d) {
-  const double pitch = d * (1 + 1e-6);
-  return static_cast<int>(std::floor(box.length / pitch)) *
-         static_cast<int>(std::floor(box.width / pitch));
+  const LayerGrid g = layer_grid(box, d);
+  return g.nx * g.ny;
+}
+
+double inertial_number_of(double speed, double height, double d, double density, double sigma) {
+  return speed / height * d * std::sqrt(density / sigma);
+}
+
+double speed_for_inertial_number(double inertial_number, double height, double d, double density,
+                                 double sigma) {
+  return inertial_number * (height / d) * std::sqrt(sigma / density);
 }
 
 }  // namespace simsols

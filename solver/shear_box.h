@@ -51,7 +51,21 @@ std::optional<SceneIssue> build_shear_box(Scene& scene);
 double shear_area(const ShearBox& box);
 double shear_area_corrected(const ShearBox& box, double dx);
 
-// Beads per layer the box allows for diameter d: floor(length/d) x floor(width/d).
+// The square layer the box allows for diameter d: floor(length/d) x
+// floor(width/d) beads at a pitch of d (1 + 1e-6) (touching, never
+// overlapping by round-off).
+struct LayerGrid {
+  int nx = 0, ny = 0;
+  double pitch = 0;
+};
+LayerGrid layer_grid(const ShearBox& box, double d);
 int beads_per_layer(const ShearBox& box, double d);
+
+// The inertial number of a shear at speed v across a specimen of height H,
+// beads of diameter d and density rho under sigma: I = (v/H) d sqrt(rho/sigma),
+// and the speed that gives a target I: v = I (H/d) sqrt(sigma/rho).
+double inertial_number_of(double speed, double height, double d, double density, double sigma);
+double speed_for_inertial_number(double inertial_number, double height, double d, double density,
+                                 double sigma);
 
 }  // namespace simsols

@@ -84,6 +84,17 @@ ShearTest::ShearTest(Simulation& sim) : sim_(sim), box_(box_of(sim)) {
                                                 : kIntegralPeriods * period;
 }
 
+double ShearTest::shear_speed_for(double height) const {
+  return box_.shear_speed > 0 ? box_.shear_speed
+                              : speed_for_inertial_number(box_.inertial_number, height,
+                                                          diameter_, density_, sigma_target_);
+}
+
+double ShearTest::inertial_number() const {
+  return height0_ > 0 ? inertial_number_of(speed_, height0_, diameter_, density_, sigma_target_)
+                      : 0;
+}
+
 std::int64_t ShearTest::steps_for(double seconds) const {
   return std::max<std::int64_t>(1, std::llround(seconds / sim_.dt()));
 }
@@ -136,9 +147,7 @@ void ShearTest::enter(ShearPhase p) {
       x0_ = sim_.wall_point(box_.first_wall + kFloor)[0];
       z0_ = sim_.wall_point(box_.first_wall + kPlaten)[2];
       height0_ = z0_ - sim_.wall_point(box_.first_wall + kFloor)[2];
-      speed_ = box_.shear_speed > 0 ? box_.shear_speed
-                                    : box_.inertial_number * (height0_ / diameter_) *
-                                          std::sqrt(sigma_target_ / density_);
+      speed_ = shear_speed_for(height0_);
       shear_steps_ = std::max<std::int64_t>(
           box_.rows, std::llround(box_.shear_displacement / (speed_ * sim_.dt())));
       row_steps_ = std::max<std::int64_t>(1, shear_steps_ / box_.rows);
@@ -177,9 +186,7 @@ bool ShearTest::consolidated() {
   const Observables o = sim_.observe();
   const double v_rms = std::sqrt(2 * o.kinetic_translational / (o.particles * bead_mass_));
   const double height = sim_.wall_point(box_.first_wall + kPlaten)[2];
-  const double v_shear = box_.shear_speed > 0 ? box_.shear_speed
-                                              : box_.inertial_number * (height / diameter_) *
-                                                    std::sqrt(sigma_target_ / density_);
+  const double v_shear = shear_speed_for(height);
   const bool quiet = std::fabs(r.mean - target) < 0.01 * target && v_rms < 0.1 * v_shear;
   quiet_checks_ = quiet ? quiet_checks_ + 1 : 0;
   return quiet_checks_ >= 2;
@@ -209,7 +216,7 @@ void ShearTest::measure_row() {
   row.kinetic_energy = o.kinetic();
   const double height = platen[2] - floor[2];
   row.inertial_number =
-      row.sigma > 0 ? speed_ / height * diameter_ * std::sqrt(density_ / row.sigma) : 0;
+      row.sigma > 0 ? inertial_number_of(speed_, height, diameter_, density_, row.sigma) : 0;
   // Escaped beads: centre outside the lower frame (below the split), the
   // upper frame (above it) or both (in the gap band), or above the platen.
   const ParticleSnapshot snap = sim_.snapshot();
@@ -264,8 +271,7 @@ double ShearTest::progress() const {
   const double settle = box_.settle_time / dt, consolidate = 0.3 * box_.consolidate_time / dt;
   const double shear = shear_steps_ > 0 ? double(shear_steps_)
                                         : box_.shear_displacement /
-                                              (box_.inertial_number * 4 *
-                                               std::sqrt(sigma_target_ / density_) * dt);
+                                              (shear_speed_for(4 * diameter_) * dt);
   const double total = 0.3 * settle + consolidate + shear;
   const double elapsed = double(sim_.steps() - phase_start_);
   switch (phase_) {

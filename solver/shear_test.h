@@ -85,6 +85,8 @@ class ShearTest {
   ShearSummary summary() const;
 
   double shear_speed() const { return speed_; }
+  // At the start of shearing, with the target stress (0 before).
+  double inertial_number() const;
   double servo_gain() const { return gain_; }
   double servo_integral_time() const { return integral_time_; }
   // Rough fraction of the whole test done (phases weighted by their caps).
@@ -106,6 +108,7 @@ class ShearTest {
   bool consolidated();
   void measure_row();
   std::int64_t steps_for(double seconds) const;
+  double shear_speed_for(double height) const;  // shear_speed, or from inertial_number
 
   Simulation& sim_;
   const ShearBox& box_;

@@ -34,15 +34,8 @@ void write_real4(const Model& m, const Buffer& buf, size_t index, double a, doub
 }
 
 std::array<double, 4> read_real4(const Model& m, const Buffer& buf, size_t index) {
-  std::array<double, 4> out{};
-  if (m.config().double_precision) {
-    m.device().read(buf.get(), sizeof out, out.data(), index * sizeof out);
-  } else {
-    float f[4];
-    m.device().read(buf.get(), sizeof f, f, index * sizeof f);
-    for (int k = 0; k < 4; ++k) out[k] = f[k];
-  }
-  return out;
+  const std::vector<double> v = read_reals(m, buf, 4, 4 * index);
+  return {v[0], v[1], v[2], v[3]};
 }
 
 }  // namespace
@@ -101,8 +94,10 @@ void Simulation::set_wall_point(int wall, const Vec3& p) {
 std::vector<Simulation::WallMean> Simulation::read_wall_means() {
   std::vector<WallMean> out;
   if (!model_->config().servo) return out;
-  for (int w = 0; w < model_->walls(); ++w) {
-    const auto r = read_real4(*model_, state_->wall_mean, w);
+  const int nw = model_->walls();
+  const std::vector<double> sums = read_reals(*model_, state_->wall_mean, size_t(nw) * 4);
+  for (int w = 0; w < nw; ++w) {
+    const double* r = &sums[4 * size_t(w)];
     WallMean m;
     m.steps = static_cast<std::int64_t>(r[3]);
     for (int k = 0; k < 3; ++k) m.force[k] = m.steps > 0 ? r[k] / r[3] : 0;
