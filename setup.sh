@@ -5,7 +5,9 @@
 set -euo pipefail
 
 # Debian 12 packages the build, the tests and the headless run need.
-# Later issues (the renderer) add their GL/windowing packages here.
+# The renderer: GL headers (libgl-dev), EGL (libegl-dev) with Mesa's
+# surfaceless EGL and llvmpipe (libegl-mesa0, libgl1-mesa-dri), OSMesa as the
+# fallback (libosmesa6, loaded at run time) and GLM.
 PACKAGES=(
   build-essential
   cmake
@@ -17,6 +19,12 @@ PACKAGES=(
   libcli11-dev
   libgtest-dev
   zlib1g-dev
+  libgl-dev
+  libegl-dev
+  libegl-mesa0
+  libgl1-mesa-dri
+  libosmesa6
+  libglm-dev
   clinfo
 )
 

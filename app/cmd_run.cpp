@@ -15,6 +15,7 @@
 #include "commands.h"
 #include "contact_model.h"
 #include "errors.h"
+#include "frames.h"
 #include "output.h"
 #include "progress.h"
 #include "scene_toml.h"
@@ -32,6 +33,43 @@ struct RunOptions {
   double duration = 0;
   long long stop_after = 0;  // stop (with a checkpoint) after this many steps of this invocation
   bool quiet = false;
+  std::string frames_dir;     // --frames: PNG frames every `frames_every` steps
+  long long frames_every = 0;
+  FrameFlags frame;
+};
+
+// `run --frames DIR --every N`: one PNG every N steps, named by step. For a
+// shear test the displacement field counts from the start of shearing.
+class FrameSeries {
+ public:
+  FrameSeries(const RunOptions& opt)
+      : dir_(opt.frames_dir), every_(opt.frames_every),
+        exporter_(FrameOptions::from_flags(opt.frame)) {}
+  void after_steps(Simulation& sim, bool shearing) {
+    if (!attached_) {
+      exporter_.attach(sim);
+      std::filesystem::create_directories(dir_);
+      std::fprintf(stderr, "[frames] every %lld steps into %s; %s\n", every_, dir_.c_str(),
+                   exporter_.describe().c_str());
+      attached_ = true;
+      next_ = sim.steps();  // a first frame now
+    }
+    if (shearing && !shearing_) exporter_.set_reference();
+    shearing_ = shearing;
+    if (sim.steps() < next_) return;
+    char name[64];
+    std::snprintf(name, sizeof name, "frame_%09lld.png", static_cast<long long>(sim.steps()));
+    exporter_.write((std::filesystem::path(dir_) / name).string());
+    next_ = (sim.steps() / every_ + 1) * every_;
+  }
+  long long every() const { return every_; }
+
+ private:
+  std::string dir_;
+  long long every_;
+  FrameExporter exporter_;
+  bool attached_ = false, shearing_ = false;
+  long long next_ = 0;
 };
 
 std::int64_t every(double interval, double dt, std::int64_t fallback) {
@@ -71,12 +109,26 @@ void print_summary(const ShearRunResult& r, const std::string& dir) {
 
 int run(const RunOptions& opt) {
   const std::filesystem::path dir = opt.out_dir;
+  if (!opt.frames_dir.empty() && opt.frames_every <= 0)
+    throw SceneError("missing_field", "command line", 0, "--every",
+                     "--frames needs --every N (steps between frames, > 0)");
+  if (opt.frames_dir.empty() && opt.frames_every > 0)
+    throw SceneError("missing_field", "command line", 0, "--frames",
+                     "--every needs --frames DIR (the folder for the PNG frames)");
+  // Before any simulation: the exporter picks the OpenCL device (sharing
+  // its GL context where possible).
+  std::unique_ptr<FrameSeries> frames;
+  if (!opt.frames_dir.empty()) frames = std::make_unique<FrameSeries>(opt);
   std::unique_ptr<Simulation> sim;
   ShearRunOptions shear;
   shear.out_dir = opt.out_dir;
   shear.quiet = opt.quiet;
   shear.stop_after = opt.stop_after;
   shear.label = "shear";
+  if (frames) {
+    shear.chunk_steps = std::min(2000LL, frames->every());
+    shear.after_chunk = [&](Simulation& s, bool shearing) { frames->after_steps(s, shearing); };
+  }
   if (opt.resume && std::filesystem::exists(dir / "shear.csv")) {
     shear.resume = true;
     print_summary(run_shear(Scene{}, shear), opt.out_dir);
@@ -149,6 +201,7 @@ int run(const RunOptions& opt) {
     record();
     if (dump_every > 0) dump(*sim, dir);
   }
+  if (frames) frames->after_steps(*sim, false);
 
   Progress progress("run", total, dt, sim->model().particles(), opt.quiet);
   const std::int64_t start = sim->steps();
@@ -159,6 +212,7 @@ int run(const RunOptions& opt) {
     if (s % series_every == 0 || s == total) record();
     if (dump_every > 0 && s % dump_every == 0) dump(*sim, dir);
     if (ckpt_every > 0 && s % ckpt_every == 0) save_checkpoint(*sim, (dir / "checkpoint.bin").string());
+    if (frames) frames->after_steps(*sim, false);
     progress.update(s);
     if (opt.stop_after > 0 && s - start >= opt.stop_after && s < total) {
       stopped = true;
@@ -195,6 +249,10 @@ CommandRunner add_run_command(CLI::App& app) {
                   "Stop after this many steps (a checkpoint is written; resume with --resume)")
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--quiet,-q", opt->quiet, "No progress line");
+  cmd->add_option("--frames", opt->frames_dir, "Write PNG frames (offscreen) into this folder");
+  cmd->add_option("--every", opt->frames_every, "Steps between frames (with --frames)")
+      ->check(CLI::PositiveNumber);
+  add_frame_flags(cmd, opt->frame);
   return [opt] { return run(*opt); };
 }
 

@@ -13,5 +13,6 @@ using CommandRunner = std::function<int()>;
 CommandRunner add_run_command(CLI::App& app);
 CommandRunner add_bench_command(CLI::App& app);
 CommandRunner add_campaign_command(CLI::App& app);
+CommandRunner add_snapshot_command(CLI::App& app);
 
 }  // namespace simsols

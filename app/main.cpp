@@ -4,6 +4,7 @@
 //   simsols run --resume DIR             continue a run from its last checkpoint
 //   simsols campaign --out DIR           the paper's 20 direct shear tests (resumable)
 //   simsols bench                        particle-steps per second and memory
+//   simsols snapshot SCENE|CKPT --out F  one offscreen frame (PNG)
 //
 // Exit status: 0 success, 2 bad input, 3 device or I/O failure.
 #include <cstdio>
@@ -24,6 +25,7 @@ int main(int argc, char** argv) {
   add(simsols::add_run_command);
   add(simsols::add_bench_command);
   add(simsols::add_campaign_command);
+  add(simsols::add_snapshot_command);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -120,7 +120,8 @@ ShearRunResult run_shear(const Scene& scene_in, const ShearRunOptions& opt) {
     const long long budget =
         opt.stop_after > 0 ? opt.stop_after - (sim->steps() - first) : 1LL << 40;
     if (budget <= 0) break;
-    test->advance(std::min<long long>(budget, 2000));
+    test->advance(std::min<long long>(budget, std::max(1LL, opt.chunk_steps)));
+    if (opt.after_chunk) opt.after_chunk(*sim, test->phase() == ShearPhase::Shear);
     if (!announced && test->phase() == ShearPhase::Shear) {
       announced = true;
       if (!opt.quiet)

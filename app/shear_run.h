@@ -11,6 +11,7 @@
 // summary.txt is written last: its presence means the test finished.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -26,6 +27,10 @@ struct ShearRunOptions {
   bool quiet = false;
   long long stop_after = 0;    // stop (checkpointed) after this many steps; 0 = no limit
   double checkpoint_seconds = 60;  // wall time between checkpoints
+  // Called after every chunk of at most `chunk_steps` steps (frame export):
+  // the simulation and whether the shear phase has begun.
+  std::function<void(Simulation&, bool shearing)> after_chunk;
+  long long chunk_steps = 2000;
 };
 
 struct ShearRunResult {

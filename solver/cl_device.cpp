@@ -38,7 +38,9 @@ std::string lower(std::string s) {
 
 }  // namespace
 
-std::shared_ptr<Device> Device::open() {
+std::shared_ptr<Device> Device::open() { return open(std::vector<cl_context_properties>{}); }
+
+std::shared_ptr<Device> Device::open(const std::vector<cl_context_properties>& gl_properties) {
   cl_uint np = 0;
   if (clGetPlatformIDs(0, nullptr, &np) != CL_SUCCESS || np == 0)
     throw DeviceError(
@@ -86,8 +88,32 @@ std::shared_ptr<Device> Device::open() {
   dev->version_ = device_string(pick->d, CL_DEVICE_VERSION);
   dev->extensions_ = device_string(pick->d, CL_DEVICE_EXTENSIONS);
   cl_int err = CL_SUCCESS;
-  dev->context_ = ClContext(clCreateContext(nullptr, 1, &dev->device_, nullptr, nullptr, &err));
-  check(err, "clCreateContext");
+  if (gl_properties.empty()) {
+    dev->sharing_note_ = "no OpenGL context to share with";
+  } else if (!dev->has_extension("cl_khr_gl_sharing")) {
+    // Checked before any sharing call: on devices without the extension
+    // (PoCL) clCreateFromGLBuffer ends the process.
+    dev->sharing_note_ = "the OpenCL device has no cl_khr_gl_sharing";
+  } else {
+    std::vector<cl_context_properties> props = gl_properties;
+    props.push_back(CL_CONTEXT_PLATFORM);
+    props.push_back(reinterpret_cast<cl_context_properties>(pick->p));
+    props.push_back(0);
+    cl_context shared = clCreateContext(props.data(), 1, &dev->device_, nullptr, nullptr, &err);
+    if (err == CL_SUCCESS && shared) {
+      dev->context_ = ClContext(shared);
+      dev->gl_sharing_ = true;
+      dev->sharing_note_ = "cl_khr_gl_sharing";
+    } else {
+      // e.g. the GL context runs on another GPU than the OpenCL device
+      dev->sharing_note_ = "clCreateContext with the OpenGL context failed (error " +
+                           std::to_string(err) + ")";
+    }
+  }
+  if (!dev->context_) {
+    dev->context_ = ClContext(clCreateContext(nullptr, 1, &dev->device_, nullptr, nullptr, &err));
+    check(err, "clCreateContext");
+  }
   dev->queue_ = ClQueue(clCreateCommandQueue(dev->context_.get(), dev->device_, 0, &err));
   check(err, "clCreateCommandQueue");
   return dev;

@@ -12,6 +12,7 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "errors.h"
 
@@ -51,6 +52,15 @@ class Device {
  public:
   // Opens the device selected as described above. Throws DeviceError.
   static std::shared_ptr<Device> open();
+  // The same device, its context shared with an OpenGL context when the
+  // device offers cl_khr_gl_sharing: `gl_properties` are the property pairs
+  // naming the GL context (CL_GL_CONTEXT_KHR, CL_EGL_DISPLAY_KHR or
+  // CL_GLX_DISPLAY_KHR, without the terminating 0; the platform is added).
+  // When sharing is impossible the context is a plain one: gl_sharing()
+  // says which, sharing_note() why.
+  static std::shared_ptr<Device> open(const std::vector<cl_context_properties>& gl_properties);
+  bool gl_sharing() const { return gl_sharing_; }
+  const std::string& sharing_note() const { return sharing_note_; }
 
   cl_context context() const { return context_.get(); }
   cl_command_queue queue() const { return queue_.get(); }
@@ -76,6 +86,8 @@ class Device {
   ClQueue queue_;
   std::string name_, platform_name_, version_, extensions_;
   bool gpu_ = false;
+  bool gl_sharing_ = false;
+  std::string sharing_note_;
 };
 
 }  // namespace simsols

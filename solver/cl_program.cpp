@@ -62,9 +62,11 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
   return c;
 }
 
-std::string program_source() {
+std::string program_source() { return program_source(kernel_files()); }
+
+std::string program_source(std::span<const KernelFile> files) {
   std::string text;
-  for (const KernelFile& f : kernel_files()) {
+  for (const KernelFile& f : files) {
     text += "#line 1 \"";
     text += f.name;
     text += "\"\n";
@@ -74,8 +76,18 @@ std::string program_source() {
   return text;
 }
 
-Program::Program(Device& device, const KernelConfig& config) : config_(config) {
-  const std::string text = program_source();
+const KernelFile& kernel_file(std::string_view name) {
+  for (const KernelFile& f : kernel_files())
+    if (name == f.name) return f;
+  throw DeviceError("no embedded kernel source named '" + std::string(name) + "'");
+}
+
+Program::Program(Device& device, const KernelConfig& config)
+    : Program(device, config, kernel_files()) {}
+
+Program::Program(Device& device, const KernelConfig& config, std::span<const KernelFile> files)
+    : config_(config) {
+  const std::string text = program_source(files);
   const char* src = text.c_str();
   const size_t len = text.size();
   cl_int err = CL_SUCCESS;

@@ -7,9 +7,12 @@
 // the full build log; nothing fails silently.
 #pragma once
 
+#include <span>
 #include <string>
+#include <string_view>
 
 #include "cl_device.h"
+#include "kernel_source.h"
 #include "scene.h"
 
 namespace simsols {
@@ -34,8 +37,12 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device);
 
 class Program {
  public:
-  // Builds the program; throws DeviceError with the build log on failure.
+  // Builds the solver program (kernel_files()); throws DeviceError with the
+  // build log on failure.
   Program(Device& device, const KernelConfig& config);
+  // Builds the given embedded files, in order, with the same options (e.g.
+  // common.cl + render_pack.cl for the renderer's packing kernels).
+  Program(Device& device, const KernelConfig& config, std::span<const KernelFile> files);
 
   ClKernel kernel(const char* name) const;  // throws DeviceError if absent
   const KernelConfig& config() const { return config_; }
@@ -50,5 +57,10 @@ class Program {
 // The full program text for a configuration (prelude of #defines is passed
 // as build options, not text). Exposed for tools and tests.
 std::string program_source();
+std::string program_source(std::span<const KernelFile> files);
+
+// The embedded solver source named `name` (e.g. "common.cl"); throws
+// DeviceError if there is none.
+const KernelFile& kernel_file(std::string_view name);
 
 }  // namespace simsols

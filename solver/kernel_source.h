@@ -4,6 +4,9 @@
 // lists them in program order and embed_kernels.cmake turns them into string
 // constants; cl_program.cpp concatenates them with a -D prelude derived from
 // the Scene (precision, effects) and builds one program per configuration.
+// The renderer's packing kernels (kernels/render_pack.cl) are embedded as a
+// separate set and built, with common.cl in front, only when something draws
+// (view_pack.h).
 #pragma once
 
 #include <span>
@@ -18,5 +21,7 @@ struct KernelFile {
 
 // In program order: definitions before their use.
 std::span<const KernelFile> kernel_files();
+// The renderer's packing kernels (they need common.cl from kernel_files()).
+std::span<const KernelFile> render_kernel_files();
 
 }  // namespace simsols

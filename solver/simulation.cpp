@@ -108,12 +108,20 @@ std::vector<Simulation::WallMean> Simulation::read_wall_means() {
   return out;
 }
 
+namespace {
+std::mutex default_mutex;
+std::shared_ptr<Device> default_dev;
+}  // namespace
+
 std::shared_ptr<Device> default_device() {
-  static std::mutex mutex;
-  static std::shared_ptr<Device> device;
-  std::lock_guard lock(mutex);
-  if (!device) device = Device::open();
-  return device;
+  std::lock_guard lock(default_mutex);
+  if (!default_dev) default_dev = Device::open();
+  return default_dev;
+}
+
+void set_default_device(std::shared_ptr<Device> device) {
+  std::lock_guard lock(default_mutex);
+  default_dev = std::move(device);
 }
 
 }  // namespace simsols

@@ -63,5 +63,8 @@ class Simulation {
 
 // The process-wide OpenCL device (opened on first use).
 std::shared_ptr<Device> default_device();
+// Makes `device` the process-wide default from now on (e.g. one whose
+// context shares an OpenGL context, opened by the frame exporter).
+void set_default_device(std::shared_ptr<Device> device);
 
 }  // namespace simsols

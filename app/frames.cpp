@@ -1,0 +1,162 @@
+#include "frames.h"
+
+#include <CL/cl_gl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "colormap.h"
+#include "errors.h"
+#include "png.h"
+#include "sim_view.h"
+#include "simulation.h"
+
+namespace simsols {
+
+namespace {
+
+SceneError flag_error(const std::string& flag, const std::string& what) {
+  return SceneError("bad_flag", "command line", 0, flag, what);
+}
+
+}  // namespace
+
+void add_frame_flags(CLI::App* cmd, FrameFlags& f) {
+  cmd->add_option("--view", f.view, "Camera preset: front, side, top, three-quarter")
+      ->capture_default_str();
+  cmd->add_option("--size", f.size, "Frame size WxH in pixels (each side 1..16384)")
+      ->capture_default_str();
+  cmd->add_option("--color-by", f.color_by,
+                  "Bead colour: size, layer, speed, displacement, contacts, rotation")
+      ->capture_default_str();
+  cmd->add_option("--mode", f.mode, "opaque, transparent (see inside) or chains (force chains)")
+      ->capture_default_str();
+  cmd->add_flag("--chains", f.chains, "Draw the force chains over any mode");
+  cmd->add_option("--threshold", f.threshold,
+                  "Force chains: hide contacts with F/F_mean below this (>= 0)")
+      ->capture_default_str();
+  cmd->add_option("--range", f.range, "Colour range MIN:MAX (default: the field's range)");
+  cmd->add_flag("--no-legend", f.no_legend, "No colour legend");
+  cmd->add_flag("--no-walls", f.no_walls, "Do not draw the walls");
+  cmd->add_option("--gl", f.gl, "Headless OpenGL: auto, egl, osmesa")->capture_default_str();
+}
+
+std::pair<int, int> parse_frame_size(const std::string& text, const std::string& flag) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X'))
+    throw flag_error(flag, "'" + text + "' is not WIDTHxHEIGHT (e.g. 1920x1080)");
+  if (w < 1 || h < 1 || w > render::Renderer::kMaxSize || h > render::Renderer::kMaxSize)
+    throw flag_error(flag, "'" + text + "': each side must be in [1, " +
+                               std::to_string(render::Renderer::kMaxSize) + "] pixels");
+  return {w, h};
+}
+
+FrameOptions FrameOptions::from_flags(const FrameFlags& f) {
+  FrameOptions o;
+  if (auto v = render::parse_view_preset(f.view)) o.view = *v;
+  else throw flag_error("--view", "'" + f.view + "' is not one of: front, side, top, three-quarter");
+  std::tie(o.width, o.height) = parse_frame_size(f.size, "--size");
+  if (auto c = parse_color_field(f.color_by)) o.field = *c;
+  else
+    throw flag_error("--color-by", "'" + f.color_by +
+                                       "' is not one of: size, layer, speed, displacement, "
+                                       "contacts, rotation");
+  if (auto m = render::parse_view_mode(f.mode)) o.settings.mode = *m;
+  else throw flag_error("--mode", "'" + f.mode + "' is not one of: opaque, transparent, chains");
+  o.settings.show_chains = f.chains;
+  if (!(f.threshold >= 0) || !std::isfinite(f.threshold))
+    throw flag_error("--threshold", "must be a finite ratio >= 0 (F/F_mean)");
+  o.settings.chain_threshold = float(f.threshold);
+  if (!f.range.empty()) {
+    double lo = 0, hi = 0;
+    char c = 0, extra = 0;
+    if (std::sscanf(f.range.c_str(), "%lf%c%lf%c", &lo, &c, &hi, &extra) != 3 || c != ':' ||
+        !std::isfinite(lo) || !std::isfinite(hi) || !(hi > lo))
+      throw flag_error("--range", "'" + f.range + "' is not MIN:MAX with MIN < MAX");
+    o.range = {lo, hi};
+  }
+  o.legend = !f.no_legend;
+  o.settings.show_walls = !f.no_walls;
+  if (auto b = render::parse_gl_backend(f.gl)) o.backend = *b;
+  else throw flag_error("--gl", "'" + f.gl + "' is not one of: auto, egl, osmesa");
+  o.settings.bead_map = render::colormap_for(o.field);
+  return o;
+}
+
+struct FrameExporter::Attached {
+  Simulation* sim = nullptr;
+  std::unique_ptr<render::SimulationView> view;
+};
+
+FrameExporter::FrameExporter(const FrameOptions& options) : opt_(options) {
+  context_ = render::create_headless_context(opt_.backend);
+  renderer_ = std::make_unique<render::Renderer>(context_->gl());
+  renderer_->resize(opt_.width, opt_.height);
+  // The OpenCL device shares this GL context where it can.
+  const render::GlShareHandles h = context_->share_handles();
+  std::vector<cl_context_properties> props;
+  if (h.gl_context && h.egl_display)
+    props = {CL_GL_CONTEXT_KHR, cl_context_properties(h.gl_context), CL_EGL_DISPLAY_KHR,
+             cl_context_properties(h.egl_display)};
+  set_default_device(Device::open(props));
+}
+
+FrameExporter::~FrameExporter() = default;
+
+void FrameExporter::attach(Simulation& sim) {
+  sim_ = std::make_unique<Attached>();
+  sim_->sim = &sim;
+  sim_->view = std::make_unique<render::SimulationView>(context_->gl(), sim);
+  camera_.set_preset(opt_.view);
+  camera_.fit(sim_->view->lo(), sim_->view->hi(), double(opt_.width) / opt_.height);
+}
+
+void FrameExporter::set_reference() {
+  if (sim_) sim_->view->packer().set_reference();
+}
+
+std::string FrameExporter::describe() const {
+  std::string s = context_->description();
+  if (sim_) s += "; particle buffers: " + sim_->view->bridge().path();
+  return s;
+}
+
+plot::Image FrameExporter::render() {
+  if (!sim_) throw render::RenderError("FrameExporter::render before attach()");
+  const bool chains = opt_.settings.chains_visible();
+  const auto update = sim_->view->update(opt_.field, chains);
+  render::ViewSettings s = opt_.settings;
+  s.value_min = float(opt_.range ? opt_.range->first : update.range.min);
+  s.value_max = float(opt_.range ? opt_.range->second : update.range.max);
+  renderer_->draw(camera_, sim_->view->geometry(), s);
+  plot::Image img = renderer_->read_pixels();
+  if (opt_.legend) {
+    plot::Legend legend;
+    legend.title = render::legend_title(opt_.field);
+    legend.map = s.bead_map;
+    legend.min = s.value_min;
+    legend.max = s.value_max;
+    legend.dark = true;
+    if (chains)
+      for (double ratio : {1.0, 2.0, 4.0})
+        if (ratio >= s.chain_threshold)
+          legend.width_key.push_back(
+              {ratio, std::clamp(s.chain_width_px * ratio, 1.0, double(s.chain_max_width_px))});
+    if (!legend.width_key.empty()) legend.width_title = "normal force / mean";
+    plot::draw_legend(img, legend);
+  }
+  return img;
+}
+
+void FrameExporter::write(const std::string& path) {
+  const plot::Image img = render();
+  try {
+    plot::write_png(img, path);
+  } catch (const std::exception& e) {
+    throw render::RenderError(std::string("cannot write the frame: ") + e.what());
+  }
+}
+
+}  // namespace simsols

@@ -1,0 +1,88 @@
+// Frames: offscreen pictures of a simulation, for `simsols snapshot` and
+// `simsols run --frames DIR --every N`.
+//
+// FrameOptions are the flags both commands share (view, size, colouring,
+// mode, force chains, legend, GL backend); from_flags() checks them and
+// reports a bad value with the flag's name and what is allowed. A
+// FrameExporter owns a headless GL context (EGL surfaceless, else OSMesa)
+// and the renderer; it must exist before the simulation is created, so the
+// OpenCL device can share the GL context where it offers cl_khr_gl_sharing
+// (it installs that device as the process default). Frames are written
+// atomically (name.tmp, then rename): a failed or interrupted export leaves
+// no half-written PNG.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "camera.h"
+#include "gl_context.h"
+#include "image.h"
+#include "renderer.h"
+#include "view_pack.h"
+
+namespace simsols {
+
+class Simulation;
+
+struct FrameFlags {
+  std::string view = "three-quarter";
+  std::string size = "1280x720";
+  std::string color_by = "layer";
+  std::string mode = "opaque";
+  bool chains = false;
+  double threshold = 1.0;
+  std::string range;  // "MIN:MAX", empty = the field's current range
+  bool no_legend = false;
+  bool no_walls = false;
+  std::string gl = "auto";
+};
+
+// Registers the flags on a subcommand.
+void add_frame_flags(CLI::App* cmd, FrameFlags& flags);
+
+struct FrameOptions {
+  render::ViewPreset view = render::ViewPreset::ThreeQuarter;
+  int width = 1280, height = 720;
+  ColorField field = ColorField::Layer;
+  render::ViewSettings settings;
+  std::optional<std::pair<double, double>> range;
+  bool legend = true;
+  render::GlBackend backend = render::GlBackend::Auto;
+
+  // Throws SceneError naming the flag and the allowed values.
+  static FrameOptions from_flags(const FrameFlags& flags);
+};
+
+// Parses "WxH" (each side 1..16384); throws SceneError naming `flag`.
+std::pair<int, int> parse_frame_size(const std::string& text, const std::string& flag);
+
+class FrameExporter {
+ public:
+  explicit FrameExporter(const FrameOptions& options);
+  ~FrameExporter();
+
+  // Starts drawing `sim` (fits the camera to the specimen and its box).
+  void attach(Simulation& sim);
+  // The reference for the displacement field: the current positions.
+  void set_reference();
+  render::Camera& camera() { return camera_; }
+
+  plot::Image render();
+  // Renders and writes a PNG atomically. Throws RenderError naming the path.
+  void write(const std::string& path);
+  // "EGL surfaceless: llvmpipe ...; buffers: host copy (...)"
+  std::string describe() const;
+
+ private:
+  FrameOptions opt_;
+  std::unique_ptr<render::GlContext> context_;
+  std::unique_ptr<render::Renderer> renderer_;
+  struct Attached;
+  std::unique_ptr<Attached> sim_;
+  render::Camera camera_;
+};
+
+}  // namespace simsols

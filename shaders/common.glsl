@@ -1,0 +1,54 @@
+// common.glsl — prepended to every shader after the #version line and the
+// variant #defines (see render/shader.cpp). Colour mapping shared by beads
+// and chains, so the legend (render/colormap.h) and the image agree.
+
+// Colour map: a 1 x N RGBA8 texture (the table from colormap_table()).
+// Continuous maps: t = (value - min) / (max - min), clamped, nearest entry.
+// Categorical maps: entry round(value) mod N.
+uniform sampler2D u_colormap;
+uniform int u_colormap_size;
+uniform int u_categorical;
+uniform vec2 u_range;
+
+vec3 map_value(float value) {
+  int idx;
+  if (u_categorical != 0) {
+    int k = int(floor(value + 0.5));
+    idx = ((k % u_colormap_size) + u_colormap_size) % u_colormap_size;
+  } else {
+    float span = u_range.y - u_range.x;
+    float t = span > 0.0 ? clamp((value - u_range.x) / span, 0.0, 1.0) : 0.5;
+    idx = int(floor(t * float(u_colormap_size - 1) + 0.5));
+  }
+  return texelFetch(u_colormap, ivec2(idx, 0), 0).rgb;
+}
+
+// Weighted blended order-independent transparency (McGuire & Bavoil, JCGT
+// 2013), with the depth weight on the scene's own depth range so it does not
+// depend on units: d = (view depth - near) / (far - near) in [0, 1],
+//   w = alpha * max(0.01, 100 * (1 - d)^3).
+uniform vec2 u_depth_range;  // near, far of the scene (view depth, m)
+
+float oit_weight(float view_depth, float alpha) {
+  float d = clamp((view_depth - u_depth_range.x) / max(u_depth_range.y - u_depth_range.x, 1e-12),
+                  0.0, 1.0);
+  float k = 1.0 - d;
+  return alpha * max(0.01, 100.0 * k * k * k);
+}
+
+#ifdef OIT
+// Both targets use the same blend function (GL 3.3 has no per-target
+// blending): colour ONE, ONE and alpha ZERO, ONE_MINUS_SRC_ALPHA.
+//   target 0: rgb += C a w,  a *= (1 - a_i)   (revealage, cleared to 1)
+//   target 1: r += a w                          (total weight)
+layout(location = 0) out vec4 o_accum;
+layout(location = 1) out vec4 o_weight;
+void emit(vec3 color, float alpha, float view_depth) {
+  float w = oit_weight(view_depth, alpha);
+  o_accum = vec4(color * w, alpha);
+  o_weight = vec4(w, 0.0, 0.0, alpha);
+}
+#else
+layout(location = 0) out vec4 o_color;
+void emit(vec3 color, float alpha, float view_depth) { o_color = vec4(color, 1.0); }
+#endif

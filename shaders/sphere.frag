@@ -1,0 +1,40 @@
+// sphere.frag — ray-sphere intersection per fragment: exact outline, exact
+// depth (gl_FragDepth from the hit point), per-pixel normal for lighting.
+in vec3 v_quad;
+flat in vec3 v_centre;
+flat in float v_radius;
+flat in float v_value;
+
+uniform mat4 u_proj;
+uniform int u_ortho;
+uniform int u_lighting;
+uniform float u_alpha;
+
+void main() {
+  // Ray from the eye (or, orthographic, along -z through the quad point).
+  vec3 ro = u_ortho != 0 ? vec3(v_quad.xy, 0.0) : vec3(0.0);
+  vec3 rd = u_ortho != 0 ? vec3(0.0, 0.0, -1.0) : normalize(v_quad);
+  // Closest approach of the ray to the centre, computed from the centre's
+  // offset (accurate when the bead is small compared with its distance).
+  vec3 oc = v_centre - ro;
+  float b = dot(oc, rd);
+  vec3 perp = oc - b * rd;
+  float h2 = v_radius * v_radius - dot(perp, perp);
+  if (h2 < 0.0) discard;
+  float t = b - sqrt(h2);
+  vec3 hit = ro + t * rd;
+  vec4 clip = u_proj * vec4(hit, 1.0);
+  gl_FragDepth = 0.5 * (clip.z / clip.w) + 0.5;
+
+  vec3 base = map_value(v_value);
+  vec3 color = base;
+  if (u_lighting != 0) {
+    vec3 n = (hit - v_centre) / v_radius;
+    vec3 l = normalize(vec3(0.35, 0.55, 1.0));
+    float diffuse = max(dot(n, l), 0.0);
+    vec3 hv = normalize(l - rd);
+    float spec = pow(max(dot(n, hv), 0.0), 40.0);
+    color = base * (0.30 + 0.70 * diffuse) + vec3(0.22 * spec);
+  }
+  emit(color, u_alpha, -hit.z);
+}
