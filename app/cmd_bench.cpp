@@ -15,11 +15,12 @@
 #include <sstream>
 #include <vector>
 
+#include "bench_render.h"
 #include "commands.h"
+#include "frames.h"
 #include "simulation.h"
 
 namespace simsols {
-namespace {
 
 Scene bench_scene(int target, Precision precision, bool fcc) {
   Scene s;
@@ -66,12 +67,17 @@ Scene bench_scene(int target, Precision precision, bool fcc) {
   return s;
 }
 
+namespace {
+
 struct BenchOptions {
   std::vector<int> sizes{5000, 50000, 500000};
   std::vector<std::string> precisions{"float", "double"};
   std::string packing = "cubic";
   double budget = 3e7;  // particle-steps timed per repetition
   int repeat = 5;       // timed repetitions per case; the median is reported
+  bool render = false;  // --render: renderer frame times instead
+  RenderBenchOptions render_opt;
+  std::string frame_size = "1280x720";
 };
 
 int bench(const BenchOptions& opt) {
@@ -131,7 +137,22 @@ CommandRunner add_bench_command(CLI::App& app) {
       ->check(CLI::Range(1e4, 1e11));
   cmd->add_option("--repeat", opt->repeat, "Timed repetitions per case; the median is printed (default 5)")
       ->check(CLI::Range(1, 100));
-  return [opt] { return bench(*opt); };
+  cmd->add_flag("--render", opt->render,
+                "Renderer frame times (opaque, transparent, chains) and data path instead; "
+                "default sizes 5000 100000 1000000");
+  cmd->add_option("--frame-size", opt->frame_size, "--render: frame size WxH (default 1280x720)");
+  cmd->add_option("--gl", opt->render_opt.gl, "--render: headless OpenGL auto, egl or osmesa")
+      ->check(CLI::IsMember({"auto", "egl", "osmesa"}));
+  CLI::Option* sizes = cmd->get_option("--sizes");
+  CLI::Option* repeat = cmd->get_option("--repeat");
+  return [opt, sizes, repeat] {
+    if (!opt->render) return bench(*opt);
+    RenderBenchOptions r = opt->render_opt;
+    if (sizes->count() > 0) r.sizes = opt->sizes;
+    if (repeat->count() > 0) r.frames = opt->repeat;
+    std::tie(r.width, r.height) = parse_frame_size(opt->frame_size, "--frame-size");
+    return bench_render(r);
+  };
 }
 
 }  // namespace simsols

@@ -1,7 +1,5 @@
 #include "frames.h"
 
-#include <CL/cl_gl.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -95,12 +93,7 @@ FrameExporter::FrameExporter(const FrameOptions& options) : opt_(options) {
   renderer_ = std::make_unique<render::Renderer>(context_->gl());
   renderer_->resize(opt_.width, opt_.height);
   // The OpenCL device shares this GL context where it can.
-  const render::GlShareHandles h = context_->share_handles();
-  std::vector<cl_context_properties> props;
-  if (h.gl_context && h.egl_display)
-    props = {CL_GL_CONTEXT_KHR, cl_context_properties(h.gl_context), CL_EGL_DISPLAY_KHR,
-             cl_context_properties(h.egl_display)};
-  set_default_device(Device::open(props));
+  set_default_device(Device::open(render::cl_share_properties(context_->share_handles())));
 }
 
 FrameExporter::~FrameExporter() = default;

@@ -107,7 +107,7 @@ void Camera::orbit(double dyaw_deg, double dpitch_deg) {
 
 void Camera::pan(double dx_fraction, double dy_fraction) {
   const double h = orthographic ? ortho_height : 2 * distance * std::tan(fov_y_deg * kDeg / 2);
-  target += (-dx_fraction * h) * right() + (dy_fraction * h) * up();
+  target -= (dx_fraction * h) * right() + (dy_fraction * h) * up();
 }
 
 void Camera::zoom(double factor) {

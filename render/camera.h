@@ -61,7 +61,8 @@ struct Camera {
   // Target and distance (or ortho height) so the box [lo, hi] fits the view.
   void fit(const glm::dvec3& lo, const glm::dvec3& hi, double aspect, double margin = 1.08);
   // Interactive moves: angles in degrees; pan by fractions of the view
-  // height; zoom multiplies the distance (factor < 1 zooms in).
+  // height, the scene following the drag (dx > 0: it moves right, dy > 0:
+  // up); zoom multiplies the distance (factor < 1 zooms in).
   void orbit(double dyaw_deg, double dpitch_deg);
   void pan(double dx_fraction, double dy_fraction);
   void zoom(double factor);

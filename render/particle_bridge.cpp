@@ -34,6 +34,12 @@ void read_into_gl(const Gl& gl, Device& device, cl_mem src, GLuint dst, std::siz
 
 }  // namespace
 
+std::vector<cl_context_properties> cl_share_properties(const GlShareHandles& h) {
+  if (!h.gl_context || !h.egl_display) return {};
+  return {CL_GL_CONTEXT_KHR, cl_context_properties(h.gl_context), CL_EGL_DISPLAY_KHR,
+          cl_context_properties(h.egl_display)};
+}
+
 ParticleBridge::ParticleBridge(const Gl& gl, GeometryBuffers& buffers, ViewPacker& packer,
                                Device& device)
     : gl_(gl), buffers_(buffers), packer_(packer), device_(device), shared_(device.gl_sharing()) {

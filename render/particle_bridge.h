@@ -17,11 +17,19 @@
 #pragma once
 
 #include <string>
+#include <vector>
+
+#include "gl_context.h"
 
 #include "renderer.h"
 #include "view_pack.h"
 
 namespace simsols::render {
+
+// The OpenCL context properties that name a GL context for sharing
+// (CL_GL_CONTEXT_KHR and its EGL display); empty where the platform cannot
+// share (OSMesa). Pass to Device::open.
+std::vector<cl_context_properties> cl_share_properties(const GlShareHandles& handles);
 
 class ParticleBridge {
  public:

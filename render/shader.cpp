@@ -6,6 +6,9 @@ namespace {
 
 std::string assemble(std::string_view file, bool fragment, const std::vector<std::string>& defines) {
   std::string text = "#version 330 core\n";
+  // Conservative depth lets the sphere impostors keep early depth rejection
+  // while writing gl_FragDepth; where a driver lacks it, "enable" only warns.
+  if (fragment) text += "#extension GL_ARB_conservative_depth : enable\n";
   for (const std::string& d : defines) text += "#define " + d + "\n";
   if (fragment) {
     text += "#line 1 1\n";  // source string 1: common.glsl

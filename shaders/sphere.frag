@@ -1,5 +1,8 @@
 // sphere.frag — ray-sphere intersection per fragment: exact outline, exact
 // depth (gl_FragDepth from the hit point), per-pixel normal for lighting.
+#ifdef GL_ARB_conservative_depth  // enabled in the prelude (render/shader.cpp)
+layout(depth_greater) out float gl_FragDepth;
+#endif
 in vec3 v_quad;
 flat in vec3 v_centre;
 flat in float v_radius;
@@ -12,7 +15,7 @@ uniform float u_alpha;
 
 void main() {
   // Ray from the eye (or, orthographic, along -z through the quad point).
-  vec3 ro = u_ortho != 0 ? vec3(v_quad.xy, 0.0) : vec3(0.0);
+  vec3 ro = u_ortho != 0 ? vec3(v_quad.xy, v_quad.z + 1.0) : vec3(0.0);
   vec3 rd = u_ortho != 0 ? vec3(0.0, 0.0, -1.0) : normalize(v_quad);
   // Closest approach of the ray to the centre, computed from the centre's
   // offset (accurate when the bead is small compared with its distance).

@@ -10,6 +10,8 @@
 #include <fstream>
 #include <string>
 
+#include "png.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -156,3 +158,100 @@ TEST(Cli, CampaignWritesItsTablesAndResumes) {
 }
 
 }  // namespace
+
+// ------------------------------------------------------------------ frames
+// `simsols snapshot` and `run --frames`: valid PNGs of the requested size
+// that show the beads; bad sizes, paths and names are refused with the flag
+// named and nothing written.
+namespace {
+
+const std::string kShearSmall = std::string(SIMSOLS_ASSETS_DIR) + "/tests/shear_small.toml";
+
+// Pixels in the middle half of the image that differ from the corner pixel
+// (the background).
+long foreground(const simsols::plot::Image& img) {
+  const auto bg = simsols::plot::pixel(img, 0, img.height - 1);
+  long n = 0;
+  for (int y = img.height / 4; y < 3 * img.height / 4; ++y)
+    for (int x = img.width / 4; x < 3 * img.width / 4; ++x) n += !(simsols::plot::pixel(img, x, y) == bg);
+  return n;
+}
+
+}  // namespace
+
+TEST(Cli, SnapshotWritesAPngOfTheRequestedSize) {
+  const fs::path dir = fresh_dir("snapshot");
+  fs::create_directories(dir);
+  for (const char* mode : {"opaque", "transparent", "chains"}) {
+    const fs::path png = dir / (std::string(mode) + ".png");
+    const Result r = run("snapshot " + kShearSmall + " --out " + png.string() +
+                         " --size 321x207 --view front --mode " + mode + " --steps 200");
+    ASSERT_EQ(r.status, 0) << r.out;
+    const simsols::plot::Image img = simsols::plot::read_png(png.string());
+    EXPECT_EQ(img.width, 321);
+    EXPECT_EQ(img.height, 207);
+    EXPECT_GT(foreground(img), 321 * 207 / 4 / 5) << mode << ": the specimen should fill the middle";
+    EXPECT_FALSE(fs::exists(png.string() + ".tmp"));
+  }
+}
+
+TEST(Cli, SnapshotRefusesBadSizePathAndNames) {
+  const fs::path dir = fresh_dir("snapshot_bad");
+  fs::create_directories(dir);
+  const std::string out = (dir / "f.png").string();
+  struct Case {
+    std::string args, flag, hint;
+  };
+  const Case cases[] = {
+      {"--out " + out + " --size 0x10", "--size", "[1, 16384]"},
+      {"--out " + out + " --size 20000x10", "--size", "[1, 16384]"},
+      {"--out " + out + " --size wide", "--size", "WIDTHxHEIGHT"},
+      {"--out " + (dir / "missing" / "f.png").string(), "--out", "does not exist"},
+      {"--out " + (dir / "f.jpg").string(), "--out", ".png"},
+      {"--out " + out + " --mode xray", "--mode", "opaque, transparent, chains"},
+      {"--out " + out + " --color-by mood", "--color-by", "speed"},
+      {"--out " + out + " --view below", "--view", "three-quarter"},
+      {"--out " + out + " --threshold -1", "--threshold", ">= 0"},
+      {"--out " + out + " --range 5:1", "--range", "MIN < MAX"},
+      {"--out " + out + " --gl vulkan", "--gl", "egl, osmesa"},
+  };
+  for (const Case& c : cases) {
+    const Result r = run("snapshot " + kShearSmall + " " + c.args);
+    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.out;
+    EXPECT_NE(r.out.find(c.flag), std::string::npos) << c.args << "\n" << r.out;
+    EXPECT_NE(r.out.find(c.hint), std::string::npos) << c.args << "\n" << r.out;
+  }
+  EXPECT_TRUE(fs::is_empty(dir)) << "a refused snapshot writes nothing";
+}
+
+TEST(Cli, RunWritesAFrameEveryNSteps) {
+  const fs::path out = fresh_dir("frames");
+  const fs::path frames = out / "frames";
+  const Result r = run("run " + kScene + " --out " + out.string() + " --frames " + frames.string() +
+                       " --every 250 --size 160x120 --color-by speed -q");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto at = r.out.find("finished at step ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const long steps = std::stol(r.out.substr(at + 17));
+  long count = 0;
+  for (const auto& e : fs::directory_iterator(frames)) {
+    ++count;
+    const simsols::plot::Image img = simsols::plot::read_png(e.path().string());
+    EXPECT_EQ(img.width, 160);
+    EXPECT_EQ(img.height, 120);
+    const long step = std::stol(e.path().stem().string().substr(6));
+    EXPECT_EQ(step % 250, 0) << e.path();
+  }
+  EXPECT_EQ(count, steps / 250 + 1) << "frames at step 0, 250, ...";
+  // a checkpoint renders too
+  const fs::path png = out / "checkpoint.png";
+  const Result s = run("snapshot " + (out / "checkpoint.bin").string() + " --out " + png.string() +
+                       " --size 100x80");
+  EXPECT_EQ(s.status, 0) << s.out;
+  EXPECT_TRUE(fs::exists(png));
+  // --frames and --every go together
+  const Result bad = run("run " + kScene + " --out " + fresh_dir("frames_bad").string() +
+                         " --frames " + frames.string());
+  EXPECT_EQ(bad.status, 2) << bad.out;
+  EXPECT_NE(bad.out.find("--every"), std::string::npos) << bad.out;
+}
