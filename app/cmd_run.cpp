@@ -43,11 +43,11 @@ struct RunOptions {
 class FrameSeries {
  public:
   FrameSeries(const RunOptions& opt)
-      : dir_(opt.frames_dir), every_(opt.frames_every),
-        exporter_(FrameOptions::from_flags(opt.frame)) {}
+      : flags_(opt.frame), dir_(opt.frames_dir), every_(opt.frames_every),
+        exporter_(FrameOptions::resolve(opt.frame)) {}
   void after_steps(Simulation& sim, bool shearing) {
     if (!attached_) {
-      exporter_.attach(sim);
+      exporter_.attach(sim, flags_);
       std::filesystem::create_directories(dir_);
       std::fprintf(stderr, "[frames] every %lld steps into %s; %s\n", every_, dir_.c_str(),
                    exporter_.describe().c_str());
@@ -65,6 +65,7 @@ class FrameSeries {
   long long every() const { return every_; }
 
  private:
+  FrameFlags flags_;
   std::string dir_;
   long long every_;
   FrameExporter exporter_;
@@ -156,6 +157,7 @@ int run(const RunOptions& opt) {
       scene.numerics.duration = opt.duration;
     }
     validate_scene(scene, scene.source_path);
+    FrameOptions::resolve(opt.frame, &scene);  // a bad [view] is refused even without --frames
     if (scene.shear_box) {
       if (opt.duration != 0)
         throw SceneError("conflicting_keys", "command line", 0, "--duration",

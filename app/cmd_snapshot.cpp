@@ -4,6 +4,7 @@
 //       [--size WxH] [--color-by FIELD] [--mode opaque|transparent|chains]
 //       [--chains] [--threshold R] [--range MIN:MAX] [--steps N] [--gl ...]
 //
+// The scene's [view] section sets defaults for the flags not given.
 // A scene is drawn as built (a shear box: its specimen as placed, before
 // settling), after --steps steps if given; a checkpoint as saved. Flags are
 // checked, the output folder must exist and the name end in .png, before
@@ -47,20 +48,24 @@ void check_output_path(const std::string& out, const char* flag) {
 }
 
 int snapshot(const SnapshotOptions& opt) {
-  const FrameOptions frame = FrameOptions::from_flags(opt.frame);
+  FrameOptions frame = FrameOptions::resolve(opt.frame);
   check_output_path(opt.out, "--out");
   if (!std::filesystem::exists(opt.input))
     throw SceneError("io", opt.input, 0, "SCENE_OR_CHECKPOINT", "no such file");
   const bool checkpoint = is_checkpoint(opt.input);
   Scene scene;
-  if (!checkpoint) scene = load_scene(opt.input);  // errors before any GL work
+  if (!checkpoint) {
+    scene = load_scene(opt.input);  // errors before any GL work
+    frame = FrameOptions::resolve(opt.frame, &scene);
+  }
 
   FrameExporter exporter(frame);  // before the simulation: it picks the device
   std::unique_ptr<Simulation> sim =
       checkpoint ? load_checkpoint(default_device(), opt.input)
                  : std::make_unique<Simulation>(default_device(), scene);
   if (opt.steps > 0) sim->advance(opt.steps);
-  exporter.attach(*sim);
+  exporter.attach(*sim, opt.frame);
+  frame = FrameOptions::resolve(opt.frame, &sim->scene());  // as attach() applied it
   exporter.write(opt.out);
   std::fprintf(stderr, "[snapshot] %s\n", exporter.describe().c_str());
   std::printf("wrote %s (%dx%d, %d beads, step %lld)\n", opt.out.c_str(), frame.width,

@@ -20,42 +20,86 @@ SceneError flag_error(const std::string& flag, const std::string& what) {
 
 }  // namespace
 
+bool FrameFlags::given(const std::string& flag) const {
+  auto it = options.find(flag);
+  return it != options.end() && it->second && it->second->count() > 0;
+}
+
 void add_frame_flags(CLI::App* cmd, FrameFlags& f) {
-  cmd->add_option("--view", f.view, "Camera preset: front, side, top, three-quarter")
-      ->capture_default_str();
-  cmd->add_option("--size", f.size, "Frame size WxH in pixels (each side 1..16384)")
-      ->capture_default_str();
-  cmd->add_option("--color-by", f.color_by,
-                  "Bead colour: size, layer, speed, displacement, contacts, rotation")
-      ->capture_default_str();
-  cmd->add_option("--mode", f.mode, "opaque, transparent (see inside) or chains (force chains)")
-      ->capture_default_str();
-  cmd->add_flag("--chains", f.chains, "Draw the force chains over any mode");
-  cmd->add_option("--threshold", f.threshold,
-                  "Force chains: hide contacts with F/F_mean below this (>= 0)")
-      ->capture_default_str();
+  f.options["--view"] =
+      cmd->add_option("--view", f.view, "Camera preset: front, side, top, three-quarter")
+          ->capture_default_str();
+  f.options["--size"] =
+      cmd->add_option("--size", f.size, "Frame size WxH in pixels (each side 1..16384)")
+          ->capture_default_str();
+  f.options["--color-by"] =
+      cmd->add_option("--color-by", f.color_by,
+                      "Bead colour: size, layer, speed, displacement, contacts, rotation")
+          ->capture_default_str();
+  f.options["--mode"] =
+      cmd->add_option("--mode", f.mode, "opaque, transparent (see inside) or chains (force chains)")
+          ->capture_default_str();
+  f.options["--chains"] = cmd->add_flag("--chains", f.chains, "Draw the force chains over any mode");
+  f.options["--threshold"] =
+      cmd->add_option("--threshold", f.threshold,
+                      "Force chains: hide contacts with F/F_mean below this (>= 0)")
+          ->capture_default_str();
   cmd->add_option("--range", f.range, "Colour range MIN:MAX (default: the field's range)");
   cmd->add_flag("--no-legend", f.no_legend, "No colour legend");
   cmd->add_flag("--no-walls", f.no_walls, "Do not draw the walls");
   cmd->add_option("--gl", f.gl, "Headless OpenGL: auto, egl, osmesa")->capture_default_str();
 }
 
-std::pair<int, int> parse_frame_size(const std::string& text, const std::string& flag) {
-  int w = 0, h = 0;
+namespace {
+
+// What is wrong with a "WxH" size, or empty (w and h then set).
+std::string size_problem(const std::string& text, int& w, int& h) {
   char x = 0, extra = 0;
   if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X'))
-    throw flag_error(flag, "'" + text + "' is not WIDTHxHEIGHT (e.g. 1920x1080)");
+    return "'" + text + "' is not WIDTHxHEIGHT (e.g. 1920x1080)";
   if (w < 1 || h < 1 || w > render::Renderer::kMaxSize || h > render::Renderer::kMaxSize)
-    throw flag_error(flag, "'" + text + "': each side must be in [1, " +
-                               std::to_string(render::Renderer::kMaxSize) + "] pixels");
+    return "'" + text + "': each side must be in [1, " +
+           std::to_string(render::Renderer::kMaxSize) + "] pixels";
+  return {};
+}
+
+}  // namespace
+
+std::pair<int, int> parse_frame_size(const std::string& text, const std::string& flag) {
+  int w = 0, h = 0;
+  if (const std::string p = size_problem(text, w, h); !p.empty()) throw flag_error(flag, p);
   return {w, h};
 }
 
-FrameOptions FrameOptions::from_flags(const FrameFlags& f) {
+FrameOptions FrameOptions::resolve(const FrameFlags& flags, const Scene* scene) {
+  // Scene hints fill in the flags not given; an error then names the scene
+  // file and its view.* field.
+  FrameFlags f = flags;
+  std::map<std::string, std::string> from_scene;  // flag -> scene field
+  if (scene) {
+    const ViewHints& v = scene->view;
+    auto take = [&](const char* flag, const char* key, auto& dst, const auto& hint, bool has) {
+      if (!has || flags.given(flag)) return;
+      dst = hint;
+      from_scene[flag] = std::string("view.") + key;
+    };
+    take("--view", "view", f.view, v.view, !v.view.empty());
+    take("--color-by", "color_by", f.color_by, v.color_by, !v.color_by.empty());
+    take("--mode", "mode", f.mode, v.mode, !v.mode.empty());
+    take("--size", "size", f.size, v.size, !v.size.empty());
+    take("--chains", "chains", f.chains, v.chains.value_or(false), v.chains.has_value());
+    take("--threshold", "threshold", f.threshold, v.threshold.value_or(0), v.threshold.has_value());
+  }
+  auto flag_error = [&](const std::string& flag, const std::string& what) {
+    if (auto it = from_scene.find(flag); it != from_scene.end())
+      return SceneError("bad_value", scene->source_path, 0, it->second, what);
+    return SceneError("bad_flag", "command line", 0, flag, what);
+  };
   FrameOptions o;
   if (auto v = render::parse_view_preset(f.view)) o.view = *v;
   else throw flag_error("--view", "'" + f.view + "' is not one of: front, side, top, three-quarter");
-  std::tie(o.width, o.height) = parse_frame_size(f.size, "--size");
+  if (const std::string p = size_problem(f.size, o.width, o.height); !p.empty())
+    throw flag_error("--size", p);
   if (auto c = parse_color_field(f.color_by)) o.field = *c;
   else
     throw flag_error("--color-by", "'" + f.color_by +
@@ -98,7 +142,11 @@ FrameExporter::FrameExporter(const FrameOptions& options) : opt_(options) {
 
 FrameExporter::~FrameExporter() = default;
 
-void FrameExporter::attach(Simulation& sim) {
+void FrameExporter::attach(Simulation& sim, const FrameFlags& flags) {
+  const render::GlBackend backend = opt_.backend;
+  opt_ = FrameOptions::resolve(flags, &sim.scene());
+  opt_.backend = backend;
+  renderer_->resize(opt_.width, opt_.height);
   sim_ = std::make_unique<Attached>();
   sim_->sim = &sim;
   sim_->view = std::make_unique<render::SimulationView>(context_->gl(), sim);

@@ -2,8 +2,9 @@
 // `simsols run --frames DIR --every N`.
 //
 // FrameOptions are the flags both commands share (view, size, colouring,
-// mode, force chains, legend, GL backend); from_flags() checks them and
-// reports a bad value with the flag's name and what is allowed. A
+// mode, force chains, legend, GL backend); resolve() fills in the scene's
+// [view] hints for flags not given, checks them and reports a bad value
+// with the flag's name (or the scene file and field) and what is allowed. A
 // FrameExporter owns a headless GL context (EGL surfaceless, else OSMesa)
 // and the renderer; it must exist before the simulation is created, so the
 // OpenCL device can share the GL context where it offers cl_khr_gl_sharing
@@ -13,6 +14,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -26,6 +28,7 @@
 namespace simsols {
 
 class Simulation;
+struct Scene;
 
 struct FrameFlags {
   std::string view = "three-quarter";
@@ -38,6 +41,10 @@ struct FrameFlags {
   bool no_legend = false;
   bool no_walls = false;
   std::string gl = "auto";
+  // The registered options, to tell a flag given on the command line from
+  // its default (set by add_frame_flags).
+  std::map<std::string, const CLI::Option*> options;
+  bool given(const std::string& flag) const;
 };
 
 // Registers the flags on a subcommand.
@@ -52,8 +59,10 @@ struct FrameOptions {
   bool legend = true;
   render::GlBackend backend = render::GlBackend::Auto;
 
-  // Throws SceneError naming the flag and the allowed values.
-  static FrameOptions from_flags(const FrameFlags& flags);
+  // The flags, with the scene's [view] hints for those not given on the
+  // command line. Throws SceneError naming the flag (or the scene file and
+  // its view.* field) and the allowed values.
+  static FrameOptions resolve(const FrameFlags& flags, const Scene* scene = nullptr);
 };
 
 // Parses "WxH" (each side 1..16384); throws SceneError naming `flag`.
@@ -64,8 +73,9 @@ class FrameExporter {
   explicit FrameExporter(const FrameOptions& options);
   ~FrameExporter();
 
-  // Starts drawing `sim` (fits the camera to the specimen and its box).
-  void attach(Simulation& sim);
+  // Starts drawing `sim` (fits the camera to the specimen and its box),
+  // with the options resolved again against its scene's [view] hints.
+  void attach(Simulation& sim, const FrameFlags& flags);
   // The reference for the displacement field: the current positions.
   void set_reference();
   render::Camera& camera() { return camera_; }

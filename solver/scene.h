@@ -116,6 +116,23 @@ inline constexpr size_t kMaxWalls = 32;
 // step is refused unless Numerics::force_dt is set.
 inline constexpr double kMaxDtFraction = 0.5;
 
+// Optional [view]: how frames of this scene are drawn by default (`simsols
+// snapshot`, `run --frames`, the lab); command-line flags override. Kept as
+// given; the app checks the values (allowed ones in docs/rendering.md) and
+// reports a bad one with the file and field.
+struct ViewHints {
+  std::string view;      // camera preset; empty = default
+  std::string color_by;  // bead colour field
+  std::string mode;      // opaque, transparent, chains
+  std::string size;      // WxH
+  std::optional<bool> chains;
+  std::optional<double> threshold;
+  bool empty() const {
+    return view.empty() && color_by.empty() && mode.empty() && size.empty() && !chains &&
+           !threshold;
+  }
+};
+
 struct Outputs {
   double series_interval = 0;      // s between time-series rows; 0 = duration/1000
   double dump_interval = 0;        // s between particle dumps; 0 = only the last state
@@ -183,6 +200,7 @@ struct Scene {
   Effects effects;
   Numerics numerics;
   Outputs outputs;
+  ViewHints view;
   std::optional<ShearBox> shear_box;  // a direct shear test (walls included in `walls`)
 
   // Where it came from (empty for scenes built in code).

@@ -390,7 +390,7 @@ class Loader {
     root_ = &root;
     Reader r(root, "", ctx_,
              {"scene", "materials", "interactions", "particles", "generators", "walls", "effects",
-              "numerics", "output", "shear_box"});
+              "numerics", "output", "shear_box", "view"});
     read_info(r);
     read_materials(r);
     read_interactions(r);
@@ -401,6 +401,7 @@ class Loader {
     read_effects(r);
     read_numerics(r);
     read_outputs(r);
+    read_view(r);
     if (auto issue = find_scene_issue(scene_)) fail(std::move(*issue));
     return std::move(scene_);
   }
@@ -749,6 +750,18 @@ class Loader {
     o.dump_vtk = r.boolean("dump_vtk", o.dump_vtk);
   }
 
+  void read_view(const Reader& root) {
+    Reader r(root.table("view"), "view", ctx_,
+             {"view", "color_by", "mode", "size", "chains", "threshold"});
+    ViewHints& v = scene_.view;
+    v.view = r.string("view", "");
+    v.color_by = r.string("color_by", "");
+    v.mode = r.string("mode", "");
+    v.size = r.string("size", "");
+    if (r.has("chains")) v.chains = r.boolean("chains", false);
+    v.threshold = r.optional_number("threshold");
+  }
+
   // Line of `field` in the document, or of its closest existing parent
   // ("walls[1]" for a defaulted "walls[1].velocity"); 0 when none.
   int line_for(std::string field) const {
@@ -853,6 +866,7 @@ class Writer {
     write_effects();
     write_numerics();
     write_outputs();
+    write_view();
     for (size_t i = 0; i < s_.particles.size(); ++i) write(s_.particles[i], i);
     return out_.str();
   }
@@ -967,6 +981,18 @@ class Writer {
     line("checkpoint_interval", o.checkpoint_interval);
     line("dump_csv", o.dump_csv);
     line("dump_vtk", o.dump_vtk);
+  }
+
+  void write_view() {
+    const ViewHints& v = s_.view;
+    if (v.empty()) return;
+    header("[view]");
+    if (!v.view.empty()) line("view", toml_string(v.view));
+    if (!v.color_by.empty()) line("color_by", toml_string(v.color_by));
+    if (!v.mode.empty()) line("mode", toml_string(v.mode));
+    if (!v.size.empty()) line("size", toml_string(v.size));
+    if (v.chains) line("chains", *v.chains);
+    if (v.threshold) line("threshold", *v.threshold);
   }
 
   void write(const Particle& p, size_t i) {

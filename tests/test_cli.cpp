@@ -255,3 +255,34 @@ TEST(Cli, RunWritesAFrameEveryNSteps) {
   EXPECT_EQ(bad.status, 2) << bad.out;
   EXPECT_NE(bad.out.find("--every"), std::string::npos) << bad.out;
 }
+
+// A scene's [view] section sets the defaults; flags override; a bad value
+// names the file and the field.
+TEST(Cli, SceneViewHintsAndOverrides) {
+  const fs::path dir = fresh_dir("view_hints");
+  fs::create_directories(dir);
+  std::string text = read(kScene);
+  auto scene_with = [&](const std::string& name, const std::string& view) {
+    const fs::path p = dir / name;
+    std::ofstream(p) << text << "\n[view]\n" << view;
+    return p.string();
+  };
+  const std::string good = scene_with("good.toml", "size = \"90x70\"\nmode = \"transparent\"\n"
+                                                   "view = \"top\"\ncolor_by = \"speed\"\n");
+  Result r = run("snapshot " + good + " --out " + (dir / "a.png").string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(simsols::plot::read_png((dir / "a.png").string()).width, 90);
+  r = run("snapshot " + good + " --out " + (dir / "b.png").string() + " --size 100x50");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(simsols::plot::read_png((dir / "b.png").string()).height, 50);
+  const std::string bad = scene_with("bad.toml", "mode = \"xray\"\n");
+  r = run("snapshot " + bad + " --out " + (dir / "c.png").string());
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("bad.toml"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("view.mode"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir / "c.png"));
+  // refused by `run` as well, before anything is written
+  r = run("run " + bad + " --out " + (dir / "run").string());
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_FALSE(fs::exists(dir / "run"));
+}
