@@ -107,7 +107,16 @@ cmd_run() {
   [[ -f "$DEFAULT_SCENE" ]] || die "default scene $DEFAULT_SCENE not found"
   say "Running the default experiment: $BIN run $DEFAULT_SCENE --out $DEFAULT_OUT $*"
   "$BIN" run "$DEFAULT_SCENE" --out "$DEFAULT_OUT" "$@"
-  say "Results are in $PWD/$DEFAULT_OUT (summary.txt, shear.csv, shear_stress.png, shear_ratio.png, dilation.png, particles_final.vtk for ParaView, checkpoint.bin, scene.toml)"
+  # Pictures of the sheared specimen (offscreen OpenGL): the layers as
+  # sheared, seen through, and the force chains.
+  if [[ -f "$DEFAULT_OUT/summary.txt" ]]; then
+    "$BIN" snapshot "$DEFAULT_OUT/checkpoint.bin" --out "$DEFAULT_OUT/specimen.png" \
+      --view front --mode transparent --color-by layer --size 1600x900 &&
+      "$BIN" snapshot "$DEFAULT_OUT/checkpoint.bin" --out "$DEFAULT_OUT/force_chains.png" \
+        --view three-quarter --mode chains --threshold 1 --size 1600x900 ||
+      say "warning: no offscreen OpenGL here, so no specimen pictures (see docs/rendering.md)"
+  fi
+  say "Results are in $PWD/$DEFAULT_OUT (summary.txt, shear.csv, shear_stress.png, shear_ratio.png, dilation.png, specimen.png, force_chains.png, particles_final.vtk for ParaView, checkpoint.bin, scene.toml)"
   say "Resume with: $BIN run --resume --out $DEFAULT_OUT"
 }
 
