@@ -68,4 +68,14 @@ struct Camera {
   void zoom(double factor);
 };
 
+// A view and projection matrix pair: what the renderer draws with (one
+// camera, or one view of a stereo rig).
+struct ViewProjection {
+  glm::dmat4 view{1}, projection{1};
+  bool orthographic = false;
+  static ViewProjection of(const Camera& camera, double aspect) {
+    return {camera.view(), camera.projection(aspect), camera.orthographic};
+  }
+};
+
 }  // namespace simsols::render

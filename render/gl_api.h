@@ -82,6 +82,7 @@ namespace simsols::render {
   X(PFNGLUNIFORM1IPROC, Uniform1i)                                           \
   X(PFNGLUNIFORM1FPROC, Uniform1f)                                           \
   X(PFNGLUNIFORM2FPROC, Uniform2f)                                           \
+  X(PFNGLUNIFORM2IPROC, Uniform2i)                                           \
   X(PFNGLUNIFORM3FPROC, Uniform3f)                                           \
   X(PFNGLUNIFORM4FPROC, Uniform4f)                                           \
   X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                             \
@@ -92,6 +93,7 @@ namespace simsols::render {
   X(PFNGLTEXIMAGE2DPROC, TexImage2D)                                         \
   X(PFNGLTEXIMAGE3DPROC, TexImage3D)                                         \
   X(PFNGLTEXSUBIMAGE2DPROC, TexSubImage2D)                                   \
+  X(PFNGLTEXSUBIMAGE3DPROC, TexSubImage3D)                                   \
   X(PFNGLTEXPARAMETERIPROC, TexParameteri)                                   \
   X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                                   \
   X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                               \

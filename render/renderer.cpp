@@ -266,16 +266,20 @@ void Renderer::set_common(ShaderProgram& p, const ViewSettings& s, bool force_ma
 
 void Renderer::draw(const Camera& camera, const FrameGeometry& g, const ViewSettings& s) {
   if (width_ == 0) throw RenderError("Renderer::draw before resize()");
+  draw(ViewProjection::of(camera, double(width_) / height_), g, s);
+}
+
+void Renderer::draw(const ViewProjection& vp, const FrameGeometry& g, const ViewSettings& s) {
+  if (width_ == 0) throw RenderError("Renderer::draw before resize()");
   StateGuard guard(gl_);
-  const double aspect = double(width_) / height_;
-  view_ = glm::mat4(camera.view());
-  proj_ = glm::mat4(camera.projection(aspect));
-  ortho_ = camera.orthographic;
+  view_ = glm::mat4(vp.view);
+  proj_ = glm::mat4(vp.projection);
+  ortho_ = vp.orthographic;
   // Depth range of the scene for the OIT weight: view depths of the corners.
   double dmin = 1e300, dmax = -1e300;
   for (int k = 0; k < 8; ++k) {
     const glm::dvec3 c((k & 1) ? g.hi.x : g.lo.x, (k & 2) ? g.hi.y : g.lo.y, (k & 4) ? g.hi.z : g.lo.z);
-    const double d = -(camera.view() * glm::dvec4(c, 1)).z;
+    const double d = -(vp.view * glm::dvec4(c, 1)).z;
     dmin = std::min(dmin, d);
     dmax = std::max(dmax, d);
   }

@@ -126,6 +126,7 @@ class Renderer {
   int height() const { return height_; }
 
   void draw(const Camera& camera, const FrameGeometry& geometry, const ViewSettings& settings);
+  void draw(const ViewProjection& vp, const FrameGeometry& geometry, const ViewSettings& settings);
   // The last frame, top row first.
   plot::Image read_pixels() const;
   GLuint framebuffer() const { return scene_fbo_; }

@@ -1,0 +1,42 @@
+// alioscopy.frag — composes the eight views (a 2D texture array) into the
+// output, 1:1 (see render/alioscopy.h):
+//   u_mode 0  interleaved for the lenticular screen:
+//             v = (Y - (3X + c) + phase) mod 8, or with flip_slant
+//             (-Y - (3X + c) + phase) mod 8; view = v or 7 - v (reversed);
+//             X, Y physical screen pixels, Y from the top
+//   u_mode 1  a 4 x 2 grid of the views, view 0 top left
+//   u_mode 2  view u_single, full size
+uniform sampler2DArray u_views;
+uniform ivec2 u_output;         // output size, pixels
+uniform ivec2 u_window;         // the output's top-left pixel on the screen
+uniform int u_phase;
+uniform int u_reversed;
+uniform int u_flip_slant;
+uniform int u_mode;
+uniform int u_single;
+
+int view_of(int X, int Y, int c) {
+  int s = (u_flip_slant != 0 ? -Y : Y) - (3 * X + c) + u_phase;
+  int v = ((s % 8) + 8) % 8;
+  return u_reversed != 0 ? 7 - v : v;
+}
+
+void main() {
+  ivec2 f = ivec2(gl_FragCoord.xy);            // GL: row 0 at the bottom
+  int row_from_top = u_output.y - 1 - f.y;
+  vec2 uv = (vec2(f) + 0.5) / vec2(u_output);  // the same point in every view
+  if (u_mode == 0) {
+    int X = u_window.x + f.x, Y = u_window.y + row_from_top;
+    vec3 rgb;
+    for (int c = 0; c < 3; ++c) rgb[c] = texture(u_views, vec3(uv, float(view_of(X, Y, c))))[c];
+    emit(rgb, 1.0, 0.0);
+  } else if (u_mode == 1) {
+    vec2 cell = vec2(u_output) / vec2(4.0, 2.0);
+    int col = min(int(float(f.x) / cell.x), 3);
+    int row = min(int(float(row_from_top) / cell.y), 1);
+    vec2 local = (vec2(f) + 0.5 - vec2(float(col), float(1 - row)) * cell) / cell;
+    emit(texture(u_views, vec3(local, float(row * 4 + col))).rgb, 1.0, 0.0);
+  } else {
+    emit(texture(u_views, vec3(uv, float(u_single))).rgb, 1.0, 0.0);
+  }
+}
