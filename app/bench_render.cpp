@@ -5,6 +5,8 @@
 //             buffers (kernels + the shared or host-copy path)
 //   contacts  the same for the force-chain segments
 //   opaque / transparent / chains   one frame at W x H, draw + glFinish
+// With --stereo: the eight views of the Alioscopy rig (each at half the
+// 1920 x 1080 panel, opaque and transparent) plus the interleaving pass.
 // Medians over `frames` repetitions, in milliseconds. llvmpipe renders on
 // the CPU with all cores; a GPU driver reports its own figures.
 #include "bench_render.h"
@@ -12,7 +14,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <memory>
 
+#include "alioscopy.h"
 #include "gl_context.h"
 #include "renderer.h"
 #include "sim_view.h"
@@ -50,8 +54,18 @@ int bench_render(const RenderBenchOptions& opt) {
   renderer.resize(opt.width, opt.height);
   std::printf("GL: %s\nOpenCL: %s\nframe %dx%d, median of %d\n", ctx->description().c_str(),
               device->description().c_str(), opt.width, opt.height, opt.frames);
-  std::printf("%10s %10s %12s %10s %12s %10s %9s  %s\n", "beads", "contacts", "pack (ms)",
-              "chains(ms)", "opaque (ms)", "transp(ms)", "chains", "buffers");
+  render::DisplayProfile profile;
+  std::unique_ptr<render::AlioscopyOutput> alioscopy;
+  if (opt.stereo) {
+    alioscopy = std::make_unique<render::AlioscopyOutput>(gl, profile);
+    std::printf("Alioscopy: %d views of %dx%d, interleaved at %dx%d\n", profile.views,
+                profile.view_width(), profile.view_height(), profile.width, profile.height);
+    std::printf("%10s %16s %14s %18s %14s\n", "beads", "8 views opaque", "interleave",
+                "8 views transp.", "total opaque");
+  } else {
+    std::printf("%10s %10s %12s %10s %12s %10s %9s  %s\n", "beads", "contacts", "pack (ms)",
+                "chains(ms)", "opaque (ms)", "transp(ms)", "chains", "buffers");
+  }
   for (int n : opt.sizes) {
     Simulation sim(device, bench_scene(n, Precision::Float, false));
     sim.advance(2);
@@ -74,6 +88,28 @@ int bench_render(const RenderBenchOptions& opt) {
     s.value_min = range.min;
     s.value_max = range.max;
     const render::FrameGeometry g = view.geometry();
+    if (opt.stereo) {
+      render::StereoRig rig;
+      double views[2];
+      for (int m = 0; m < 2; ++m) {
+        s.mode = m == 0 ? render::ViewMode::Opaque : render::ViewMode::Transparent;
+        alioscopy->render_views(renderer, rig, cam, g, s);  // warm-up
+        gl.Finish();
+        views[m] = time_median(opt.frames, [&] {
+          alioscopy->render_views(renderer, rig, cam, g, s);
+          gl.Finish();
+        });
+      }
+      const double inter = time_median(opt.frames, [&] {
+        alioscopy->compose(render::AlioscopyOutput::Mode::Interleaved);
+        gl.Finish();
+      });
+      std::printf("%10d %16.2f %14.2f %18.2f %14.2f\n", n, views[0], inter, views[1],
+                  views[0] + inter);
+      std::fflush(stdout);
+      renderer.resize(opt.width, opt.height);
+      continue;
+    }
     double ms[3];
     int k = 0;
     for (render::ViewMode m :

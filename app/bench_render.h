@@ -16,6 +16,7 @@ struct RenderBenchOptions {
   int width = 1280, height = 720;
   int frames = 5;  // timed frames per case; the median is printed
   std::string gl = "auto";
+  bool stereo = false;  // eight Alioscopy views + interleaving instead of the three modes
 };
 
 int bench_render(const RenderBenchOptions& options);

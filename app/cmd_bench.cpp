@@ -141,6 +141,8 @@ CommandRunner add_bench_command(CLI::App& app) {
                 "Renderer frame times (opaque, transparent, chains) and data path instead; "
                 "default sizes 5000 100000 1000000");
   cmd->add_option("--frame-size", opt->frame_size, "--render: frame size WxH (default 1280x720)");
+  cmd->add_flag("--stereo", opt->render_opt.stereo,
+                "--render: the eight Alioscopy views and the interleaving (1920x1080 panel)");
   cmd->add_option("--gl", opt->render_opt.gl, "--render: headless OpenGL auto, egl or osmesa")
       ->check(CLI::IsMember({"auto", "egl", "osmesa"}));
   CLI::Option* sizes = cmd->get_option("--sizes");

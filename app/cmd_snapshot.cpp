@@ -70,6 +70,11 @@ int snapshot(const SnapshotOptions& opt) {
   std::fprintf(stderr, "[snapshot] %s\n", exporter.describe().c_str());
   std::printf("wrote %s (%dx%d, %d beads, step %lld)\n", opt.out.c_str(), frame.width,
               frame.height, sim->model().particles(), static_cast<long long>(sim->steps()));
+  if (frame.alioscopy)
+    std::printf("  interleaved for the 8-view display; views and grid beside it (%s_view0..7.png, "
+                "%s_grid.png)\n",
+                std::filesystem::path(opt.out).stem().c_str(),
+                std::filesystem::path(opt.out).stem().c_str());
   return 0;
 }
 

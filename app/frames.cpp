@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
+#include "alioscopy.h"
 #include "colormap.h"
 #include "errors.h"
 #include "png.h"
@@ -48,6 +50,10 @@ void add_frame_flags(CLI::App* cmd, FrameFlags& f) {
   cmd->add_flag("--no-legend", f.no_legend, "No colour legend");
   cmd->add_flag("--no-walls", f.no_walls, "Do not draw the walls");
   cmd->add_option("--gl", f.gl, "Headless OpenGL: auto, egl, osmesa")->capture_default_str();
+  cmd->add_option("--stereo", f.stereo,
+                  "alioscopy: the 8-view interleaved image for the display, and its views");
+  cmd->add_option("--display", f.display,
+                  "Display profile for --stereo (default assets/displays/alioscopy_hd.toml)");
 }
 
 namespace {
@@ -124,6 +130,28 @@ FrameOptions FrameOptions::resolve(const FrameFlags& flags, const Scene* scene) 
   if (auto b = render::parse_gl_backend(f.gl)) o.backend = *b;
   else throw flag_error("--gl", "'" + f.gl + "' is not one of: auto, egl, osmesa");
   o.settings.bead_map = render::colormap_for(o.field);
+  if (!f.stereo.empty() && f.stereo != "alioscopy")
+    throw flag_error("--stereo", "'" + f.stereo + "' is not one of: alioscopy");
+  o.alioscopy = f.stereo == "alioscopy";
+  if (!f.display.empty() && !o.alioscopy)
+    throw flag_error("--display", "a display profile goes with --stereo alioscopy");
+  if (o.alioscopy) {
+    // No --display: the built-in defaults, which are those of
+    // assets/displays/alioscopy_hd.toml (a test keeps them equal).
+    o.display_path = f.display;
+    render::DisplayProfile p;
+    if (!o.display_path.empty()) {
+      if (!std::filesystem::exists(o.display_path))
+        throw SceneError("io", o.display_path, 0, "--display", "no such display profile");
+      try {
+        p = render::load_display_profile(o.display_path);
+      } catch (const std::exception& e) {
+        throw SceneError("bad_value", o.display_path, 0, "--display", e.what());
+      }
+    }
+    o.width = p.width;
+    o.height = p.height;
+  }
   return o;
 }
 
@@ -191,7 +219,43 @@ plot::Image FrameExporter::render() {
   return img;
 }
 
+std::vector<std::string> FrameExporter::outputs(const std::string& path) const {
+  std::vector<std::string> files{path};
+  if (!opt_.alioscopy) return files;
+  const std::filesystem::path p(path);
+  const std::string stem = (p.parent_path() / p.stem()).string();
+  for (int k = 0; k < 8; ++k) files.push_back(stem + "_view" + std::to_string(k) + ".png");
+  files.push_back(stem + "_grid.png");
+  return files;
+}
+
+void FrameExporter::write_alioscopy(const std::string& path) {
+  const render::DisplayProfile profile = opt_.display_path.empty()
+                                             ? render::DisplayProfile{}
+                                             : render::load_display_profile(opt_.display_path);
+  if (!alioscopy_) alioscopy_ = std::make_unique<render::AlioscopyOutput>(context_->gl(), profile);
+  const bool chains = opt_.settings.chains_visible();
+  const auto update = sim_->view->update(opt_.field, chains);
+  render::ViewSettings s = opt_.settings;
+  s.value_min = float(opt_.range ? opt_.range->first : update.range.min);
+  s.value_max = float(opt_.range ? opt_.range->second : update.range.max);
+  render::StereoRig rig;
+  alioscopy_->render_views(*renderer_, rig, camera_, sim_->view->geometry(), s);
+  const std::vector<std::string> files = outputs(path);
+  try {
+    alioscopy_->compose(render::AlioscopyOutput::Mode::Interleaved);
+    plot::write_png(alioscopy_->read_pixels(), files[0]);
+    for (int k = 0; k < 8; ++k) plot::write_png(alioscopy_->read_view(k), files[1 + k]);
+    alioscopy_->compose(render::AlioscopyOutput::Mode::Grid);
+    plot::write_png(alioscopy_->read_pixels(), files[9]);
+  } catch (const std::exception& e) {
+    throw render::RenderError(std::string("cannot write the frame: ") + e.what());
+  }
+  renderer_->resize(opt_.width, opt_.height);
+}
+
 void FrameExporter::write(const std::string& path) {
+  if (opt_.alioscopy) return write_alioscopy(path);
   const plot::Image img = render();
   try {
     plot::write_png(img, path);

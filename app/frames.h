@@ -18,11 +18,16 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "camera.h"
 #include "gl_context.h"
 #include "image.h"
 #include "renderer.h"
+
+namespace simsols::render {
+class AlioscopyOutput;
+}
 #include "view_pack.h"
 
 namespace simsols {
@@ -41,6 +46,8 @@ struct FrameFlags {
   bool no_legend = false;
   bool no_walls = false;
   std::string gl = "auto";
+  std::string stereo;   // "alioscopy": the 8-view interleaved image and the views
+  std::string display;  // display profile (TOML); default assets/displays/alioscopy_hd.toml
   // The registered options, to tell a flag given on the command line from
   // its default (set by add_frame_flags).
   std::map<std::string, const CLI::Option*> options;
@@ -58,6 +65,8 @@ struct FrameOptions {
   std::optional<std::pair<double, double>> range;
   bool legend = true;
   render::GlBackend backend = render::GlBackend::Auto;
+  bool alioscopy = false;
+  std::string display_path;  // profile file (alioscopy); empty = the built-in Alioscopy HD
 
   // The flags, with the scene's [view] hints for those not given on the
   // command line. Throws SceneError naming the flag (or the scene file and
@@ -82,14 +91,21 @@ class FrameExporter {
 
   plot::Image render();
   // Renders and writes a PNG atomically. Throws RenderError naming the path.
+  // With --stereo alioscopy: `path` is the interleaved image at the display's
+  // resolution, and STEM_view0..7.png and STEM_grid.png are written beside it.
   void write(const std::string& path);
+  // The files write() produces for `path`.
+  std::vector<std::string> outputs(const std::string& path) const;
   // "EGL surfaceless: llvmpipe ...; buffers: host copy (...)"
   std::string describe() const;
 
  private:
+  void write_alioscopy(const std::string& path);
+
   FrameOptions opt_;
   std::unique_ptr<render::GlContext> context_;
   std::unique_ptr<render::Renderer> renderer_;
+  std::unique_ptr<render::AlioscopyOutput> alioscopy_;
   struct Attached;
   std::unique_ptr<Attached> sim_;
   render::Camera camera_;

@@ -43,7 +43,7 @@ DisplayProfile load_display_profile(const std::string& path) {
           profile_error(path, std::string(section) + "." + std::string(k.str()), "unknown key");
   };
   check_keys("display", {"name", "width", "height", "views", "phase", "reversed", "flip_slant"});
-  check_keys("rig", {"view_scale", "interaxial_ratio", "nearest_views"});
+  check_keys("rig", {"view_scale", "interaxial_ratio", "interaxial", "focus", "nearest_views"});
   auto integer = [&](const char* key, int& dst, int lo, int hi) {
     const std::string field = std::string("display.") + key;
     const toml::node* n = root["display"][key].node();
@@ -85,6 +85,8 @@ DisplayProfile load_display_profile(const std::string& path) {
   boolean("display", "flip_slant", p.flip_slant);
   number("view_scale", p.view_scale, 0, 1, true);
   number("interaxial_ratio", p.interaxial_ratio, 0, 1, true);
+  number("interaxial", p.interaxial, 0, 10, false);
+  number("focus", p.focus, 0, 1e4, false);
   boolean("rig", "nearest_views", p.nearest_views);
   return p;
 }
@@ -227,6 +229,8 @@ void AlioscopyOutput::render_views(Renderer& renderer, const StereoRig& rig_in,
                                    const ViewSettings& settings) {
   StereoRig rig = rig_in;
   rig.views = profile_.views;
+  if (rig.interaxial <= 0) rig.interaxial = profile_.interaxial;
+  if (rig.focus <= 0) rig.focus = profile_.focus;
   if (rig.interaxial <= 0) rig.ratio = profile_.interaxial_ratio;
   renderer.resize(profile_.view_width(), profile_.view_height());
   const double aspect = double(out_w_) / out_h_;  // the views fill the screen

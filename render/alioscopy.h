@@ -50,7 +50,9 @@ struct DisplayProfile {
   bool reversed = false;
   bool flip_slant = false;
   double view_scale = 0.5;          // per-view resolution / panel, (0, 1]
-  double interaxial_ratio = 6.5 / 400;
+  double interaxial_ratio = 6.5 / 400;  // camera spacing / focus when interaxial = 0
+  double interaxial = 0;            // m between neighbouring cameras; 0 = ratio x focus
+  double focus = 0;                 // m to the focus plane; 0 = the camera's distance to its target
   bool nearest_views = false;       // sample the views without filtering (tests)
 
   int view_width() const;   // ceil(width * view_scale)

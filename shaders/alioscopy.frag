@@ -4,7 +4,8 @@
 //             v = (Y - (3X + c) + phase) mod 8, or with flip_slant
 //             (-Y - (3X + c) + phase) mod 8; view = v or 7 - v (reversed);
 //             X, Y physical screen pixels, Y from the top
-//   u_mode 1  a 4 x 2 grid of the views, view 0 top left
+//   u_mode 1  a 4 x 2 grid of the views, view 0 top left, each letterboxed
+//             to keep the views' aspect (that of the output)
 //   u_mode 2  view u_single, full size
 uniform sampler2DArray u_views;
 uniform ivec2 u_output;         // output size, pixels
@@ -34,8 +35,15 @@ void main() {
     vec2 cell = vec2(u_output) / vec2(4.0, 2.0);
     int col = min(int(float(f.x) / cell.x), 3);
     int row = min(int(float(row_from_top) / cell.y), 1);
-    vec2 local = (vec2(f) + 0.5 - vec2(float(col), float(1 - row)) * cell) / cell;
-    emit(texture(u_views, vec3(local, float(row * 4 + col))).rgb, 1.0, 0.0);
+    float aspect = float(u_output.x) / float(u_output.y);
+    vec2 shown = aspect > cell.x / cell.y ? vec2(cell.x, cell.x / aspect)
+                                          : vec2(cell.y * aspect, cell.y);
+    vec2 origin = vec2(float(col), float(1 - row)) * cell + 0.5 * (cell - shown);
+    vec2 local = (vec2(f) + 0.5 - origin) / shown;
+    if (any(lessThan(local, vec2(0.0))) || any(greaterThan(local, vec2(1.0))))
+      emit(vec3(0.0), 1.0, 0.0);
+    else
+      emit(texture(u_views, vec3(local, float(row * 4 + col))).rgb, 1.0, 0.0);
   } else {
     emit(texture(u_views, vec3(uv, float(u_single))).rgb, 1.0, 0.0);
   }

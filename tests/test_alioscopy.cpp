@@ -162,6 +162,7 @@ TEST(Alioscopy, ProfileErrorsNameFileFieldAndRange) {
       {"[display]\nwidth = 0\n", "display.width"},
       {"[display]\nreversed = 1\n", "display.reversed"},
       {"[rig]\nview_scale = 0\n", "rig.view_scale"},
+      {"[rig]\nfocus = -1\n", "rig.focus"},
       {"[display]\nslant = 1\n", "display.slant"},
   };
   for (auto [text, field] : bad) {
@@ -176,8 +177,19 @@ TEST(Alioscopy, ProfileErrorsNameFileFieldAndRange) {
     }
   }
   EXPECT_THROW(load_display_profile((dir / "missing.toml").string()), std::runtime_error);
-  // the shipped profile loads
-  EXPECT_EQ(load_display_profile(SIMSOLS_ASSETS_DIR "/displays/alioscopy_hd.toml").width, 1920);
+  // the shipped profile loads, and equals the built-in defaults
+  const DisplayProfile hd = load_display_profile(SIMSOLS_ASSETS_DIR "/displays/alioscopy_hd.toml");
+  const DisplayProfile def;
+  EXPECT_EQ(hd.name, def.name);
+  EXPECT_EQ(hd.width, def.width);
+  EXPECT_EQ(hd.height, def.height);
+  EXPECT_EQ(hd.phase, def.phase);
+  EXPECT_EQ(hd.reversed, def.reversed);
+  EXPECT_EQ(hd.flip_slant, def.flip_slant);
+  EXPECT_EQ(hd.view_scale, def.view_scale);
+  EXPECT_EQ(hd.interaxial_ratio, def.interaxial_ratio);
+  EXPECT_EQ(hd.interaxial, def.interaxial);
+  EXPECT_EQ(hd.focus, def.focus);
 }
 
 // The rig: a point on the focus plane lands on the same pixel in all views;

@@ -286,3 +286,35 @@ TEST(Cli, SceneViewHintsAndOverrides) {
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_FALSE(fs::exists(dir / "run"));
 }
+
+// `snapshot --stereo alioscopy`: the interleaved image at the display's
+// resolution, the eight views and the grid; a bad profile is named.
+TEST(Cli, SnapshotAlioscopyWritesTheInterleavedImageAndTheViews) {
+  const fs::path dir = fresh_dir("alioscopy");
+  fs::create_directories(dir);
+  const std::string profile = (dir / "small.toml").string();
+  std::ofstream(profile) << "[display]\nwidth = 320\nheight = 180\nphase = 1\n";
+  const fs::path png = dir / "a.png";
+  Result r = run("snapshot " + kShearSmall + " --out " + png.string() +
+                 " --stereo alioscopy --display " + profile + " --mode transparent");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const simsols::plot::Image inter = simsols::plot::read_png(png.string());
+  EXPECT_EQ(inter.width, 320);
+  EXPECT_EQ(inter.height, 180);
+  for (int k = 0; k < 8; ++k) {
+    const auto v = simsols::plot::read_png((dir / ("a_view" + std::to_string(k) + ".png")).string());
+    EXPECT_EQ(v.width, 160);
+    EXPECT_EQ(v.height, 90);
+  }
+  EXPECT_TRUE(fs::exists(dir / "a_grid.png"));
+  std::ofstream(profile) << "[display]\nphase = 12\n";
+  r = run("snapshot " + kShearSmall + " --out " + (dir / "b.png").string() +
+          " --stereo alioscopy --display " + profile);
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("display.phase"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("[0, 7]"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir / "b.png"));
+  r = run("snapshot " + kShearSmall + " --out " + (dir / "c.png").string() + " --stereo anaglyph");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("--stereo"), std::string::npos) << r.out;
+}
