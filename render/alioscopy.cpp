@@ -279,32 +279,7 @@ void AlioscopyOutput::compose(Mode mode, int single_view, glm::ivec2 window) {
   gl_.check("AlioscopyOutput::compose");
 }
 
-namespace {
-
-plot::Image read_fbo(const Gl& gl, GLuint fbo, int w, int h) {
-  plot::Image img;
-  img.width = w;
-  img.height = h;
-  img.rgba.resize(std::size_t(w) * h * 4);
-  std::vector<std::uint8_t> rows(img.rgba.size());
-  GLint prev = 0, pack = 4;
-  gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev);
-  gl.GetIntegerv(GL_PACK_ALIGNMENT, &pack);
-  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
-  gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
-  gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl.ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
-  gl.PixelStorei(GL_PACK_ALIGNMENT, pack);
-  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(prev));
-  const std::size_t stride = std::size_t(w) * 4;
-  for (int y = 0; y < h; ++y)
-    std::copy_n(&rows[std::size_t(h - 1 - y) * stride], stride, &img.rgba[std::size_t(y) * stride]);
-  return img;
-}
-
-}  // namespace
-
-plot::Image AlioscopyOutput::read_pixels() const { return read_fbo(gl_, out_fbo_, out_w_, out_h_); }
+plot::Image AlioscopyOutput::read_pixels() const { return read_framebuffer(gl_, out_fbo_, out_w_, out_h_); }
 
 plot::Image AlioscopyOutput::read_view(int k) const {
   GLint read = 0;
@@ -312,7 +287,7 @@ plot::Image AlioscopyOutput::read_view(int k) const {
   gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, layer_fbo_);
   gl_.FramebufferTextureLayer(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, views_tex_, 0, k);
   gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(read));
-  return read_fbo(gl_, layer_fbo_, profile_.view_width(), profile_.view_height());
+  return read_framebuffer(gl_, layer_fbo_, profile_.view_width(), profile_.view_height());
 }
 
 }  // namespace simsols::render

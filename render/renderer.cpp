@@ -321,6 +321,18 @@ void Renderer::draw_beads(ShaderProgram& p, const FrameGeometry& g, const ViewSe
   gl_.DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(g.bead_count));
 }
 
+// Segments: two float4 per instance (end xyz + force), a quad each.
+void Renderer::draw_segments(GLuint buffer, std::size_t count) {
+  gl_.BindVertexArray(vao_);
+  gl_.BindBuffer(GL_ARRAY_BUFFER, buffer);
+  for (GLuint a = 0; a < 2; ++a) {
+    gl_.EnableVertexAttribArray(a);
+    gl_.VertexAttribPointer(a, 4, GL_FLOAT, GL_FALSE, 32, reinterpret_cast<void*>(std::size_t(16 * a)));
+    gl_.VertexAttribDivisor(a, 1);
+  }
+  gl_.DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(count));
+}
+
 void Renderer::draw_opaque(const FrameGeometry& g, const ViewSettings& s) {
   gl_.Enable(GL_DEPTH_TEST);
   gl_.DepthFunc(GL_LESS);
@@ -335,15 +347,7 @@ void Renderer::draw_opaque(const FrameGeometry& g, const ViewSettings& s) {
     segment_->set("u_width_px", s.chain_width_px);
     segment_->set("u_max_width_px", s.chain_max_width_px);
     segment_->set("u_fixed_width_px", 0.f);
-    gl_.BindVertexArray(vao_);
-    gl_.BindBuffer(GL_ARRAY_BUFFER, g.segments);
-    gl_.EnableVertexAttribArray(0);
-    gl_.VertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 32, nullptr);
-    gl_.VertexAttribDivisor(0, 1);
-    gl_.EnableVertexAttribArray(1);
-    gl_.VertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, 32, reinterpret_cast<void*>(16));
-    gl_.VertexAttribDivisor(1, 1);
-    gl_.DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(g.segment_count));
+    draw_segments(g.segments, g.segment_count);
   }
 
   // Wall edges: the four sides of each rectangle as fixed-width segments.
@@ -362,16 +366,9 @@ void Renderer::draw_opaque(const FrameGeometry& g, const ViewSettings& s) {
     segment_->set("u_fixed_width_px", s.wall_edge_px);
     segment_->set("u_fixed_color", s.wall_edge_color.r, s.wall_edge_color.g, s.wall_edge_color.b,
                   s.wall_edge_color.a);
-    gl_.BindVertexArray(vao_);
     gl_.BindBuffer(GL_ARRAY_BUFFER, edge_buffer_);
     gl_.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(edges.size() * 4), edges.data(), GL_STREAM_DRAW);
-    gl_.EnableVertexAttribArray(0);
-    gl_.VertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 32, nullptr);
-    gl_.VertexAttribDivisor(0, 1);
-    gl_.EnableVertexAttribArray(1);
-    gl_.VertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, 32, reinterpret_cast<void*>(16));
-    gl_.VertexAttribDivisor(1, 1);
-    gl_.DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(edges.size() / 8));
+    draw_segments(edge_buffer_, edges.size() / 8);
   }
 }
 
@@ -419,26 +416,28 @@ void Renderer::composite() {
   gl_.ActiveTexture(GL_TEXTURE0);
 }
 
-plot::Image Renderer::read_pixels() const {
+plot::Image read_framebuffer(const Gl& gl, GLuint fbo, int width, int height) {
   plot::Image img;
-  img.width = width_;
-  img.height = height_;
-  img.rgba.resize(std::size_t(width_) * height_ * 4);
-  GLint prev = 0, pack = 4;
-  gl_.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev);
-  gl_.GetIntegerv(GL_PACK_ALIGNMENT, &pack);
-  gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, scene_fbo_);
-  gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
-  gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  img.width = width;
+  img.height = height;
+  img.rgba.resize(std::size_t(width) * height * 4);
   std::vector<std::uint8_t> rows(img.rgba.size());
-  gl_.ReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
-  gl_.PixelStorei(GL_PACK_ALIGNMENT, pack);
-  gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(prev));
-  gl_.check("Renderer::read_pixels");
-  const std::size_t stride = std::size_t(width_) * 4;
-  for (int y = 0; y < height_; ++y)  // GL rows start at the bottom
-    std::copy_n(&rows[std::size_t(height_ - 1 - y) * stride], stride, &img.rgba[std::size_t(y) * stride]);
+  GLint prev = 0, pack = 4;
+  gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev);
+  gl.GetIntegerv(GL_PACK_ALIGNMENT, &pack);
+  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+  gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+  gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+  gl.PixelStorei(GL_PACK_ALIGNMENT, pack);
+  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(prev));
+  gl.check("read_framebuffer");
+  const std::size_t stride = std::size_t(width) * 4;
+  for (int y = 0; y < height; ++y)  // GL rows start at the bottom
+    std::copy_n(&rows[std::size_t(height - 1 - y) * stride], stride, &img.rgba[std::size_t(y) * stride]);
   return img;
 }
+
+plot::Image Renderer::read_pixels() const { return read_framebuffer(gl_, scene_fbo_, width_, height_); }
 
 }  // namespace simsols::render

@@ -113,6 +113,9 @@ class GeometryBuffers {
   FrameGeometry geom_;
 };
 
+// Colour attachment 0 of `fbo` (RGBA8), top row first.
+plot::Image read_framebuffer(const Gl& gl, GLuint fbo, int width, int height);
+
 class Renderer {
  public:
   explicit Renderer(const Gl& gl);  // compiles the shaders; throws RenderError
@@ -138,6 +141,7 @@ class Renderer {
   void draw_opaque(const FrameGeometry& g, const ViewSettings& s);
   void draw_transparent(const FrameGeometry& g, const ViewSettings& s);
   void composite();
+  void draw_segments(GLuint buffer, std::size_t count);
   void draw_beads(ShaderProgram& p, const FrameGeometry& g, const ViewSettings& s, float alpha);
   void set_common(ShaderProgram& p, const ViewSettings& s, bool force_map);
   void bind_colormap(ShaderProgram& p, plot::ColorMap map);
