@@ -19,6 +19,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "paper_tests.h"
 #include "contact_model.h"
 #include "errors.h"
 #include "output.h"
@@ -43,23 +44,10 @@ struct CampaignOptions {
   bool quiet = false;
 };
 
-// The paper's Table 1: bead diameter (mm) -> number of layers.
-int table1_layers(double d_mm) {
-  const std::pair<double, int> table[] = {
-      {2.38125, 8}, {3.175, 6}, {3.96875, 5}, {4.7625, 4}, {6.35, 4}};
-  for (const auto& [d, n] : table)
-    if (std::fabs(d - d_mm) < 1e-6) return n;
-  return 0;
-}
-
 std::string fmt(const char* f, double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, f, v);
   return buf;
-}
-
-std::string test_name(double d_mm, double s_kpa) {
-  return "d" + fmt("%g", d_mm) + "mm_" + fmt("%g", s_kpa) + "kPa";
 }
 
 std::string read_text(const fs::path& p) {
@@ -126,28 +114,11 @@ int campaign(const CampaignOptions& opt) {
       Test t;
       t.d_mm = d;
       t.s_kpa = s;
-      Scene sc = base;
-      sc.particles.clear();
-      sc.walls.erase(sc.walls.begin() + base.shear_box->first_wall,
-                     sc.walls.begin() + base.shear_box->first_wall + kShearBoxWalls);
-      ShearBox b = *base.shear_box;
-      if (b.specimen.method == ShearSpecimen::Method::Given)
-        throw SceneError("bad_enum", opt.base, 0, "shear_box.specimen.method",
-                         "the campaign prepares its own specimens: use \"layers\" or \"pour\"");
-      b.specimen.diameter = d * 1e-3;
-      b.specimen.layers = layers;
-      b.normal_stress = s * 1e3;
-      b.split_height = 0;
-      b.gap = 0;
-      if (opt.displacement_mm > 0) b.shear_displacement = opt.displacement_mm * 1e-3;
-      sc.shear_box = b;
-      if (!opt.precision.empty())
-        sc.numerics.precision = opt.precision == "float" ? Precision::Float : Precision::Double;
-      sc.name = test_name(d, s);
-      sc.source_text.clear();
-      if (auto issue = build_shear_box(sc))
-        throw SceneError(issue->code, opt.base + " (" + sc.name + ")", 0, issue->field,
-                         issue->message);
+      Scene sc = paper_test_scene(base, opt.base, d, s, layers, [&](Scene& x) {
+        if (opt.displacement_mm > 0) x.shear_box->shear_displacement = opt.displacement_mm * 1e-3;
+        if (!opt.precision.empty())
+          x.numerics.precision = opt.precision == "float" ? Precision::Float : Precision::Double;
+      });
       validate_scene(sc, opt.base + " (" + sc.name + ")");
       t.scene = std::move(sc);
       t.dir = fs::path(opt.out_dir) / t.scene.name;

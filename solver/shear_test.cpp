@@ -85,6 +85,7 @@ ShearTest::ShearTest(Simulation& sim) : sim_(sim), box_(box_of(sim)) {
 }
 
 double ShearTest::shear_speed_for(double height) const {
+  if (speed_override_ > 0) return speed_override_;
   return box_.shear_speed > 0 ? box_.shear_speed
                               : speed_for_inertial_number(box_.inertial_number, height,
                                                           diameter_, density_, sigma_target_);
@@ -114,6 +115,24 @@ void ShearTest::set_normal_stress(double pascals) {
     throw std::invalid_argument("normal stress must be > 0 Pa");
   sigma_target_ = pascals;
   if (phase_ == ShearPhase::Consolidate || phase_ == ShearPhase::Shear) apply_servo(true);
+}
+
+void ShearTest::start_shear() {
+  hold_ = false;
+  if (ready_to_shear()) enter(ShearPhase::Shear);
+}
+
+void ShearTest::set_shear_speed(double v) {
+  if (!(v > 0) || !std::isfinite(v)) throw std::invalid_argument("shear speed must be > 0 m/s");
+  speed_override_ = v;
+  if (phase_ != ShearPhase::Shear) return;
+  speed_ = v;
+  for (int w = kFloor; w <= kLowerLast; ++w) sim_.set_wall_velocity(box_.first_wall + w, {v, 0, 0});
+  const double done = rows_.empty() ? 0 : rows_.back().displacement;
+  const int left = std::max(1, box_.rows - static_cast<int>(rows_.size()));
+  const double remaining = std::max(0.0, box_.shear_displacement - done);
+  row_steps_ = std::max<std::int64_t>(1, std::llround(remaining / (v * sim_.dt()) / left));
+  next_row_ = sim_.steps() + row_steps_;
 }
 
 void ShearTest::enter(ShearPhase p) {
@@ -252,7 +271,8 @@ bool ShearTest::advance(std::int64_t max_steps) {
         else next_check_ = sim_.steps() + every;
         return false;
       case ShearPhase::Consolidate:
-        if (consolidated()) enter(ShearPhase::Shear);
+        ready_ = ready_ || consolidated();
+        if (ready_ && !hold_) enter(ShearPhase::Shear);
         else next_check_ = sim_.steps() + every;
         return false;
       case ShearPhase::Shear:
@@ -349,13 +369,14 @@ ShearSummary ShearTest::summary() const {
 std::string ShearTest::save_state() const {
   std::ostringstream o;
   o.precision(17);
-  o << "shear_test 1\n"
+  o << "shear_test 2\n"
     << started_ << ' ' << static_cast<int>(phase_) << ' ' << phase_start_ << ' ' << next_check_
     << ' ' << next_row_ << ' ' << row_steps_ << ' ' << shear_steps_ << ' ' << quiet_checks_
     << '\n'
     << sigma_target_ << ' ' << speed_ << ' ' << gain_ << ' ' << integral_time_ << ' ' << x0_
     << ' ' << z0_ << ' ' << height0_ << ' ' << settle_seconds_ << ' ' << consolidate_seconds_
     << '\n'
+    << hold_ << ' ' << ready_ << ' ' << speed_override_ << '\n'
     << rows_.size() << '\n';
   for (const ShearRow& r : rows_)
     o << r.time << ' ' << r.step << ' ' << r.displacement << ' ' << r.shear_force << ' '
@@ -371,11 +392,15 @@ void ShearTest::restore_state(const std::string& text) {
   int version = 0, phase = 0;
   size_t count = 0;
   in >> tag >> version;
-  if (tag != "shear_test" || version != 1)
+  if (tag != "shear_test" || (version != 1 && version != 2))
     throw std::runtime_error("the checkpoint holds no shear-test state");
   in >> started_ >> phase >> phase_start_ >> next_check_ >> next_row_ >> row_steps_ >>
       shear_steps_ >> quiet_checks_ >> sigma_target_ >> speed_ >> gain_ >> integral_time_ >>
-      x0_ >> z0_ >> height0_ >> settle_seconds_ >> consolidate_seconds_ >> count;
+      x0_ >> z0_ >> height0_ >> settle_seconds_ >> consolidate_seconds_;
+  hold_ = ready_ = false;
+  speed_override_ = 0;
+  if (version == 2) in >> hold_ >> ready_ >> speed_override_;  // version 1: no bench control
+  in >> count;
   if (!in || phase < 0 || phase > 3) throw std::runtime_error("malformed shear-test state");
   phase_ = static_cast<ShearPhase>(phase);
   rows_.assign(count, {});

@@ -98,6 +98,16 @@ class ShearTest {
   void set_normal_stress(double pascals);
   double normal_stress() const { return sigma_target_; }
 
+  // Bench control (the desktop lab): with a hold, the test stops after
+  // consolidation with the servo holding the normal stress, until
+  // start_shear(). ready_to_shear() tells that consolidation is done.
+  void hold_before_shear(bool on) { hold_ = on; }
+  bool ready_to_shear() const { return phase_ == ShearPhase::Consolidate && ready_; }
+  void start_shear();
+  // A new shear speed (m/s, > 0), now if shearing, else from the start of
+  // shearing; the remaining displacement is shared among the remaining rows.
+  void set_shear_speed(double metres_per_second);
+
   std::string save_state() const;
   void restore_state(const std::string& text);  // throws std::runtime_error when malformed
 
@@ -124,6 +134,8 @@ class ShearTest {
   double x0_ = 0, z0_ = 0, height0_ = 0, diameter_ = 0, density_ = 0, bead_mass_ = 0;
   double settle_seconds_ = 0, consolidate_seconds_ = 0;
   int quiet_checks_ = 0;
+  bool hold_ = false, ready_ = false;
+  double speed_override_ = 0;      // m/s from set_shear_speed; 0 = none
   std::vector<ShearRow> rows_;
 };
 
