@@ -7,7 +7,9 @@ set -euo pipefail
 # Debian 12 packages the build, the tests and the headless run need.
 # The renderer: GL headers (libgl-dev), EGL (libegl-dev) with Mesa's
 # surfaceless EGL and llvmpipe (libegl-mesa0, libgl1-mesa-dri), OSMesa as the
-# fallback (libosmesa6, loaded at run time) and GLM.
+# fallback (libosmesa6, loaded at run time) and GLM. The desktop lab: GLFW,
+# Dear ImGui (with its GLFW and OpenGL 3 backends) and, for its scripted
+# tests, Xvfb.
 PACKAGES=(
   build-essential
   cmake
@@ -25,6 +27,11 @@ PACKAGES=(
   libgl1-mesa-dri
   libosmesa6
   libglm-dev
+  libglfw3-dev
+  libimgui-dev
+  libstb-dev
+  xvfb
+  xauth
   clinfo
 )
 
@@ -101,8 +108,9 @@ build() {
 cmd_run() {
   install_packages
   build
-  if [[ -n "${DISPLAY:-}" || -n "${WAYLAND_DISPLAY:-}" ]]; then
-    say "Display found: the desktop window arrives with a later release; running headless for now"
+  if [[ -n "${DISPLAY:-}" || -n "${WAYLAND_DISPLAY:-}" ]] && [[ -z "${SIMSOLS_HEADLESS:-}" ]]; then
+    say "Display found: opening the lab ($BIN lab); set SIMSOLS_HEADLESS=1 to run the default experiment headless"
+    exec "$BIN" lab "$@"
   fi
   [[ -f "$DEFAULT_SCENE" ]] || die "default scene $DEFAULT_SCENE not found"
   say "Running the default experiment: $BIN run $DEFAULT_SCENE --out $DEFAULT_OUT $*"

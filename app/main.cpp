@@ -5,6 +5,7 @@
 //   simsols campaign --out DIR           the paper's 20 direct shear tests (resumable)
 //   simsols bench                        particle-steps per second and memory
 //   simsols snapshot SCENE|CKPT --out F  one offscreen frame (PNG)
+//   simsols lab [SCENE] [--script F]     the desktop lab (window)
 //
 // Exit status: 0 success, 2 bad input, 3 device or I/O failure.
 #include <cstdio>
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
   add(simsols::add_bench_command);
   add(simsols::add_campaign_command);
   add(simsols::add_snapshot_command);
+  add(simsols::add_lab_command);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -35,9 +35,14 @@ void read_into_gl(const Gl& gl, Device& device, cl_mem src, GLuint dst, std::siz
 }  // namespace
 
 std::vector<cl_context_properties> cl_share_properties(const GlShareHandles& h) {
-  if (!h.gl_context || !h.egl_display) return {};
-  return {CL_GL_CONTEXT_KHR, cl_context_properties(h.gl_context), CL_EGL_DISPLAY_KHR,
-          cl_context_properties(h.egl_display)};
+  if (!h.gl_context) return {};
+  if (h.egl_display)
+    return {CL_GL_CONTEXT_KHR, cl_context_properties(h.gl_context), CL_EGL_DISPLAY_KHR,
+            cl_context_properties(h.egl_display)};
+  if (h.glx_display)
+    return {CL_GL_CONTEXT_KHR, cl_context_properties(h.gl_context), CL_GLX_DISPLAY_KHR,
+            cl_context_properties(h.glx_display)};
+  return {};
 }
 
 ParticleBridge::ParticleBridge(const Gl& gl, GeometryBuffers& buffers, ViewPacker& packer,

@@ -1,0 +1,92 @@
+// The desktop lab end to end, under Xvfb: a scripted session loads a
+// preset, prepares it, applies the normal stress, shears, changes the normal
+// stress, takes a screenshot and a checkpoint; a second session loads the
+// checkpoint. Asserted: the experiment's state (displacement advanced, the
+// servo target changed, the checkpoint reloads to the same state and goes
+// on exactly as the first session did) and the screenshot (the panel drawn,
+// the beads visible in the viewport).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "png.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+int run(const std::string& cmd) {
+  const int s = std::system((cmd + " > /dev/null 2>&1").c_str());
+  return WIFEXITED(s) ? WEXITSTATUS(s) : -1;
+}
+
+std::map<std::string, std::string> read_state(const fs::path& p) {
+  std::map<std::string, std::string> m;
+  std::ifstream in(p);
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto eq = line.find(" = ");
+    if (eq != std::string::npos) m[line.substr(0, eq)] = line.substr(eq + 3);
+  }
+  return m;
+}
+
+std::string lab(const fs::path& script) {
+  return "xvfb-run -a -s '-screen 0 1600x1000x24' " + std::string(SIMSOLS_EXE) +
+         " lab --size 1400x860 --script " + script.string();
+}
+
+}  // namespace
+
+TEST(Lab, ScriptedSessionShearsChangesStressAndCheckpoints) {
+  if (run("command -v xvfb-run") != 0) GTEST_SKIP() << "xvfb-run not installed (Debian: xvfb)";
+  const fs::path d = fs::temp_directory_path() / "simsols_lab";
+  fs::remove_all(d);
+  fs::create_directories(d);
+  std::ofstream(d / "one.txt") << "preset 6.35 160\nprepare\nload\nstart\nrows 3\n"
+                               << "set_stress 280\nrows 6\nscreenshot " << (d / "shot.png").string()
+                               << "\nstate " << (d / "a.state").string() << "\ncheckpoint "
+                               << (d / "c.bin").string() << "\nrows 9\nstate "
+                               << (d / "b.state").string() << "\n";
+  std::ofstream(d / "two.txt") << "load_checkpoint " << (d / "c.bin").string() << "\nframes 2\n"
+                               << "state " << (d / "a2.state").string() << "\nrows 9\nstate "
+                               << (d / "b2.state").string() << "\n";
+  ASSERT_EQ(run(lab(d / "one.txt")), 0);
+  ASSERT_EQ(run(lab(d / "two.txt")), 0);
+
+  auto a = read_state(d / "a.state"), b = read_state(d / "b.state");
+  auto a2 = read_state(d / "a2.state"), b2 = read_state(d / "b2.state");
+  EXPECT_EQ(a["stage"], "shearing");
+  EXPECT_EQ(a["rows"], "6");
+  EXPECT_GT(std::stod(a["displacement_mm"]), 0.05);
+  EXPECT_DOUBLE_EQ(std::stod(a["sigma_target_kpa"]), 280);
+  // the servo followed the new target: the measured stress is near 280, not 160
+  EXPECT_NEAR(std::stod(a["sigma_kpa"]), 280, 0.1 * 280);
+  EXPECT_GT(std::stod(b["displacement_mm"]), std::stod(a["displacement_mm"]));
+  // the checkpoint reloads to the same state and continues identically
+  EXPECT_EQ(a2["hash"], a["hash"]);
+  EXPECT_EQ(a2["steps"], a["steps"]);
+  EXPECT_EQ(b2["hash"], b["hash"]);
+  EXPECT_EQ(b2["steps"], b["steps"]);
+
+  const simsols::plot::Image img = simsols::plot::read_png((d / "shot.png").string());
+  ASSERT_EQ(img.width, 1400);
+  ASSERT_EQ(img.height, 860);
+  // the panel (left 430 px): text and widgets, many distinct colours
+  std::map<std::uint32_t, int> panel_colours;
+  long colourful = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const auto p = simsols::plot::pixel(img, x, y);
+      if (x < 430) panel_colours[(p.r << 16) | (p.g << 8) | p.b]++;
+      else if (std::max({p.r, p.g, p.b}) - std::min({p.r, p.g, p.b}) > 40) ++colourful;
+    }
+  EXPECT_GT(panel_colours.size(), 30u) << "panel drawn";
+  EXPECT_GT(colourful, 5000) << "beads (coloured by layer) visible in the viewport";
+}
