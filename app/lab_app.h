@@ -87,6 +87,7 @@ class LabApp {
   bool help_ = false, close_asked_ = false, quit_ = false;
   double frame_ms_ = 0, draw_ms_ = 0, fps_ = 0;
   std::size_t contacts_ = 0;  // touching contacts drawn last frame
+  double render_ms_ = 0, render_scale_ = 1;  // flat view: adaptive resolution
   std::unique_ptr<Script> script_;
   int exit_status_ = 0;
   // panel state

@@ -240,15 +240,15 @@ void LabApp::draw_status(int panel_width) {
   if (sim) {
     const ShearTest* t = exp_->test();
     const double inertial = t && !t->rows().empty() ? t->rows().back().inertial_number : 0;
-    ImGui::Text(
-        "t = %.5f s   %.0f steps/s   %d beads   %zu contacts   I = %.2g   dt = %.3g s   %s   %s   "
-        "%s   %.0f fps",
-        sim->time(), exp_->steps_per_second(), sim->model().particles(),
-        contacts_, inertial, sim->dt(),
-        sim->model().config().double_precision ? "double" : "float",
-        sim->model().device().name().c_str(),
-        sim_view_ ? (sim_view_->bridge().shared() ? "buffers shared" : "buffers copied") : "",
-        fps_);
+    ImGui::Text("t = %.5f s   %.0f steps/s   %d beads   %zu contacts   I = %.2g   dt = %.3g s   %s",
+                sim->time(), exp_->steps_per_second(), sim->model().particles(), contacts_,
+                inertial, sim->dt(), sim->model().config().double_precision ? "double" : "float");
+    std::string device = sim->model().device().name();
+    if (device.size() > 48) device = device.substr(0, 45) + "...";
+    ImGui::Text("%s   %s   %.0f fps (view at %.0f%%)   H: help", device.c_str(),
+                sim_view_ ? (sim_view_->bridge().shared() ? "buffers shared (CL-GL)" : "buffers copied")
+                          : "",
+                fps_, render_scale_ * 100);
   } else {
     ImGui::Text("%s   %.0f fps   (H: help)", to_string(exp_->stage()), fps_);
   }

@@ -29,6 +29,7 @@
 #define GLFW_INCLUDE_NONE  // GL comes from render/gl_api.h
 #include <GLFW/glfw3.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -36,6 +37,7 @@
 
 #include "lab_script.h"
 #include "output.h"
+#include "paper_tests.h"
 
 namespace simsols {
 
@@ -69,7 +71,7 @@ std::string LabApp::state_text() {
         << "\ntau_kpa = " << r.tau * 1e-3 << "\n";
     }
   }
-  o << "fps = " << fps_ << "\n";
+  o << "fps = " << fps_ << "\nrender_scale = " << render_scale_ << "\n";
   return o.str();
 }
 
@@ -115,7 +117,13 @@ void LabApp::run_script() {
   if (cmd == "preset") {
     double d = 0, kpa = 0;
     if (std::sscanf(arg.c_str(), "%lf %lf", &d, &kpa) != 2) return fail("preset D_MM S_KPA", 2);
-    if (check(exp_->load_preset(d, kpa))) sigma_kpa_ = float(kpa);
+    if (check(exp_->load_preset(d, kpa))) {
+      sigma_kpa_ = float(kpa);
+      for (int k = 0; k < 5; ++k)  // the panel's combo boxes follow
+        if (std::fabs(kTable1SizesMm[k] - d) < 1e-6) preset_size_ = k;
+      for (int k = 0; k < 4; ++k)
+        if (std::fabs(kPaperStressesKpa[k] - kpa) < 1e-9) preset_stress_ = k;
+    }
   } else if (cmd == "open") {
     check(exp_->load_scene_file(arg));
   } else if (cmd == "precision") {
