@@ -15,5 +15,6 @@ CommandRunner add_bench_command(CLI::App& app);
 CommandRunner add_campaign_command(CLI::App& app);
 CommandRunner add_snapshot_command(CLI::App& app);
 CommandRunner add_lab_command(CLI::App& app);
+CommandRunner add_study_command(CLI::App& app);
 
 }  // namespace simsols

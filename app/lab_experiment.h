@@ -51,6 +51,10 @@ class LabExperiment {
   // Applied at the next prepare().
   void set_precision(Precision p) { scene_.numerics.precision = p; }
   void set_effects(const Effects& e) { scene_.effects = e; }
+  void set_dt_fraction(double f) {
+    scene_.numerics.dt_fraction = f;
+    scene_.numerics.dt = 0;
+  }
 
   // Bench actions; each returns an error text or "" (e.g. "prepare first").
   std::string prepare();  // starts the build; poll() finishes it

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "accuracy_table.h"
 #include "lab_app.h"
 #include "lab_plots.h"
 #include "paper_tests.h"
@@ -99,6 +100,19 @@ void LabApp::draw_controls() {
     ImGui::SameLine();
     changed |= ImGui::RadioButton("double", &precision, 1);
     if (changed) exp_->set_precision(precision == 0 ? Precision::Float : Precision::Double);
+    float dt_fraction = float(exp_->scene().numerics.dt_fraction);
+    ImGui::SetNextItemWidth(200);
+    if (ImGui::SliderFloat("time step (x Rayleigh)", &dt_fraction, 0.05f, 0.5f, "%.2f"))
+      exp_->set_dt_fraction(dt_fraction);
+    // what the accuracy study measured for these settings (docs/accuracy.md)
+    if (const AccuracyEntry* a = expected_accuracy(dt_fraction, exp_->scene().numerics.precision)) {
+      if (a->peak_error_pct && a->reference_wall_s > 0)
+        ImGui::TextDisabled("expected: phi_peak within %.2f %%, %.2fx the time of the most "
+                            "accurate run (study case '%s')",
+                            *a->peak_error_pct, a->wall_s / a->reference_wall_s, a->label.c_str());
+      else
+        ImGui::TextDisabled("study case '%s': %s", a->label.c_str(), a->status.c_str());
+    }
     Effects e = exp_->scene().effects;
     bool gravity = e.gravity[2] != 0;
     bool fx = false;

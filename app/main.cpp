@@ -6,6 +6,7 @@
 //   simsols bench                        particle-steps per second and memory
 //   simsols snapshot SCENE|CKPT --out F  one offscreen frame (PNG)
 //   simsols lab [SCENE] [--script F]     the desktop lab (window)
+//   simsols study accuracy --out DIR     what accuracy costs in time
 //
 // Exit status: 0 success, 2 bad input, 3 device or I/O failure.
 #include <cstdio>
@@ -28,6 +29,7 @@ int main(int argc, char** argv) {
   add(simsols::add_campaign_command);
   add(simsols::add_snapshot_command);
   add(simsols::add_lab_command);
+  add(simsols::add_study_command);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -8,7 +8,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
+#include <vector>
 
 #include "png.h"
 
@@ -317,4 +319,59 @@ TEST(Cli, SnapshotAlioscopyWritesTheInterleavedImageAndTheViews) {
   r = run("snapshot " + kShearSmall + " --out " + (dir / "c.png").string() + " --stereo anaglyph");
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find("--stereo"), std::string::npos) << r.out;
+}
+
+// `simsols study accuracy --preset ci`: the reduced study. Errors fall as the
+// time step shrinks; float and double agree; a time step beyond the
+// stability limit is reported as failed, not as a number.
+namespace {
+
+std::vector<std::vector<std::string>> read_csv(const fs::path& p) {
+  std::vector<std::vector<std::string>> rows;
+  std::ifstream in(p);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f(1);
+    bool q = false;
+    for (char c : line) {
+      if (c == '"') q = !q;
+      else if (c == ',' && !q) f.emplace_back();
+      else f.back() += c;
+    }
+    rows.push_back(f);
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST(Cli, AccuracyStudyReducedForm) {
+  const fs::path out = fresh_dir("study");
+  const Result r = run("study accuracy --preset ci --out " + out.string() + " -q");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto rows = read_csv(out / "cases.csv");
+  ASSERT_EQ(rows.size(), 7u) << "header + 6 cases";
+  std::map<std::string, std::vector<std::string>> by;
+  for (size_t i = 1; i < rows.size(); ++i) by[rows[i][1]] = rows[i];
+  auto val = [&](const std::string& label, int col) { return std::stod(by.at(label)[col]); };
+  // columns: 10 overlap, 12 contact time, 13 restitution (errors, %), 16 peak, 19 peak error
+  for (int col : {10, 12, 13}) {
+    EXPECT_LT(val("dt 0.1", col), val("dt 0.2", col)) << rows[0][col];
+    EXPECT_LT(val("dt 0.2", col), val("dt 0.4", col)) << rows[0][col];
+  }
+  // float and double agree: peak angle within 0.5 %, contact errors both small
+  EXPECT_NEAR(val("dt 0.2", 16) / val("double dt 0.2", 16), 1.0, 0.005);
+  EXPECT_LT(val("dt 0.2", 10), 0.1);
+  EXPECT_LT(val("double dt 0.2", 10), 0.1);
+  // beyond the stability limit: failed, no numbers
+  const auto& bad = by.at("dt 3.0 (forced)");
+  EXPECT_EQ(bad[15].rfind("failed", 0), 0u) << bad[15];
+  EXPECT_TRUE(bad[16].empty());
+  EXPECT_TRUE(bad[19].empty());
+  EXPECT_TRUE(fs::exists(out / "pareto.png"));
+  EXPECT_TRUE(fs::exists(out / "summary.md"));
+  EXPECT_TRUE(fs::exists(out / "error_vs_time_time_step.png"));
+  const Result bad_preset = run("study accuracy --preset huge --out " + out.string());
+  EXPECT_EQ(bad_preset.status, 2) << bad_preset.out;
+  EXPECT_NE(bad_preset.out.find("--preset"), std::string::npos);
 }

@@ -1,0 +1,468 @@
+#include "study.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <numbers>
+#include <sstream>
+
+#include "chart.h"
+#include "contact_model.h"
+#include "output.h"
+#include "paper_tests.h"
+#include "scene_toml.h"
+#include "shear_test.h"
+#include "simulation.h"
+
+namespace simsols {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+StudySettings make(const char* knob, const char* label, double dt, Precision p = Precision::Float,
+                   double e = 1, double inertial = 8e-4, double skin = 0.1, bool rolling = true,
+                   bool damping = true) {
+  return {knob, label, dt, p, e, inertial, skin, rolling, damping};
+}
+
+std::vector<StudySettings> sweep() {
+  const Precision F = Precision::Float, D = Precision::Double;
+  return {
+      // the most accurate settings of the sweep: the reference for the shear test
+      make("reference", "reference: dt 0.10 double I 2e-4", 0.10, D, 1, 2e-4),
+      make("baseline", "baseline: dt 0.25 float I 8e-4", 0.25),
+      make("time step", "dt 0.05", 0.05),
+      make("time step", "dt 0.10", 0.10),
+      make("time step", "dt 0.50", 0.50),
+      make("time step", "dt 0.75 (forced)", 0.75),
+      make("time step", "dt 1.0 (forced)", 1.0),
+      make("time step", "dt 2.0 (forced)", 2.0),
+      make("precision", "double", 0.25, D),
+      make("stiffness", "E x 0.1", 0.25, F, 0.1),
+      make("stiffness", "E x 0.01", 0.25, F, 0.01),
+      make("inertial number", "I 1e-4", 0.25, F, 1, 1e-4),
+      make("inertial number", "I 4e-4", 0.25, F, 1, 4e-4),
+      make("inertial number", "I 2e-3", 0.25, F, 1, 2e-3),
+      make("inertial number", "I 1e-2", 0.25, F, 1, 1e-2),
+      make("skin", "skin 0.03 d", 0.25, F, 1, 8e-4, 0.03),
+      make("skin", "skin 0.3 d", 0.25, F, 1, 8e-4, 0.3),
+      make("effects", "no rolling friction", 0.25, F, 1, 8e-4, 0.1, false, true),
+      make("effects", "no damping", 0.25, F, 1, 8e-4, 0.1, true, false),
+      make("combination", "E x 0.1 + dt 0.5", 0.5, F, 0.1),
+      make("combination", "E x 0.01 + dt 0.5 + I 2e-3", 0.5, F, 0.01, 2e-3),
+      make("combination", "dt 0.5 + I 2e-3", 0.5, F, 1, 2e-3),
+  };
+}
+
+Material glass_scaled(double scale) {
+  Material m = paper_glass();
+  m.young_modulus *= scale;
+  return m;
+}
+
+Scene contact_scene(const StudySettings& s, const Material& m) {
+  Scene sc;
+  sc.name = "contact check";
+  sc.materials = {m};
+  sc.effects.gravity = {0, 0, 0};
+  sc.effects.rolling_friction = s.rolling;
+  sc.effects.damping = s.damping;
+  sc.numerics.precision = s.precision;
+  sc.numerics.dt_fraction = s.dt_fraction;
+  sc.numerics.force_dt = s.dt_fraction > kMaxDtFraction;
+  sc.numerics.duration = 1;
+  Wall floor;
+  floor.name = "floor";
+  sc.walls = {floor};
+  return sc;
+}
+
+double pct(double measured, double theory) { return 100 * std::fabs(measured / theory - 1); }
+
+double norm(const Vec3& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+}  // namespace
+
+double ContactErrors::worst() const {
+  return std::max({overlap, force, duration, restitution, rolling});
+}
+
+std::optional<StudyPreset> study_preset(const std::string& name) {
+  StudyPreset p;
+  p.name = name;
+  if (name == "quick") {
+    p.cases = sweep();
+  } else if (name == "full") {
+    p.displacement_mm = 6;
+    p.rows = 300;
+    p.cases = sweep();
+  } else if (name == "ci") {
+    // reduced: two layers, 0.6 mm of shear, few cases
+    p.layers = 2;
+    const Precision D = Precision::Double;
+    p.displacement_mm = 0.4;
+    p.rows = 20;
+    p.cases = {make("reference", "reference: dt 0.1 double", 0.1, D),
+               make("time step", "dt 0.1", 0.1),
+               make("time step", "dt 0.2", 0.2),
+               make("time step", "dt 0.4", 0.4),
+               make("precision", "double dt 0.2", 0.2, D),
+               make("time step", "dt 3.0 (forced)", 3.0)};
+  } else {
+    return std::nullopt;
+  }
+  return p;
+}
+
+ContactErrors run_contact_checks(const StudySettings& s) {
+  ContactErrors e;
+  const double R = 6.35e-3 / 2;
+  try {
+    // 1. Hertz impact on a wall, elastic and frictionless, 0.1 m/s
+    {
+      Material m = glass_scaled(s.stiffness_scale);
+      m.restitution = 1;
+      m.sliding_friction = 0;
+      m.rolling_friction = 0;
+      Scene sc = contact_scene(s, m);
+      const double v = 0.1;
+      Particle p;
+      p.radius = R;
+      p.position = {0, 0, R + 1e-7};
+      p.velocity = {0, 0, -v};
+      sc.particles = {p};
+      const double mass = m.density * 4.0 / 3 * std::numbers::pi * R * R * R;
+      const double es = m.young_modulus / (2 * (1 - m.poisson_ratio * m.poisson_ratio));
+      const double dmax = std::pow(15 * mass * v * v / (16 * es * std::sqrt(R)), 0.4);
+      const double fmax = 4.0 / 3 * es * std::sqrt(R) * std::pow(dmax, 1.5);
+      const double tc = 2 * std::sqrt(std::numbers::pi) * std::tgamma(1.4) / std::tgamma(0.9) * dmax / v;
+      Simulation sim(default_device(), sc);
+      // contact time: the zero crossings of the overlap, interpolated
+      // linearly between steps (not a count of whole steps)
+      double overlap = 0, force = 0, t_in = -1, t_out = -1, prev = R - sc.particles[0].position[2];
+      double prev_t = 0;
+      for (int i = 0; i < 200000 && t_out < 0; ++i) {
+        sim.advance(1);
+        const ParticleSnapshot q = sim.snapshot();
+        if (!std::isfinite(q.position[0][2])) throw std::runtime_error("NaN in the impact");
+        const double d = R - q.position[0][2];
+        if (t_in < 0 && d > 0) t_in = prev_t + (0 - prev) / (d - prev) * (sim.time() - prev_t);
+        if (t_in >= 0 && d <= 0 && prev > 0)
+          t_out = prev_t + (0 - prev) / (d - prev) * (sim.time() - prev_t);
+        overlap = std::max(overlap, d);
+        force = std::max(force, norm(q.force[0]));
+        prev = d;
+        prev_t = sim.time();
+      }
+      if (t_out < 0) throw std::runtime_error("the impact never ended");
+      const double duration = t_out - t_in;
+      e.overlap = pct(overlap, dmax);
+      e.force = pct(force, fmax);
+      e.duration = pct(duration, tc);
+    }
+    // 2. restitution of a damped impact on a wall, 0.1 m/s
+    {
+      Material m = glass_scaled(s.stiffness_scale);
+      m.sliding_friction = 0;
+      m.rolling_friction = 0;
+      Scene sc = contact_scene(s, m);
+      Particle p;
+      p.radius = R;
+      p.position = {0, 0, R + 1e-7};
+      p.velocity = {0, 0, -0.1};
+      sc.particles = {p};
+      Simulation sim(default_device(), sc);
+      bool touched = false, ended = false;
+      for (int i = 0; i < 200000 && !ended; ++i) {
+        sim.advance(1);
+        const int c = sim.snapshot().contacts[0];
+        touched = touched || c > 0;
+        ended = touched && c == 0;
+      }
+      if (!ended) throw std::runtime_error("the damped impact never ended");
+      const double out = sim.snapshot().velocity[0][2] / 0.1;
+      if (!std::isfinite(out) || out > 1.0001)
+        throw std::runtime_error("the impact created energy (e = " + std::to_string(out) + ")");
+      e.restitution = pct(out, s.damping ? m.restitution : 1.0);
+    }
+    // 3. sliding to rolling on a floor: mu = 0.5, v0 = 0.05 m/s
+    {
+      Material m = glass_scaled(s.stiffness_scale);
+      m.sliding_friction = 0.5;
+      m.rolling_friction = 0;
+      Scene sc = contact_scene(s, m);
+      const double g = 9.81, v0 = 0.05, mu = 0.5;
+      sc.effects.gravity = {0, 0, -g};
+      Particle p;
+      p.radius = R;
+      const double mass = m.density * 4.0 / 3 * std::numbers::pi * R * R * R;
+      const double es = m.young_modulus / (2 * (1 - m.poisson_ratio * m.poisson_ratio));
+      p.position = {0, 0, R - std::pow(mass * g / (4.0 / 3 * es * std::sqrt(R)), 2.0 / 3)};
+      p.velocity = {v0, 0, 0};
+      sc.particles = {p};
+      Simulation sim(default_device(), sc);
+      const double t_theory = 2 * v0 / (7 * mu * g);
+      double t_roll = -1, prev_slip = v0, prev_t = 0;
+      while (sim.time() < 3 * t_theory) {
+        sim.advance(1);
+        const ParticleSnapshot q = sim.snapshot();
+        const double slip = q.velocity[0][0] - q.angular_velocity[0][1] * R;
+        if (!std::isfinite(slip)) throw std::runtime_error("NaN while rolling");
+        if (slip <= 1e-3 * v0) {
+          const double f = (prev_slip - 1e-3 * v0) / (prev_slip - slip);
+          t_roll = prev_t + f * (sim.time() - prev_t);
+          break;
+        }
+        prev_slip = slip;
+        prev_t = sim.time();
+      }
+      if (t_roll < 0) throw std::runtime_error("never reached rolling");
+      e.rolling = pct(t_roll, t_theory);
+    }
+    e.ok = true;
+  } catch (const std::exception& x) {
+    e.ok = false;
+    e.failure = x.what();
+  }
+  return e;
+}
+
+ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s) {
+  ShearResult r;
+  try {
+    const Scene base = parse_scene(default_shear_scene_text(), "assets/scenes/shear_box.toml");
+    const double d = preset.diameter_mm * 1e-3;
+    const Scene sc = paper_test_scene(
+        base, "assets/scenes/shear_box.toml", preset.diameter_mm, preset.stress_kpa, preset.layers,
+        [&](Scene& x) {
+          x.numerics.precision = s.precision;
+          x.numerics.dt_fraction = s.dt_fraction;
+          x.numerics.dt = 0;
+          x.numerics.force_dt = s.dt_fraction > kMaxDtFraction;
+          x.numerics.skin = s.skin_factor * d;
+          for (Material& m : x.materials) m.young_modulus *= s.stiffness_scale;
+          x.effects.rolling_friction = s.rolling;
+          x.effects.damping = s.damping;
+          x.shear_box->inertial_number = s.inertial_number;
+          x.shear_box->shear_speed = 0;
+          x.shear_box->shear_displacement = preset.displacement_mm * 1e-3;
+          x.shear_box->rows = preset.rows;
+        });
+    Simulation sim(default_device(), sc);
+    ShearTest test(sim);
+    const auto t0 = Clock::now();
+    while (!test.done()) {
+      test.advance(5000);
+      if (!test.rows().empty()) {
+        const ShearRow& row = test.rows().back();
+        if (!std::isfinite(row.tau) || !std::isfinite(row.dilation))
+          throw std::runtime_error("NaN in the measurements");
+        if (row.outside > 0)
+          throw std::runtime_error(std::to_string(row.outside) + " beads left the box");
+      }
+      if (sim.state().late_builds > 0)
+        throw std::runtime_error("a bead outran its neighbour list (skin too small for the step)");
+      const Observables o = sim.steps() % 50000 < 5000 ? sim.observe() : Observables{};
+      if (!std::isfinite(o.kinetic())) throw std::runtime_error("NaN in the kinetic energy");
+    }
+    r.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    const ShearSummary sum = test.summary();
+    r.peak_angle = sum.peak_angle;
+    r.residual_angle = sum.residual_angle;
+    r.dilatancy_angle = sum.max_dilatancy_angle;
+    r.steps = sim.steps();
+    r.list_builds = sim.state().list_builds;
+    r.particles = sim.model().particles();
+    r.particle_steps_per_second = r.wall_seconds > 0 ? double(r.particles) * r.steps / r.wall_seconds : 0;
+    if (!std::isfinite(r.peak_angle) || !std::isfinite(r.residual_angle))
+      throw std::runtime_error("NaN in the summary");
+    r.ok = true;
+  } catch (const std::exception& x) {
+    r.ok = false;
+    r.failure = x.what();
+  }
+  return r;
+}
+
+void compare_to_reference(std::vector<StudyCase>& cases) {
+  if (cases.empty() || !cases[0].shear.ok) return;
+  const ShearResult& ref = cases[0].shear;
+  auto rel = [](double a, double b) { return b != 0 ? 100 * std::fabs(a - b) / std::fabs(b) : 0.0; };
+  for (StudyCase& c : cases) {
+    if (!c.shear.ok) continue;
+    c.peak_error = rel(c.shear.peak_angle, ref.peak_angle);
+    c.residual_error = rel(c.shear.residual_angle, ref.residual_angle);
+    c.dilatancy_error = rel(c.shear.dilatancy_angle, ref.dilatancy_angle);
+  }
+}
+
+namespace {
+
+std::string num(double v, const char* f = "%.6g") {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+std::string quoted(std::string s) {
+  for (char& c : s)
+    if (c == '"') c = '\'';
+  return "\"" + s + "\"";
+}
+
+}  // namespace
+
+std::string study_csv(const std::vector<StudyCase>& cases) {
+  std::string o =
+      "knob,label,dt_fraction,precision,stiffness_scale,inertial_number,skin_over_d,rolling,"
+      "damping,contact_status,overlap_err_pct,force_err_pct,contact_time_err_pct,"
+      "restitution_err_pct,rolling_time_err_pct,shear_status,peak_deg,residual_deg,"
+      "dilatancy_deg,peak_err_pct,residual_err_pct,dilatancy_err_pct,wall_s,"
+      "particle_steps_per_s,steps,list_builds\n";
+  for (const StudyCase& c : cases) {
+    const StudySettings& s = c.settings;
+    o += quoted(s.knob) + "," + quoted(s.label) + "," + num(s.dt_fraction) + "," +
+         (s.precision == Precision::Float ? "float" : "double") + "," + num(s.stiffness_scale) +
+         "," + num(s.inertial_number) + "," + num(s.skin_factor) + "," + (s.rolling ? "1" : "0") +
+         "," + (s.damping ? "1" : "0") + ",";
+    if (c.contact.ok)
+      o += "ok," + num(c.contact.overlap) + "," + num(c.contact.force) + "," +
+           num(c.contact.duration) + "," + num(c.contact.restitution) + "," +
+           num(c.contact.rolling) + ",";
+    else
+      o += quoted("failed: " + c.contact.failure) + ",,,,,,";
+    if (c.shear.ok) {
+      auto opt = [](const std::optional<double>& v) { return v ? num(*v) : std::string(); };
+      o += "ok," + num(c.shear.peak_angle) + "," + num(c.shear.residual_angle) + "," +
+           num(c.shear.dilatancy_angle) + "," + opt(c.peak_error) + "," + opt(c.residual_error) +
+           "," + opt(c.dilatancy_error) + "," + num(c.shear.wall_seconds, "%.2f") + "," +
+           num(c.shear.particle_steps_per_second, "%.4g") + "," + std::to_string(c.shear.steps) +
+           "," + std::to_string(c.shear.list_builds) + "\n";
+    } else {
+      o += quoted(c.shear.failure.empty() ? "not run" : "failed: " + c.shear.failure) +
+           ",,,,,,,,,,\n";
+    }
+  }
+  return o;
+}
+
+void write_study_outputs(const std::string& dir, const StudyPreset& preset,
+                         const std::vector<StudyCase>& cases) {
+  namespace fs = std::filesystem;
+  fs::create_directories(dir);
+  write_file_atomic((fs::path(dir) / "cases.csv").string(), study_csv(cases));
+  if (cases.empty()) return;
+  const double ref_time = cases[0].shear.ok ? cases[0].shear.wall_seconds : 0;
+
+  // error of the peak friction angle against wall time, one chart per knob
+  std::vector<std::string> knobs;
+  for (const StudyCase& c : cases)
+    if (c.peak_error && std::find(knobs.begin(), knobs.end(), c.settings.knob) == knobs.end())
+      knobs.push_back(c.settings.knob);
+  for (const std::string& k : knobs) {
+    plot::Chart ch;
+    ch.title = "Accuracy against cost: " + k;
+    ch.x_label = "wall time of the shear test (s)";
+    ch.y_label = "error of phi_peak vs reference (%)";
+    plot::Series sr{k, {}, {}, std::nullopt, false, true, false};
+    for (const StudyCase& c : cases) {
+      if (!c.peak_error) continue;
+      if (c.settings.knob != k && c.settings.knob != "baseline" && c.settings.knob != "reference") continue;
+      sr.x.push_back(c.shear.wall_seconds);
+      sr.y.push_back(*c.peak_error);
+      ch.markers.push_back({c.shear.wall_seconds, *c.peak_error, c.settings.label});
+    }
+    ch.series.push_back(sr);
+    ch.y_min = 0;
+    std::string file = k;
+    for (char& c : file)
+      if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    plot::write_chart_png(ch, (fs::path(dir) / ("error_vs_time_" + file + ".png")).string());
+  }
+
+  // Pareto front: the cases no other case beats on both error and time
+  std::vector<const StudyCase*> ok;
+  for (const StudyCase& c : cases)
+    if (c.peak_error) ok.push_back(&c);
+  std::sort(ok.begin(), ok.end(), [](auto* a, auto* b) { return a->shear.wall_seconds < b->shear.wall_seconds; });
+  std::vector<const StudyCase*> front;
+  double best = 1e300;
+  for (const StudyCase* c : ok)
+    if (*c->peak_error < best) {
+      best = *c->peak_error;
+      front.push_back(c);
+    }
+  plot::Chart pc;
+  pc.title = "Pareto front: the cheapest setting for a given error";
+  pc.x_label = "wall time of the shear test (s)";
+  pc.y_label = "error of phi_peak vs reference (%)";
+  plot::Series all{"all cases", {}, {}, std::nullopt, false, true, false};
+  for (const StudyCase* c : ok) {
+    all.x.push_back(c->shear.wall_seconds);
+    all.y.push_back(*c->peak_error);
+  }
+  plot::Series fr{"Pareto front", {}, {}, std::nullopt, true, true, false};
+  for (const StudyCase* c : front) {
+    fr.x.push_back(c->shear.wall_seconds);
+    fr.y.push_back(*c->peak_error);
+    pc.markers.push_back({c->shear.wall_seconds, *c->peak_error, c->settings.label});
+  }
+  pc.series = {all, fr};
+  pc.y_min = 0;
+  plot::write_chart_png(pc, (fs::path(dir) / "pareto.png").string());
+
+  // summary.md
+  std::ostringstream md;
+  md << "# Accuracy study `" << preset.name << "`\n\n"
+     << "Shear test: " << preset.diameter_mm << " mm beads, " << preset.stress_kpa << " kPa, "
+     << preset.displacement_mm << " mm of shear, " << preset.rows << " rows. "
+     << "Errors of the shear test are against the reference case (first row); contact "
+        "errors against theory.\n\n"
+     << "| case | contact: overlap / force / t_c / e / t_roll (%) | phi_peak (deg) | err (%) | "
+        "phi_res (deg) | err (%) | psi_max (deg) | err (%) | wall (s) | x ref |\n"
+     << "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+  for (const StudyCase& c : cases) {
+    md << "| " << c.settings.label << " | ";
+    if (c.contact.ok)
+      md << num(c.contact.overlap, "%.2g") << " / " << num(c.contact.force, "%.2g") << " / "
+         << num(c.contact.duration, "%.2g") << " / " << num(c.contact.restitution, "%.2g") << " / "
+         << num(c.contact.rolling, "%.2g");
+    else
+      md << "failed: " << c.contact.failure;
+    md << " | ";
+    if (c.shear.ok) {
+      auto e = [](const std::optional<double>& v) { return v ? num(*v, "%.2f") : std::string("–"); };
+      md << num(c.shear.peak_angle, "%.2f") << " | " << e(c.peak_error) << " | "
+         << num(c.shear.residual_angle, "%.2f") << " | " << e(c.residual_error) << " | "
+         << num(c.shear.dilatancy_angle, "%.2f") << " | " << e(c.dilatancy_error) << " | "
+         << num(c.shear.wall_seconds, "%.1f") << " | "
+         << (ref_time > 0 ? num(c.shear.wall_seconds / ref_time, "%.2f") : std::string("–"))
+         << " |\n";
+    } else {
+      md << (preset.shear ? "failed: " + c.shear.failure : std::string("not run"))
+         << " | | | | | | | |\n";
+    }
+  }
+  md << "\n## Recommendation\n\n";
+  for (double tol : {1.0, 5.0}) {
+    const StudyCase* cheapest = nullptr;
+    for (const StudyCase* c : ok)
+      if (*c->peak_error <= tol && c->settings.knob != "reference" &&
+          (!cheapest || c->shear.wall_seconds < cheapest->shear.wall_seconds))
+        cheapest = c;
+    md << "- Error on phi_peak <= " << tol << " %: ";
+    if (cheapest)
+      md << "**" << cheapest->settings.label << "** (" << num(*cheapest->peak_error, "%.2f")
+         << " %), " << num(cheapest->shear.wall_seconds, "%.1f") << " s = "
+         << num(ref_time > 0 ? cheapest->shear.wall_seconds / ref_time : 0, "%.2f")
+         << " x the reference's " << num(ref_time, "%.1f") << " s\n";
+    else
+      md << "no case of this sweep\n";
+  }
+  write_file_atomic((fs::path(dir) / "summary.md").string(), md.str());
+}
+
+}  // namespace simsols

@@ -1,0 +1,91 @@
+// The accuracy study: what each accuracy choice costs in time.
+//
+// A case is a set of numerical settings (StudySettings). Each case is
+// measured two ways:
+//   contact checks  single contacts with analytic answers, error against
+//                   theory: Hertz impact (max overlap, max force, contact
+//                   time; Johnson 1985, sec. 11.4), restitution of a damped
+//                   impact, and the time a sliding sphere takes to roll
+//                   (t = 2 v0 / (7 mu g)); all with the case's settings on
+//                   the paper's glass (E scaled with the case)
+//   shear test      the paper's 6.35 mm / 160 kPa direct shear test: peak and
+//                   residual friction angles and the maximum dilatancy angle,
+//                   error against the study's reference case (its most
+//                   accurate settings)
+// plus the wall time and particle-steps per second of the shear test.
+// A case whose run breaks (NaN, beads out of the box, a neighbour list
+// outrun, an impact that never ends) is reported as failed, not as a number.
+//
+// The sweep varies one knob at a time around a baseline, then a few useful
+// combinations (presets in study.cpp): time step (fraction of the Rayleigh
+// step, up to and beyond the limit), precision, stiffness scaling, shear
+// speed (inertial number), neighbour skin, and the optional effects.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene.h"
+
+namespace simsols {
+
+struct StudySettings {
+  std::string knob = "baseline";  // the knob this case varies ("reference", "combo", ...)
+  std::string label;              // e.g. "dt 0.10"
+  double dt_fraction = 0.25;
+  Precision precision = Precision::Float;
+  double stiffness_scale = 1;     // Young's moduli x this
+  double inertial_number = 8e-4;
+  double skin_factor = 0.1;       // neighbour skin / bead diameter
+  bool rolling = true, damping = true;
+};
+
+struct ContactErrors {
+  bool ok = false;
+  std::string failure;
+  double overlap = 0, force = 0, duration = 0, restitution = 0, rolling = 0;  // % vs theory
+  double worst() const;
+};
+
+struct ShearResult {
+  bool ok = false;
+  std::string failure;
+  double peak_angle = 0, residual_angle = 0, dilatancy_angle = 0;  // deg
+  double wall_seconds = 0, particle_steps_per_second = 0;
+  long long steps = 0, list_builds = 0;
+  int particles = 0;
+};
+
+struct StudyCase {
+  StudySettings settings;
+  ContactErrors contact;
+  ShearResult shear;
+  // % against the reference case's shear result (absolute difference of
+  // angles relative to the reference angle)
+  std::optional<double> peak_error, residual_error, dilatancy_error;
+};
+
+struct StudyPreset {
+  std::string name;
+  double diameter_mm = 6.35, stress_kpa = 160, displacement_mm = 3;
+  int rows = 150;
+  int layers = 0;     // 0 = Table 1
+  bool shear = true;  // false: contact checks only
+  std::vector<StudySettings> cases;  // cases[0] is the reference
+};
+
+// "full", "quick" (default) or "ci"; nullopt for other names.
+std::optional<StudyPreset> study_preset(const std::string& name);
+
+ContactErrors run_contact_checks(const StudySettings& s);
+ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s);
+// Fills the errors against cases[0] (the reference).
+void compare_to_reference(std::vector<StudyCase>& cases);
+
+std::string study_csv(const std::vector<StudyCase>& cases);
+// error-vs-time chart per knob, the Pareto front, summary.md
+void write_study_outputs(const std::string& dir, const StudyPreset& preset,
+                         const std::vector<StudyCase>& cases);
+
+}  // namespace simsols
