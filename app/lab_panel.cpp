@@ -106,12 +106,16 @@ void LabApp::draw_controls() {
       exp_->set_dt_fraction(dt_fraction);
     // what the accuracy study measured for these settings (docs/accuracy.md)
     if (const AccuracyEntry* a = expected_accuracy(dt_fraction, exp_->scene().numerics.precision)) {
+      ImGui::PushTextWrapPos(0);
+      const ImVec4 grey = ImGui::GetStyle().Colors[ImGuiCol_TextDisabled];
       if (a->peak_error_pct && a->reference_wall_s > 0)
-        ImGui::TextDisabled("expected: phi_peak within %.2f %%, %.2fx the time of the most "
-                            "accurate run (study case '%s')",
-                            *a->peak_error_pct, a->wall_s / a->reference_wall_s, a->label.c_str());
+        ImGui::TextColored(grey,
+                           "expected (accuracy study): phi_peak within %.2f %%, %.2fx the time of "
+                           "the most accurate run (case '%s', docs/accuracy.md)",
+                           *a->peak_error_pct, a->wall_s / a->reference_wall_s, a->label.c_str());
       else
-        ImGui::TextDisabled("study case '%s': %s", a->label.c_str(), a->status.c_str());
+        ImGui::TextColored(grey, "accuracy study, case '%s': %s", a->label.c_str(), a->status.c_str());
+      ImGui::PopTextWrapPos();
     }
     Effects e = exp_->scene().effects;
     bool gravity = e.gravity[2] != 0;
