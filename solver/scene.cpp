@@ -331,6 +331,38 @@ void check_particle_overlaps(const Scene& s) {
   }
 }
 
+// A bead created deep in a wall would be shot out at once (a bead whose
+// centre lies on a plane overlaps it by its radius): refused like
+// overlapping beads. Planes are one-sided (a centre behind one is ignored
+// by the solver too); rectangles are two-sided plates.
+void check_wall_overlaps(const Scene& s) {
+  for (size_t w = 0; w < s.walls.size(); ++w) {
+    const Wall& wall = s.walls[w];
+    const Vec3 v = cross(wall.normal, wall.axis_u);
+    for (size_t i = 0; i < s.particles.size(); ++i) {
+      const Particle& p = s.particles[i];
+      const Vec3 d = sub(p.position, wall.point);
+      double dist = 0;
+      if (wall.shape == WallShape::Plane) {
+        dist = dot(d, wall.normal);
+        if (dist < 0) continue;
+      } else {
+        const double u = std::clamp(dot(d, wall.axis_u), -wall.half_u, wall.half_u);
+        const double t = std::clamp(dot(d, v), -wall.half_v, wall.half_v);
+        const Vec3 c = {wall.axis_u[0] * u + v[0] * t, wall.axis_u[1] * u + v[1] * t,
+                        wall.axis_u[2] * u + v[2] * t};
+        dist = norm(sub(d, c));
+      }
+      const double overlap = p.radius - dist, limit = kMaxOverlapFraction * p.radius;
+      if (overlap > limit)
+        fail("overlapping_wall", at("particles", i),
+             "overlaps " + at("walls", w) + " ('" + wall.name + "') by " +
+                 detail::format_number(overlap) + " m; allowed at most 1% of its radius (" +
+                 detail::format_number(limit) + " m)");
+    }
+  }
+}
+
 void check_time_step(const Scene& s) {
   const Numerics& n = s.numerics;
   if (n.dt <= 0 || n.force_dt) return;
@@ -356,6 +388,7 @@ std::optional<SceneIssue> find_scene_issue(const Scene& scene) {
     check_numerics(scene);
     check_outputs(scene);
     check_particle_overlaps(scene);
+    check_wall_overlaps(scene);
     check_time_step(scene);
   } catch (Issue& e) {
     return std::move(e.issue);
