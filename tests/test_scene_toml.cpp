@@ -675,6 +675,7 @@ TEST(ValidateScene, WallsFacingEachOtherNeedRoomForAParticle) {
   ceiling.normal = {0, 0, -1};
   ceiling.point = {0, 0, 0.0025};  // smallest particle diameter is 0.002
   s.walls = {floor, ceiling};
+  s.particles[0].position[2] = 0.0012;  // between the two (not inside the floor)
   EXPECT_NO_THROW(validate_scene(s, "code"));
   s.walls[1].point[2] = 0.0015;
   const SceneError e = expect_error([&] { validate_scene(s, "code"); });
