@@ -10,6 +10,17 @@
 
 namespace simsols {
 
+// What a float cannot hold of x, as a float: x - float(x), the compensation
+// term of float runs (kernels/common.cl). Not inlined on purpose: GCC 12's
+// SLP vectorizer (-O2 and above) folded the float round trip of the inline
+// expression `x - static_cast<float>(x)` to 0 for pairs of components, so
+// beads far from the float frame's origin lost up to half a float step of
+// their initial position (found by the stability suite, docs/stability.md).
+[[gnu::noinline]] inline float float_remainder(double x) {
+  const float hi = static_cast<float>(x);
+  return static_cast<float>(x - static_cast<double>(hi));
+}
+
 class RealPacker {
  public:
   explicit RealPacker(bool as_double) : dbl_(as_double) {}

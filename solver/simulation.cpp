@@ -84,9 +84,8 @@ void Simulation::set_wall_point(int wall, const Vec3& p) {
   for (int a = 0; a < 3; ++a) rel[a] = p[a] - o[a];
   write_real4(*model_, state_->wall_point, wall, rel[0], rel[1], rel[2], 0);
   if (!model_->config().double_precision) {
-    const float lo[4] = {static_cast<float>(rel[0] - static_cast<float>(rel[0])),
-                         static_cast<float>(rel[1] - static_cast<float>(rel[1])),
-                         static_cast<float>(rel[2] - static_cast<float>(rel[2])), 0};
+    const float lo[4] = {float_remainder(rel[0]), float_remainder(rel[1]),
+                         float_remainder(rel[2]), 0};
     model_->device().write(state_->wall_point_lo.get(), sizeof lo, lo, wall * sizeof lo);
   }
 }

@@ -59,8 +59,7 @@ State::State(const Model& model) {
     for (int a = 0; a < 3; ++a) rel[a] = q.position[a] - o[a];
     p.put4(rel[0], rel[1], rel[2], q.radius);
     if (!dbl) {  // compensation: what the float position could not hold
-      lo.put_float4(rel[0] - static_cast<float>(rel[0]), rel[1] - static_cast<float>(rel[1]),
-                rel[2] - static_cast<float>(rel[2]), 0);
+      lo.put_float4(float_remainder(rel[0]), float_remainder(rel[1]), float_remainder(rel[2]), 0);
     }
     v.put4(q.velocity[0], q.velocity[1], q.velocity[2], mass);
     w.put4(q.angular_velocity[0], q.angular_velocity[1], q.angular_velocity[2], q.material);
@@ -92,8 +91,7 @@ State::State(const Model& model) {
     double rel[3];
     for (int a = 0; a < 3; ++a) rel[a] = wall.point[a] - o[a];
     wp.put4(rel[0], rel[1], rel[2], 0);
-    wlo.put_float4(rel[0] - static_cast<float>(rel[0]), rel[1] - static_cast<float>(rel[1]),
-               rel[2] - static_cast<float>(rel[2]), 0);
+    wlo.put_float4(float_remainder(rel[0]), float_remainder(rel[1]), float_remainder(rel[2]), 0);
     wv.put4(wall.velocity[0], wall.velocity[1], wall.velocity[2], 0);
   }
   wall_point = make(d, nw * r4, wp.data());

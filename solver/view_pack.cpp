@@ -32,7 +32,7 @@ Split split(const Model& m, const Vec3& absolute) {
       *hi[a] = rel;
     } else {
       *hi[a] = static_cast<float>(rel);
-      *lo[a] = rel - *hi[a];
+      *lo[a] = float_remainder(rel);
     }
   }
   return s;
