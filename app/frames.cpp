@@ -195,10 +195,7 @@ std::string FrameExporter::describe() const {
 plot::Image FrameExporter::render() {
   if (!sim_) throw render::RenderError("FrameExporter::render before attach()");
   const bool chains = opt_.settings.chains_visible();
-  const auto update = sim_->view->update(opt_.field, chains);
-  render::ViewSettings s = opt_.settings;
-  s.value_min = float(opt_.range ? opt_.range->first : update.range.min);
-  s.value_max = float(opt_.range ? opt_.range->second : update.range.max);
+  const render::ViewSettings s = update_view();
   renderer_->draw(camera_, sim_->view->geometry(), s);
   plot::Image img = renderer_->read_pixels();
   if (opt_.legend) {
@@ -219,6 +216,14 @@ plot::Image FrameExporter::render() {
   return img;
 }
 
+render::ViewSettings FrameExporter::update_view() {
+  const auto update = sim_->view->update(opt_.field, opt_.settings.chains_visible());
+  render::ViewSettings s = opt_.settings;
+  s.value_min = float(opt_.range ? opt_.range->first : update.range.min);
+  s.value_max = float(opt_.range ? opt_.range->second : update.range.max);
+  return s;
+}
+
 std::vector<std::string> FrameExporter::outputs(const std::string& path) const {
   std::vector<std::string> files{path};
   if (!opt_.alioscopy) return files;
@@ -234,11 +239,7 @@ void FrameExporter::write_alioscopy(const std::string& path) {
                                              ? render::DisplayProfile{}
                                              : render::load_display_profile(opt_.display_path);
   if (!alioscopy_) alioscopy_ = std::make_unique<render::AlioscopyOutput>(context_->gl(), profile);
-  const bool chains = opt_.settings.chains_visible();
-  const auto update = sim_->view->update(opt_.field, chains);
-  render::ViewSettings s = opt_.settings;
-  s.value_min = float(opt_.range ? opt_.range->first : update.range.min);
-  s.value_max = float(opt_.range ? opt_.range->second : update.range.max);
+  const render::ViewSettings s = update_view();
   render::StereoRig rig;
   alioscopy_->render_views(*renderer_, rig, camera_, sim_->view->geometry(), s);
   const std::vector<std::string> files = outputs(path);

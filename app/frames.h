@@ -101,6 +101,8 @@ class FrameExporter {
 
  private:
   void write_alioscopy(const std::string& path);
+  // Packs the current state for drawing; the settings with the colour range.
+  render::ViewSettings update_view();
 
   FrameOptions opt_;
   std::unique_ptr<render::GlContext> context_;

@@ -182,22 +182,10 @@ void LabApp::draw_view(int x, int y, int w, int h) {
 }
 
 void LabApp::save_screenshot(const std::string& path) {
-  const render::Gl& gl = window_->gl();
   int fw = 0, fh = 0;
   glfwGetFramebufferSize(window_->handle(), &fw, &fh);
-  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-  plot::Image img;
-  img.width = fw;
-  img.height = fh;
-  img.rgba.resize(std::size_t(fw) * fh * 4);
-  std::vector<std::uint8_t> rows(img.rgba.size());
-  gl.ReadBuffer(GL_BACK);
-  gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl.ReadPixels(0, 0, fw, fh, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
-  const std::size_t stride = std::size_t(fw) * 4;
-  for (int y = 0; y < fh; ++y)
-    std::copy_n(&rows[std::size_t(fh - 1 - y) * stride], stride, &img.rgba[std::size_t(y) * stride]);
-  for (std::size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 255;
+  plot::Image img = render::read_framebuffer(window_->gl(), 0, fw, fh, GL_BACK);
+  for (std::size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 255;  // the window's alpha is not ours
   plot::write_png(img, path);
 }
 
@@ -213,7 +201,6 @@ int LabApp::run() {
   GLFWwindow* w = window_->handle();
   auto last = Clock::now();
   while (!quit_) {
-    const auto t0 = Clock::now();
     glfwPollEvents();
     if (glfwWindowShouldClose(w)) {
       glfwSetWindowShouldClose(w, GLFW_FALSE);
@@ -261,7 +248,6 @@ int LabApp::run() {
     if (script_ && script_pending_screenshot()) take_script_screenshot();
     glfwSwapBuffers(w);
     draw_ms_ = ms_since(d0);
-    frame_ms_ = ms_since(t0);
     const double since = std::chrono::duration<double>(Clock::now() - last).count();
     last = Clock::now();
     fps_ = fps_ == 0 ? 1 / since : 0.9 * fps_ + 0.1 / since;

@@ -85,7 +85,7 @@ class LabApp {
   int generation_ = -1;
   std::string message_;  // last error or note, shown in the panel
   bool help_ = false, close_asked_ = false, quit_ = false;
-  double frame_ms_ = 0, draw_ms_ = 0, fps_ = 0;
+  double draw_ms_ = 0, fps_ = 0;
   std::size_t contacts_ = 0;  // touching contacts drawn last frame
   double render_ms_ = 0, render_scale_ = 1;  // flat view: adaptive resolution
   std::unique_ptr<Script> script_;

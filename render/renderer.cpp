@@ -416,7 +416,7 @@ void Renderer::composite() {
   gl_.ActiveTexture(GL_TEXTURE0);
 }
 
-plot::Image read_framebuffer(const Gl& gl, GLuint fbo, int width, int height) {
+plot::Image read_framebuffer(const Gl& gl, GLuint fbo, int width, int height, GLenum buffer) {
   plot::Image img;
   img.width = width;
   img.height = height;
@@ -426,7 +426,7 @@ plot::Image read_framebuffer(const Gl& gl, GLuint fbo, int width, int height) {
   gl.GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev);
   gl.GetIntegerv(GL_PACK_ALIGNMENT, &pack);
   gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
-  gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+  gl.ReadBuffer(buffer);
   gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
   gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
   gl.PixelStorei(GL_PACK_ALIGNMENT, pack);

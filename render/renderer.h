@@ -113,8 +113,10 @@ class GeometryBuffers {
   FrameGeometry geom_;
 };
 
-// Colour attachment 0 of `fbo` (RGBA8), top row first.
-plot::Image read_framebuffer(const Gl& gl, GLuint fbo, int width, int height);
+// Colour buffer `buffer` of `fbo` (RGBA8), top row first: attachment 0 of
+// the renderer's framebuffers, or GL_BACK of a window (fbo 0).
+plot::Image read_framebuffer(const Gl& gl, GLuint fbo, int width, int height,
+                             GLenum buffer = GL_COLOR_ATTACHMENT0);
 
 class Renderer {
  public:

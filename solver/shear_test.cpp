@@ -127,12 +127,16 @@ void ShearTest::set_shear_speed(double v) {
   speed_override_ = v;
   if (phase_ != ShearPhase::Shear) return;
   speed_ = v;
-  for (int w = kFloor; w <= kLowerLast; ++w) sim_.set_wall_velocity(box_.first_wall + w, {v, 0, 0});
+  move_lower_half(v);
   const double done = rows_.empty() ? 0 : rows_.back().displacement;
   const int left = std::max(1, box_.rows - static_cast<int>(rows_.size()));
   const double remaining = std::max(0.0, box_.shear_displacement - done);
   row_steps_ = std::max<std::int64_t>(1, std::llround(remaining / (v * sim_.dt()) / left));
   next_row_ = sim_.steps() + row_steps_;
+}
+
+void ShearTest::move_lower_half(double vx) {
+  for (int w = kFloor; w <= kLowerLast; ++w) sim_.set_wall_velocity(box_.first_wall + w, {vx, 0, 0});
 }
 
 void ShearTest::enter(ShearPhase p) {
@@ -171,15 +175,14 @@ void ShearTest::enter(ShearPhase p) {
           box_.rows, std::llround(box_.shear_displacement / (speed_ * sim_.dt())));
       row_steps_ = std::max<std::int64_t>(1, shear_steps_ / box_.rows);
       shear_steps_ = row_steps_ * box_.rows;
-      for (int w = kFloor; w <= kLowerLast; ++w)
-        sim_.set_wall_velocity(box_.first_wall + w, {speed_, 0, 0});
+      move_lower_half(speed_);
       sim_.read_wall_means();
       sim_.read_servo(box_.first_wall + kPlaten);
       next_row_ = now + row_steps_;
       break;
     }
     case ShearPhase::Done:
-      for (int w = kFloor; w <= kLowerLast; ++w) sim_.set_wall_velocity(box_.first_wall + w, {0, 0, 0});
+      move_lower_half(0);
       apply_servo(false);
       break;
   }

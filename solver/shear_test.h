@@ -114,6 +114,7 @@ class ShearTest {
  private:
   void enter(ShearPhase p);
   void apply_servo(bool on);
+  void move_lower_half(double vx);  // the floor, lower sides and frame at vx along x
   bool settled();
   bool consolidated();
   void measure_row();

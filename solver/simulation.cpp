@@ -107,6 +107,17 @@ std::vector<Simulation::WallMean> Simulation::read_wall_means() {
   return out;
 }
 
+bool advance_through_contact(Simulation& sim, int i, std::int64_t max_steps) {
+  bool touched = false;
+  for (std::int64_t k = 0; k < max_steps; ++k) {
+    sim.advance(1);
+    const int c = sim.snapshot().contacts[i];
+    touched = touched || c > 0;
+    if (touched && c == 0) return true;
+  }
+  return false;
+}
+
 namespace {
 std::mutex default_mutex;
 std::shared_ptr<Device> default_dev;

@@ -61,6 +61,11 @@ class Simulation {
   std::unique_ptr<State> state_;
 };
 
+// Advances one step at a time until particle `i` has touched something and
+// separated again (an impact), at most `max_steps` steps; false when the
+// contact never ended. Used by impact checks (tests, the accuracy study).
+bool advance_through_contact(Simulation& sim, int i, std::int64_t max_steps);
+
 // The process-wide OpenCL device (opened on first use).
 std::shared_ptr<Device> default_device();
 // Makes `device` the process-wide default from now on (e.g. one whose
