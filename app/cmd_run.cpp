@@ -5,6 +5,9 @@
 // Outputs in DIR: scene.toml (the file as given), scene.resolved.toml (the
 // exact scene used, explicit particles), series.csv, particles_<step>.csv/.vtk,
 // checkpoint.bin (latest; `--resume DIR` continues from it bit for bit).
+// When a step runs away (guard.h) the run stops there: fault.txt says at
+// which step and which particle, fault_checkpoint.bin holds the state just
+// before, and the exit status is 4.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -208,18 +211,27 @@ int run(const RunOptions& opt) {
   Progress progress("run", total, dt, sim->model().particles(), opt.quiet);
   const std::int64_t start = sim->steps();
   bool stopped = false;
-  while (sim->steps() < total) {
-    sim->advance(1);
-    const std::int64_t s = sim->steps();
-    if (s % series_every == 0 || s == total) record();
-    if (dump_every > 0 && s % dump_every == 0) dump(*sim, dir);
-    if (ckpt_every > 0 && s % ckpt_every == 0) save_checkpoint(*sim, (dir / "checkpoint.bin").string());
-    if (frames) frames->after_steps(*sim, false);
-    progress.update(s);
-    if (opt.stop_after > 0 && s - start >= opt.stop_after && s < total) {
-      stopped = true;
-      break;
+  // A runaway is noticed at the guard's next look (a list check, its next
+  // copy, or any reading below) and leaves the simulation at the step before.
+  try {
+    while (sim->steps() < total) {
+      sim->advance(1);
+      const std::int64_t s = sim->steps();
+      if (s % series_every == 0 || s == total) record();
+      if (dump_every > 0 && s % dump_every == 0) dump(*sim, dir);
+      if (ckpt_every > 0 && s % ckpt_every == 0) save_checkpoint(*sim, (dir / "checkpoint.bin").string());
+      if (frames) frames->after_steps(*sim, false);
+      progress.update(s);
+      if (opt.stop_after > 0 && s - start >= opt.stop_after && s < total) {
+        stopped = true;
+        break;
+      }
     }
+    sim->check();
+  } catch (const RunawayError& e) {
+    progress.finish(sim->steps());
+    save_fault(*sim, dir, e);
+    throw;
   }
   progress.finish(sim->steps());
   save_checkpoint(*sim, (dir / "checkpoint.bin").string());

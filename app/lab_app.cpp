@@ -216,6 +216,8 @@ int LabApp::run() {
     // the solver gets what the frame budget leaves after drawing
     const double budget = std::max(0.004, 1.0 / 30 - draw_ms_ * 1e-3 - 0.004);
     exp_->advance(budget);
+    if (std::string f = exp_->take_fault(); !f.empty())
+      message_ = "stopped: " + f + " (paused at the step before; save a checkpoint to study it)";
 
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();

@@ -176,7 +176,14 @@ std::int64_t LabExperiment::advance(double budget) {
     const auto c0 = Clock::now();
     std::int64_t n = chunk_;
     if (pause_step_ > 0) n = std::min<std::int64_t>(n, pause_step_ - sim_->steps());
-    test_->advance(n);  // returns at each new row
+    try {
+      test_->advance(n);  // returns at each new row
+    } catch (const RunawayError& e) {
+      // the simulation is at the step before the fault: paused there
+      running_ = false;
+      fault_ = e.what();
+      break;
+    }
     device_->finish();
     const double dt = std::chrono::duration<double>(Clock::now() - c0).count();
     elapsed = std::chrono::duration<double>(Clock::now() - t0).count();

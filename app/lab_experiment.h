@@ -27,6 +27,7 @@
 #include <future>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "scene.h"
 #include "shear_test.h"
@@ -89,6 +90,9 @@ class LabExperiment {
   // views must re-attach. Counts up.
   int generation() const { return generation_; }
 
+  // A runaway stopped the run (paused at the step before it): its message,
+  // once; empty when none.
+  std::string take_fault() { return std::exchange(fault_, {}); }
   std::string save_checkpoint(const std::string& path);
   std::string load_checkpoint(const std::string& path);
   // shear.csv, summary.txt and the plots, as the campaign writes them.
@@ -104,6 +108,7 @@ class LabExperiment {
   std::unique_ptr<ShearTest> test_;
   std::future<std::unique_ptr<Simulation>> building_;
   bool running_ = false, loading_started_ = false;
+  std::string fault_;  // a runaway (guard.h), until taken by take_fault()
   double rate_ = 0;            // steps per second of wall time, measured
   std::int64_t chunk_ = 100;   // steps per advance call, adapted to the budget
   std::size_t pause_rows_ = 0;

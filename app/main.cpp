@@ -8,12 +8,14 @@
 //   simsols lab [SCENE] [--script F]     the desktop lab (window)
 //   simsols study accuracy --out DIR     what accuracy costs in time
 //
-// Exit status: 0 success, 2 bad input, 3 device or I/O failure.
+// Exit status: 0 success, 2 bad input, 3 device or I/O failure, 4 the run ran
+// away (NaN or a particle too fast; see solver/guard.h).
 #include <cstdio>
 #include <map>
 
 #include "commands.h"
 #include "errors.h"
+#include "guard.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"SimSols — a 3D virtual laboratory for granular materials (DEM on OpenCL)"};
@@ -43,6 +45,9 @@ int main(int argc, char** argv) {
     } catch (const simsols::SceneError& e) {
       std::fprintf(stderr, "error: %s\n", e.what());
       return 2;
+    } catch (const simsols::RunawayError& e) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      return 4;
     } catch (const std::exception& e) {
       std::fprintf(stderr, "error: %s\n", e.what());
       return 3;

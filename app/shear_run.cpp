@@ -65,6 +65,18 @@ void save(Simulation& sim, const ShearTest& test, const fs::path& dir, double wa
 
 }  // namespace
 
+void save_fault(Simulation& sim, const std::filesystem::path& dir, const RunawayError& e,
+                const std::string& extra) {
+  const fs::path ck = dir / "fault_checkpoint.bin";
+  save_checkpoint(sim, ck.string(), extra);
+  write_file_atomic((dir / "fault.txt").string(),
+                    std::string(e.what()) + "\nThe state at step " +
+                        std::to_string(sim.steps()) + ", just before it, is in " + ck.string() +
+                        "\n");
+  std::fprintf(stderr, "[run] the state just before the fault (step %lld) is saved in %s\n",
+               static_cast<long long>(sim.steps()), ck.string().c_str());
+}
+
 bool shear_finished(const std::string& out_dir) {
   return fs::exists(fs::path(out_dir) / "summary.txt");
 }
@@ -120,7 +132,19 @@ ShearRunResult run_shear(const Scene& scene_in, const ShearRunOptions& opt) {
     const long long budget =
         opt.stop_after > 0 ? opt.stop_after - (sim->steps() - first) : 1LL << 40;
     if (budget <= 0) break;
-    test->advance(std::min<long long>(budget, std::max(1LL, opt.chunk_steps)));
+    try {
+      test->advance(std::min<long long>(budget, std::max(1LL, opt.chunk_steps)));
+      sim->check();  // before frames, progress and checkpoints look at it
+    } catch (const RunawayError& e) {
+      // The simulation is at the step before the fault; the driver's state
+      // is the one it had then (it only acts at readings, which are guarded).
+      progress.end();
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%s%.3f\n", kWallKey, wall_before + seconds_since(start));
+      save_fault(*sim, dir, e, test->save_state() + buf);
+      write_file_atomic((dir / "shear.csv").string(), shear_rows_csv(test->rows()));
+      throw;
+    }
     if (opt.after_chunk) opt.after_chunk(*sim, test->phase() == ShearPhase::Shear);
     if (!announced && test->phase() == ShearPhase::Shear) {
       announced = true;

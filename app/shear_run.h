@@ -8,9 +8,12 @@
 //   shear_stress.png, shear_ratio.png, dilation.png   the paper's Figures 3-7 axes
 //   particles_final.vtk               the specimen at the end, for ParaView
 //   checkpoint.bin                    latest state; `--resume` continues from it
+//   fault.txt, fault_checkpoint.bin   only when a step ran away (guard.h): what,
+//                                     where, and the state just before it
 // summary.txt is written last: its presence means the test finished.
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <string>
@@ -43,8 +46,15 @@ struct ShearRunResult {
 };
 
 // Runs (or resumes) the test of `scene` (ignored when resuming). Throws
-// SceneError / DeviceError like the other commands.
+// SceneError / DeviceError like the other commands, and RunawayError when a
+// step ran away (after saving the state before it, see save_fault).
 ShearRunResult run_shear(const Scene& scene, const ShearRunOptions& options);
+
+// After a RunawayError: `sim` (at the step before the fault) into
+// dir/fault_checkpoint.bin with the driver's `extra`, and the message into
+// dir/fault.txt.
+void save_fault(Simulation& sim, const std::filesystem::path& dir, const RunawayError& e,
+                const std::string& extra = {});
 
 // True when out_dir holds a finished test (its summary.txt).
 bool shear_finished(const std::string& out_dir);

@@ -168,6 +168,12 @@ void Device::fill_zero(cl_mem mem, size_t bytes) {
         "clEnqueueFillBuffer");
 }
 
+void Device::copy(cl_mem from, cl_mem to, size_t bytes) {
+  if (bytes == 0) return;
+  check(clEnqueueCopyBuffer(queue_.get(), from, to, 0, 0, bytes, 0, nullptr, nullptr),
+        "clEnqueueCopyBuffer");
+}
+
 void Device::finish() { check(clFinish(queue_.get()), "clFinish"); }
 
 }  // namespace simsols

@@ -76,6 +76,7 @@ class Device {
   void write(cl_mem mem, size_t bytes, const void* src, size_t offset = 0);
   void read(cl_mem mem, size_t bytes, void* dst, size_t offset = 0);
   void fill_zero(cl_mem mem, size_t bytes);
+  void copy(cl_mem from, cl_mem to, size_t bytes);  // device to device, in queue order
   void finish();
 
  private:

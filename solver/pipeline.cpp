@@ -55,6 +55,7 @@ int build_lists(const Model& m, State& s) {
 // (skin/4) from the validity limit (skin/2).
 std::int64_t check_interval(const Model& m, double vmax) {
   constexpr std::int64_t kMax = 64;
+  if (!(vmax < 1e30)) return 1;  // NaN or infinite: the guard takes over (guard.h)
   if (vmax <= 0) return kMax;
   const double steps = 0.25 * m.skin() / (2.0 * vmax * m.dt());
   return std::clamp<std::int64_t>(static_cast<std::int64_t>(steps), 1, kMax);
@@ -64,8 +65,9 @@ std::int64_t check_interval(const Model& m, double vmax) {
 
 void detect_contacts(const Model& m, State& s, bool force_rebuild) {
   if (s.step < s.next_check && !force_rebuild) return;
-  int flags[4] = {0, 0, 0, 0};
+  int flags[5] = {0, 0, 0, 0, 0};
   m.device().read(s.flags.get(), sizeof flags, flags);
+  if (flags[4] != 0x7fffffff) s.fault_seen = true;  // the runaway mark (guard.h)
   float v2 = 0;
   std::memcpy(&v2, &flags[2], sizeof v2);
   if (flags[3]) ++s.late_builds;

@@ -10,10 +10,16 @@ namespace simsols {
 
 Simulation::Simulation(std::shared_ptr<Device> device, const Scene& scene)
     : model_(std::make_unique<Model>(std::move(device), scene)),
-      state_(std::make_unique<State>(*model_)) {}
+      state_(std::make_unique<State>(*model_)),
+      guard_(std::make_unique<Guard>(*model_, *state_)) {
+  guard_->reset();
+}
 
 void Simulation::advance(std::int64_t steps) {
-  for (std::int64_t i = 0; i < steps; ++i) step(*model_, *state_);
+  for (std::int64_t i = 0; i < steps; ++i) {
+    step(*model_, *state_);
+    guard_->after_step();
+  }
 }
 
 namespace {
@@ -25,14 +31,6 @@ void check_wall(const Model& m, int wall, const char* what) {
                             " walls)");
 }
 
-// Writes one real4 at record `index` of `buf`.
-void write_real4(const Model& m, const Buffer& buf, size_t index, double a, double b, double c,
-                 double d) {
-  RealPacker p(m.config().double_precision);
-  p.put4(a, b, c, d);
-  m.device().write(buf.get(), p.size(), p.data(), index * p.size());
-}
-
 std::array<double, 4> read_real4(const Model& m, const Buffer& buf, size_t index) {
   const std::vector<double> v = read_reals(m, buf, 4, 4 * index);
   return {v[0], v[1], v[2], v[3]};
@@ -40,9 +38,18 @@ std::array<double, 4> read_real4(const Model& m, const Buffer& buf, size_t index
 
 }  // namespace
 
+// Writes one real4 at record `index` of a state buffer, through the guard's
+// log (a replay repeats it).
+void Simulation::write_real4(Buffer State::*buffer, size_t index, double a, double b, double c,
+                             double d) {
+  RealPacker p(model_->config().double_precision);
+  p.put4(a, b, c, d);
+  guard_->write(buffer, index * p.size(), p.data(), p.size());
+}
+
 void Simulation::set_wall_velocity(int wall, const Vec3& v) {
   check_wall(*model_, wall, "set_wall_velocity");
-  write_real4(*model_, state_->wall_vel, wall, v[0], v[1], v[2], 0);
+  write_real4(&State::wall_vel, wall, v[0], v[1], v[2], 0);
 }
 
 void Simulation::set_servo(int wall, const WallServo& c) {
@@ -50,21 +57,22 @@ void Simulation::set_servo(int wall, const WallServo& c) {
   if (c.enabled && !model_->config().servo)
     throw std::logic_error("set_servo: the kernels were built without servo walls");
   if (!model_->config().servo) return;
-  write_real4(*model_, state_->servo, 2 * wall, c.target_force, c.gain, c.max_speed,
+  write_real4(&State::servo, 2 * wall, c.target_force, c.gain, c.max_speed,
               c.enabled ? 1 : 0);
-  write_real4(*model_, state_->servo, 2 * wall + 1, c.integral_time > 0 ? 1 / c.integral_time : 0,
+  write_real4(&State::servo, 2 * wall + 1, c.integral_time > 0 ? 1 / c.integral_time : 0,
               0, 0, 0);
   if (!c.enabled) {
     set_wall_velocity(wall, {0, 0, 0});
     const auto r = read_real4(*model_, state_->wall_reaction, wall);
-    write_real4(*model_, state_->wall_reaction, wall, r[0], r[1], 0, r[3]);  // no stale integral
+    write_real4(&State::wall_reaction, wall, r[0], r[1], 0, r[3]);  // no stale integral
   }
 }
 
 Simulation::ServoReading Simulation::read_servo(int wall) {
   check_wall(*model_, wall, "read_servo");
+  guard_->before_reading();
   const auto r = read_real4(*model_, state_->wall_reaction, wall);
-  write_real4(*model_, state_->wall_reaction, wall, r[0], 0, r[2], 0);
+  write_real4(&State::wall_reaction, wall, r[0], 0, r[2], 0);
   ServoReading out;
   out.last = r[0];
   out.steps = static_cast<std::int64_t>(r[3]);
@@ -74,6 +82,7 @@ Simulation::ServoReading Simulation::read_servo(int wall) {
 
 Vec3 Simulation::wall_point(int wall) {
   check_wall(*model_, wall, "wall_point");
+  guard_->before_reading();
   return wall_points(*model_, *state_)[wall];
 }
 
@@ -82,11 +91,11 @@ void Simulation::set_wall_point(int wall, const Vec3& p) {
   const Vec3& o = model_->origin();
   double rel[3];
   for (int a = 0; a < 3; ++a) rel[a] = p[a] - o[a];
-  write_real4(*model_, state_->wall_point, wall, rel[0], rel[1], rel[2], 0);
+  write_real4(&State::wall_point, wall, rel[0], rel[1], rel[2], 0);
   if (!model_->config().double_precision) {
     const float lo[4] = {float_remainder(rel[0]), float_remainder(rel[1]),
                          float_remainder(rel[2]), 0};
-    model_->device().write(state_->wall_point_lo.get(), sizeof lo, lo, wall * sizeof lo);
+    guard_->write(&State::wall_point_lo, wall * sizeof lo, lo, sizeof lo);
   }
 }
 
@@ -94,6 +103,7 @@ std::vector<Simulation::WallMean> Simulation::read_wall_means() {
   std::vector<WallMean> out;
   if (!model_->config().servo) return out;
   const int nw = model_->walls();
+  guard_->before_reading();
   const std::vector<double> sums = read_reals(*model_, state_->wall_mean, size_t(nw) * 4);
   for (int w = 0; w < nw; ++w) {
     const double* r = &sums[4 * size_t(w)];
@@ -103,7 +113,7 @@ std::vector<Simulation::WallMean> Simulation::read_wall_means() {
     out.push_back(m);
   }
   std::vector<unsigned char> zero(state_->wall_mean.bytes, 0);
-  model_->device().write(state_->wall_mean.get(), zero.size(), zero.data());
+  guard_->write(&State::wall_mean, 0, zero.data(), zero.size());
   return out;
 }
 

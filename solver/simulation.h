@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "guard.h"
 #include "model.h"
 #include "observe.h"
 #include "pipeline.h"
@@ -22,6 +23,8 @@ class Simulation {
   State& state() { return *state_; }
   const Scene& scene() const { return model_->scene(); }
 
+  // Throws RunawayError when a step goes wrong; the simulation is then at
+  // the last good state, the step before (guard.h).
   void advance(std::int64_t steps = 1);
   double time() const { return state_->time; }
   std::int64_t steps() const { return state_->step; }
@@ -51,14 +54,39 @@ class Simulation {
   };
   std::vector<WallMean> read_wall_means();
 
-  Observables observe() { return simsols::observe(*model_, *state_); }
-  std::vector<WallReaction> wall_reactions() { return simsols::wall_reactions(*model_, *state_); }
-  ParticleSnapshot snapshot() { return download(*model_, *state_); }
+  // Readings first make sure no step since the guard's last look went wrong
+  // (they throw RunawayError otherwise), so no output holds a bad value.
+  Observables observe() {
+    guard_->before_reading();
+    return simsols::observe(*model_, *state_);
+  }
+  std::vector<WallReaction> wall_reactions() {
+    guard_->before_reading();
+    return simsols::wall_reactions(*model_, *state_);
+  }
+  ParticleSnapshot snapshot() {
+    guard_->before_reading();
+    return download(*model_, *state_);
+  }
+  std::vector<ContactForce> contacts() {
+    guard_->before_reading();
+    return contact_list(*model_, *state_);
+  }
+  // The state as it is (no guard look: also for a state being diagnosed).
   std::uint64_t hash() { return state_hash(*model_, *state_); }
 
+  // The runaway guard (guard.h). check() reads the mark now.
+  Guard& guard() { return *guard_; }
+  void check() { guard_->before_reading(); }
+  // After the state buffers were written wholesale (a checkpoint loaded).
+  void state_replaced() { guard_->reset(); }
+
  private:
+  void write_real4(Buffer State::*buffer, size_t index, double a, double b, double c, double d);
+
   std::unique_ptr<Model> model_;
   std::unique_ptr<State> state_;
+  std::unique_ptr<Guard> guard_;
 };
 
 // Advances one step at a time until particle `i` has touched something and

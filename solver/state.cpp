@@ -110,7 +110,8 @@ State::State(const Model& model) {
   }
   servo = make(d, std::max(1, nw) * 2 * r4, nw ? sv.data() : nullptr);
 
-  const int init_flags[4] = {1, 0, 0, 0};  // first step builds the lists
+  // the first step builds the lists; no runaway mark
+  const int init_flags[8] = {1, 0, 0, 0, 0x7fffffff, 0, 0, 0};
   flags = make(d, sizeof init_flags, init_flags);
   const size_t groups = model.global_size(n) / model.local_size();
   obs_partial = make(d, groups * 12 * model.real_size());

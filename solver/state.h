@@ -49,7 +49,8 @@ class State {
   // kept when the kernels have servo walls (read_wall_means)
   Buffer servo, wall_reaction, wall_mean;
   // flags[0]: list rebuild needed, flags[1]: longest list asked for,
-  // flags[2]: max |v|^2 since the last check, flags[3]: late (see integrate.cl)
+  // flags[2]: max |v|^2 since the last check, flags[3]: late, flags[4..6]:
+  // the runaway mark (see integrate.cl and guard.h), flags[7] spare
   Buffer flags, obs_partial, wall_partial;
 
   int n = 0;             // particles
@@ -62,6 +63,7 @@ class State {
   std::int64_t list_builds = 0;
   std::int64_t next_check = 0;   // step at which detect_contacts next reads the flags
   std::int64_t late_builds = 0;  // checks that found a particle beyond skin/2 (should stay 0)
+  bool fault_seen = false;       // a list check found the runaway mark set (guard.h)
 
   size_t device_bytes() const;
 

@@ -35,7 +35,7 @@ double inside_fraction(double z0, double lz, double lo, double hi) {
 
 Tensor3 love_weber_slab(Simulation& sim, double z_lo, double z_hi, double area) {
   const ParticleSnapshot snap = sim.snapshot();
-  const std::vector<ContactForce> contacts = contact_list(sim.model(), sim.state());
+  const std::vector<ContactForce> contacts = sim.contacts();
   const std::vector<Vec3> points = wall_points(sim.model(), sim.state());
   const std::vector<Wall>& walls = sim.scene().walls;
   Tensor3 s{};

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -56,6 +57,33 @@ TEST(Cli, BadSceneWritesNothing) {
   EXPECT_NE(r.out.find("negative_radius.toml"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("radius"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(out)) << "nothing may be written on a failed load";
+}
+
+// Stability case 10 end to end: a forced time step runs away; the run
+// stops at the first bad step with status 4, names the step and the
+// particle, saves the state before it, and writes no NaN into its outputs.
+TEST(Cli, RunawayStopsWithTheStateBeforeIt) {
+  const fs::path out = fresh_dir("runaway");
+  const Result r = run("run " + std::string(SIMSOLS_ASSETS_DIR) + "/tests/runaway.toml --out " +
+                       out.string() + " -q");
+  EXPECT_EQ(r.status, 4) << r.out;
+  EXPECT_NE(r.out.find("runaway at step "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("particle "), std::string::npos) << r.out;
+  ASSERT_TRUE(fs::exists(out / "fault_checkpoint.bin"));
+  ASSERT_TRUE(fs::exists(out / "fault.txt"));
+  std::ifstream f(out / "series.csv");
+  const std::string series((std::istreambuf_iterator<char>(f)), {});
+  EXPECT_GT(std::count(series.begin(), series.end(), '\n'), 10) << "one row per step until the fault";
+  for (const char* bad : {"nan", "inf", "NaN", "Inf"})
+    EXPECT_EQ(series.find(bad), std::string::npos) << bad << " in series.csv";
+  // The saved state is the step before (tests/test_stability.cpp checks
+  // that one step from it is the fault).
+  const auto at = r.out.find("runaway at step ");
+  const long fault_step = std::atol(r.out.c_str() + at + 16);
+  std::ifstream t(out / "fault.txt");
+  const std::string text((std::istreambuf_iterator<char>(t)), {});
+  EXPECT_NE(text.find("The state at step " + std::to_string(fault_step - 1)), std::string::npos)
+      << text;
 }
 
 TEST(Cli, BadFlagIsRefused) {

@@ -5,6 +5,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include <cstdio>
+#include <optional>
+
+#include "checkpoint.h"
+#include "contact_model.h"
 #include "scene_toml.h"
 #include "test_support.h"
 
@@ -179,6 +184,155 @@ TEST(DegenerateInputs, RunOrRefuseNeverNaN) {
     run("empty scene", s);
   }
 }
+
+// Case 10. NaN or runaway detection: a run that goes wrong stops at its
+// first bad step, names the particle and the step, and leaves the state of
+// the step before (to save as a checkpoint); see solver/guard.h. Forced:
+// a 3 x 3 x 3 pile under a ceiling that a driver lowers ever faster (a host
+// write every 7 steps, which a replay must repeat), with the time step
+// forced to 8 Rayleigh steps. Checked independently of the guard: the same
+// scene and driver stepped one step at a time, reading the state with the
+// unguarded download(), is finite and moves no bead more than a tenth of
+// its radius per step up to the reported step - 1, and breaks at the reported step with
+// the reported particle as the lowest bad index. The guard's state at the
+// step before has the same hash as that rerun (bit for bit), a checkpoint
+// of it runs into the same fault after one step, and its readings hold no
+// NaN.
+class Runaway : public PrecisionTest {};
+
+Scene runaway_scene(Precision p) {
+  const double R = 1e-3;
+  Scene s = empty_scene(p, glass(0.87, 0.3, 5e-5));
+  s.effects.gravity = {0, 0, -9.81};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k)
+        s.particles.push_back(sphere(R, {2 * R * i, 2 * R * j, R + 2 * R * k}));
+  s.walls = {plane("floor", {0, 0, 0}, {0, 0, 1}), plane("ceiling", {0, 0, 6 * R + 2e-5}, {0, 0, -1})};
+  s.numerics.dt = 8 * rayleigh_time_step(s);
+  s.numerics.force_dt = true;
+  return s;
+}
+
+// The driver: every 7 steps the ceiling comes down faster.
+void drive(Simulation& sim) {
+  if (sim.steps() % 7 == 0) sim.set_wall_velocity(1, {0, 0, -(0.02 + 2e-4 * double(sim.steps()))});
+}
+
+// Not finite, or moved more than a tenth of its radius in the step.
+bool bad(const ParticleSnapshot& now, const ParticleSnapshot& before, int* first) {
+  for (size_t i = 0; i < now.position.size(); ++i) {
+    double moved2 = 0;
+    bool finite = true;
+    for (int c = 0; c < 3; ++c) {
+      const double d = now.position[i][c] - before.position[i][c];
+      moved2 += d * d;
+      finite = finite && std::isfinite(now.position[i][c]) && std::isfinite(now.velocity[i][c]) &&
+               std::isfinite(now.angular_velocity[i][c]);
+    }
+    const double limit = 0.1 * now.radius[i];
+    if (!finite || !(moved2 <= limit * limit)) {
+      *first = static_cast<int>(i);
+      return true;
+    }
+  }
+  return false;
+}
+
+TEST_P(Runaway, StopsAtTheFirstBadStepNamingTheParticle) {
+  for (std::int64_t interval : {Guard::kDefaultInterval, std::int64_t{50}}) {
+    SCOPED_TRACE("guard interval " + std::to_string(interval));
+    const Scene scene = runaway_scene(GetParam());
+    Simulation sim(default_device(), scene);
+    sim.guard().set_interval(interval);
+    std::optional<Fault> fault;
+    try {
+      while (sim.steps() < 20000) {
+        drive(sim);
+        sim.advance(1);
+        if (sim.steps() % 25 == 0) sim.observe();  // readings, as a run takes them
+      }
+    } catch (const RunawayError& e) {
+      fault = e.fault();
+      std::printf("[measure] %s, guard interval %lld: %s\n", precision_name(GetParam()),
+                  static_cast<long long>(interval), e.what());
+      const std::string what = e.what();
+      EXPECT_NE(what.find("step " + std::to_string(fault->step)), std::string::npos);
+      EXPECT_NE(what.find("particle " + std::to_string(fault->particle)), std::string::npos);
+    }
+    ASSERT_TRUE(fault) << "the forced run never ran away";
+    ASSERT_TRUE(fault->located);
+    EXPECT_EQ(sim.steps(), fault->step - 1) << "left at the step before the fault";
+    const ParticleSnapshot at = sim.snapshot();  // guarded reading: no throw now
+    EXPECT_TRUE(all_finite(at));
+    EXPECT_TRUE(std::isfinite(sim.observe().total_energy()));
+
+    // Independent rerun, one step at a time, unguarded readings.
+    Simulation again(default_device(), scene);
+    ParticleSnapshot before = download(again.model(), again.state());
+    int first = -1;
+    std::int64_t broke = -1;
+    while (again.steps() < fault->step + 5) {
+      drive(again);
+      if (again.steps() == fault->step - 1) EXPECT_EQ(again.hash(), sim.hash()) << "bit for bit";
+      step(again.model(), again.state());  // the pipeline itself: no guard
+      const ParticleSnapshot now = download(again.model(), again.state());
+      if (bad(now, before, &first)) {
+        broke = again.steps();
+        break;
+      }
+      before = now;
+    }
+    EXPECT_EQ(broke, fault->step) << "first bad step";
+    EXPECT_EQ(first, fault->particle) << "lowest bad particle";
+
+    // The state before, saved and loaded, runs into the same fault.
+    const std::string ck = ::testing::TempDir() + "/runaway_" + precision_name(GetParam()) + ".bin";
+    save_checkpoint(sim, ck);
+    auto loaded = load_checkpoint(default_device(), ck);
+    EXPECT_EQ(loaded->hash(), sim.hash());
+    try {
+      drive(*loaded);
+      loaded->advance(1);
+      loaded->check();
+      ADD_FAILURE() << "the checkpoint did not run into the fault";
+    } catch (const RunawayError& e) {
+      EXPECT_EQ(e.fault().step, fault->step);
+      EXPECT_EQ(e.fault().particle, fault->particle);
+    }
+    std::remove(ck.c_str());
+  }
+}
+
+// The NaN branch: a driver writes a NaN wall velocity (a host write the
+// replay must repeat); the bead touching that wall turns NaN a step or two
+// later. The guard names it as not finite and leaves a finite state.
+TEST_P(Runaway, NaNIsCaughtBeforeAnyReading) {
+  const double R = 1e-3;
+  Scene s = empty_scene(GetParam(), glass(0.87, 0.3, 5e-5));
+  s.effects.gravity = {0, 0, -9.81};
+  s.particles = {sphere(R, {0, 0, R - 1e-7}), sphere(R, {0.01, 0, 0.005})};
+  s.walls = {plane("floor", {0, 0, 0}, {0, 0, 1})};
+  Simulation sim(default_device(), s);
+  sim.guard().set_interval(4);
+  try {
+    for (int k = 0; k < 200; ++k) {
+      if (sim.steps() == 10) sim.set_wall_velocity(0, {0, 0, std::nan("")});
+      sim.advance(1);
+    }
+    sim.observe();
+    ADD_FAILURE() << "the NaN was not caught";
+  } catch (const RunawayError& e) {
+    std::printf("[measure] %s: %s\n", precision_name(GetParam()), e.what());
+    EXPECT_TRUE(e.fault().non_finite);
+    EXPECT_EQ(e.fault().particle, 0) << "the bead on the floor, not the free one";
+    EXPECT_GT(e.fault().step, 10);
+    EXPECT_EQ(sim.steps(), e.fault().step - 1);
+    EXPECT_TRUE(all_finite(sim.snapshot()));
+  }
+}
+
+SIMSOLS_BOTH_PRECISIONS(Runaway);
 
 }  // namespace
 }  // namespace simsols::testing

@@ -9,6 +9,13 @@
 //   flags[0] = 1  a particle moved more than skin/4 since the last build: rebuild
 //   flags[2]      largest |v|^2 since the last check (float bits, atomic max)
 //   flags[3] = 1  a particle moved more than skin/2: the lists were stale (late)
+// and the runaway mark the Guard reads (guard.h): a particle whose new state
+// is not finite, or which moved more than a tenth of its radius in this one
+// step (a contact cannot be resolved: its overlap would jump by ten times
+// the 1 % a resolved contact reaches):
+//   flags[4]      the lowest such index (atomic min; INT_MAX when none)
+//   flags[5]      what: bit 0 not finite, bit 1 too fast
+//   flags[6]      how many were marked
 
 __kernel void integrate(__global real4* pos POS_LO_ARG, __global real4* vel,
                         __global real4* omega, __global const real4* force,
@@ -36,6 +43,17 @@ __kernel void integrate(__global real4* pos POS_LO_ARG, __global real4* vel,
   vel[i] = v;
   omega[i] = w;
   pos[i] = x;
+  // comparisons with NaN are false: a NaN anywhere counts as not finite
+  const real3 dx = v.xyz * dt;
+  const real step2 = dot(dx, dx);
+  const int finite = (dot(w.xyz, w.xyz) < INFINITY) & (step2 < INFINITY) &
+                     (fabs(x.x) + fabs(x.y) + fabs(x.z) < INFINITY);
+  const int fast = step2 > (real)0.01 * x.w * x.w;  // a tenth of its radius
+  if (!finite || fast) {
+    atomic_min(&flags[4], i);
+    atomic_or(&flags[5], finite ? 2 : 1);
+    atomic_inc(&flags[6]);
+  }
   const real3 moved = x.xyz - pos_build[i].xyz;
   const real moved2 = dot(moved, moved);
   if (moved2 > (real)0.0625 * skin * skin) flags[0] = 1;
