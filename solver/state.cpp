@@ -52,7 +52,11 @@ State::State(const Model& model) {
 
   RealPacker p(dbl), lo(false), v(dbl), w(dbl);
   const Vec3& o = model.origin();
+  float v2_start = 0;  // the largest |v|^2 at the start: the first list check's interval
   for (const Particle& q : s.particles) {
+    v2_start = std::max(v2_start, static_cast<float>(q.velocity[0] * q.velocity[0] +
+                                                     q.velocity[1] * q.velocity[1] +
+                                                     q.velocity[2] * q.velocity[2]));
     const Material& m = s.materials[q.material];
     const double mass = m.density * 4.0 / 3.0 * std::numbers::pi * q.radius * q.radius * q.radius;
     double rel[3];
@@ -110,8 +114,12 @@ State::State(const Model& model) {
   }
   servo = make(d, std::max(1, nw) * 2 * r4, nw ? sv.data() : nullptr);
 
-  // the first step builds the lists; no runaway mark
-  const int init_flags[8] = {1, 0, 0, 0, 0x7fffffff, 0, 0, 0};
+  // the first step builds the lists, and sets the next check from the
+  // fastest particle's start speed (flags[2], float bits), so a scene that
+  // starts fast is checked as often as one that became fast; no runaway mark
+  int v2_bits = 0;
+  std::memcpy(&v2_bits, &v2_start, sizeof v2_bits);
+  const int init_flags[8] = {1, 0, v2_bits, 0, 0x7fffffff, 0, 0, 0};
   flags = make(d, sizeof init_flags, init_flags);
   const size_t groups = model.global_size(n) / model.local_size();
   obs_partial = make(d, groups * 12 * model.real_size());

@@ -1,8 +1,7 @@
 // Stability suite, contact cases (ctest label `stability`): rolling friction
 // at rest and near rest (case 2) and the tangential history of a rigidly
-// rotating pair (case 3a). Not written yet: re-formed contacts (3b), fast
-// impacts (5), an impossible bead count (last input of 9); the settled pile
-// of case 2 is disabled (see it). Each case asserts a bound that could fail and prints its
+// rotating pair (case 3a), re-formed contacts (3b) and fast impacts (5); the
+// settled pile of case 2 is disabled (see it). Each case asserts a bound that could fail and prints its
 // measured margins as [measure] lines. The CI form is reduced; with
 // SIMSOLS_STABILITY_FULL=1 the same tests run larger counts and longer
 // windows (each prints which form ran).
@@ -550,6 +549,208 @@ TEST_P(RigidPairRotation, TangentialForceStaysInPlaneAndKeepsItsSize) {
 }
 
 SIMSOLS_BOTH_PRECISIONS(RigidPairRotation);
+
+// ===========================================================================
+// Case 3b. Contacts that break and re-form start from zero history.
+//
+// Two spinning beads in a closed channel, no gravity: they collide
+// obliquely, fly apart, bounce off the end walls (frictional contacts that
+// also break and re-form) and collide again, many times. Each contact ends with
+// a loaded tangential spring (checked: the first contact carries a
+// tangential force; its spring, which k_t ~ sqrt(d) hides as d -> 0, would
+// dominate the one-step spring v_t dt of a new contact if it were kept). A stale spring would be carried
+// into the next contact of the same pair, which stays in the neighbour list
+// while the beads are apart. At the first step of each re-formed contact
+// (bead-bead and bead-wall), the force must equal that of a fresh
+// simulation started one step earlier from the same positions and
+// velocities, which has no history at all: the same to 1e-9 relative in
+// double, 1e-4 in float (the fresh float state is rebuilt from double
+// positions: its last bit may differ).
+// ===========================================================================
+class ReformedContact : public PrecisionTest {};
+
+Scene channel_scene(Precision prec, const std::vector<Particle>& beads) {
+  Scene s = empty_scene(prec, glass(1.0, 0.3, 5e-5));  // elastic: they keep bouncing
+  s.effects.gravity = {0, 0, 0};
+  s.numerics.dt_fraction = 0.4;
+  s.particles = beads;
+  const double L = 6 * kR, W = 1.6 * kR;  // a closed channel: the beads cannot pass each other
+  s.walls = {plane("x0", {-L, 0, 0}, {1, 0, 0}),  plane("x1", {L, 0, 0}, {-1, 0, 0}),
+             plane("y0", {0, -W, 0}, {0, 1, 0}),  plane("y1", {0, W, 0}, {0, -1, 0}),
+             plane("z0", {0, 0, -W}, {0, 0, 1}),  plane("z1", {0, 0, W}, {0, 0, -1})};
+  return s;
+}
+
+// Force on `a` from `b` (b = -1 - wall for walls) in the last evaluation; 0 when none.
+bool contact_force(Simulation& sim, int a, int b, Vec3* f) {
+  for (const ContactForce& c : sim.contacts())
+    if (c.a == a && c.b == b) {
+      *f = c.force;
+      return true;
+    }
+  return false;
+}
+
+TEST_P(ReformedContact, StartsFromZeroHistory) {
+  const Precision prec = GetParam();
+  const double v = 2, spin = 1600;
+  const std::vector<Particle> start = {
+      sphere(kR, {-2 * kR, 0, 0}, {v, 0.2, 0}, {0, 0, spin}),
+      sphere(kR, {2 * kR, 0.4 * kR, 0}, {-v, -0.2, 0}, {spin, 0, -spin})};
+  Simulation sim(default_device(), channel_scene(prec, start));
+  // (pair or wall) -> touching on the previous step, contacts seen, checked
+  struct Track {
+    int a, b;
+    const char* name;
+    bool was = false;
+    int contacts = 0, checked = 0;
+    double first_tangential = 0;  // largest |F_t| during the first contact
+    double worst = 0;            // largest relative difference to a fresh run
+  };
+  std::vector<Track> tracks = {{0, 1, "bead-bead"}, {0, -1, "bead 0 - wall x0"},
+                               {1, -2, "bead 1 - wall x1"}};
+  const double tol = prec == Precision::Double ? 1e-9 : 1e-4;
+  const int wanted = full_form() ? 5 : 1;  // re-formed contacts checked per track
+  const std::int64_t max_steps = 200000;
+  std::int64_t steps = 0;
+  ParticleSnapshot before = sim.snapshot();
+  auto done = [&] {
+    for (const Track& t : tracks)
+      if (t.checked < wanted) return false;
+    return true;
+  };
+  for (; steps < max_steps && !done(); ++steps) {
+    sim.advance(1);
+    for (Track& t : tracks) {
+      Vec3 f{};
+      const bool now = contact_force(sim, t.a, t.b, &f);
+      if (now && !t.was) {
+        ++t.contacts;
+        if (t.contacts >= 2 && t.checked < wanted) {
+          // a fresh simulation from the state one step earlier
+          std::vector<Particle> beads = start;
+          for (size_t i = 0; i < beads.size(); ++i) {
+            beads[i].position = before.position[i];
+            beads[i].velocity = before.velocity[i];
+            beads[i].angular_velocity = before.angular_velocity[i];
+          }
+          Simulation fresh(default_device(), channel_scene(prec, beads));
+          fresh.advance(1);
+          Vec3 g{};
+          ASSERT_TRUE(contact_force(fresh, t.a, t.b, &g)) << t.name;
+          const double diff = norm3(sub3(f, g)) / norm3(g);
+          t.worst = std::max(t.worst, diff);
+          EXPECT_LE(diff, tol) << t.name << ", contact " << t.contacts << " at step " << sim.steps();
+          ++t.checked;
+        }
+      }
+      if (now && t.contacts == 1) {
+        // tangential part of the force (normal from the centres)
+        const ParticleSnapshot q = sim.snapshot();
+        Vec3 n = t.b >= 0 ? unit(sub3(q.position[t.b], q.position[t.a]))
+                          : Vec3{t.b == -1 ? -1.0 : 1.0, 0, 0};
+        t.first_tangential = std::max(t.first_tangential, norm3(sub3(f, scale3(dot3(f, n), n))));
+      }
+      t.was = now;
+    }
+    before = sim.snapshot();
+  }
+  for (const Track& t : tracks) {
+    std::printf("[measure] %s, %s, %s: %d contacts in %lld steps; |F_t| in the "
+                "first contact up to %.3g N; first step of %d re-formed contacts vs a fresh run: largest "
+                "difference %.3g (bound %.3g)\n",
+                form(), precision_name(prec), t.name, t.contacts, static_cast<long long>(steps),
+                t.first_tangential, t.checked, t.worst, tol);
+    EXPECT_GE(t.checked, wanted) << t.name << ": the contact did not re-form often enough";
+    EXPECT_GT(t.first_tangential, 0.01) << t.name << ": no tangential loading (test not sensitive)";
+  }
+}
+
+SIMSOLS_BOTH_PRECISIONS(ReformedContact);
+
+// ===========================================================================
+// Case 5. Fast impacts: a bead at 10 m/s into a packed layer.
+//
+// A square layer of 5 x 5 glass beads (2.38 mm) resting on a floor, hit at
+// 10 m/s from above: once head-on on the centre bead, once into the hollow
+// between four beads (the hollow lets through only a sphere of 0.41 R). Every
+// step: the impactor stays above the layer (its centre above the height at
+// which it would rest in the hollow, 2.41 R, less the overlap allowance),
+// no layer bead goes through the floor, and no overlap passes 5 % of the
+// radius (Hertz theory for 10 m/s: 1.3 %). The solver's skin check (a
+// particle beyond skin/2 since the last list build, flagged every step in
+// integrate.cl, counted as State::late_builds) reports no violation. And it
+// can fire: the same impact with a skin of 1e-7 m reports violations.
+// ===========================================================================
+class FastImpact : public PrecisionTest {};
+
+Scene layer_scene(Precision prec, Vec3 aim, double skin) {
+  Scene s = empty_scene(prec, glass(0.87, 0.3, 5e-5));
+  s.effects.gravity = {0, 0, -kG};
+  for (int i = -2; i <= 2; ++i)
+    for (int j = -2; j <= 2; ++j) s.particles.push_back(sphere(kR, {2 * kR * i, 2 * kR * j, kR}));
+  s.particles.push_back(sphere(kR, {aim[0], aim[1], 4 * kR}, {0, 0, -10}));
+  s.walls = {plane("floor", {0, 0, 0}, {0, 0, 1})};
+  s.numerics.skin = skin;
+  return s;
+}
+
+struct ImpactResult {
+  double lowest_impactor = INFINITY, lowest_layer = INFINITY, worst_overlap = 0, rebound = 0;
+  std::int64_t late = 0;
+};
+
+ImpactResult impact(Precision prec, Vec3 aim, double skin, std::int64_t steps) {
+  const Scene s = layer_scene(prec, aim, skin);
+  Simulation sim(default_device(), s);
+  ImpactResult r;
+  const int imp = static_cast<int>(s.particles.size()) - 1;
+  for (std::int64_t k = 0; k < steps; ++k) {
+    sim.advance(1);
+    const ParticleSnapshot q = sim.snapshot();
+    r.lowest_impactor = std::min(r.lowest_impactor, q.position[imp][2]);
+    for (int i = 0; i < imp; ++i) r.lowest_layer = std::min(r.lowest_layer, q.position[i][2]);
+    for (int i = 0; i <= imp; ++i) {
+      r.worst_overlap = std::max(r.worst_overlap, (q.radius[i] - q.position[i][2]) / kR);
+      for (int j = i + 1; j <= imp; ++j)
+        r.worst_overlap =
+            std::max(r.worst_overlap, (2 * kR - norm3(sub3(q.position[i], q.position[j]))) / kR);
+    }
+    r.rebound = std::max(r.rebound, q.velocity[imp][2]);
+  }
+  r.late = sim.state().late_builds;
+  return r;
+}
+
+TEST_P(FastImpact, NoTunnellingAndTheSkinCheckReports) {
+  const Precision prec = GetParam();
+  const std::int64_t steps = full_form() ? 20000 : 4000;  // the impact is over in ~100 steps
+  struct Aim {
+    const char* name;
+    Vec3 at;
+    double floor;  // lowest centre height allowed for the impactor
+  } aims[] = {{"head-on", {0, 0, 0}, 3 * kR}, {"into the hollow", {kR, kR, 0}, (1 + std::sqrt(2.0)) * kR}};
+  for (const Aim& a : aims) {
+    const ImpactResult r = impact(prec, a.at, 0, steps);
+    std::printf("[measure] %s, %s, %s at 10 m/s: impactor lowest %.4g R (bound %.4g R), layer "
+                "lowest %.4g R, largest overlap %.3g R (bound 0.05 R), rebound %.3g m/s, skin "
+                "violations %lld\n",
+                form(), precision_name(prec), a.name, r.lowest_impactor / kR,
+                a.floor / kR - 0.05, r.lowest_layer / kR, r.worst_overlap, r.rebound,
+                static_cast<long long>(r.late));
+    EXPECT_GT(r.lowest_impactor, a.floor - 0.05 * kR) << a.name;
+    EXPECT_GT(r.lowest_layer, 0.95 * kR) << a.name;
+    EXPECT_LT(r.worst_overlap, 0.05) << a.name;
+    EXPECT_GT(r.rebound, 0) << a.name << ": no rebound";
+    EXPECT_EQ(r.late, 0) << a.name;
+  }
+  const ImpactResult forced = impact(prec, {0, 0, 0}, 1e-7, 400);
+  std::printf("[measure] %s, %s, skin 1e-7 m: %lld skin violations reported\n", form(),
+              precision_name(prec), static_cast<long long>(forced.late));
+  EXPECT_GT(forced.late, 0) << "the skin check never fired with a tiny skin";
+}
+
+SIMSOLS_BOTH_PRECISIONS(FastImpact);
 
 }  // namespace
 }  // namespace simsols::testing
