@@ -114,6 +114,7 @@ class ShearTest {
  private:
   void enter(ShearPhase p);
   void apply_servo(bool on);
+  void tune_servo();  // gain_ and integral_time_ for sigma_target_ (automatic settings)
   void move_lower_half(double vx);  // the floor, lower sides and frame at vx along x
   bool settled();
   bool consolidated();
@@ -133,6 +134,7 @@ class ShearTest {
   double sigma_target_ = 0;
   double speed_ = 0, gain_ = 0, integral_time_ = 0;
   double x0_ = 0, z0_ = 0, height0_ = 0, diameter_ = 0, density_ = 0, bead_mass_ = 0;
+  double k_hertz_ = 0, specimen_mass_ = 0, layers_ = 1;  // for tune_servo
   double settle_seconds_ = 0, consolidate_seconds_ = 0;
   int quiet_checks_ = 0;
   bool hold_ = false, ready_ = false;
