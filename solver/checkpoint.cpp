@@ -115,6 +115,7 @@ std::unique_ptr<Simulation> load_checkpoint(std::shared_ptr<Device> device, cons
       r.fail("buffer '" + name + "' has the wrong size");
     sim->model().device().write(buf->get(), data.size(), data.data());
   }
+  derive_state(sim->model(), sim->state());
   sim->state_replaced();
   const std::string rest = r.str();
   if (extra) *extra = rest;

@@ -90,6 +90,7 @@ void Guard::restore_copy() {
   state_.next_check = copy_next_check_;
   state_.late_builds = copy_late_builds_;
   state_.fault_seen = false;
+  derive_state(model_, state_);
 }
 
 void Guard::replay_to(std::int64_t target) {

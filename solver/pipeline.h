@@ -25,6 +25,11 @@ void integrate(const Model& model, State& state);
 
 void step(const Model& model, State& state);
 
+// Recomputes what the state derives from its saved buffers (the contact
+// counts of the last step, State::touching) after they were written
+// wholesale: a checkpoint loaded, the guard's copy restored.
+void derive_state(const Model& model, State& state);
+
 // Enqueues the per-wall sums of the forces particles exert on walls into
 // state.wall_partial (walls x chunks of kWallChunk particles, each summed in
 // index order); returns the number of chunks.

@@ -121,6 +121,7 @@ State::State(const Model& model) {
   std::memcpy(&v2_bits, &v2_start, sizeof v2_bits);
   const int init_flags[8] = {1, 0, v2_bits, 0, 0x7fffffff, 0, 0, 0};
   flags = make(d, sizeof init_flags, init_flags);
+  touching = make(d, n * sizeof(int));
   const size_t groups = model.global_size(n) / model.local_size();
   obs_partial = make(d, groups * 12 * model.real_size());
   const size_t wall_chunks = std::max<size_t>(1, (n + kWallChunk - 1) / kWallChunk);
@@ -134,7 +135,7 @@ size_t State::device_bytes() const {
                           &pair_force, &pair_torque, &bucket, &slot,
                           &cell_count, &cell_start, &sorted, &chunk_sum, &wall_point,
                           &wall_point_lo, &wall_vel, &wall_spring, &wall_force, &wall_touch, &wall_reaction, &wall_mean, &servo, &flags,
-                          &obs_partial, &wall_partial})
+                          &obs_partial, &wall_partial, &touching})
     total += b->bytes;
   return total;
 }

@@ -52,6 +52,10 @@ class State {
   // flags[2]: max |v|^2 since the last check, flags[3]: late, flags[4..6]:
   // the runaway mark (see integrate.cl and guard.h), flags[7] spare
   Buffer flags, obs_partial, wall_partial;
+  // contacts of each particle in the last step (force.w, kept by integrate):
+  // the rolling cap's divisor (forces.cl). Derived from `force`, so not
+  // saved: derive_state() rebuilds it after a load.
+  Buffer touching;
 
   int n = 0;             // particles
   int cap = 0;           // neighbour slots per particle

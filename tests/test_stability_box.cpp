@@ -186,9 +186,11 @@ TEST(StiffAndSmall, GlassUnder400kPaStaysQuietInFloat) {
     last_max = std::max(last_max, ke[k]);
   }
   const Observables end = sim.observe();
-  // Not asserted here (docs/stability.md case 2, rolling friction near
-  // rest): the half-step angular velocities of beads at rest, which flip
-  // sign every step where the rolling torques of several contacts overshoot.
+  // Case 2 in a packing (rolling friction at rest): the half-step angular
+  // velocities of beads at rest must not flip sign from step to step. They
+  // did, for every bead, up to 4.6 rad/s (|w| r = 5.5 mm/s), while each
+  // contact capped its rolling torque for itself and a bead's several
+  // capped torques overshot together; the cap is now shared (forces.cl).
   const ParticleSnapshot a = sim.snapshot();
   sim.advance(1);
   const ParticleSnapshot c = sim.snapshot();
@@ -212,9 +214,12 @@ TEST(StiffAndSmall, GlassUnder400kPaStaysQuietInFloat) {
               "%.3g of the elastic energy %.3g J (bound 1e-6)\n",
               loading, first, last, last / first, last / loading, last_max,
               last_max / end.elastic_energy, end.elastic_energy);
-  std::printf("[measure] stiff and small (not asserted, case 2): %d of %zu beads' half-step "
-              "angular velocity flips sign every step, largest |w| %.3g rad/s (|w| r = %.3g m/s)\n",
+  std::printf("[measure] stiff and small (case 2, chatter): %d of %zu beads' half-step "
+              "angular velocity flips sign in one step (bound 2%%), largest |w| %.3g rad/s (|w| r "
+              "= %.3g m/s, bound 1e-4 m/s)\n",
               flipping, a.position.size(), spin, spin * d / 2);
+  EXPECT_LE(flipping, 0.02 * double(a.position.size()));
+  EXPECT_LT(spin * d / 2, 1e-4);
   EXPECT_LT(worst.pair, 0.01 * d);
   EXPECT_LT(worst.wall, 0.01 * d);
   EXPECT_LT(last, 1e-3 * loading);  // the loading's agitation has died out

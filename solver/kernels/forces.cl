@@ -13,6 +13,13 @@
 // contacts. Particle records: pos = (x, radius), vel = (v, mass),
 // omega = (w, material).
 //
+// The rolling torque of a contact is capped so that alone it would not
+// reverse the relative rolling within a step (contact_law.cl); a bead with k
+// contacts gets up to k such torques, which together overshoot and flip its
+// spin every step (chatter in a packing). The cap is therefore shared: the
+// inertia passed to the law is divided by the larger contact count of the
+// two particles in the last step (`contacts_last`, State::touching, kept by integrate.cl).
+//
 // One work item handles LANES consecutive particles (one lane each). The
 // lanes walk their lists in step, up to the longest; a lane past its list, or
 // whose neighbour does not touch, runs the law on stand-in values
@@ -23,7 +30,8 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
                           __global const int* restrict nbr, __global const int* restrict nbr_upper, __global real* restrict spring,
                           __global const real* restrict pairs, __global real* restrict pair_force,
                           __global real* restrict pair_torque, __global real* restrict force,
-                          __global real* restrict torque, real dt, int cap, int n, int nmat) {
+                          __global real* restrict torque, __global const int* restrict contacts_last,
+                          real dt, int cap, int n, int nmat) {
   const int base = get_global_id(0) * LANES;
   if (base >= n) return;
   int ii[LANES], valid[LANES], len[LANES];
@@ -93,7 +101,8 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
 #endif
     const ContactResult c = contact_law(delta, nv, vrel, v_sub(wi, wj), ri * rj / rsum,
                                         mi * mj / (mi + mj),
-                                        inertia_i * inertia_j / (inertia_i + inertia_j),
+                                        inertia_i * inertia_j / (inertia_i + inertia_j) /
+                                            cap_divisor(contacts_last, ii, jj),
                                         gather_pairs(pairs, pair, nmat), dt, &sp);
 #ifdef HAS_FRICTION
     scatter4(spring, slot, keep, v_sel(on, sp, v_zero()), (lane)0);  // lost contacts end their history

@@ -20,14 +20,17 @@
 __kernel void integrate(__global real4* pos POS_LO_ARG, __global real4* vel,
                         __global real4* omega, __global const real4* force,
                         __global const real4* torque, __global const real4* pos_build,
-                        __global volatile int* flags, real4 gravity, real dt, real skin, int n) {
+                        __global volatile int* flags, __global int* contacts_last, real4 gravity,
+                        real dt, real skin, int n) {
   const int i = get_global_id(0);
   if (i >= n) return;
   real4 v = vel[i];
   real4 w = omega[i];
   real4 x = pos[i];
   const real m = v.w;
-  real3 a = force[i].xyz / m;
+  const real4 fi = force[i];
+  contacts_last[i] = (int)fi.w;  // contacts of this step: the next step's rolling cap (forces.cl)
+  real3 a = fi.xyz / m;
 #ifdef HAS_GRAVITY
   a += gravity.xyz;
 #endif

@@ -68,7 +68,8 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
                           __global real* restrict wall_spring, __global real* restrict wall_force,
                           __global const real* restrict pairs, __global real* restrict force,
                           __global real* restrict torque, __global int* restrict wall_touch,
-                          real dt, int n, int nwalls, int nmat) {
+                          __global const int* restrict contacts_last, real dt, int n, int nwalls,
+                          int nmat) {
   const int base = get_global_id(0) * LANES;
   if (base >= n) return;
   int ii[LANES], valid[LANES], pair[LANES], was[LANES], now[LANES];
@@ -105,6 +106,7 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
   const Lane4 f0 = gather4(force, ii), t0 = gather4(torque, ii);
   v3 f = f0.xyz, t = t0.xyz;
   lane count = f0.w, e = t0.w;
+  const lane cap_k = cap_divisor_wall(contacts_last, ii);  // the rolling cap is shared (forces.cl)
 
   for (int w = 0; w < nwalls; ++w) {
     // Slots are written only where the wall is or was touched: a slot that
@@ -130,7 +132,7 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
     const int wall_mat = (int)walls[4 * WALL_RECORD * w + 7];
 #pragma unroll
     for (int l = 0; l < LANES; ++l) pair[l] = (int)mat_i[l] * nmat + wall_mat;
-    const ContactResult c = contact_law(delta, nv, vrel, wi, ri, mi, inertia,
+    const ContactResult c = contact_law(delta, nv, vrel, wi, ri, mi, inertia / cap_k,
                                         gather_pairs(pairs, pair, nmat), dt, &sp);
     scatter4(wall_spring, slot, keep, v_sel(on, sp, v_zero()), (lane)0);
     scatter4(wall_force, slot, keep, v_sel(on, v_neg(c.force), v_zero()), SEL(on, (lane)1, (lane)0));
