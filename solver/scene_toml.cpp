@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -26,6 +27,12 @@ constexpr std::int64_t kMaxGenerated = 10'000'000;
 // Random insertion gives up after this many attempts per requested sphere.
 constexpr std::int64_t kAttemptsPerSphere = 100;
 constexpr std::int64_t kExtraAttempts = 10'000;
+// Solid fractions: no packing of equal spheres is denser than Kepler's
+// pi / (3 sqrt 2); random sequential insertion jams near 0.38 (Torquato &
+// Stillinger, Rev. Mod. Phys. 82, 2010): a request above it cannot be met by
+// the random generator and is refused before any attempt.
+constexpr double kKeplerFraction = 0.7405;
+constexpr double kRandomJamFraction = 0.38;
 
 // ---------------------------------------------------------------------------
 // Small text helpers.
@@ -578,6 +585,22 @@ class Loader {
     if (is_empty(shrink(c.box, r_max)))
       r.fail("out_of_range", "max",
              "the box [min, max] cannot hold one sphere of radius " + num(r_max));
+    {  // at once, not after the attempt budget: the solid volume asked for
+      double volume = 1;
+      for (int k = 0; k < 3; ++k) volume *= c.box.hi[k] - c.box.lo[k];
+      const double solid = double(count) * 4.0 / 3.0 * std::numbers::pi * r_min * r_min * r_min;
+      const double limit = kRandomJamFraction * volume /
+                           (4.0 / 3.0 * std::numbers::pi * r_min * r_min * r_min);
+      if (solid > kRandomJamFraction * volume)
+        r.fail("out_of_range", "count",
+               std::to_string(count) + " spheres of radius >= " + num(r_min) + " fill " +
+                   detail::format_number(std::round(solid / volume * 1000) / 1000) +
+                   " of the box [min, max] (" +
+                   (solid > kKeplerFraction * volume ? "no packing holds more than 0.7405"
+                                                     : "random insertion jams near 0.38") +
+                   "); allowed [1, " + std::to_string(static_cast<std::int64_t>(limit)) +
+                   "] here: lower count, enlarge the box, or use a lattice generator");
+    }
     double cell = 2 * r_max;
     for (const Particle& p : scene_.particles) cell = std::max(cell, 2 * p.radius);
     detail::SphereGrid grid(cell, scene_.particles.size() + static_cast<size_t>(count));
