@@ -100,7 +100,7 @@ void contact_forces(const Model& m, State& s) {
   const Kernels& k = m.kernels();
   set_args(m, k.pair_forces, s.pos, s.pos_lo, s.vel, s.omega, s.nbr, s.nbr_upper,
            s.spring, m.pair_buffer(), s.pair_force, s.pair_torque, s.force, s.torque,
-           Real{m.dt()}, s.cap, s.n, m.pairs().n);
+           Real{m.dt()}, Real{m.scene().effects.rolling_damping}, s.cap, s.n, m.pairs().n);
   launch(m, k.pair_forces, lane_groups(m, s.n));
   set_args(m, k.collect_pairs, s.nbr_count, s.nbr_upper, s.mirror, s.pair_force,
            s.pair_torque, s.force, s.torque, s.cap, s.n);
@@ -113,11 +113,13 @@ void wall_forces(const Model& m, State& s) {
   if (m.config().double_precision) {
     set_args(m, k.wall_forces, s.pos, s.pos_lo, s.vel, s.omega, m.wall_buffer(), s.wall_point,
              s.wall_vel, s.wall_spring, s.wall_force, m.pair_buffer(), s.force, s.torque,
-             s.wall_touch, Real{m.dt()}, s.n, m.walls(), m.pairs().n);
+             s.wall_touch, Real{m.dt()}, Real{m.scene().effects.rolling_damping}, s.n, m.walls(),
+             m.pairs().n);
   } else {
     set_args(m, k.wall_forces, s.pos, s.pos_lo, s.vel, s.omega, m.wall_buffer(), s.wall_point,
              s.wall_point_lo, s.wall_vel, s.wall_spring, s.wall_force, m.pair_buffer(), s.force,
-             s.torque, s.wall_touch, Real{m.dt()}, s.n, m.walls(), m.pairs().n);
+             s.torque, s.wall_touch, Real{m.dt()}, Real{m.scene().effects.rolling_damping}, s.n,
+             m.walls(), m.pairs().n);
   }
   launch(m, k.wall_forces, lane_groups(m, s.n));
 }
@@ -125,7 +127,8 @@ void wall_forces(const Model& m, State& s) {
 void integrate(const Model& m, State& s) {
   const Kernels& k = m.kernels();
   set_args(m, k.integrate, s.pos, s.pos_lo, s.vel, s.omega, s.force, s.torque, s.pos_build,
-           s.flags, gravity_arg(m), Real{m.dt()}, Real{m.skin()}, s.n);
+           s.flags, gravity_arg(m), fluid_arg(m), Real{m.scene().effects.fluid_params.viscosity},
+           Real{m.dt()}, Real{m.skin()}, s.n);
   launch(m, k.integrate, s.n);
   if (m.config().servo) {
     const size_t groups = reduce_wall_forces(m, s);
