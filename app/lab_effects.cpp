@@ -2,9 +2,9 @@
 // with the parameters of the chosen law. Changes go to the experiment's
 // scene and take effect at the next Prepare / Reset, which rebuilds the
 // kernels with the new -D options (the status line shows what is compiled).
-#define GLFW_INCLUDE_NONE
 #include <imgui.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "lab_app.h"
