@@ -12,6 +12,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "contact_model.h"
 #include "shear_box.h"
 #include "shear_test.h"
 #include "test_support.h"
@@ -79,6 +80,31 @@ TEST_P(Capillary, ForceFollowsTheLawAndRupturesAtTheRuptureDistance) {
 }
 
 SIMSOLS_BOTH_PRECISIONS(Capillary);
+
+// Per material pair: [[interactions]] overrides volume and angle for its
+// pair only; the pair table carries gamma cos(theta), V and s_rup.
+TEST(CapillaryPairs, InteractionsOverrideVolumeAndAnglePerPair) {
+  Scene s = empty_scene(Precision::Double, glass());
+  Material steel = glass();
+  steel.name = "steel";
+  s.materials.push_back(steel);
+  s.effects.cohesion = CohesionModel::Capillary;
+  s.effects.capillary = {0.072, 0.1, 1e-12};
+  PairOverride o;
+  o.material_a = 0;
+  o.material_b = 1;
+  o.liquid_volume = 8e-12;
+  o.contact_angle = 0.6;
+  s.pair_overrides = {o};
+  const PairTable t = make_pair_table(s);
+  EXPECT_DOUBLE_EQ(t.at(0, 0).capillary_tension, 0.072 * std::cos(0.1));
+  EXPECT_DOUBLE_EQ(t.at(0, 0).rupture_distance, 1.05 * 1e-4);
+  EXPECT_DOUBLE_EQ(t.at(0, 1).capillary_tension, 0.072 * std::cos(0.6));
+  EXPECT_DOUBLE_EQ(t.at(1, 0).liquid_volume, 8e-12);
+  EXPECT_NEAR(t.at(1, 0).rupture_distance, 1.3 * 2e-4, 1e-18);
+  EXPECT_DOUBLE_EQ(t.at(1, 1).liquid_volume, 1e-12);
+  EXPECT_NEAR(s.rupture_distance(), 2.6e-4, 1e-18);  // the largest: sets the skin
+}
 
 // A small specimen of the paper's 6.35 mm beads (5 x 5 per layer, 4 layers).
 // With water (2 pi R gamma = 1.4 mN per bridge) the apparent cohesion would

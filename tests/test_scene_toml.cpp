@@ -101,6 +101,8 @@ void expect_same_scene(const Scene& a, const Scene& b) {
     expect_same(x.restitution, y.restitution, "pair restitution");
     expect_same(x.sliding_friction, y.sliding_friction, "pair sliding_friction");
     expect_same(x.rolling_friction, y.rolling_friction, "pair rolling_friction");
+    expect_same(x.liquid_volume, y.liquid_volume, "pair liquid_volume");
+    expect_same(x.contact_angle, y.contact_angle, "pair contact_angle");
   }
   ASSERT_EQ(a.particles.size(), b.particles.size());
   for (size_t i = 0; i < a.particles.size(); ++i) {
@@ -598,6 +600,8 @@ Scene awkward_scene() {
   o.material_a = 1;
   o.material_b = 0;
   o.rolling_friction = std::numbers::pi * 1e-6;
+  o.liquid_volume = 1e-15 / 3;
+  o.contact_angle = 0.7;
   s.pair_overrides.push_back(o);
   for (int i = 0; i < 20; ++i) {
     Particle p;
