@@ -15,6 +15,7 @@
 #include <sstream>
 #include <vector>
 
+#include "bench_effects.h"
 #include "bench_render.h"
 #include "commands.h"
 #include "frames.h"
@@ -76,6 +77,7 @@ struct BenchOptions {
   double budget = 3e7;  // particle-steps timed per repetition
   int repeat = 5;       // timed repetitions per case; the median is reported
   bool render = false;  // --render: renderer frame times instead
+  bool effects = false; // --effects: each effect slot on and off
   RenderBenchOptions render_opt;
   std::string frame_size = "1280x720";
 };
@@ -145,9 +147,22 @@ CommandRunner add_bench_command(CLI::App& app) {
                 "--render: the eight Alioscopy views and the interleaving (1920x1080 panel)");
   cmd->add_option("--gl", opt->render_opt.gl, "--render: headless OpenGL auto, egl or osmesa")
       ->check(CLI::IsMember({"auto", "egl", "osmesa"}));
+  cmd->add_flag("--effects", opt->effects,
+                "Time per step and bytes per contact with each effect slot on and off "
+                "(default 50000 beads, float)");
   CLI::Option* sizes = cmd->get_option("--sizes");
   CLI::Option* repeat = cmd->get_option("--repeat");
-  return [opt, sizes, repeat] {
+  CLI::Option* precision = cmd->get_option("--precision");
+  return [opt, sizes, repeat, precision] {
+    if (opt->effects) {
+      EffectsBenchOptions e;
+      if (sizes->count() > 0) e.sizes = opt->sizes;
+      if (precision->count() > 0) e.precisions = opt->precisions;
+      e.fcc = opt->packing == "fcc";
+      e.budget = opt->budget;
+      e.repeat = opt->repeat;
+      return bench_effects(e);
+    }
     if (!opt->render) return bench(*opt);
     RenderBenchOptions r = opt->render_opt;
     if (sizes->count() > 0) r.sizes = opt->sizes;

@@ -24,6 +24,7 @@
 #include "scene_toml.h"
 #include "shear_run.h"
 #include "simulation.h"
+#include "slots.h"
 
 namespace simsols {
 namespace {
@@ -36,6 +37,7 @@ struct RunOptions {
   double duration = 0;
   long long stop_after = 0;  // stop (with a checkpoint) after this many steps of this invocation
   bool quiet = false;
+  bool explain = false;       // print the compiled effect slots and exit
   std::string frames_dir;     // --frames: PNG frames every `frames_every` steps
   long long frames_every = 0;
   FrameFlags frame;
@@ -111,7 +113,27 @@ void print_summary(const ShearRunResult& r, const std::string& dir) {
       100 * (s.sigma_max / s.normal_stress_target - 1), s.max_outside, dir.c_str());
 }
 
+// `run SCENE --explain`: the slots the scene compiles, no run, no output folder.
+int explain(const RunOptions& opt) {
+  if (opt.scene_path.empty())
+    throw SceneError("missing_field", "", 0, "SCENE", "--explain needs a scene file");
+  Scene scene = load_scene(opt.scene_path);
+  if (!opt.precision.empty()) {
+    if (opt.precision != "float" && opt.precision != "double")
+      throw SceneError("bad_enum", "command line", 0, "--precision",
+                       "'" + opt.precision + "' is not one of: float, double");
+    scene.numerics.precision = opt.precision == "float" ? Precision::Float : Precision::Double;
+  }
+  const KernelConfig config = make_kernel_config(scene, *default_device());
+  std::printf("%s", explain_effects(scene, config).c_str());
+  return 0;
+}
+
 int run(const RunOptions& opt) {
+  if (opt.explain) return explain(opt);
+  if (opt.out_dir.empty())
+    throw SceneError("missing_field", "command line", 0, "--out",
+                     "--out DIR is required (the folder for the results)");
   const std::filesystem::path dir = opt.out_dir;
   if (!opt.frames_dir.empty() && opt.frames_every <= 0)
     throw SceneError("missing_field", "command line", 0, "--every",
@@ -255,7 +277,10 @@ CommandRunner add_run_command(CLI::App& app) {
   auto opt = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "Run a scene headless and write its results");
   cmd->add_option("scene", opt->scene_path, "Scene file (TOML), see docs/scene-format.md");
-  cmd->add_option("--out,-o", opt->out_dir, "Output folder")->required();
+  cmd->add_option("--out,-o", opt->out_dir, "Output folder (required unless --explain)");
+  cmd->add_flag("--explain", opt->explain,
+                "Print the effect slots compiled in, the -D build options and the per-contact "
+                "history size, and exit without running");
   cmd->add_flag("--resume", opt->resume, "Continue the run in --out from its last checkpoint");
   cmd->add_option("--precision", opt->precision, "Override numerics.precision: float or double");
   cmd->add_option("--duration", opt->duration, "Override numerics.duration (s, > 0)");

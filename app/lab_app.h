@@ -68,6 +68,7 @@ class LabApp {
   void draw_view(int x, int y, int w, int h);
   void draw_panel(int panel_width);
   void draw_controls();
+  bool draw_effect_slots();  // lab_effects.cpp; true when a slot changed
   void draw_plots();
   void draw_status(int panel_width);
   void draw_help();

@@ -13,6 +13,7 @@
 #include "lab_app.h"
 #include "lab_plots.h"
 #include "paper_tests.h"
+#include "slots.h"
 
 namespace simsols {
 
@@ -117,18 +118,7 @@ void LabApp::draw_controls() {
         ImGui::TextColored(grey, "accuracy study, case '%s': %s", a->label.c_str(), a->status.c_str());
       ImGui::PopTextWrapPos();
     }
-    Effects e = exp_->scene().effects;
-    bool gravity = e.gravity[2] != 0;
-    bool fx = false;
-    fx |= ImGui::Checkbox("rolling friction", &e.rolling_friction);
-    ImGui::SameLine();
-    fx |= ImGui::Checkbox("damping", &e.damping);
-    ImGui::SameLine();
-    fx |= ImGui::Checkbox("gravity", &gravity);
-    fx |= ImGui::Checkbox("tangential friction", &e.tangential_friction);
-    if (fx) {
-      e.gravity = gravity ? Vec3{0, 0, -9.81} : Vec3{0, 0, 0};
-      exp_->set_effects(e);
+    if (draw_effect_slots()) {
       message_ = "effects and precision apply when the specimen is prepared again (Reset): the "
                  "kernels are rebuilt in the background";
     }
@@ -267,6 +257,8 @@ void LabApp::draw_status(int panel_width) {
                 sim_view_ ? (sim_view_->bridge().shared() ? "buffers shared (CL-GL)" : "buffers copied")
                           : "",
                 fps_, render_scale_ * 100);
+    ImGui::Text("compiled: %s",
+                compiled_slots_line(sim->scene(), sim->model().config()).c_str());
   } else {
     ImGui::Text("%s   %.0f fps   (H: help)", to_string(exp_->stage()), fps_);
   }

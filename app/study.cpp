@@ -68,8 +68,8 @@ Scene contact_scene(const StudySettings& s, const Material& m) {
   sc.name = "contact check";
   sc.materials = {m};
   sc.effects.gravity = {0, 0, 0};
-  sc.effects.rolling_friction = s.rolling;
-  sc.effects.damping = s.damping;
+  sc.effects.rolling = s.rolling ? RollingModel::ConstantTorque : RollingModel::None;
+  sc.effects.damping = s.damping ? DampingModel::Viscous : DampingModel::None;
   sc.numerics.precision = s.precision;
   sc.numerics.dt_fraction = s.dt_fraction;
   sc.numerics.force_dt = s.dt_fraction > kMaxDtFraction;
@@ -238,8 +238,8 @@ ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s) {
           x.numerics.force_dt = s.dt_fraction > kMaxDtFraction;
           x.numerics.skin = s.skin_factor * d;
           for (Material& m : x.materials) m.young_modulus *= s.stiffness_scale;
-          x.effects.rolling_friction = s.rolling;
-          x.effects.damping = s.damping;
+          x.effects.rolling = s.rolling ? RollingModel::ConstantTorque : RollingModel::None;
+          x.effects.damping = s.damping ? DampingModel::Viscous : DampingModel::None;
           x.shear_box->inertial_number = s.inertial_number;
           x.shear_box->shear_speed = 0;
           x.shear_box->shear_displacement = preset.displacement_mm * 1e-3;

@@ -111,6 +111,13 @@ std::unique_ptr<Simulation> load_checkpoint(std::shared_ptr<Device> device, cons
     // flags grew from 4 to 8 ints (the runaway mark, guard.h): an older
     // file's 4 keep the new ones at their initial values
     const bool older_flags = name == "flags" && data.size() == 16 && buf->bytes == 32;
+    // before the effect slots, every scene kept a tangential spring per list
+    // and wall slot; a scene whose slots need no history now has a 16-byte
+    // stand-in, and the older file's (zero, unused) springs are dropped
+    const bool unused_history =
+        (name == "spring" || name == "wall_spring") && buf->bytes == 16 && data.size() > 16 &&
+        sim->model().config().history_planes() == 0;
+    if (unused_history) continue;
     if (data.size() != buf->bytes && !older_flags)
       r.fail("buffer '" + name + "' has the wrong size");
     sim->model().device().write(buf->get(), data.size(), data.data());

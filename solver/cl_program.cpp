@@ -15,6 +15,12 @@ std::string KernelConfig::build_options() const {
   if (damping) o += " -DHAS_DAMPING";
   if (friction) o += " -DHAS_FRICTION";
   if (rolling) o += " -DHAS_ROLLING";
+  if (rolling && rolling_spring) o += " -DHAS_ROLLING_SPRING";
+  if (capillary) o += " -DHAS_CAPILLARY";
+  if (fluid) o += " -DHAS_FLUID";
+  o += " -DHIST_PLANES=" + std::to_string(history_planes());
+  if (rolling && rolling_spring) o += " -DHIST_ROLL=" + std::to_string(friction ? 1 : 0);
+  o += " -DPAIR_RECORD=" + std::to_string(pair_record());
   if (walls) o += " -DHAS_WALLS";
   if (servo) o += " -DHAS_SERVO";
   if (interleaved_lists) o += " -DNBR_INTERLEAVED";
@@ -41,9 +47,13 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
     any_rolling = any_rolling || p.rolling_friction.value_or(0) > 0;
     any_damping = any_damping || p.restitution.value_or(1) < 1;
   }
-  c.damping = scene.effects.damping && any_damping;
-  c.friction = scene.effects.tangential_friction && any_friction;
-  c.rolling = scene.effects.rolling_friction && any_rolling;
+  const Effects& e = scene.effects;
+  c.damping = e.damping == DampingModel::Viscous && any_damping;
+  c.friction = e.tangential == TangentialModel::Mindlin && any_friction;
+  c.rolling = e.rolling != RollingModel::None && any_rolling;
+  c.rolling_spring = c.rolling && e.rolling == RollingModel::SpringDashpot;
+  c.capillary = e.cohesion == CohesionModel::Capillary;
+  c.fluid = e.fluid == FluidModel::Drag;
   c.walls = !scene.walls.empty();
   for (const Wall& w : scene.walls) c.servo = c.servo || w.servo.enabled;
   // Slot k of particle i at k*n + i: consecutive particles (GPU threads or

@@ -17,12 +17,19 @@
 
 namespace simsols {
 
+// One flag per effect slot (scene.h, Effects): a slot whose choice is none,
+// or whose coefficients are zero for every material pair, is not compiled.
+// Each compiled sub-model declares the per-contact history it needs
+// (LAMMPS GRANULAR style); the list and wall slots carry exactly that.
 struct KernelConfig {
   bool double_precision = true;
   bool gravity = true;
-  bool damping = true;
-  bool friction = true;
-  bool rolling = true;
+  bool damping = true;        // slot damping = viscous
+  bool friction = true;       // slot tangential = mindlin
+  bool rolling = true;        // slot rolling = constant_torque or spring_dashpot
+  bool rolling_spring = false;  // rolling = spring_dashpot (else constant torque)
+  bool capillary = false;     // slot cohesion = capillary
+  bool fluid = false;         // slot fluid = drag
   bool walls = true;
   bool servo = false;  // some wall is servo-controlled
   bool interleaved_lists = true;   // neighbour slot layout k*n+i (else i*cap+k)
@@ -30,6 +37,14 @@ struct KernelConfig {
   std::string extra_options;       // appended verbatim (diagnostics, tests)
 
   std::string build_options() const;
+
+  // Per-contact history, in records of 4 reals (one per history plane):
+  // the tangential spring (mindlin) and the elastic rolling torque
+  // (spring_dashpot). 0 when nothing needs history.
+  int history_planes() const { return (friction ? 1 : 0) + (rolling_spring ? 1 : 0); }
+  size_t real_size() const { return double_precision ? 8 : 4; }
+  size_t history_bytes_per_contact() const { return history_planes() * 4 * real_size(); }
+  int pair_record() const { return capillary ? 12 : 8; }  // reals per pair coefficient record
   bool operator==(const KernelConfig&) const = default;
 };
 

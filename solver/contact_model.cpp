@@ -89,6 +89,18 @@ PairTable make_pair_table(const Scene& scene) {
           if (o.rolling_friction) p.rolling_friction = *o.rolling_friction;
         }
       }
+      if (scene.effects.cohesion == CohesionModel::Capillary) {
+        const Capillary& c = scene.effects.capillary;
+        double volume = c.liquid_volume, angle = c.contact_angle;
+        for (const PairOverride& o : scene.pair_overrides)
+          if ((o.material_a == a && o.material_b == b) || (o.material_a == b && o.material_b == a)) {
+            volume = o.liquid_volume.value_or(volume);
+            angle = o.contact_angle.value_or(angle);
+          }
+        p.capillary_tension = c.surface_tension * std::cos(angle);
+        p.liquid_volume = volume;
+        p.rupture_distance = capillary_rupture_distance(volume, angle);
+      }
       p.gamma_n = damping_for_restitution(p.restitution);
       t.pairs[a * t.n + b] = p;
     }

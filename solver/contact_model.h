@@ -33,6 +33,11 @@ struct PairCoefficients {
   double restitution = 1;
   double sliding_friction = 0;
   double rolling_friction = 0;  // m
+  // capillary cohesion (zero without it): gamma cos(theta), N/m; liquid
+  // volume per bridge, m^3; rupture distance (Lian et al. 1993), m
+  double capillary_tension = 0;
+  double liquid_volume = 0;
+  double rupture_distance = 0;
 };
 
 // Pair table, row-major [a * n + b], symmetric.

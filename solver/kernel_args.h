@@ -67,6 +67,12 @@ inline Real4 gravity_arg(const Model& m) {
   return {g[0], g[1], g[2], 0};
 }
 
+// The fluid of the drag slot as a real4: (velocity, density).
+inline Real4 fluid_arg(const Model& m) {
+  const Fluid& f = m.scene().effects.fluid_params;
+  return {f.velocity[0], f.velocity[1], f.velocity[2], f.density};
+}
+
 // Enqueues a 1-D range over `n` items, padded to the model's local size.
 inline void launch(const Model& m, const ClKernel& k, size_t n) {
   if (n == 0) return;

@@ -53,7 +53,11 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
       hi[a] = std::max(hi[a], q.position[a]);
     }
   }
-  skin_ = scene_.numerics.skin > 0 ? scene_.numerics.skin : 0.2 * rmax;
+  // with capillary bridges the lists must hold every pair within the rupture
+  // distance: each bead moves < skin/4 between builds (validate_scene
+  // refuses an explicit skin below twice the rupture distance)
+  skin_ = scene_.numerics.skin > 0 ? scene_.numerics.skin
+                                   : std::max(0.2 * rmax, 2 * scene_.rupture_distance());
   cell_size_ = 2 * rmax + skin_;
   // The float frame is centred on the initial packing, rounded to the largest
   // diameter: reproducible, and independent of numerics such as the skin
@@ -66,6 +70,7 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
   for (const PairCoefficients& c : pairs_.pairs) {
     pk.put4(c.e_star, c.g_star, c.gamma_n, c.sliding_friction);
     pk.put4(c.rolling_friction, std::sqrt(6 * c.g_star / c.e_star), 0, 0);
+    if (config().capillary) pk.put4(c.capillary_tension, c.liquid_volume, c.rupture_distance, 0);
   }
   pair_buf_ = device_->alloc(pk.bytes().size(), pk.bytes().data());
 
@@ -84,7 +89,8 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
 }
 
 size_t Model::device_bytes() const {
-  return pairs_.pairs.size() * 8 * real_size() + scene_.walls.size() * 16 * real_size();
+  return pairs_.pairs.size() * config().pair_record() * real_size() +
+         scene_.walls.size() * 16 * real_size();
 }
 
 }  // namespace simsols

@@ -102,7 +102,8 @@ void contact_forces(const Model& m, State& s) {
   const Kernels& k = m.kernels();
   set_args(m, k.pair_forces, s.pos, s.pos_lo, s.vel, s.omega, s.nbr, s.nbr_upper,
            s.spring, m.pair_buffer(), s.pair_force, s.pair_torque, s.force, s.torque,
-           s.touching, Real{m.dt()}, s.cap, s.n, m.pairs().n);
+           s.touching, Real{m.dt()}, Real{m.scene().effects.rolling_damping}, s.cap, s.n,
+           m.pairs().n);
   launch(m, k.pair_forces, lane_groups(m, s.n));
   set_args(m, k.collect_pairs, s.nbr_count, s.nbr_upper, s.mirror, s.pair_force,
            s.pair_torque, s.force, s.torque, s.cap, s.n);
@@ -115,11 +116,13 @@ void wall_forces(const Model& m, State& s) {
   if (m.config().double_precision) {
     set_args(m, k.wall_forces, s.pos, s.pos_lo, s.vel, s.omega, m.wall_buffer(), s.wall_point,
              s.wall_vel, s.wall_spring, s.wall_force, m.pair_buffer(), s.force, s.torque,
-             s.wall_touch, s.touching, Real{m.dt()}, s.n, m.walls(), m.pairs().n);
+             s.wall_touch, s.touching, Real{m.dt()}, Real{m.scene().effects.rolling_damping},
+             s.n, m.walls(), m.pairs().n);
   } else {
     set_args(m, k.wall_forces, s.pos, s.pos_lo, s.vel, s.omega, m.wall_buffer(), s.wall_point,
              s.wall_point_lo, s.wall_vel, s.wall_spring, s.wall_force, m.pair_buffer(), s.force,
-             s.torque, s.wall_touch, s.touching, Real{m.dt()}, s.n, m.walls(), m.pairs().n);
+             s.torque, s.wall_touch, s.touching, Real{m.dt()},
+             Real{m.scene().effects.rolling_damping}, s.n, m.walls(), m.pairs().n);
   }
   launch(m, k.wall_forces, lane_groups(m, s.n));
 }
@@ -127,7 +130,8 @@ void wall_forces(const Model& m, State& s) {
 void integrate(const Model& m, State& s) {
   const Kernels& k = m.kernels();
   set_args(m, k.integrate, s.pos, s.pos_lo, s.vel, s.omega, s.force, s.torque, s.pos_build,
-           s.flags, s.touching, gravity_arg(m), Real{m.dt()}, Real{m.skin()}, s.n);
+           s.flags, s.touching, gravity_arg(m), fluid_arg(m),
+           Real{m.scene().effects.fluid_params.viscosity}, Real{m.dt()}, Real{m.skin()}, s.n);
   launch(m, k.integrate, s.n);
   if (m.config().servo) {
     const size_t groups = reduce_wall_forces(m, s);
@@ -157,6 +161,7 @@ size_t reduce_wall_forces(const Model& m, State& s) {
 }
 
 void derive_state(const Model& m, State& s) {
+  if (!m.config().rolling || m.config().rolling_spring) return;  // `touching` unused
   const std::vector<double> f = read_reals(m, s.force, size_t(s.n) * 4);
   std::vector<int> count(s.n);
   for (int i = 0; i < s.n; ++i) count[i] = static_cast<int>(f[4 * size_t(i) + 3]);

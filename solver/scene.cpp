@@ -25,6 +25,30 @@ bool Scene::has_gravity() const {
   return effects.gravity[0] != 0 || effects.gravity[1] != 0 || effects.gravity[2] != 0;
 }
 
+const char* slot_name(DampingModel m) { return m == DampingModel::Viscous ? "viscous" : "none"; }
+const char* slot_name(TangentialModel m) { return m == TangentialModel::Mindlin ? "mindlin" : "none"; }
+const char* slot_name(RollingModel m) {
+  return m == RollingModel::ConstantTorque  ? "constant_torque"
+         : m == RollingModel::SpringDashpot ? "spring_dashpot"
+                                            : "none";
+}
+const char* slot_name(CohesionModel m) { return m == CohesionModel::Capillary ? "capillary" : "none"; }
+const char* slot_name(FluidModel m) { return m == FluidModel::Drag ? "drag" : "none"; }
+
+double capillary_rupture_distance(double liquid_volume, double contact_angle) {
+  return (1 + 0.5 * contact_angle) * std::cbrt(liquid_volume);
+}
+
+double Scene::rupture_distance() const {
+  if (effects.cohesion != CohesionModel::Capillary) return 0;
+  const Capillary& c = effects.capillary;
+  double s = capillary_rupture_distance(c.liquid_volume, c.contact_angle);
+  for (const PairOverride& o : pair_overrides)
+    s = std::max(s, capillary_rupture_distance(o.liquid_volume.value_or(c.liquid_volume),
+                                               o.contact_angle.value_or(c.contact_angle)));
+  return s;
+}
+
 // ---------------------------------------------------------------------------
 // detail: number formatting and the sphere grid (also used by the loader).
 
@@ -98,6 +122,7 @@ struct Interval {
 constexpr Interval kPositive{0, kInf, true, true};
 constexpr Interval kNonNegative{0, kInf, false, true};
 constexpr Interval kRestitution{0, 1, true, false};
+constexpr Interval kContactAngle{0, 1.5707963267948966, false, true};  // [0, pi/2)
 
 std::string at(const std::string& base, size_t i) { return base + "[" + std::to_string(i) + "]"; }
 
@@ -172,6 +197,8 @@ void check_pair_overrides(const Scene& s) {
       check_number(f + ".sliding_friction", *o.sliding_friction, kNonNegative);
     if (o.rolling_friction)
       check_number(f + ".rolling_friction", *o.rolling_friction, kNonNegative);
+    if (o.liquid_volume) check_number(f + ".liquid_volume", *o.liquid_volume, kPositive);
+    if (o.contact_angle) check_number(f + ".contact_angle", *o.contact_angle, kContactAngle);
   }
 }
 
@@ -304,6 +331,30 @@ void check_numerics(const Scene& s) {
     fail("bad_enum", "numerics.precision", "allowed values: \"float\", \"double\"");
 }
 
+void check_effects(const Scene& s) {
+  const Effects& e = s.effects;
+  check_vector("effects.gravity", e.gravity);
+  check_number("effects.rolling_damping", e.rolling_damping, {0, 1, false, false});
+  if (e.cohesion == CohesionModel::Capillary) {
+    check_number("effects.capillary.surface_tension", e.capillary.surface_tension, kPositive);
+    check_number("effects.capillary.contact_angle", e.capillary.contact_angle, kContactAngle);
+    check_number("effects.capillary.liquid_volume", e.capillary.liquid_volume, kPositive);
+    // pairs within the rupture distance must be in the neighbour lists, which
+    // hold pairs within skin and stay valid while each bead moves < skin/4
+    const double need = 2 * s.rupture_distance();
+    if (s.numerics.skin > 0 && s.numerics.skin < need)
+      fail("out_of_range", "numerics.skin",
+           detail::format_number(s.numerics.skin) + " m is out of range, allowed [" +
+               detail::format_number(need) +
+               ", inf) (twice the capillary rupture distance), or 0 (automatic)");
+  }
+  if (e.fluid == FluidModel::Drag) {
+    check_number("effects.drag.density", e.fluid_params.density, kNonNegative);
+    check_number("effects.drag.viscosity", e.fluid_params.viscosity, kPositive);
+    check_vector("effects.drag.velocity", e.fluid_params.velocity);
+  }
+}
+
 void check_outputs(const Scene& s) {
   check_number("output.series_interval", s.outputs.series_interval, kNonNegative);
   check_number("output.dump_interval", s.outputs.dump_interval, kNonNegative);
@@ -384,8 +435,8 @@ std::optional<SceneIssue> find_scene_issue(const Scene& scene) {
     check_pair_overrides(scene);
     check_particles(scene);
     check_walls(scene);
-    check_vector("effects.gravity", scene.effects.gravity);
     check_numerics(scene);
+    check_effects(scene);
     check_outputs(scene);
     check_particle_overlaps(scene);
     check_wall_overlaps(scene);

@@ -40,6 +40,8 @@ struct PairOverride {
   std::optional<double> restitution;
   std::optional<double> sliding_friction;
   std::optional<double> rolling_friction;
+  std::optional<double> liquid_volume;  // capillary cohesion, m^3
+  std::optional<double> contact_angle;  // capillary cohesion, rad
 };
 
 // The glass beads of the reference paper, its Table 2: E = 62.784 GPa,
@@ -89,13 +91,54 @@ struct Wall {
   WallServo servo;     // when enabled, moves to hold a normal force instead
 };
 
-// Optional physics. What is off is compiled out of the kernels.
+// The contact and body-force model as named slots, each with a `none`
+// choice (docs/model.md, "Effects as slots"). Every slot becomes a kernel
+// build option (cl_program.h): a slot set to none leaves no code and no
+// per-contact memory in the kernels. The normal law (Hertz) is always on.
+enum class DampingModel : std::uint8_t { None, Viscous };
+enum class TangentialModel : std::uint8_t { None, Mindlin };
+enum class RollingModel : std::uint8_t { None, ConstantTorque, SpringDashpot };
+enum class CohesionModel : std::uint8_t { None, Capillary };
+enum class FluidModel : std::uint8_t { None, Drag };
+
+// Capillary liquid bridge between two beads (Rabinovich et al. 2005 force,
+// Lian et al. 1993 rupture distance; docs/model.md). Per material pair:
+// [[interactions]] may override liquid_volume and contact_angle.
+struct Capillary {
+  double surface_tension = 0.072;  // gamma, N/m, > 0 (water at 25 C)
+  double contact_angle = 0;        // theta, rad, [0, pi/2)
+  double liquid_volume = 0;        // V per bridge, m^3, > 0
+};
+
+// A still or uniformly moving Newtonian fluid around the beads: drag force
+// (Schiller-Naumann), drag moment and buoyancy (docs/model.md).
+struct Fluid {
+  double density = 1000;     // rho_f, kg/m^3, >= 0
+  double viscosity = 1e-3;   // mu_f, Pa s, > 0
+  Vec3 velocity{};           // u, m/s, uniform
+};
+
 struct Effects {
   Vec3 gravity{0, 0, -9.81};     // m/s^2; all zero switches gravity off
-  bool damping = true;           // viscous normal + tangential damping
-  bool tangential_friction = true;  // Mindlin spring + Coulomb limit
-  bool rolling_friction = true;     // constant rolling-resistance torque
+  DampingModel damping = DampingModel::Viscous;          // normal + tangential dashpots
+  TangentialModel tangential = TangentialModel::Mindlin; // spring with history + Coulomb
+  RollingModel rolling = RollingModel::ConstantTorque;
+  double rolling_damping = 0.3;  // spring_dashpot: eta_r, fraction of critical, [0, 1]
+  CohesionModel cohesion = CohesionModel::None;
+  Capillary capillary;           // when cohesion = Capillary
+  FluidModel fluid = FluidModel::None;
+  Fluid fluid_params;            // when fluid = Drag
 };
+
+// Slot names as in the scene file ("viscous", "none", ...).
+const char* slot_name(DampingModel m);
+const char* slot_name(TangentialModel m);
+const char* slot_name(RollingModel m);
+const char* slot_name(CohesionModel m);
+const char* slot_name(FluidModel m);
+
+// Lian et al. (1993) rupture distance of a liquid bridge, m.
+double capillary_rupture_distance(double liquid_volume, double contact_angle);
 
 enum class Precision : std::uint8_t { Float, Double };
 
@@ -209,6 +252,8 @@ struct Scene {
 
   int material_index(const std::string& name) const;  // -1 when absent
   bool has_gravity() const;
+  // Largest capillary rupture distance of any pair (0 without cohesion), m.
+  double rupture_distance() const;
 };
 
 }  // namespace simsols

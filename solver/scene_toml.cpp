@@ -138,6 +138,10 @@ class Reader {
 
   std::string field(std::string_view key) const { return child(path_, key); }
   bool has(std::string_view key) const { return table_.contains(key); }
+  bool is_boolean(std::string_view key) const {
+    const toml::node* n = get(key);
+    return n && n->is_boolean();
+  }
 
   [[noreturn]] void fail(const std::string& code, std::string_view key,
                          const std::string& message) const {
@@ -442,12 +446,15 @@ class Loader {
     const auto tables = root.tables("interactions");
     for (size_t i = 0; i < tables.size(); ++i) {
       Reader r(*tables[i], item("interactions", i), ctx_,
-               {"materials", "restitution", "sliding_friction", "rolling_friction"});
+               {"materials", "restitution", "sliding_friction", "rolling_friction",
+                "liquid_volume", "contact_angle"});
       PairOverride o;
       std::tie(o.material_a, o.material_b) = r.material_pair("materials", scene_);
       o.restitution = r.optional_number("restitution");
       o.sliding_friction = r.optional_number("sliding_friction");
       o.rolling_friction = r.optional_number("rolling_friction");
+      o.liquid_volume = r.optional_number("liquid_volume");
+      o.contact_angle = r.optional_number("contact_angle");
       scene_.pair_overrides.push_back(o);
     }
   }
@@ -732,14 +739,74 @@ class Loader {
     if (auto issue = build_shear_box(scene_)) fail(std::move(*issue));
   }
 
+  // [effects]: one named choice per slot (docs/scene-format.md). The older
+  // boolean keys (damping = true, tangential_friction, rolling_friction)
+  // are still read: true keeps the default model, false means "none".
   void read_effects(const Reader& root) {
     Reader r(root.table("effects"), "effects", ctx_,
-             {"gravity", "damping", "tangential_friction", "rolling_friction"});
+             {"gravity", "normal", "damping", "tangential", "rolling", "rolling_damping",
+              "cohesion", "capillary", "fluid", "drag", "tangential_friction", "rolling_friction"});
     Effects& e = scene_.effects;
     e.gravity = r.vec3("gravity", e.gravity);
-    e.damping = r.boolean("damping", e.damping);
-    e.tangential_friction = r.boolean("tangential_friction", e.tangential_friction);
-    e.rolling_friction = r.boolean("rolling_friction", e.rolling_friction);
+    r.choice("normal", "hertz", {"hertz"});
+    if (r.is_boolean("damping"))
+      e.damping = r.boolean("damping", true) ? DampingModel::Viscous : DampingModel::None;
+    else
+      e.damping = r.choice("damping", "viscous", {"viscous", "none"}) == "none"
+                      ? DampingModel::None
+                      : DampingModel::Viscous;
+    legacy_pair(r, "tangential", "tangential_friction");
+    legacy_pair(r, "rolling", "rolling_friction");
+    if (r.has("tangential_friction"))
+      e.tangential = r.boolean("tangential_friction", true) ? TangentialModel::Mindlin
+                                                             : TangentialModel::None;
+    else
+      e.tangential = r.choice("tangential", "mindlin", {"mindlin", "none"}) == "none"
+                         ? TangentialModel::None
+                         : TangentialModel::Mindlin;
+    if (r.has("rolling_friction")) {
+      e.rolling = r.boolean("rolling_friction", true) ? RollingModel::ConstantTorque
+                                                      : RollingModel::None;
+    } else {
+      const std::string rolling =
+          r.choice("rolling", "constant_torque", {"constant_torque", "spring_dashpot", "none"});
+      e.rolling = rolling == "none"             ? RollingModel::None
+                  : rolling == "spring_dashpot" ? RollingModel::SpringDashpot
+                                                : RollingModel::ConstantTorque;
+    }
+    if (e.rolling != RollingModel::SpringDashpot)
+      r.forbid({"rolling_damping"}, "only allowed when rolling = \"spring_dashpot\"");
+    e.rolling_damping = r.number("rolling_damping", e.rolling_damping);
+
+    e.cohesion = r.choice("cohesion", "none", {"none", "capillary"}) == "capillary"
+                     ? CohesionModel::Capillary
+                     : CohesionModel::None;
+    if (e.cohesion == CohesionModel::Capillary) {
+      Reader c(r.table("capillary"), r.field("capillary"), ctx_,
+               {"surface_tension", "contact_angle", "liquid_volume"});
+      e.capillary.surface_tension = c.number("surface_tension", e.capillary.surface_tension);
+      e.capillary.contact_angle = c.number("contact_angle", e.capillary.contact_angle);
+      e.capillary.liquid_volume = c.number("liquid_volume");
+    } else {
+      r.forbid({"capillary"}, "only allowed when cohesion = \"capillary\"");
+    }
+
+    e.fluid = r.choice("fluid", "none", {"none", "drag"}) == "drag" ? FluidModel::Drag
+                                                                  : FluidModel::None;
+    if (e.fluid == FluidModel::Drag) {
+      Reader f(r.table("drag"), r.field("drag"), ctx_, {"density", "viscosity", "velocity"});
+      e.fluid_params.density = f.number("density");
+      e.fluid_params.viscosity = f.number("viscosity");
+      e.fluid_params.velocity = f.vec3("velocity", {});
+    } else {
+      r.forbid({"drag"}, "only allowed when fluid = \"drag\"");
+    }
+  }
+
+  static void legacy_pair(const Reader& r, const char* key, const char* legacy) {
+    if (r.has(key) && r.has(legacy))
+      r.fail("conflicting_keys", legacy,
+             std::string("give either ") + key + " or the older " + legacy + ", not both");
   }
 
   void read_numerics(const Reader& root) {
@@ -922,6 +989,8 @@ class Writer {
     if (o.restitution) line("restitution", *o.restitution);
     if (o.sliding_friction) line("sliding_friction", *o.sliding_friction);
     if (o.rolling_friction) line("rolling_friction", *o.rolling_friction);
+    if (o.liquid_volume) line("liquid_volume", *o.liquid_volume);
+    if (o.contact_angle) line("contact_angle", *o.contact_angle);
   }
 
   void write(const Wall& w, size_t i) {
@@ -979,9 +1048,25 @@ class Writer {
     const Effects& e = s_.effects;
     header("[effects]");
     line("gravity", e.gravity);
-    line("damping", e.damping);
-    line("tangential_friction", e.tangential_friction);
-    line("rolling_friction", e.rolling_friction);
+    line("normal", toml_string("hertz"));
+    line("damping", toml_string(slot_name(e.damping)));
+    line("tangential", toml_string(slot_name(e.tangential)));
+    line("rolling", toml_string(slot_name(e.rolling)));
+    if (e.rolling == RollingModel::SpringDashpot) line("rolling_damping", e.rolling_damping);
+    line("cohesion", toml_string(slot_name(e.cohesion)));
+    if (e.cohesion == CohesionModel::Capillary) {
+      const Capillary& c = e.capillary;
+      line("capillary", "{ surface_tension = " + toml_float(c.surface_tension) +
+                            ", contact_angle = " + toml_float(c.contact_angle) +
+                            ", liquid_volume = " + toml_float(c.liquid_volume) + " }");
+    }
+    if (e.fluid == FluidModel::Drag) {
+      const Fluid& f = e.fluid_params;
+      line("fluid", toml_string("drag"));
+      line("drag", "{ density = " + toml_float(f.density) +
+                        ", viscosity = " + toml_float(f.viscosity) +
+                        ", velocity = " + toml_vec3(f.velocity) + " }");
+    }
   }
 
   void write_numerics() {

@@ -101,7 +101,8 @@ State::State(const Model& model) {
   wall_point = make(d, nw * r4, wp.data());
   wall_point_lo = make(d, nw * 16, dbl ? nullptr : wlo.data());
   wall_vel = make(d, nw * r4, wv.data());
-  wall_spring = make(d, size_t(nw) * n * r4);
+  // per (wall, particle) slot: the history the compiled slots declare
+  wall_spring = make(d, std::max<size_t>(16, size_t(nw) * n * model.config().history_bytes_per_contact()));
   wall_force = make(d, size_t(nw) * n * r4);
   wall_touch = make(d, n * sizeof(int));
   wall_reaction = make(d, std::max(1, nw) * r4);
@@ -121,7 +122,9 @@ State::State(const Model& model) {
   std::memcpy(&v2_bits, &v2_start, sizeof v2_bits);
   const int init_flags[8] = {1, 0, v2_bits, 0, 0x7fffffff, 0, 0, 0};
   flags = make(d, sizeof init_flags, init_flags);
-  touching = make(d, n * sizeof(int));
+  // only the constant rolling torque shares its cap (forces.cl)
+  const bool shared_cap = model.config().rolling && !model.config().rolling_spring;
+  touching = make(d, shared_cap ? n * sizeof(int) : 16);
   const size_t groups = model.global_size(n) / model.local_size();
   obs_partial = make(d, groups * 12 * model.real_size());
   const size_t wall_chunks = std::max<size_t>(1, (n + kWallChunk - 1) / kWallChunk);
@@ -158,17 +161,21 @@ void State::grow_lists(const Model& model, int new_cap) {
   auto index = [&](int i, int k, int c) -> size_t {
     return inter ? size_t(k) * n + i : size_t(i) * c + k;
   };
+  // history planes: plane p of list slot s at p * n * cap + s (records of r4)
+  const int planes = model.config().history_planes();
   std::vector<int> cnt(n), ids(size_t(n) * cap);
   std::vector<unsigned char> spr(spring_bytes(model));
   d.read(old_count.get(), cnt.size() * sizeof(int), cnt.data());
   d.read(old_nbr.get(), ids.size() * sizeof(int), ids.data());
   d.read(old_spring.get(), spr.size(), spr.data());
   std::vector<int> ids2(size_t(n) * new_cap, 0);
-  std::vector<unsigned char> spr2(size_t(n) * new_cap * r4, 0);  // spring_bytes at new_cap
+  std::vector<unsigned char> spr2(std::max<size_t>(16, size_t(n) * new_cap * planes * r4), 0);
   for (int i = 0; i < n; ++i)
     for (int k = 0; k < cnt[i]; ++k) {
       ids2[index(i, k, new_cap)] = ids[index(i, k, cap)];
-      std::memcpy(&spr2[index(i, k, new_cap) * r4], &spr[index(i, k, cap) * r4], r4);
+      for (int p = 0; p < planes; ++p)
+        std::memcpy(&spr2[(size_t(p) * n * new_cap + index(i, k, new_cap)) * r4],
+                    &spr[(size_t(p) * n * cap + index(i, k, cap)) * r4], r4);
     }
   cap = new_cap;
   old_nbr = make(d, ids2.size() * sizeof(int), ids2.data());
@@ -195,8 +202,10 @@ void State::resize_lists(const Model& model, int new_cap) {
   make_pair_buffers(model);
 }
 
+// Per-contact history of the list slots (the planes the compiled slots
+// declare, cl_program.h); a 16-byte stand-in when there is none.
 size_t State::spring_bytes(const Model& model) const {
-  return size_t(n) * cap * 4 * model.real_size();
+  return std::max<size_t>(16, size_t(n) * cap * model.config().history_bytes_per_contact());
 }
 
 }  // namespace simsols

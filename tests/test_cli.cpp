@@ -86,6 +86,33 @@ TEST(Cli, RunawayStopsWithTheStateBeforeIt) {
       << text;
 }
 
+// `run SCENE --explain`: the compiled slots, the -D options and the history
+// size, exit 0, nothing run; a slot set to none in the scene disappears.
+TEST(Cli, ExplainPrintsTheCompiledSlots) {
+  const Result r = run("run " + std::string(SIMSOLS_ASSETS_DIR) + "/scenes/shear_box.toml --explain");
+  EXPECT_EQ(r.status, 0) << r.out;
+  for (const char* s : {"tangential  mindlin", "compiled in", "-DHAS_FRICTION", "-DHIST_PLANES=1",
+                        "16 bytes per contact", "cohesion    none"})
+    EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
+  EXPECT_EQ(r.out.find("state hash"), std::string::npos) << "--explain must not run";
+  const fs::path dir = fresh_dir("explain");
+  fs::create_directories(dir);
+  std::string text;
+  {
+    std::ifstream in(std::string(SIMSOLS_ASSETS_DIR) + "/scenes/shear_box.toml");
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const auto at = text.find("[numerics]");
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at, "[effects]\ntangential = \"none\"\nrolling = \"none\"\n\n");
+  std::ofstream((dir / "dry_frictionless.toml").string()) << text;
+  const Result none = run("run " + (dir / "dry_frictionless.toml").string() + " --explain");
+  EXPECT_EQ(none.status, 0) << none.out;
+  EXPECT_EQ(none.out.find("-DHAS_FRICTION"), std::string::npos) << none.out;
+  EXPECT_EQ(none.out.find("-DHAS_ROLLING"), std::string::npos) << none.out;
+  EXPECT_NE(none.out.find("0 bytes per contact"), std::string::npos) << none.out;
+}
+
 TEST(Cli, BadFlagIsRefused) {
   const fs::path out = fresh_dir("flag");
   const Result r = run("run " + kScene + " --out " + out.string() + " --precision quad");

@@ -80,7 +80,7 @@ TEST(KernelConfig, UnusedEffectsAreCompiledOut) {
   c = make_kernel_config(s, *dev);
   for (const char* d : {"HAS_GRAVITY", "HAS_DAMPING", "HAS_FRICTION", "HAS_ROLLING", "HAS_WALLS"})
     EXPECT_NE(c.build_options().find(d), std::string::npos) << d;
-  s.effects.rolling_friction = false;
+  s.effects.rolling = RollingModel::None;
   EXPECT_EQ(make_kernel_config(s, *dev).build_options().find("HAS_ROLLING"), std::string::npos);
 }
 

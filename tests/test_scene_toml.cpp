@@ -101,6 +101,8 @@ void expect_same_scene(const Scene& a, const Scene& b) {
     expect_same(x.restitution, y.restitution, "pair restitution");
     expect_same(x.sliding_friction, y.sliding_friction, "pair sliding_friction");
     expect_same(x.rolling_friction, y.rolling_friction, "pair rolling_friction");
+    expect_same(x.liquid_volume, y.liquid_volume, "pair liquid_volume");
+    expect_same(x.contact_angle, y.contact_angle, "pair contact_angle");
   }
   ASSERT_EQ(a.particles.size(), b.particles.size());
   for (size_t i = 0; i < a.particles.size(); ++i) {
@@ -128,8 +130,18 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   }
   expect_same(a.effects.gravity, b.effects.gravity, "gravity");
   EXPECT_EQ(a.effects.damping, b.effects.damping);
-  EXPECT_EQ(a.effects.tangential_friction, b.effects.tangential_friction);
-  EXPECT_EQ(a.effects.rolling_friction, b.effects.rolling_friction);
+  EXPECT_EQ(a.effects.tangential, b.effects.tangential);
+  EXPECT_EQ(a.effects.rolling, b.effects.rolling);
+  expect_same(a.effects.rolling_damping, b.effects.rolling_damping, "rolling_damping");
+  EXPECT_EQ(a.effects.cohesion, b.effects.cohesion);
+  expect_same(a.effects.capillary.liquid_volume, b.effects.capillary.liquid_volume, "liquid_volume");
+  expect_same(a.effects.capillary.contact_angle, b.effects.capillary.contact_angle, "contact_angle");
+  expect_same(a.effects.capillary.surface_tension, b.effects.capillary.surface_tension,
+              "surface_tension");
+  EXPECT_EQ(a.effects.fluid, b.effects.fluid);
+  expect_same(a.effects.fluid_params.density, b.effects.fluid_params.density, "fluid density");
+  expect_same(a.effects.fluid_params.viscosity, b.effects.fluid_params.viscosity, "viscosity");
+  expect_same(a.effects.fluid_params.velocity, b.effects.fluid_params.velocity, "fluid velocity");
   EXPECT_EQ(a.numerics.precision, b.numerics.precision);
   expect_same(a.numerics.dt, b.numerics.dt, "dt");
   expect_same(a.numerics.dt_fraction, b.numerics.dt_fraction, "dt_fraction");
@@ -175,7 +187,11 @@ TEST(SceneToml, MinimalExampleGetsDefaults) {
 
   EXPECT_EQ(s.effects.gravity, (Vec3{0, 0, -9.81}));
   EXPECT_TRUE(s.has_gravity());
-  EXPECT_TRUE(s.effects.damping && s.effects.tangential_friction && s.effects.rolling_friction);
+  EXPECT_EQ(s.effects.damping, DampingModel::Viscous);
+  EXPECT_EQ(s.effects.tangential, TangentialModel::Mindlin);
+  EXPECT_EQ(s.effects.rolling, RollingModel::ConstantTorque);
+  EXPECT_EQ(s.effects.cohesion, CohesionModel::None);
+  EXPECT_EQ(s.effects.fluid, FluidModel::None);
 
   EXPECT_EQ(s.numerics.precision, Precision::Double);
   EXPECT_EQ(s.numerics.dt, 0.0);
@@ -303,7 +319,10 @@ TEST(SceneToml, FullSceneReadsEveryField) {
   EXPECT_EQ(s.walls[1].half_v, 0.25);
 
   EXPECT_EQ(s.effects.gravity, (Vec3{0, -9.81, 0}));
-  EXPECT_FALSE(s.effects.damping || s.effects.tangential_friction || s.effects.rolling_friction);
+  // the older boolean keys: false means "none"
+  EXPECT_EQ(s.effects.damping, DampingModel::None);
+  EXPECT_EQ(s.effects.tangential, TangentialModel::None);
+  EXPECT_EQ(s.effects.rolling, RollingModel::None);
 
   EXPECT_EQ(s.numerics.precision, Precision::Float);
   EXPECT_EQ(s.numerics.dt, 1e-7);
@@ -581,6 +600,8 @@ Scene awkward_scene() {
   o.material_a = 1;
   o.material_b = 0;
   o.rolling_friction = std::numbers::pi * 1e-6;
+  o.liquid_volume = 1e-15 / 3;
+  o.contact_angle = 0.7;
   s.pair_overrides.push_back(o);
   for (int i = 0; i < 20; ++i) {
     Particle p;
@@ -608,7 +629,15 @@ Scene awkward_scene() {
   rect.half_v = 1.0 / 7.0;
   rect.velocity = {0, 0, -0.01};
   s.walls.push_back(rect);
-  s.effects = {{0.1, -0.2, -9.80665}, false, true, false};
+  s.effects.gravity = {0.1, -0.2, -9.80665};
+  s.effects.damping = DampingModel::None;
+  s.effects.tangential = TangentialModel::Mindlin;
+  s.effects.rolling = RollingModel::SpringDashpot;
+  s.effects.rolling_damping = 1.0 / 3.0;
+  s.effects.cohesion = CohesionModel::Capillary;
+  s.effects.capillary = {0.0728, 0.1 / 3, 1e-15 / 7};
+  s.effects.fluid = FluidModel::Drag;
+  s.effects.fluid_params = {1260, 1.412, {0.01 / 3, 0, -1e-3}};
   s.numerics = {Precision::Float, 1.0 / 3.0 * 1e-7, 0.123456789, true, 12.5, 1e-4 / 3, 48};
   s.outputs = {1.0 / 300, 0.1, 0.7, false, true};
   return s;

@@ -281,8 +281,8 @@ TEST(ShearTest, FrictionlessRollingFreeSpecimenHasALowerPeak) {
   Scene glass = small_box(160e3, 2.5e-3, Precision::Float, ShearSpecimen::Method::Pour);
   Scene slick = glass;
   for (Material& m : slick.materials) m.sliding_friction = m.rolling_friction = 0;
-  slick.effects.tangential_friction = false;
-  slick.effects.rolling_friction = false;
+  slick.effects.tangential = TangentialModel::None;
+  slick.effects.rolling = RollingModel::None;
   const double with = run_test(glass).summary.peak_ratio;
   const double without = run_test(slick).summary.peak_ratio;
   std::printf("[measure] peak tau/sigma: paper glass %.3f, frictionless rolling-free %.3f\n",
@@ -304,8 +304,8 @@ TEST(ShearTest, FrictionlessNestedLayerPeakIsOneOverSqrt2) {
   m.young_modulus = 1e10;  // softer than glass: larger steps; overlaps < 0.1% of d
   s.materials.push_back(m);
   s.effects.gravity = {0, 0, 0};
-  s.effects.tangential_friction = false;
-  s.effects.rolling_friction = false;
+  s.effects.tangential = TangentialModel::None;
+  s.effects.rolling = RollingModel::None;
   s.numerics.precision = Precision::Double;
   s.numerics.duration = 1;
   const double d = kD, r = d / 2, pitch = d * (1 + 1e-6), h = d / std::sqrt(2.0);

@@ -2,7 +2,14 @@
 //
 // Build options (set by cl_program.cpp from the Scene, never by hand):
 //   SIMSOLS_DOUBLE     real = double; otherwise real = float
-//   HAS_GRAVITY, HAS_DAMPING, HAS_FRICTION, HAS_ROLLING, HAS_WALLS
+//   HAS_GRAVITY, HAS_DAMPING, HAS_FRICTION, HAS_ROLLING, HAS_WALLS   effect slots
+//   HAS_ROLLING_SPRING  rolling = spring_dashpot (else constant torque)
+//   HAS_CAPILLARY       cohesion = capillary (pair records of 12 reals)
+//   HAS_FLUID           fluid = drag (integrate.cl)
+//   HIST_PLANES         per-contact history records (real4) each list or wall slot carries:
+//                       plane 0 the tangential spring (HAS_FRICTION), plane HIST_ROLL the
+//                       elastic rolling torque (HAS_ROLLING_SPRING); 0 = no history at all
+//   PAIR_RECORD         reals per pair coefficient record (8, or 12 with HAS_CAPILLARY)
 //   NBR_INTERLEAVED    neighbour slot k of particle i at k*n+i (GPU) instead of i*cap+k (CPU)
 //
 // Positions in float runs are stored as an unevaluated sum hi + lo of two
@@ -40,7 +47,13 @@ typedef float4 real4;
 #define NBR(i, k, n, cap) ((i) * (cap) + (k))
 #endif
 
-// Per-pair coefficient record: 8 reals, see contact_law.cl (PAIR).
+// Per-pair coefficient record: PAIR_RECORD reals, see contact_law.cl.
+#ifndef PAIR_RECORD
+#define PAIR_RECORD 8
+#endif
+#ifndef HIST_PLANES
+#define HIST_PLANES 0
+#endif
 
 // Wall record: four real4 per wall:
 //   [0] point (xyz, relative to origin)  w: shape (0 plane, 1 rectangle)

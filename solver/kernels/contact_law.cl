@@ -14,12 +14,21 @@
 //   tangent  xi  <- xi rotated into the tangent plane, + v_t dt
 //            F_t = -k_t xi - gamma sqrt(m* k_t) v_t,  k_t = 8 G* sqrt(R* d)
 //            |F_t| > mu_s F_n  =>  F_t scaled to mu_s F_n, xi made consistent
-//   rolling  M   = -min(mu_r F_n, I* |w_r| / dt) w_r / |w_r|,
+//   rolling  constant_torque (HAS_ROLLING):
+//            M   = -min(mu_r F_n, I* |w_r| / dt) w_r / |w_r|,
 //            w_r = wrel without its component along n
+//            spring_dashpot (HAS_ROLLING_SPRING, Ai et al. 2011 model C):
+//            M_k <- M_k rotated into the tangent plane - k_r w_r dt,
+//            k_r = 2.25 mu_r^2 k_n (k_n = 2 E* sqrt(R* d), mu_r a length),
+//            |M_k| <= mu_r F_n; M = M_k - eta_r 2 sqrt(I_r k_r) w_r while
+//            |M_k| < mu_r F_n (I_r = 3.5 I*), |M| capped at mu_r F_n
+//   cohesion capillary (HAS_CAPILLARY): capillary_force() below, a central
+//            attraction between beads up to the rupture distance
 //
 // Each argument is a lane (one contact per lane, see common.cl). Pair
-// coefficients come from the pair table (8 reals per pair):
+// coefficients come from the pair table (PAIR_RECORD reals per pair):
 //   [0] E*  [1] G*  [2] gamma_n  [3] mu_s  [4] mu_r  [5] sqrt(6 G*/E*)
+//   [8] gamma cos(theta)  [9] liquid volume V  [10] rupture distance (HAS_CAPILLARY)
 // The torque on i about its centre is lever_i n x F_t + rolling; the
 // partner (a sphere) receives lever_j n x F_t - rolling.
 typedef struct {
@@ -30,7 +39,12 @@ typedef struct {
 } ContactResult;
 
 // Coefficients of each lane's material pair (kt_ratio = sqrt(6 G*/E*)).
-typedef struct { lane estar, gstar, gamma, mu_s, mu_r, kt_ratio; } PairLanes;
+typedef struct {
+  lane estar, gstar, gamma, mu_s, mu_r, kt_ratio;
+#ifdef HAS_CAPILLARY
+  lane cap_tension, cap_volume, cap_rupture;
+#endif
+} PairLanes;
 
 INLINE PairLanes gather_pairs(__global const real* pairs, const int* pair, int nmat) {
   PairLanes c;
@@ -41,12 +55,26 @@ INLINE PairLanes gather_pairs(__global const real* pairs, const int* pair, int n
     c.mu_s = (lane)pairs[3];
     c.mu_r = (lane)pairs[4];
     c.kt_ratio = (lane)pairs[5];
+#ifdef HAS_CAPILLARY
+    c.cap_tension = (lane)pairs[8];
+    c.cap_volume = (lane)pairs[9];
+    c.cap_rupture = (lane)pairs[10];
+#endif
     return c;
   }
   real t[6][LANES];
   #pragma unroll
   for (int l = 0; l < LANES; ++l)
-    for (int k = 0; k < 6; ++k) t[k][l] = pairs[8 * pair[l] + k];
+    for (int k = 0; k < 6; ++k) t[k][l] = pairs[PAIR_RECORD * pair[l] + k];
+#ifdef HAS_CAPILLARY
+  real u[3][LANES];
+  #pragma unroll
+  for (int l = 0; l < LANES; ++l)
+    for (int k = 0; k < 3; ++k) u[k][l] = pairs[PAIR_RECORD * pair[l] + 8 + k];
+  c.cap_tension = LANE_LOAD(u[0]);
+  c.cap_volume = LANE_LOAD(u[1]);
+  c.cap_rupture = LANE_LOAD(u[2]);
+#endif
   c.estar = LANE_LOAD(t[0]);
   c.gstar = LANE_LOAD(t[1]);
   c.gamma = LANE_LOAD(t[2]);
@@ -56,8 +84,27 @@ INLINE PairLanes gather_pairs(__global const real* pairs, const int* pair, int n
   return c;
 }
 
-INLINE ContactResult contact_law(lane delta, v3 n, v3 vrel, v3 wrel, lane rstar,
-                                 lane mstar, lane istar, PairLanes c, real dt, v3* spring) {
+#ifdef HAS_CAPILLARY
+// Liquid bridge between two beads at surface separation s (Rabinovich et
+// al. 2005, eq. for two spheres with R = 2 R*, without the small sin(alpha)
+// term):  F = 4 pi R* gamma cos(theta) / (1 + s / (2 d_sp)),
+//         d_sp = s/2 (-1 + sqrt(1 + V / (pi R* s^2))),
+// written as 4 pi R* gamma cos(theta) (1 - s / sqrt(s^2 + V / (pi R*))) so
+// that s = 0 needs no limit. Overlapping beads (s < 0) feel F(0). Zero at
+// and beyond the rupture distance (Lian et al. 1993). Returns |F| >= 0, an
+// attraction along n.
+INLINE lane capillary_force(lane s, lane rstar, PairLanes c) {
+  const real pi = (real)3.14159265358979323846;
+  const lane sp = fmax(s, (lane)0);
+  const lane f = (real)4 * pi * rstar * c.cap_tension *
+                 ((lane)1 - sp * rsqrt(sp * sp + c.cap_volume / (pi * rstar)));
+  return SEL(s < c.cap_rupture, f, (lane)0);
+}
+#endif
+
+INLINE ContactResult contact_law_h(lane delta, v3 n, v3 vrel, v3 wrel, lane rstar,
+                                   lane mstar, lane istar, PairLanes c, real dt, v3* spring,
+                                   v3* roll_spring, real rolling_damping) {
   ContactResult out;
   const real tiny = (real)1e-30;
   const lane sd = sqrt(delta);
@@ -107,11 +154,40 @@ INLINE ContactResult contact_law(lane delta, v3 n, v3 vrel, v3 wrel, lane rstar,
   const v3 wr = v_sub(wrel, v_mul(v_dot(wrel, n), n));
   const lane wr2 = v_dot(wr, wr);
   const real tiny2 = (real)1e-36;  // representable in float
-  const lane inv_wm = rsqrt(fmax(wr2, tiny2));
+#ifdef HAS_ROLLING_SPRING
+  // Ai et al. (2011) model C: elastic-plastic spring-dashpot.
+  const lane mmax = c.mu_r * fn;
+  const lane kr = (real)2.25 * c.mu_r * c.mu_r * (real)2 * c.estar * sqrt_r * sd;
+  v3 mk = *roll_spring;
+  const lane mk2 = v_dot(mk, mk);
+  const v3 mp = v_sub(mk, v_mul(v_dot(mk, n), n));
+  const lane mp2 = v_dot(mp, mp);
+  mk = v_mul(SEL(mp2 > tiny, sqrt(mk2 / fmax(mp2, tiny)), (lane)0), mp);
+  mk = v_sub(mk, v_mul(kr * dt, wr));
+  const lane mk_len2 = v_dot(mk, mk);
+  const lmask plastic = mk_len2 >= mmax * mmax;
+  mk = v_mul(SEL(plastic, mmax * rsqrt(fmax(mk_len2, tiny2)), (lane)1), mk);
+  *roll_spring = mk;
+  const lane cr = SEL(plastic, (lane)0, rolling_damping * (real)2 * sqrt((real)3.5 * istar * kr));
+  v3 m = v_sub(mk, v_mul(cr, wr));
+  const lane m2 = v_dot(m, m);
+  m = v_mul(SEL(m2 > mmax * mmax, mmax * rsqrt(fmax(m2, tiny2)), (lane)1), m);
+  out.rolling = m;
+#else
   // Constant torque mu_r F_n, but never more than what stops the relative
   // rolling within this step: no chatter around w_r = 0 and no creep.
+  const lane inv_wm = rsqrt(fmax(wr2, tiny2));
   const lane m = fmin(c.mu_r * fn, istar * (wr2 * inv_wm) * (1 / dt));
   out.rolling = v_mul(-SEL(wr2 > tiny2, m * inv_wm, (lane)0), wr);
 #endif
+#endif
   return out;
+}
+
+// The law with the tangential history only (tests drive it directly);
+// under spring_dashpot rolling it starts from an unloaded rolling spring.
+INLINE ContactResult contact_law(lane delta, v3 n, v3 vrel, v3 wrel, lane rstar,
+                                 lane mstar, lane istar, PairLanes c, real dt, v3* spring) {
+  v3 roll = v_zero();
+  return contact_law_h(delta, n, vrel, wrel, rstar, mstar, istar, c, dt, spring, &roll, (real)0.3);
 }

@@ -31,7 +31,7 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
                           __global const real* restrict pairs, __global real* restrict pair_force,
                           __global real* restrict pair_torque, __global real* restrict force,
                           __global real* restrict torque, __global const int* restrict contacts_last,
-                          real dt, int cap, int n, int nmat) {
+                          real dt, real rolling_damping, int cap, int n, int nmat) {
   const int base = get_global_id(0) * LANES;
   if (base >= n) return;
   int ii[LANES], valid[LANES], len[LANES];
@@ -94,22 +94,51 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
     const lane aj = rj - (real)0.5 * delta;
     const v3 vrel = v_sub(v_add(vi, v_cross(wi, v_mul(ai, nv))),
                           v_add(vj, v_cross(wj, v_neg(v_mul(aj, nv)))));
+    // per-contact history: the planes the compiled slots declare (common.cl)
+    const size_t plane = (size_t)n * cap;
 #ifdef HAS_FRICTION
     v3 sp = gather3(spring, slot);
 #else
     v3 sp = v_zero();
 #endif
-    const ContactResult c = contact_law(delta, nv, vrel, v_sub(wi, wj), ri * rj / rsum,
-                                        mi * mj / (mi + mj),
-                                        inertia_i * inertia_j / (inertia_i + inertia_j) /
-                                            cap_divisor(contacts_last, ii, jj),
-                                        gather_pairs(pairs, pair, nmat), dt, &sp);
+#ifdef HAS_ROLLING_SPRING
+    v3 rsp = gather3(spring + 4 * HIST_ROLL * plane, slot);
+#else
+    v3 rsp = v_zero();
+#endif
+    const PairLanes coef = gather_pairs(pairs, pair, nmat);
+    const lane rstar = ri * rj / rsum;
+#if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
+    // the constant torque's cap is shared among the contacts (see above)
+    const lane istar = inertia_i * inertia_j / (inertia_i + inertia_j) /
+                       cap_divisor(contacts_last, ii, jj);
+#else
+    const lane istar = inertia_i * inertia_j / (inertia_i + inertia_j);
+#endif
+    const ContactResult c = contact_law_h(delta, nv, vrel, v_sub(wi, wj), rstar,
+                                          mi * mj / (mi + mj), istar, coef, dt, &sp, &rsp,
+                                          rolling_damping);
 #ifdef HAS_FRICTION
     scatter4(spring, slot, keep, v_sel(on, sp, v_zero()), (lane)0);  // lost contacts end their history
 #endif
+#ifdef HAS_ROLLING_SPRING
+    scatter4(spring + 4 * HIST_ROLL * plane, slot, keep, v_sel(on, rsp, v_zero()), (lane)0);
+#endif
+#ifdef HAS_CAPILLARY
+    // liquid bridge: listed pairs closer than the rupture distance, touching or not
+    const lmask wet = mask_of(listed) & (d2 > (real)0) &
+                      (d2 < (rsum + coef.cap_rupture) * (rsum + coef.cap_rupture));
+    const lane inv_dw = rsqrt(fmax(d2, (real)1e-36));
+    const lane fcap = SEL(wet, capillary_force(d2 * inv_dw - rsum, rstar, coef), (lane)0);
+    const v3 fbridge = v_mul(fcap * inv_dw, d);  // on i, towards its partner
+#endif
     const lane half_e = SEL(on, (real)0.5 * c.energy, (lane)0);
     const lane flag = SEL(on, (lane)1, (lane)0);
+#ifdef HAS_CAPILLARY
+    const v3 fi = v_add(v_sel(on, c.force, v_zero()), fbridge);
+#else
     const v3 fi = v_sel(on, c.force, v_zero());
+#endif
     const v3 ti = v_sel(on, v_add(v_mul(ai, c.n_cross_ft), c.rolling), v_zero());
     const v3 tj = v_sel(on, v_sub(v_mul(aj, c.n_cross_ft), c.rolling), v_zero());
     scatter4(pair_force, slot, keep, v_neg(fi), flag);

@@ -4,7 +4,15 @@
 //   x_{n+1}   = x_n + v_{n+1/2} dt              (compensated in float runs)
 //
 // Velocities in the state are the half-step ones; observables (reduce.cl)
-// re-centre them to v_n. Also keeps the neighbour-list bookkeeping that the
+// re-centre them to v_n.
+//
+// Fluid (HAS_FLUID, slot fluid = drag), per particle, no per-contact memory:
+// a still or uniformly moving fluid u of density rho_f and viscosity mu_f
+//   F_d = 3 pi mu_f d (u - v) f(Re),  Re = rho_f |u - v| d / mu_f,
+//   f = 1 + 0.15 Re^0.687 (Re < 1000), 0.44 Re / 24 above   (Schiller-Naumann)
+//   F_b = -rho_f V g                                         (buoyancy)
+//   M_f = -pi mu_f d^3 (w - curl(u)/2) = -pi mu_f d^3 w       (uniform u)
+// evaluated with the half-step velocities, like the contact dashpots. Also keeps the neighbour-list bookkeeping that the
 // host reads every few steps (pipeline.cpp, detect_contacts):
 //   flags[0] = 1  a particle moved more than skin/4 since the last build: rebuild
 //   flags[2]      largest |v|^2 since the last check (float bits, atomic max)
@@ -20,8 +28,9 @@
 __kernel void integrate(__global real4* pos POS_LO_ARG, __global real4* vel,
                         __global real4* omega, __global const real4* force,
                         __global const real4* torque, __global const real4* pos_build,
-                        __global volatile int* flags, __global int* contacts_last, real4 gravity,
-                        real dt, real skin, int n) {
+                        __global volatile int* flags, __global int* contacts_last,
+                        real4 gravity, real4 fluid, real fluid_viscosity, real dt, real skin,
+                        int n) {
   const int i = get_global_id(0);
   if (i >= n) return;
   real4 v = vel[i];
@@ -29,13 +38,31 @@ __kernel void integrate(__global real4* pos POS_LO_ARG, __global real4* vel,
   real4 x = pos[i];
   const real m = v.w;
   const real4 fi = force[i];
+#if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
   contacts_last[i] = (int)fi.w;  // contacts of this step: the next step's rolling cap (forces.cl)
+#endif
   real3 a = fi.xyz / m;
 #ifdef HAS_GRAVITY
   a += gravity.xyz;
 #endif
+#ifdef HAS_FLUID
+  const real pi = (real)3.14159265358979323846;
+  const real diam = 2 * x.w;
+  const real3 slip = fluid.xyz - v.xyz;
+  const real re = fluid.w * length(slip) * diam / fluid_viscosity;
+  // Re^0.687 as exp(0.687 ln Re): PoCL's pow() is far slower (bench --effects)
+  const real re_pow = re > 0 ? exp((real)0.687 * log(re)) : (real)0;
+  const real f = re < (real)1000 ? 1 + (real)0.15 * re_pow : (real)0.44 * re / 24;
+  a += slip * (3 * pi * fluid_viscosity * diam * f / m);
+#ifdef HAS_GRAVITY
+  a -= gravity.xyz * (fluid.w * pi / 6 * diam * diam * diam / m);
+#endif
+  const real3 tq = torque[i].xyz - w.xyz * (pi * fluid_viscosity * diam * diam * diam);
+#else
+  const real3 tq = torque[i].xyz;
+#endif
   v.xyz += a * dt;
-  w.xyz += torque[i].xyz * (dt / ((real)0.4 * m * x.w * x.w));
+  w.xyz += tq * (dt / ((real)0.4 * m * x.w * x.w));
 #ifdef POS_COMPENSATED
   float4 lo = pos_lo[i];
   add_compensated(&x, &lo, v.xyz * dt);

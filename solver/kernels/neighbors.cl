@@ -3,7 +3,8 @@
 // Each particle i keeps the sorted list of particles j != i with
 // |x_j - x_i| < r_i + r_j + skin (a "full" list: the pair appears in both
 // lists and each side computes the contact; no atomics, deterministic sums).
-// Every list slot carries the tangential spring of that contact. On a rebuild
+// Every list slot carries the contact's history (tangential spring, elastic
+// rolling torque: HIST_PLANES records, none when no slot needs history). On a rebuild
 // the springs are carried over from the previous list by a merge join on j,
 // so contact history survives every rebuild. The list is rebuilt when some
 // particle has moved more than skin/2 since the last build (integrate.cl).
@@ -74,10 +75,12 @@ __kernel void build_neighbors(__global const real4* pos POS_LO_CARG,
   for (int u = 0; u < upper; ++u) {
     const int j = list[lower + u];
     while (o < old_up && old_nbr[NBR(i, o, n, cap)] < j) ++o;
-    real4 sp = (real4)(0);
-    if (o < old_up && old_nbr[NBR(i, o, n, cap)] == j) sp = old_spring[NBR(i, o, n, cap)];
+    const int found = o < old_up && old_nbr[NBR(i, o, n, cap)] == j;
     nbr[NBR(i, u, n, cap)] = j;
-    spring[NBR(i, u, n, cap)] = sp;
+    // every history plane the compiled slots declare (plane p at p * n * cap)
+    for (int p = 0; p < HIST_PLANES; ++p)
+      spring[(size_t)p * n * cap + NBR(i, u, n, cap)] =
+          found ? old_spring[(size_t)p * n * cap + NBR(i, o, n, cap)] : (real4)(0);
   }
   for (int t = 0; t < lower; ++t) nbr[NBR(i, upper + t, n, cap)] = list[t];
   nbr_count[i] = len;

@@ -1,9 +1,10 @@
 // walls.cl — stage: wall forces (infinite planes and finite rectangles).
 //
 // Same contact law as between spheres, with the wall as a body of infinite
-// mass and radius (R* = r_i, m* = m_i, I* = I_i). Adds to the force/torque
-// written by contact_forces. Each (wall, particle) slot w*n+i keeps its
-// tangential spring and the force the particle exerts ON the wall, which
+// mass and radius (R* = r_i, m* = m_i, I* = I_i); no capillary bridges with
+// walls (walls are dry). Adds to the force/torque written by contact_forces.
+// Each (wall, particle) slot w*n+i keeps its history (HIST_PLANES records,
+// plane p at p*nwalls*n) and the force the particle exerts ON the wall, which
 // reduce_walls sums into the wall's reaction.
 // One work item handles LANES particles (see forces.cl).
 // Wall records (4 x real4 per wall, see common.cl): [0] reference point and
@@ -68,8 +69,8 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
                           __global real* restrict wall_spring, __global real* restrict wall_force,
                           __global const real* restrict pairs, __global real* restrict force,
                           __global real* restrict torque, __global int* restrict wall_touch,
-                          __global const int* restrict contacts_last, real dt, int n, int nwalls,
-                          int nmat) {
+                          __global const int* restrict contacts_last, real dt,
+                          real rolling_damping, int n, int nwalls, int nmat) {
   const int base = get_global_id(0) * LANES;
   if (base >= n) return;
   int ii[LANES], valid[LANES], pair[LANES], was[LANES], now[LANES];
@@ -106,7 +107,12 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
   const Lane4 f0 = gather4(force, ii), t0 = gather4(torque, ii);
   v3 f = f0.xyz, t = t0.xyz;
   lane count = f0.w, e = t0.w;
-  const lane cap_k = cap_divisor_wall(contacts_last, ii);  // the rolling cap is shared (forces.cl)
+#if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
+  // the constant rolling torque's cap is shared among the contacts (forces.cl)
+  const lane roll_inertia = inertia / cap_divisor_wall(contacts_last, ii);
+#else
+  const lane roll_inertia = inertia;
+#endif
 
   for (int w = 0; w < nwalls; ++w) {
     // Slots are written only where the wall is or was touched: a slot that
@@ -128,13 +134,30 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
     const lane a = ri - (real)0.5 * delta;
     const v3 vw = V3((lane)wall_vel[4 * w], (lane)wall_vel[4 * w + 1], (lane)wall_vel[4 * w + 2]);
     const v3 vrel = v_sub(v_add(vi, v_cross(wi, v_mul(a, nv))), vw);
+    // history planes of the (wall, particle) slots, as in forces.cl
+#ifdef HAS_FRICTION
     v3 sp = gather3(wall_spring, slot);
+#else
+    v3 sp = v_zero();
+#endif
+#ifdef HAS_ROLLING_SPRING
+    __global real* roll_plane = wall_spring + 4 * HIST_ROLL * (size_t)nwalls * n;
+    v3 rsp = gather3(roll_plane, slot);
+#else
+    v3 rsp = v_zero();
+#endif
     const int wall_mat = (int)walls[4 * WALL_RECORD * w + 7];
 #pragma unroll
     for (int l = 0; l < LANES; ++l) pair[l] = (int)mat_i[l] * nmat + wall_mat;
-    const ContactResult c = contact_law(delta, nv, vrel, wi, ri, mi, inertia / cap_k,
-                                        gather_pairs(pairs, pair, nmat), dt, &sp);
+    const ContactResult c = contact_law_h(delta, nv, vrel, wi, ri, mi, roll_inertia,
+                                          gather_pairs(pairs, pair, nmat), dt, &sp, &rsp,
+                                          rolling_damping);
+#ifdef HAS_FRICTION
     scatter4(wall_spring, slot, keep, v_sel(on, sp, v_zero()), (lane)0);
+#endif
+#ifdef HAS_ROLLING_SPRING
+    scatter4(roll_plane, slot, keep, v_sel(on, rsp, v_zero()), (lane)0);
+#endif
     scatter4(wall_force, slot, keep, v_sel(on, v_neg(c.force), v_zero()), SEL(on, (lane)1, (lane)0));
     f = v_add(f, v_sel(on, c.force, v_zero()));
     t = v_add(t, v_sel(on, v_add(v_mul(a, c.n_cross_ft), c.rolling), v_zero()));
