@@ -118,6 +118,25 @@ int bench(const BenchOptions& opt) {
                   static_cast<long long>(steps), rates[rates.size() / 2], spread, bytes,
                   sim.model().program().build_seconds(),
                   static_cast<long long>(sim.state().list_builds - builds0), o.contacts / n);
+      // The runaway guard (solver/guard.h): one device-side copy of the
+      // dynamic state per interval, and that copy's memory (not in the
+      // bytes/particle column).
+      std::vector<double> copies;
+      for (int r = 0; r < 3; ++r) {
+        device->finish();
+        const auto t0 = std::chrono::steady_clock::now();
+        sim.guard().reset();
+        device->finish();
+        copies.push_back(
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      }
+      std::sort(copies.begin(), copies.end());
+      const double step_s = double(n) / rates[rates.size() / 2];
+      const double interval = double(sim.guard().interval());
+      std::printf("%10s guard: a copy of the state takes %.3g ms, every %.0f steps: %.2g %% of "
+                  "the stepping; its memory %.0f bytes/particle\n",
+                  "", 1e3 * copies[1], interval, 100 * copies[1] / (interval * step_s),
+                  double(sim.guard().backup_bytes()) / n);
       std::fflush(stdout);
     }
   }
