@@ -38,6 +38,7 @@
 #include "lab_script.h"
 #include "output.h"
 #include "paper_tests.h"
+#include "slots.h"
 
 namespace simsols {
 
@@ -47,6 +48,34 @@ void LabApp::take_script_screenshot() {
   save_screenshot(script_->screenshot);
   script_->screenshot.clear();
 }
+
+namespace {
+
+// Sets slot `slot` of `e` to the choice named `choice` (the scene file's
+// names, slot_name); false when either is unknown.
+template <typename E>
+bool pick(E& field, const std::string& choice, std::initializer_list<E> all) {
+  for (E c : all)
+    if (choice == slot_name(c)) return field = c, true;
+  return false;
+}
+
+bool set_slot(Effects& e, const std::string& slot, const std::string& choice) {
+  using D = DampingModel;
+  using T = TangentialModel;
+  using R = RollingModel;
+  using C = CohesionModel;
+  using F = FluidModel;
+  if (slot == "damping") return pick(e.damping, choice, {D::None, D::Viscous});
+  if (slot == "tangential") return pick(e.tangential, choice, {T::None, T::Mindlin});
+  if (slot == "rolling")
+    return pick(e.rolling, choice, {R::None, R::ConstantTorque, R::SpringDashpot});
+  if (slot == "cohesion") return pick(e.cohesion, choice, {C::None, C::Capillary});
+  if (slot == "fluid") return pick(e.fluid, choice, {F::None, F::Drag});
+  return false;
+}
+
+}  // namespace
 
 std::string LabApp::state_text() {
   std::ostringstream o;
@@ -60,6 +89,9 @@ std::string LabApp::state_text() {
     std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sim->hash()));
     o << "steps = " << sim->steps() << "\ntime_s = " << sim->time() << "\nbeads = "
       << sim->model().particles() << "\nhash = " << hash << "\n";
+    // what the status line shows: the effect slots compiled into the kernels
+    o << "compiled = " << compiled_slots_line(sim->scene(), sim->model().config())
+      << "\nhistory_bytes = " << sim->model().config().history_bytes_per_contact() << "\n";
   }
   if (t) {
     o << "rows = " << t->rows().size() << "\n";
@@ -129,6 +161,15 @@ void LabApp::run_script() {
   } else if (cmd == "precision") {
     if (arg != "float" && arg != "double") return fail("precision float|double", 2);
     exp_->set_precision(arg == "float" ? Precision::Float : Precision::Double);
+  } else if (cmd == "effect") {
+    // the panel's slot choices: effect SLOT CHOICE (applies at the next prepare)
+    char slot[32] = {0}, choice[32] = {0};
+    if (std::sscanf(arg.c_str(), "%31s %31s", slot, choice) != 2)
+      return fail("effect damping|tangential|rolling|cohesion|fluid CHOICE", 2);
+    Effects e = exp_->scene().effects;
+    if (!set_slot(e, slot, choice))
+      return fail("effect " + arg + ": unknown slot or choice (the names of docs/scene-format.md)", 2);
+    exp_->set_effects(e);
   } else if (cmd == "prepare") {
     if (check(exp_->prepare())) s.until = [this] { return exp_->stage() == LabStage::Prepared; };
   } else if (cmd == "load") {
