@@ -113,17 +113,21 @@ void print_summary(const ShearRunResult& r, const std::string& dir) {
       100 * (s.sigma_max / s.normal_stress_target - 1), s.max_outside, dir.c_str());
 }
 
+// --precision overrides numerics.precision.
+void apply_precision(const RunOptions& opt, Scene& scene) {
+  if (opt.precision.empty()) return;
+  if (opt.precision != "float" && opt.precision != "double")
+    throw SceneError("bad_enum", "command line", 0, "--precision",
+                     "'" + opt.precision + "' is not one of: float, double");
+  scene.numerics.precision = opt.precision == "float" ? Precision::Float : Precision::Double;
+}
+
 // `run SCENE --explain`: the slots the scene compiles, no run, no output folder.
 int explain(const RunOptions& opt) {
   if (opt.scene_path.empty())
     throw SceneError("missing_field", "", 0, "SCENE", "--explain needs a scene file");
   Scene scene = load_scene(opt.scene_path);
-  if (!opt.precision.empty()) {
-    if (opt.precision != "float" && opt.precision != "double")
-      throw SceneError("bad_enum", "command line", 0, "--precision",
-                       "'" + opt.precision + "' is not one of: float, double");
-    scene.numerics.precision = opt.precision == "float" ? Precision::Float : Precision::Double;
-  }
+  apply_precision(opt, scene);
   const KernelConfig config = make_kernel_config(scene, *default_device());
   std::printf("%s", explain_effects(scene, config).c_str());
   return 0;
@@ -169,12 +173,7 @@ int run(const RunOptions& opt) {
     if (opt.scene_path.empty())
       throw SceneError("missing_field", "", 0, "SCENE", "a scene file is required (or --resume)");
     Scene scene = load_scene(opt.scene_path);
-    if (!opt.precision.empty()) {
-      if (opt.precision != "float" && opt.precision != "double")
-        throw SceneError("bad_enum", "command line", 0, "--precision",
-                         "'" + opt.precision + "' is not one of: float, double");
-      scene.numerics.precision = opt.precision == "float" ? Precision::Float : Precision::Double;
-    }
+    apply_precision(opt, scene);
     if (opt.duration != 0) {
       if (!(opt.duration > 0) || !std::isfinite(opt.duration))
         throw SceneError("out_of_range", "command line", 0, "--duration",

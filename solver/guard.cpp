@@ -93,13 +93,17 @@ void Guard::restore_copy() {
   derive_state(model_, state_);
 }
 
+void Guard::apply_logged(size_t* next) {
+  while (*next < log_.size() && log_[*next].step == state_.step) {
+    const Logged& l = log_[(*next)++];
+    model_.device().write((state_.*l.buffer).get(), l.data.size(), l.data.data(), l.offset);
+  }
+}
+
 void Guard::replay_to(std::int64_t target) {
   size_t next = 0;
   for (;;) {
-    while (next < log_.size() && log_[next].step == state_.step) {
-      const Logged& l = log_[next++];
-      model_.device().write((state_.*l.buffer).get(), l.data.size(), l.data.data(), l.offset);
-    }
+    apply_logged(&next);
     if (state_.step >= target) break;
     step(model_, state_);
   }
@@ -156,10 +160,7 @@ void Guard::resolve() {
   size_t next = 0;
   bool found = false;
   while (state_.step < seen_at) {
-    while (next < log_.size() && log_[next].step == state_.step) {
-      const Logged& l = log_[next++];
-      model_.device().write((state_.*l.buffer).get(), l.data.size(), l.data.data(), l.offset);
-    }
+    apply_logged(&next);
     step(model_, state_);
     int v[3] = {0, 0, 0};
     model_.device().read(state_.flags.get(), sizeof v, v, 4 * sizeof(int));

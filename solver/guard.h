@@ -104,6 +104,8 @@ class Guard {
   void clear_mark();
   void take_copy();
   void restore_copy();
+  // The logged writes made at the current step, from log_[*next] on.
+  void apply_logged(size_t* next);
   void replay_to(std::int64_t step);  // from the restored copy, with the logged writes
   [[noreturn]] void resolve();
 

@@ -314,7 +314,9 @@ TEST_P(Runaway, StopsAtTheFirstBadStepNamingTheParticle) {
     std::int64_t broke = -1;
     while (again.steps() < fault->step + 5) {
       drive(again);
-      if (again.steps() == fault->step - 1) EXPECT_EQ(again.hash(), sim.hash()) << "bit for bit";
+      if (again.steps() == fault->step - 1) {
+        EXPECT_EQ(again.hash(), sim.hash()) << "bit for bit";
+      }
       step(again.model(), again.state());  // the pipeline itself: no guard
       const ParticleSnapshot now = download(again.model(), again.state());
       if (bad(now, before, &first)) {
