@@ -100,13 +100,15 @@ void print_summary(const ShearRunResult& r, const std::string& dir) {
   const ShearSummary& s = r.summary;
   std::printf(
       "shear test %s: sigma = %.0f kPa, d = %.4g mm, %d beads, %lld steps in %.0f s\n"
+      "  first peak tau/sigma = %.3f  phi = %.2f deg at %.2f mm (then softening)\n"
       "  peak     tau/sigma = %.3f  phi_peak     = %.2f deg  (tau = %.2f kPa at %.2f mm)\n"
       "  residual tau/sigma = %.3f  phi_residual = %.2f deg  (tau = %.2f kPa)\n"
       "  max dilatancy angle %.2f deg; inertial number <= %.2g; sigma band %+.2f%% / %+.2f%%; "
       "beads outside %d\n"
       "  results in %s\n",
       r.finished ? "finished" : "stopped (resume with --resume)", s.normal_stress_target * 1e-3,
-      s.bead_diameter * 1e3, r.particles, r.steps, s.wall_seconds, s.peak_ratio, s.peak_angle,
+      s.bead_diameter * 1e3, r.particles, r.steps, s.wall_seconds, s.first_peak_ratio,
+      s.first_peak_angle, s.first_peak_displacement * 1e3, s.peak_ratio, s.peak_angle,
       s.peak_tau * 1e-3, s.peak_displacement * 1e3, s.residual_ratio, s.residual_angle,
       s.residual_tau * 1e-3, s.max_dilatancy_angle, s.max_inertial_number,
       100 * (s.sigma_min / s.normal_stress_target - 1),

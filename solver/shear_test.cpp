@@ -356,6 +356,10 @@ ShearSummary ShearTest::summary() const {
     s.max_outside = std::max(s.max_outside, r.outside);
   }
   s.peak_angle = std::atan(s.peak_ratio) * kRad;
+  const FirstPeak first = first_peak(rows_, sigma_target_);
+  s.first_peak_ratio = first.ratio;
+  s.first_peak_displacement = first.displacement;
+  s.first_peak_angle = std::atan(first.ratio) * kRad;
   const double end = rows_.back().displacement;
   double sum_tau = 0, sum_ratio = 0;
   int count = 0;
@@ -443,20 +447,38 @@ std::string shear_rows_csv(const std::vector<ShearRow>& rows) {
   return out;
 }
 
+FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target, double softening) {
+  FirstPeak best;
+  for (const ShearRow& r : rows) {
+    if (!(r.sigma > 0.5 * sigma_target)) continue;
+    const double ratio = r.tau / r.sigma;
+    if (ratio > best.ratio) {
+      best.ratio = ratio;
+      best.displacement = r.displacement;
+    } else if (best.ratio > 0 && ratio < (1 - softening) * best.ratio) {
+      break;  // softened: the running maximum was the first peak
+    }
+  }
+  return best;
+}
+
 std::string shear_summary_text(const ShearSummary& s) {
   char buf[2048];
   std::snprintf(
       buf, sizeof buf,
       "normal_stress_kPa = %.6g\nbead_diameter_mm = %.6g\nspecimen_height_mm = %.6g\n"
       "shear_speed_mm_s = %.6g\npeak_tau_kPa = %.6g\npeak_tau_over_sigma = %.6g\n"
-      "peak_friction_angle_deg = %.4f\npeak_displacement_mm = %.6g\nresidual_tau_kPa = %.6g\n"
+      "peak_friction_angle_deg = %.4f\npeak_displacement_mm = %.6g\n"
+      "first_peak_tau_over_sigma = %.6g\nfirst_peak_friction_angle_deg = %.4f\n"
+      "first_peak_displacement_mm = %.6g\nresidual_tau_kPa = %.6g\n"
       "residual_tau_over_sigma = %.6g\nresidual_friction_angle_deg = %.4f\n"
       "max_dilatancy_angle_deg = %.4f\nmax_inertial_number = %.4g\nsigma_min_kPa = %.6g\n"
       "sigma_max_kPa = %.6g\nsigma_band_percent = %+.3f %+.3f\nmax_beads_outside = %d\n"
       "settle_time_s = %.6g\nconsolidate_time_s = %.6g\nwall_seconds = %.1f\n",
       s.normal_stress_target * 1e-3, s.bead_diameter * 1e3, s.specimen_height * 1e3,
       s.shear_speed * 1e3, s.peak_tau * 1e-3, s.peak_ratio, s.peak_angle,
-      s.peak_displacement * 1e3, s.residual_tau * 1e-3, s.residual_ratio, s.residual_angle,
+      s.peak_displacement * 1e3, s.first_peak_ratio, s.first_peak_angle,
+      s.first_peak_displacement * 1e3, s.residual_tau * 1e-3, s.residual_ratio, s.residual_angle,
       s.max_dilatancy_angle, s.max_inertial_number, s.sigma_min * 1e-3, s.sigma_max * 1e-3,
       100 * (s.sigma_min / s.normal_stress_target - 1),
       100 * (s.sigma_max / s.normal_stress_target - 1), s.max_outside, s.settle_time,
@@ -555,6 +577,9 @@ ShearSummary parse_shear_summary(const std::string& text) {
                   {"peak_tau_over_sigma", &s.peak_ratio, 1},
                   {"peak_friction_angle_deg", &s.peak_angle, 1},
                   {"peak_displacement_mm", &s.peak_displacement, 1e-3},
+                  {"first_peak_tau_over_sigma", &s.first_peak_ratio, 1},
+                  {"first_peak_friction_angle_deg", &s.first_peak_angle, 1},
+                  {"first_peak_displacement_mm", &s.first_peak_displacement, 1e-3},
                   {"residual_tau_kPa", &s.residual_tau, 1e3},
                   {"residual_tau_over_sigma", &s.residual_ratio, 1},
                   {"residual_friction_angle_deg", &s.residual_angle, 1},

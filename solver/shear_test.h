@@ -62,6 +62,11 @@ struct ShearSummary {
   double bead_diameter = 0;         // m, mean
   double peak_tau = 0, peak_ratio = 0, peak_angle = 0, peak_displacement = 0;
   double residual_tau = 0, residual_ratio = 0, residual_angle = 0;  // mean over the last 20%
+  // The first peak: the first maximum of tau/sigma after which the specimen
+  // softens (tau/sigma falls by more than 5 % of it); the peak strength in
+  // the geotechnical sense. peak_* above is the largest tau/sigma of the
+  // whole test, which in a layered specimen can be a late jamming event.
+  double first_peak_ratio = 0, first_peak_angle = 0, first_peak_displacement = 0;
   double max_dilatancy_angle = 0;   // deg, steepest rise of dz/dx (smoothed)
   double max_inertial_number = 0;
   double sigma_min = 0, sigma_max = 0;  // Pa, band of the row means during shear
@@ -141,6 +146,16 @@ class ShearTest {
   double speed_override_ = 0;      // m/s from set_shear_speed; 0 = none
   std::vector<ShearRow> rows_;
 };
+
+// The first peak of a test's rows (ShearSummary::first_peak_*): the first
+// running maximum of tau/sigma followed by a fall of more than `softening`
+// of it; the largest value when the curve never softens. Rows whose sigma
+// is below half the target (a platen that lost contact) are skipped.
+struct FirstPeak {
+  double ratio = 0, displacement = 0;
+};
+FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target,
+                     double softening = 0.05);
 
 // The rows as CSV (mm, kPa, N, J) and back; the summary as "key = value"
 // lines and back. The parsers throw std::runtime_error on malformed text.

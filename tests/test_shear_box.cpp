@@ -176,6 +176,39 @@ TEST(ShearAnalysis, RowsAndSummaryRoundTripThroughText) {
   EXPECT_NEAR(back.peak_angle, 35.26, 1e-9);
   EXPECT_NEAR(back.sigma_max, 161e3, 1e-6);
   EXPECT_THROW(parse_shear_summary("hello = 1\n"), std::runtime_error);
+  s.first_peak_ratio = 0.704;
+  s.first_peak_displacement = 2e-4;
+  const ShearSummary again = parse_shear_summary(shear_summary_text(s));
+  EXPECT_NEAR(again.first_peak_ratio, 0.704, 1e-9);
+  EXPECT_NEAR(again.first_peak_displacement, 2e-4, 1e-12);
+}
+
+// The first peak: the first running maximum of tau/sigma that the specimen
+// softens from by more than 5 %; a later, higher jamming spike is the
+// overall peak but not the first. A dip of 3 % is noise, not softening; a
+// row whose platen lost contact (sigma < target / 2) is skipped; a curve
+// that never softens has its maximum as first peak.
+TEST(ShearAnalysis, FirstPeakIsTheFirstMaximumBeforeSoftening) {
+  auto rows_of = [](std::vector<double> ratios, double sigma = 100e3) {
+    std::vector<ShearRow> rows(ratios.size());
+    for (size_t i = 0; i < ratios.size(); ++i) {
+      rows[i].displacement = 1e-4 * double(i + 1);
+      rows[i].sigma = sigma;
+      rows[i].tau = ratios[i] * sigma;
+    }
+    return rows;
+  };
+  FirstPeak p = first_peak(rows_of({0.2, 0.5, 0.70, 0.68, 0.71, 0.66, 0.60, 0.65, 0.92, 0.5}), 100e3);
+  EXPECT_DOUBLE_EQ(p.ratio, 0.71);  // 0.68 is within 5 % of 0.70: not yet softening
+  EXPECT_DOUBLE_EQ(p.displacement, 5e-4);
+  p = first_peak(rows_of({-0.01, 0.1, 0.3, 0.5, 0.6}), 100e3);  // starts slightly negative
+  EXPECT_DOUBLE_EQ(p.ratio, 0.6);
+  std::vector<ShearRow> lost = rows_of({0.3, 0.8, 0.4, 0.5});
+  lost[1].sigma = 10e3;  // the 0.8 row: platen off the specimen
+  lost[1].tau = 0.8 * 10e3;
+  p = first_peak(lost, 100e3);
+  EXPECT_DOUBLE_EQ(p.ratio, 0.5);
+  EXPECT_DOUBLE_EQ(first_peak({}, 100e3).ratio, 0.0);
 }
 
 // --- Running tests -----------------------------------------------------------
