@@ -82,7 +82,6 @@ Scene contact_scene(const StudySettings& s, const Material& m) {
 
 double pct(double measured, double theory) { return 100 * std::fabs(measured / theory - 1); }
 
-double norm(const Vec3& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 
 }  // namespace
 

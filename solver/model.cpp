@@ -9,14 +9,6 @@
 #include "real_packer.h"
 
 namespace simsols {
-namespace {
-
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
-}  // namespace
-
 Model::Model(std::shared_ptr<Device> device, const Scene& scene)
     : device_(std::move(device)), scene_(scene) {
   if (scene_.particles.empty())

@@ -146,12 +146,6 @@ void check_vector(const std::string& field, const Vec3& v) {
                ", not a finite number");
 }
 
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 
 void check_material_ref(const Scene& s, const std::string& field, int index) {
   if (index < 0 || index >= static_cast<int>(s.materials.size()))
@@ -386,24 +380,32 @@ void check_particle_overlaps(const Scene& s) {
 // centre lies on a plane overlaps it by its radius): refused like
 // overlapping beads. Planes are one-sided (a centre behind one is ignored
 // by the solver too); rectangles are two-sided plates.
+}  // namespace
+
+Vec3 wall_closest_point(const Wall& w, const Vec3& p, const Vec3& x) {
+  const Vec3 d = sub(x, p);
+  if (w.shape == WallShape::Plane) return sub(x, scale(dot(d, w.normal), w.normal));
+  const Vec3& u = w.axis_u;
+  const Vec3 v = cross(w.normal, u);
+  const double a = std::clamp(dot(d, u), -w.half_u, w.half_u);
+  const double b = std::clamp(dot(d, v), -w.half_v, w.half_v);
+  return {p[0] + a * u[0] + b * v[0], p[1] + a * u[1] + b * v[1], p[2] + a * u[2] + b * v[2]};
+}
+
+double wall_distance(const Wall& w, const Vec3& p, const Vec3& x) {
+  if (w.shape == WallShape::Plane) return dot(sub(x, p), w.normal);
+  return norm(sub(x, wall_closest_point(w, p, x)));
+}
+
+namespace {
+
 void check_wall_overlaps(const Scene& s) {
   for (size_t w = 0; w < s.walls.size(); ++w) {
     const Wall& wall = s.walls[w];
-    const Vec3 v = cross(wall.normal, wall.axis_u);
     for (size_t i = 0; i < s.particles.size(); ++i) {
       const Particle& p = s.particles[i];
-      const Vec3 d = sub(p.position, wall.point);
-      double dist = 0;
-      if (wall.shape == WallShape::Plane) {
-        dist = dot(d, wall.normal);
-        if (dist < 0) continue;
-      } else {
-        const double u = std::clamp(dot(d, wall.axis_u), -wall.half_u, wall.half_u);
-        const double t = std::clamp(dot(d, v), -wall.half_v, wall.half_v);
-        const Vec3 c = {wall.axis_u[0] * u + v[0] * t, wall.axis_u[1] * u + v[1] * t,
-                        wall.axis_u[2] * u + v[2] * t};
-        dist = norm(sub(d, c));
-      }
+      const double dist = wall_distance(wall, wall.point, p.position);
+      if (dist < 0) continue;  // behind a plane
       const double overlap = p.radius - dist, limit = kMaxOverlapFraction * p.radius;
       if (overlap > limit)
         fail("overlapping_wall", at("particles", i),

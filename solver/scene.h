@@ -16,9 +16,10 @@
 #include <string>
 #include <vector>
 
+#include "vec3.h"
+
 namespace simsols {
 
-using Vec3 = std::array<double, 3>;
 
 // One bulk material. Units: Pa, -, kg/m^3, -, -, m.
 struct Material {
@@ -90,6 +91,14 @@ struct Wall {
   Vec3 velocity{};     // m/s, prescribed
   WallServo servo;     // when enabled, moves to hold a normal force instead
 };
+
+// Wall geometry on the host, with the wall's reference point at `point`
+// (its current position, or Wall::point): the closest point of the wall to
+// x, and the distance from x to the wall. Planes are one-sided, as in the
+// solver: the distance to a plane is signed, negative behind it (such a
+// bead is ignored); a rectangle is a two-sided plate (distance >= 0).
+Vec3 wall_closest_point(const Wall& w, const Vec3& point, const Vec3& x);
+double wall_distance(const Wall& w, const Vec3& point, const Vec3& x);
 
 // The contact and body-force model as named slots, each with a `none`
 // choice (docs/model.md, "Effects as slots"). Every slot becomes a kernel

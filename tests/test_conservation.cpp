@@ -13,8 +13,6 @@
 namespace simsols::testing {
 namespace {
 
-double norm(const Vec3& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 
 class Conservation : public PrecisionTest {};
 

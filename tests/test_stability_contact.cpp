@@ -25,21 +25,11 @@
 namespace simsols::testing {
 namespace {
 
-bool full_form() {
-  const char* v = std::getenv("SIMSOLS_STABILITY_FULL");
-  return v && std::atoi(v) != 0;
-}
+bool full_form() { return stability_full_form(); }
 const char* form() { return full_form() ? "full form" : "reduced form"; }
 
 double real_eps(Precision p) { return p == Precision::Float ? 0x1p-23 : 0x1p-52; }
 
-double norm3(const Vec3& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
-double dot3(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3 sub3(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3 scale3(double s, const Vec3& a) { return {s * a[0], s * a[1], s * a[2]}; }
-Vec3 cross3(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 
 // Glass beads of the paper: 2.38125 mm diameter.
 constexpr double kR = 2.38125e-3 / 2;
@@ -105,7 +95,7 @@ double spring_energy(Simulation& sim, const ParticleSnapshot& q) {
   const int n = s.n, cap = s.cap;
   const double dt = m.dt();
   std::vector<Vec3> x(n);  // x_n, where the springs were evaluated
-  for (int i = 0; i < n; ++i) x[i] = sub3(q.position[i], scale3(dt, q.velocity[i]));
+  for (int i = 0; i < n; ++i) x[i] = sub(q.position[i], scale(dt, q.velocity[i]));
   const Scene& sc = m.scene();
   double e = 0;
   std::vector<int> upper(n), nbr(size_t(n) * cap);
@@ -118,11 +108,11 @@ double spring_energy(Simulation& sim, const ParticleSnapshot& q) {
       const size_t slot = inter ? size_t(k) * n + i : size_t(i) * cap + k;
       const int j = nbr[slot];
       const Vec3 xi{sp[4 * slot], sp[4 * slot + 1], sp[4 * slot + 2]};
-      const double d = q.radius[i] + q.radius[j] - norm3(sub3(x[j], x[i]));
+      const double d = q.radius[i] + q.radius[j] - norm(sub(x[j], x[i]));
       if (d <= 0) continue;
       const double rs = q.radius[i] * q.radius[j] / (q.radius[i] + q.radius[j]);
       const double g = m.pairs().at(q.material[i], q.material[j]).g_star;
-      e += 0.5 * 8 * g * std::sqrt(rs * d) * dot3(xi, xi);
+      e += 0.5 * 8 * g * std::sqrt(rs * d) * dot(xi, xi);
     }
   if (m.config().walls) {
     const std::vector<double> ws = read_reals(m, s.wall_spring, size_t(m.walls()) * n * 4);
@@ -131,10 +121,10 @@ double spring_energy(Simulation& sim, const ParticleSnapshot& q) {
       for (int i = 0; i < n; ++i) {
         const size_t slot = size_t(w) * n + i;
         const Vec3 xi{ws[4 * slot], ws[4 * slot + 1], ws[4 * slot + 2]};
-        const double d = q.radius[i] - dot3(sub3(x[i], wall.point), wall.normal);
-        if (d <= 0 || dot3(xi, xi) == 0) continue;
+        const double d = q.radius[i] - dot(sub(x[i], wall.point), wall.normal);
+        if (d <= 0 || dot(xi, xi) == 0) continue;
         const double g = m.pairs().at(q.material[i], wall.material).g_star;
-        e += 0.5 * 8 * g * std::sqrt(q.radius[i] * d) * dot3(xi, xi);
+        e += 0.5 * 8 * g * std::sqrt(q.radius[i] * d) * dot(xi, xi);
       }
     }
   }
@@ -201,8 +191,8 @@ RollOutcome roll_and_hold(Precision prec, double mu_s, double v0, double t_expec
     }
     if (stop_step >= 0 && sim.steps() == stop_step + kSettle) stop_pos = q.position[0];
     if (stop_step >= 0 && sim.steps() >= stop_step + kSettle + hold) {
-      out.creep = norm3(sub3(q.position[0], stop_pos));
-      out.final_w = norm3(q.angular_velocity[0]);
+      out.creep = norm(sub(q.position[0], stop_pos));
+      out.final_w = norm(q.angular_velocity[0]);
       break;
     }
     if (stop_step < 0 && sim.steps() > limit) break;
@@ -336,15 +326,15 @@ TEST_P(SettledPile, NeitherChattersNorCreepsNorGainsEnergy) {
     sim.advance(1);
     const ParticleSnapshot b = sim.snapshot();
     for (size_t i = 0; i < b.position.size(); ++i) {
-      const double wa = norm3(a.angular_velocity[i]);
+      const double wa = norm(a.angular_velocity[i]);
       spin = std::max(spin, wa);
-      if (dot3(a.angular_velocity[i], b.angular_velocity[i]) < 0 && wa > 1e-6) ++flips;
+      if (dot(a.angular_velocity[i], b.angular_velocity[i]) < 0 && wa > 1e-6) ++flips;
     }
     energy.add(mechanical_energy(sim, &scale));
     if (k + every == window / 2) mid = b;
     if (k + every == window)
       for (size_t i = 0; i < b.position.size(); ++i)
-        moved = std::max(moved, norm3(sub3(b.position[i], mid.position[i])));
+        moved = std::max(moved, norm(sub(b.position[i], mid.position[i])));
   }
   const double d_w = resting_overlap(scene, scene.particles[0]);
   const double tol = 8 * real_eps(prec) * scale;
@@ -416,12 +406,12 @@ __kernel void rigid_pair(__global const real* normals, __global const real* spri
 
 Vec3 rotate(const Vec3& v, const Vec3& axis, double angle) {  // Rodrigues, unit axis
   const double c = std::cos(angle), s = std::sin(angle);
-  const Vec3 k = cross3(axis, v);
-  const double kd = dot3(axis, v) * (1 - c);
+  const Vec3 k = cross(axis, v);
+  const double kd = dot(axis, v) * (1 - c);
   return {v[0] * c + k[0] * s + axis[0] * kd, v[1] * c + k[1] * s + axis[1] * kd,
           v[2] * c + k[2] * s + axis[2] * kd};
 }
-Vec3 unit(const Vec3& v) { return scale3(1 / norm3(v), v); }
+Vec3 unit(const Vec3& v) { return scale(1 / norm(v), v); }
 
 class RigidPairRotation : public PrecisionTest {};
 
@@ -470,7 +460,7 @@ TEST_P(RigidPairRotation, TangentialForceStaysInPlaneAndKeepsItsSize) {
       normals.put4(n[0], n[1], n[2], 0);
     }
   for (const Case& c : cases) {
-    const Vec3 xi = scale3(-ft0 / kt, unit(c.spring_dir));  // F_t = -k_t xi
+    const Vec3 xi = scale(-ft0 / kt, unit(c.spring_dir));  // F_t = -k_t xi
     springs.put4(xi[0], xi[1], xi[2], 0);
   }
   coeff.put4(pc.e_star, pc.g_star, pc.gamma_n, pc.sliding_friction);
@@ -517,21 +507,21 @@ TEST_P(RigidPairRotation, TangentialForceStaysInPlaneAndKeepsItsSize) {
   for (int c = 0; c < m; ++c) {
     const Case& cs = cases[c];
     double plane = 0, spring_plane = 0, grow = 0, decay = 0, dir = 0;
-    const Vec3 f0 = scale3(ft0, unit(cs.spring_dir));
+    const Vec3 f0 = scale(ft0, unit(cs.spring_dir));
     for (int s = 0; s < steps; ++s) {
       const double theta = (s + 1) * dtheta;
       const Vec3 n = rotate(n0, cs.axis, theta);
       const size_t at = (size_t(s) * m + c) * 4;
       const Vec3 f{F[at], F[at + 1], F[at + 2]}, xi{XI[at], XI[at + 1], XI[at + 2]};
-      const Vec3 ft = sub3(f, scale3(-fn, n));  // the Hertz normal force removed
-      const double size = norm3(ft);
-      plane = std::max(plane, std::fabs(dot3(ft, n)) / size);
-      spring_plane = std::max(spring_plane, std::fabs(dot3(xi, n)) / norm3(xi));
+      const Vec3 ft = sub(f, scale(-fn, n));  // the Hertz normal force removed
+      const double size = norm(ft);
+      plane = std::max(plane, std::fabs(dot(ft, n)) / size);
+      spring_plane = std::max(spring_plane, std::fabs(dot(xi, n)) / norm(xi));
       grow = std::max(grow, size / ft0 - 1);
       decay = std::max(decay, 1 - size / ft0);
       // expected: the initial force turned about n by -(a.n) theta, then carried by the pair
-      const Vec3 expect = rotate(rotate(f0, n0, -dot3(cs.axis, n0) * theta), cs.axis, theta);
-      dir = std::max(dir, norm3(sub3(scale3(1 / size, ft), scale3(1 / ft0, expect))));
+      const Vec3 expect = rotate(rotate(f0, n0, -dot(cs.axis, n0) * theta), cs.axis, theta);
+      dir = std::max(dir, norm(sub(scale(1 / size, ft), scale(1 / ft0, expect))));
     }
     std::printf("[measure] %s, %s, %s: over one revolution in %d steps: |F_t.n|/|F_t| <= %.3g, "
                 "|xi.n|/|xi| <= %.3g, |F_t| grew %.3g, decayed %.3g, direction off %.3g rad\n",
@@ -650,7 +640,7 @@ TEST_P(ReformedContact, StartsFromZeroHistory) {
           fresh.advance(1);
           Vec3 g{};
           ASSERT_TRUE(contact_force(fresh, t.a, t.b, &g)) << t.name;
-          const double diff = norm3(sub3(f, g)) / norm3(g);
+          const double diff = norm(sub(f, g)) / norm(g);
           t.worst = std::max(t.worst, diff);
           EXPECT_LE(diff, tol) << t.name << ", contact " << t.contacts << " at step " << sim.steps();
           ++t.checked;
@@ -659,9 +649,9 @@ TEST_P(ReformedContact, StartsFromZeroHistory) {
       if (now && t.contacts == 1) {
         // tangential part of the force (normal from the centres)
         const ParticleSnapshot q = sim.snapshot();
-        Vec3 n = t.b >= 0 ? unit(sub3(q.position[t.b], q.position[t.a]))
+        Vec3 n = t.b >= 0 ? unit(sub(q.position[t.b], q.position[t.a]))
                           : Vec3{t.b == -1 ? -1.0 : 1.0, 0, 0};
-        t.first_tangential = std::max(t.first_tangential, norm3(sub3(f, scale3(dot3(f, n), n))));
+        t.first_tangential = std::max(t.first_tangential, norm(sub(f, scale(dot(f, n), n))));
       }
       t.was = now;
     }
@@ -726,7 +716,7 @@ ImpactResult impact(Precision prec, Vec3 aim, double skin, std::int64_t steps) {
       r.worst_overlap = std::max(r.worst_overlap, (q.radius[i] - q.position[i][2]) / kR);
       for (int j = i + 1; j <= imp; ++j)
         r.worst_overlap =
-            std::max(r.worst_overlap, (2 * kR - norm3(sub3(q.position[i], q.position[j]))) / kR);
+            std::max(r.worst_overlap, (2 * kR - norm(sub(q.position[i], q.position[j]))) / kR);
     }
     r.rebound = std::max(r.rebound, q.velocity[imp][2]);
   }

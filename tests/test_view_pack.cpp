@@ -69,9 +69,6 @@ Scene cluster_scene(Precision p) {
   return s;
 }
 
-double norm(const Vec3& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 // The field on the host, from a snapshot, the reference positions and the bands.
 std::vector<double> host_field(ColorField f, const ParticleSnapshot& p,
