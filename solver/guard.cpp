@@ -49,11 +49,12 @@ Guard::Mark Guard::read_mark() {
   Mark m;
   m.particle = v[0];
   m.what = v[1];
+  m.count = v[2];
   return m;
 }
 
 void Guard::clear_mark() {
-  const int clear[3] = {0x7fffffff, 0, 0};
+  const int clear[3] = {State::kNoRunaway, 0, 0};
   model_.device().write(state_.flags.get(), sizeof clear, clear, 4 * sizeof(int));
   state_.fault_seen = false;
 }
@@ -143,54 +144,49 @@ void Guard::write(Buffer State::*buffer, size_t offset, const void* data, size_t
   log_.push_back(std::move(l));
 }
 
+void Guard::throw_unlocated(const Mark& seen, std::int64_t seen_at) {
+  Fault f;
+  f.located = false;
+  f.step = seen_at;
+  f.time = state_.time;
+  f.particle = seen.particle;
+  f.non_finite = (seen.what & 1) != 0;
+  f.marked = seen.count;
+  if (have_copy_) {  // the state stays usable: clear the mark, copy it afresh
+    clear_mark();
+    take_copy();
+  }
+  throw RunawayError(f);
+}
+
 void Guard::resolve() {
   const std::int64_t seen_at = state_.step;
   const Mark seen = read_mark();
-  Fault f;
-  if (!have_copy_) {
-    f.located = false;
-    f.step = seen_at;
-    f.time = state_.time;
-    f.particle = seen.particle;
-    f.non_finite = (seen.what & 1) != 0;
-    throw RunawayError(f);
-  }
+  if (!have_copy_) throw_unlocated(seen, seen_at);
   // Find the first step that sets the mark.
   restore_copy();
   size_t next = 0;
-  bool found = false;
-  while (state_.step < seen_at) {
+  Fault f;
+  while (true) {
+    if (state_.step >= seen_at) throw_unlocated(seen, seen_at);
     apply_logged(&next);
     step(model_, state_);
-    int v[3] = {0, 0, 0};
-    model_.device().read(state_.flags.get(), sizeof v, v, 4 * sizeof(int));
-    if (v[0] != 0x7fffffff) {
-      found = true;
+    const Mark m = read_mark();
+    if (m.set()) {
       f.step = state_.step;
       f.time = state_.time;
-      f.particle = v[0];
-      f.non_finite = (v[1] & 1) != 0;
-      f.marked = v[2];
+      f.particle = m.particle;
+      f.non_finite = (m.what & 1) != 0;
+      f.marked = m.count;
       break;
     }
-  }
-  if (!found) {
-    f.located = false;
-    f.step = seen_at;
-    f.time = state_.time;
-    f.particle = seen.particle;
-    f.non_finite = (seen.what & 1) != 0;
-    clear_mark();
-    take_copy();
-    throw RunawayError(f);
   }
   {
     const ParticleSnapshot q = download(model_, state_);
     f.position = q.position[f.particle];
     f.limit = 0.1 * q.radius[f.particle];
     f.velocity = q.velocity[f.particle];
-    const Vec3& v = f.velocity;
-    f.moved = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * model_.dt();
+    f.moved = norm(f.velocity) * model_.dt();  // the leapfrog's half-step velocity x dt
   }
   // Back to the state just before it (with the host's writes made then).
   restore_copy();

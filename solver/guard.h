@@ -96,9 +96,10 @@ class Guard {
     std::vector<unsigned char> data;
   };
   struct Mark {
-    int particle = 0x7fffffff;
+    int particle = State::kNoRunaway;
     int what = 0;
-    bool set() const { return particle != 0x7fffffff; }
+    int count = 0;
+    bool set() const { return particle != State::kNoRunaway; }
   };
   Mark read_mark();
   void clear_mark();
@@ -108,6 +109,8 @@ class Guard {
   void apply_logged(size_t* next);
   void replay_to(std::int64_t step);  // from the restored copy, with the logged writes
   [[noreturn]] void resolve();
+  // A fault the replay could not place: what the mark said when it was seen.
+  [[noreturn]] void throw_unlocated(const Mark& seen, std::int64_t seen_at);
 
   const Model& model_;
   State& state_;

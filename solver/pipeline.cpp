@@ -69,7 +69,7 @@ void detect_contacts(const Model& m, State& s, bool force_rebuild) {
   if (s.step < s.next_check && !force_rebuild) return;
   int flags[5] = {0, 0, 0, 0, 0};
   m.device().read(s.flags.get(), sizeof flags, flags);
-  if (flags[4] != 0x7fffffff) s.fault_seen = true;  // the runaway mark (guard.h)
+  if (flags[4] != State::kNoRunaway) s.fault_seen = true;  // the runaway mark (guard.h)
   float v2 = 0;
   std::memcpy(&v2, &flags[2], sizeof v2);
   if (flags[3]) ++s.late_builds;

@@ -120,7 +120,7 @@ State::State(const Model& model) {
   // starts fast is checked as often as one that became fast; no runaway mark
   int v2_bits = 0;
   std::memcpy(&v2_bits, &v2_start, sizeof v2_bits);
-  const int init_flags[8] = {1, 0, v2_bits, 0, 0x7fffffff, 0, 0, 0};
+  const int init_flags[8] = {1, 0, v2_bits, 0, kNoRunaway, 0, 0, 0};
   flags = make(d, sizeof init_flags, init_flags);
   // only the constant rolling torque shares its cap (forces.cl)
   const bool shared_cap = model.config().rolling && !model.config().rolling_spring;

@@ -52,6 +52,7 @@ class State {
   // flags[2]: max |v|^2 since the last check, flags[3]: late, flags[4..6]:
   // the runaway mark (see integrate.cl and guard.h), flags[7] spare
   Buffer flags, obs_partial, wall_partial;
+  static constexpr int kNoRunaway = 0x7fffffff;  // flags[4] when no particle is marked
   // contacts of each particle in the last step (force.w, kept by integrate):
   // the rolling cap's divisor (forces.cl). Derived from `force`, so not
   // saved: derive_state() rebuilds it after a load.
