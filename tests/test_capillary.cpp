@@ -112,35 +112,19 @@ TEST(CapillaryPairs, InteractionsOverrideVolumeAndAnglePerPair) {
 // stresses where the servo and the test are validated (>= 20 kPa); the test
 // uses a strongly cohesive model liquid, gamma = 5 N/m (0.1 N per bridge,
 // about a tenth of sigma d^2 at 20 kPa), to show the mechanism.
+// Layered (Table 1 method): this 5 x 5 specimen shears along a nearly flat
+// plane (tau/sigma ~ 0.03), so its peaks are deterministic and the small
+// cohesion stands out; a poured specimen's peaks scatter by more than the
+// cohesion (docs/model.md).
 Scene small_wet_box(double sigma, bool wet) {
   const double d = 6.35e-3;
-  Scene s;
-  s.name = wet ? "wet_box" : "dry_box";
-  s.materials.push_back(paper_glass());
-  s.numerics.precision = Precision::Float;
-  s.numerics.duration = 1;
+  Scene s = small_shear_box(wet ? "wet_box" : "dry_box", sigma, kWetShear);
+  s.shear_box->rows = 60;
   if (wet) {
     s.effects.cohesion = CohesionModel::Capillary;
-    // water; 1e-3 of a bead's volume per bridge (pendular state)
+    // 1e-3 of a bead's volume per bridge (pendular state)
     s.effects.capillary = {kModelTension, 0, 1e-3 * kPi / 6 * d * d * d};
   }
-  ShearBox b;
-  b.length = 5.27 * d;
-  b.width = 5.26 * d;
-  b.normal_stress = sigma;
-  b.shear_displacement = kWetShear;
-  b.rows = 60;
-  b.settle_time = 0.005;
-  b.specimen.material = 0;
-  b.specimen.diameter = d;
-  b.specimen.layers = 4;
-  b.specimen.seed = 5;
-  // layered (Table 1 method): this 5 x 5 specimen shears along a nearly
-  // flat plane (tau/sigma ~ 0.03), so its peaks are deterministic and the
-  // small cohesion stands out; a poured specimen's peaks scatter by more
-  // than the cohesion (docs/model.md)
-  s.shear_box = b;
-  if (auto issue = build_shear_box(s)) ADD_FAILURE() << issue->field << ": " << issue->message;
   validate_scene(s, s.name);
   return s;
 }

@@ -67,7 +67,9 @@ TEST_P(FluidDrag, SettlingBeadReachesTheTerminalVelocity) {
     EXPECT_NEAR(v / vt, 1.0, 0.02) << "mu = " << mu << " Pa s, Re = " << re;
     // and the law is not plain Stokes once Re is not small
     const double stokes = (kRhoP - kRhoF) * kG * kD * kD / (18 * mu);
-    if (re > 1) EXPECT_LT(v / stokes, 0.9) << "Stokes " << stokes << " m/s";
+    if (re > 1) {
+      EXPECT_LT(v / stokes, 0.9) << "Stokes " << stokes << " m/s";
+    }
   }
 }
 

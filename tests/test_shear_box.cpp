@@ -213,30 +213,10 @@ TEST(ShearAnalysis, FirstPeakIsTheFirstMaximumBeforeSoftening) {
 
 // --- Running tests -----------------------------------------------------------
 
-// A reduced specimen of the paper's beads for the test suite: 5 x 5 beads
-// per layer in a box with the paper's relative clearance, 4 layers.
+// The suite's reduced specimen (test_support.h, small_shear_box).
 Scene small_box(double sigma, double displacement, Precision p = Precision::Float,
                 ShearSpecimen::Method method = ShearSpecimen::Method::Layers) {
-  Scene s;
-  s.name = "small_box";
-  s.materials.push_back(paper_glass());
-  s.numerics.precision = p;
-  s.numerics.duration = 1;
-  ShearBox b;
-  b.length = 5.27 * kD;
-  b.width = 5.26 * kD;
-  b.normal_stress = sigma;
-  b.shear_displacement = displacement;
-  b.rows = 100;
-  b.settle_time = 0.005;
-  b.specimen.material = 0;
-  b.specimen.diameter = kD;
-  b.specimen.layers = 4;
-  b.specimen.seed = 5;
-  b.specimen.method = method;
-  if (method == ShearSpecimen::Method::Pour) b.settle_time = 0.1;
-  s.shear_box = b;
-  if (auto issue = build_shear_box(s)) ADD_FAILURE() << issue->field << ": " << issue->message;
+  Scene s = testing::small_shear_box("small_box", sigma, displacement, p, method);
   validate_scene(s, "small_box");
   return s;
 }

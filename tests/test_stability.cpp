@@ -30,15 +30,6 @@ double kinetic(const Scene& s, const ParticleSnapshot& q) {
   return e;
 }
 
-bool all_finite(const ParticleSnapshot& q) {
-  for (size_t i = 0; i < q.position.size(); ++i)
-    for (int c = 0; c < 3; ++c)
-      if (!std::isfinite(q.position[i][c]) || !std::isfinite(q.velocity[i][c]) ||
-          !std::isfinite(q.angular_velocity[i][c]))
-        return false;
-  return true;
-}
-
 // Case 4. Grazing impacts on a wall with friction: the kinetic energy
 // (translation + rotation) after the impact never exceeds the energy before,
 // for angles from 2 to 80 degrees off the wall, with and without back- and

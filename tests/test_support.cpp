@@ -1,6 +1,8 @@
 #include "test_support.h"
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 namespace simsols::testing {
 
@@ -9,6 +11,45 @@ void report(const std::string& what, double measured, double theory) {
   std::printf("[measure] %s.%s %s: measured %.6g, theory %.6g, error %+.3f%%\n",
               t ? t->test_suite_name() : "", t ? t->name() : "", what.c_str(), measured, theory,
               theory != 0 ? 100.0 * (measured / theory - 1.0) : 0.0);
+}
+
+Scene small_shear_box(const std::string& name, double sigma, double displacement, Precision p,
+                      ShearSpecimen::Method method) {
+  const double d = 6.35e-3;
+  Scene s;
+  s.name = name;
+  s.materials.push_back(paper_glass());
+  s.numerics.precision = p;
+  s.numerics.duration = 1;
+  ShearBox b;
+  b.length = 5.27 * d;
+  b.width = 5.26 * d;
+  b.normal_stress = sigma;
+  b.shear_displacement = displacement;
+  b.rows = 100;
+  b.settle_time = method == ShearSpecimen::Method::Pour ? 0.1 : 0.005;
+  b.specimen.material = 0;
+  b.specimen.diameter = d;
+  b.specimen.layers = 4;
+  b.specimen.seed = 5;
+  b.specimen.method = method;
+  s.shear_box = b;
+  if (auto issue = build_shear_box(s)) ADD_FAILURE() << issue->field << ": " << issue->message;
+  return s;
+}
+
+bool all_finite(const ParticleSnapshot& q) {
+  for (size_t i = 0; i < q.position.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      if (!std::isfinite(q.position[i][c]) || !std::isfinite(q.velocity[i][c]) ||
+          !std::isfinite(q.angular_velocity[i][c]))
+        return false;
+  return true;
+}
+
+bool stability_full_form() {
+  const char* v = std::getenv("SIMSOLS_STABILITY_FULL");
+  return v && std::atoi(v) != 0;
 }
 
 Material glass(double restitution, double mu_s, double mu_r) {

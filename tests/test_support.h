@@ -9,6 +9,7 @@
 #include <string>
 
 #include "scene.h"
+#include "shear_box.h"
 #include "simulation.h"
 
 namespace simsols::testing {
@@ -23,6 +24,20 @@ Particle sphere(double radius, Vec3 position, Vec3 velocity = {}, Vec3 omega = {
 Wall plane(const std::string& name, Vec3 point, Vec3 normal);
 
 double mass(const Scene& s, const Particle& p);
+
+// The suite's reduced direct shear specimen: the paper's 6.35 mm glass
+// beads, 5 x 5 per layer in a box with the paper's relative clearance,
+// 4 layers (seed 5), 100 rows, float. Built (build_shear_box), not yet
+// validated: callers may change effects or rows and then validate_scene.
+Scene small_shear_box(const std::string& name, double sigma, double displacement,
+                      Precision p = Precision::Float,
+                      ShearSpecimen::Method method = ShearSpecimen::Method::Layers);
+
+// No NaN or infinity in positions, velocities or spins.
+bool all_finite(const ParticleSnapshot& q);
+
+// The stability suite's full forms (SIMSOLS_STABILITY_FULL=1, docs/stability.md).
+bool stability_full_form();
 
 // Equivalent Young modulus of a material with itself, and with a rigid-free
 // same-material wall (identical).
