@@ -22,7 +22,9 @@
 #include "paper_tests.h"
 #include "contact_model.h"
 #include "errors.h"
+#include "interrupt.h"
 #include "output.h"
+#include "run_cost.h"
 #include "scene_toml.h"
 #include "shear_box.h"
 #include "shear_plots.h"
@@ -128,8 +130,14 @@ int campaign(const CampaignOptions& opt) {
   }
   fs::create_directories(opt.out_dir);
 
+  InterruptScope interrupt;
   double total_cost = 0, done_cost = 0, spent = 0;
-  for (const Test& t : tests) total_cost += t.cost;
+  for (const Test& t : tests)
+    if (!shear_finished(t.dir.string())) total_cost += t.cost;
+  if (!opt.quiet)
+    std::fprintf(stderr, "[campaign] %zu tests, ~%.3g particle-steps to run, ~%s at %.0e "
+                 "particle-steps/s\n", tests.size(), total_cost,
+                 human_seconds(total_cost / kAssumedRate).c_str(), kAssumedRate);
   for (size_t k = 0; k < tests.size(); ++k) {
     Test& t = tests[k];
     const std::string label = "campaign " + std::to_string(k + 1) + "/" +
@@ -138,7 +146,6 @@ int campaign(const CampaignOptions& opt) {
       t.result.rows = parse_shear_rows_csv(read_text(t.dir / "shear.csv"));
       t.result.summary = parse_shear_summary(read_text(t.dir / "summary.txt"));
       t.result.finished = true;
-      total_cost -= t.cost;
       if (!opt.quiet) std::fprintf(stderr, "[%s] finished earlier, kept\n", label.c_str());
       continue;
     }
@@ -152,8 +159,16 @@ int campaign(const CampaignOptions& opt) {
     o.label = label;
     o.quiet = opt.quiet;
     o.resume = fs::exists(t.dir / "checkpoint.bin") && fs::exists(t.dir / "shear.csv");
+    o.stop_requested = interrupt.stop_function();
+    o.later_particle_steps = total_cost - done_cost - t.cost;
     const auto t0 = std::chrono::steady_clock::now();
     t.result = run_shear(t.scene, o);
+    if (t.result.interrupted) {
+      std::printf("campaign interrupted in test %zu/%zu (%s): its checkpoint and rows are in %s; "
+                  "%zu tests finished. Resume with the same command.\n",
+                  k + 1, tests.size(), t.scene.name.c_str(), t.dir.string().c_str(), k);
+      return interrupt.exit_status();
+    }
     spent += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     done_cost += t.cost;
     const ShearSummary& s = t.result.summary;

@@ -14,6 +14,7 @@
 #include <fstream>
 
 #include "checkpoint.h"
+#include "input_file.h"
 #include "commands.h"
 #include "errors.h"
 #include "frames.h"
@@ -30,13 +31,6 @@ struct SnapshotOptions {
   FrameFlags frame;
 };
 
-bool is_checkpoint(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  char magic[12] = {};
-  in.read(magic, sizeof magic);
-  return in && std::string(magic, sizeof magic) == "SIMSOLS-CKPT";
-}
-
 void check_output_path(const std::string& out, const char* flag) {
   namespace fs = std::filesystem;
   const fs::path p(out);
@@ -52,7 +46,9 @@ int snapshot(const SnapshotOptions& opt) {
   check_output_path(opt.out, "--out");
   if (!std::filesystem::exists(opt.input))
     throw SceneError("io", opt.input, 0, "SCENE_OR_CHECKPOINT", "no such file");
-  const bool checkpoint = is_checkpoint(opt.input);
+  const bool checkpoint = require_scene_or_checkpoint(opt.input, "a scene (TOML) or a checkpoint") ==
+                          InputKind::Checkpoint;
+  if (checkpoint) verify_checkpoint(opt.input);  // a damaged file before any GL work
   Scene scene;
   if (!checkpoint) {
     scene = load_scene(opt.input);  // errors before any GL work

@@ -5,15 +5,24 @@
 // Outputs in DIR, rewritten after every case (an interrupted study keeps the
 // cases it finished): cases.csv, summary.md (tables and the recommendation),
 // error_vs_time_<knob>.png per knob and pareto.png.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 
 #include "commands.h"
 #include "errors.h"
+#include "interrupt.h"
+#include "output.h"
+#include "run_cost.h"
 #include "study.h"
+#include "study_state.h"
 
 namespace simsols {
 namespace {
+
+namespace fs = std::filesystem;
 
 struct StudyOptions {
   std::string what;
@@ -22,7 +31,52 @@ struct StudyOptions {
   std::vector<std::string> knobs;
   bool no_shear = false;
   bool quiet = false;
+  bool resume = false;
 };
+
+std::vector<StudySettings> selected_cases(const StudyPreset& preset, const StudyOptions& opt) {
+  std::vector<StudySettings> cases;
+  for (size_t i = 0; i < preset.cases.size(); ++i) {
+    const StudySettings& s = preset.cases[i];
+    if (i == 0 || opt.knobs.empty() ||
+        std::find(opt.knobs.begin(), opt.knobs.end(), s.knob) != opt.knobs.end())
+      cases.push_back(s);
+  }
+  return cases;
+}
+
+void report_case(const StudyCase& c, bool shear) {
+  if (c.contact.ok)
+    std::fprintf(stderr, "    contact: worst error %.3g %%\n", c.contact.worst());
+  else
+    std::fprintf(stderr, "    contact: failed: %s\n", c.contact.failure.c_str());
+  if (!shear) return;
+  if (c.shear.ok)
+    std::fprintf(stderr, "    shear: phi_peak %.2f, phi_res %.2f, psi_max %.2f deg in %.1f s\n",
+                 c.shear.peak_angle, c.shear.residual_angle, c.shear.dilatancy_angle,
+                 c.shear.wall_seconds);
+  else
+    std::fprintf(stderr, "    shear: failed: %s\n", c.shear.failure.c_str());
+}
+
+// The finished cases of an earlier invocation (--resume), or none.
+std::vector<StudyCase> resumed_cases(const StudyOptions& opt, const StudyPreset& preset,
+                                     const std::vector<StudySettings>& cases) {
+  const fs::path state = fs::path(opt.out) / "study_state.txt";
+  if (!opt.resume) return {};
+  if (!fs::exists(state))
+    throw SceneError("io", state.string(), 0, "--resume",
+                     "no study to resume here (a study writes this file after its first case)");
+  std::ifstream in(state, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  std::vector<StudyCase> done = parse_study_state(text, state.string(), preset, cases);
+  compare_to_reference(done);
+  std::fprintf(stderr, "[study] resumed after %zu of %zu cases%s\n", done.size(), cases.size(),
+               fs::exists(fs::path(opt.out) / "case_checkpoint.bin")
+                   ? " (the next one from its checkpoint)"
+                   : "");
+  return done;
+}
 
 int study(const StudyOptions& opt) {
   if (opt.what != "accuracy")
@@ -32,43 +86,50 @@ int study(const StudyOptions& opt) {
     throw SceneError("bad_enum", "command line", 0, "--preset",
                      "'" + opt.preset + "' is not one of: quick, full, ci");
   if (opt.no_shear) preset->shear = false;
-  std::vector<StudySettings> cases;
-  for (size_t i = 0; i < preset->cases.size(); ++i) {
-    const StudySettings& s = preset->cases[i];
-    if (i == 0 || opt.knobs.empty() ||
-        std::find(opt.knobs.begin(), opt.knobs.end(), s.knob) != opt.knobs.end())
-      cases.push_back(s);
-  }
-  std::vector<StudyCase> done;
+  const std::vector<StudySettings> cases = selected_cases(*preset, opt);
+  std::vector<StudyCase> done = resumed_cases(opt, *preset, cases);
+  if (!opt.resume) fs::remove(fs::path(opt.out) / "case_checkpoint.bin");
+  InterruptScope interrupt;
+  ShearCaseControl control{interrupt.stop_function(),
+                           (fs::path(opt.out) / "case_checkpoint.bin").string()};
   const auto t0 = std::chrono::steady_clock::now();
-  for (size_t i = 0; i < cases.size(); ++i) {
+  const size_t first = done.size();
+  for (size_t i = first; i < cases.size(); ++i) {
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const std::string eta =
+        i > first ? ", ETA " + human_seconds(elapsed / double(i - first) * double(cases.size() - i))
+                  : "";
     if (!opt.quiet)
-      std::fprintf(stderr, "[study %zu/%zu] %s: %s (elapsed %.0f s%s)\n", i + 1, cases.size(),
-                   cases[i].knob.c_str(), cases[i].label.c_str(), elapsed,
-                   i > 0 ? (", ETA " + std::to_string(int(elapsed / i * (cases.size() - i))) + " s").c_str() : "");
+      std::fprintf(stderr, "[study %zu/%zu] %s: %s (elapsed %s%s)\n", i + 1, cases.size(),
+                   cases[i].knob.c_str(), cases[i].label.c_str(), human_seconds(elapsed).c_str(),
+                   eta.c_str());
     StudyCase c;
     c.settings = cases[i];
     c.contact = run_contact_checks(cases[i]);
-    if (preset->shear) c.shear = run_shear_case(*preset, cases[i]);
-    if (!opt.quiet) {
-      if (c.contact.ok)
-        std::fprintf(stderr, "    contact: worst error %.3g %%\n", c.contact.worst());
-      else
-        std::fprintf(stderr, "    contact: failed: %s\n", c.contact.failure.c_str());
-      if (preset->shear) {
-        if (c.shear.ok)
-          std::fprintf(stderr, "    shear: phi_peak %.2f, phi_res %.2f, psi_max %.2f deg in %.1f s\n",
-                       c.shear.peak_angle, c.shear.residual_angle, c.shear.dilatancy_angle,
-                       c.shear.wall_seconds);
-        else
-          std::fprintf(stderr, "    shear: failed: %s\n", c.shear.failure.c_str());
-      }
+    if (preset->shear) c.shear = run_shear_case(*preset, cases[i], control);
+    if (c.shear.interrupted) {
+      std::printf("study interrupted in case %zu/%zu (%s): %zu cases finished, the case's state is "
+                  "in %s. Resume with: simsols study %s --out %s --preset %s%s --resume\n",
+                  i + 1, cases.size(), cases[i].label.c_str(), done.size(),
+                  control.checkpoint.c_str(), opt.what.c_str(), opt.out.c_str(),
+                  opt.preset.c_str(), opt.no_shear ? " --no-shear" : "");
+      return interrupt.exit_status();
     }
+    fs::remove(control.checkpoint);
+    if (!opt.quiet) report_case(c, preset->shear);
     done.push_back(c);
     compare_to_reference(done);
     write_study_outputs(opt.out, *preset, done);
+    write_file_atomic((fs::path(opt.out) / "study_state.txt").string(),
+                      study_state_text(*preset, cases, done));
+    if (interrupt.requested() && i + 1 < cases.size()) {
+      std::printf("study interrupted after case %zu/%zu. Resume with: simsols study %s --out %s "
+                  "--preset %s%s --resume\n",
+                  i + 1, cases.size(), opt.what.c_str(), opt.out.c_str(), opt.preset.c_str(),
+                  opt.no_shear ? " --no-shear" : "");
+      return interrupt.exit_status();
+    }
   }
   std::printf("study %s (%s): %zu cases; results in %s (cases.csv, summary.md, pareto.png)\n",
               opt.what.c_str(), preset->name.c_str(), done.size(), opt.out.c_str());
@@ -88,6 +149,8 @@ CommandRunner add_study_command(CLI::App& app) {
                   "Only these knobs (with the reference): time step, precision, stiffness, "
                   "inertial number, skin, effects, combination, baseline");
   cmd->add_flag("--no-shear", opt->no_shear, "Contact checks only");
+  cmd->add_flag("--resume", opt->resume,
+                "Continue the study in --out after its finished cases (same --preset and --knob)");
   cmd->add_flag("--quiet,-q", opt->quiet, "No progress lines");
   return [opt] { return study(*opt); };
 }

@@ -17,7 +17,7 @@ class Progress {
   void finish(std::int64_t step);
 
  private:
-  std::string line(std::int64_t step) const;
+  std::string line(std::int64_t step, bool final) const;
   std::string label_;
   std::int64_t total_, first_step_ = -1, particles_;
   double dt_;

@@ -34,12 +34,19 @@ struct ShearRunOptions {
   // the simulation and whether the shear phase has begun.
   std::function<void(Simulation&, bool shearing)> after_chunk;
   long long chunk_steps = 2000;
+  // Polled between chunks (Ctrl-C, interrupt.h): when it answers true the
+  // run writes its checkpoint and rows and returns with `interrupted`.
+  std::function<bool()> stop_requested;
+  // Particle-steps of the work that follows this test (the rest of a
+  // campaign), so the progress line's ETA covers the whole programme.
+  double later_particle_steps = 0;
 };
 
 struct ShearRunResult {
   ShearSummary summary;
   std::vector<ShearRow> rows;
-  bool finished = false;       // false: stopped by stop_after (resumable)
+  bool finished = false;       // false: stopped by stop_after or interrupted (resumable)
+  bool interrupted = false;    // stopped by stop_requested
   long long steps = 0;
   int particles = 0;
   double dt = 0;
@@ -49,6 +56,16 @@ struct ShearRunResult {
 // SceneError / DeviceError like the other commands, and RunawayError when a
 // step ran away (after saving the state before it, see save_fault).
 ShearRunResult run_shear(const Scene& scene, const ShearRunOptions& options);
+
+// Continues the test in options.out_dir from a checkpoint already loaded
+// (`sim`, with the driver state `extra` it carried); prints where it
+// resumed ("resumed at step N, t = ..., dx = ... mm").
+ShearRunResult resume_shear(std::unique_ptr<Simulation> sim, const std::string& extra,
+                            const ShearRunOptions& options);
+
+// One line for a run that stopped (interrupted or --stop-after): where, and
+// the command that resumes it.
+std::string resume_hint(const std::string& out_dir);
 
 // After a RunawayError: `sim` (at the step before the fault) into
 // dir/fault_checkpoint.bin with the driver's `extra`, and the message into

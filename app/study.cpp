@@ -4,12 +4,15 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <numbers>
 #include <sstream>
 
 #include "chart.h"
+#include "checkpoint.h"
 #include "contact_model.h"
+#include "errors.h"
 #include "output.h"
 #include "paper_tests.h"
 #include "scene_toml.h"
@@ -223,56 +226,91 @@ ContactErrors run_contact_checks(const StudySettings& s) {
   return e;
 }
 
-ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s) {
+namespace {
+
+Scene shear_case_scene(const StudyPreset& preset, const StudySettings& s) {
+  const Scene base = parse_scene(default_shear_scene_text(), "assets/scenes/shear_box.toml");
+  const double d = preset.diameter_mm * 1e-3;
+  return paper_test_scene(
+      base, "assets/scenes/shear_box.toml", preset.diameter_mm, preset.stress_kpa, preset.layers,
+      [&](Scene& x) {
+        x.numerics.precision = s.precision;
+        x.numerics.dt_fraction = s.dt_fraction;
+        x.numerics.dt = 0;
+        x.numerics.force_dt = s.dt_fraction > kMaxDtFraction;
+        x.numerics.skin = s.skin_factor * d;
+        for (Material& m : x.materials) m.young_modulus *= s.stiffness_scale;
+        x.effects.rolling = s.rolling ? RollingModel::ConstantTorque : RollingModel::None;
+        x.effects.damping = s.damping ? DampingModel::Viscous : DampingModel::None;
+        x.shear_box->inertial_number = s.inertial_number;
+        x.shear_box->shear_speed = 0;
+        x.shear_box->shear_displacement = preset.displacement_mm * 1e-3;
+        x.shear_box->rows = preset.rows;
+      });
+}
+
+// Throws when the run broke (NaN, beads out, a neighbour list outrun).
+void check_case(Simulation& sim, const ShearTest& test) {
+  if (!test.rows().empty()) {
+    const ShearRow& row = test.rows().back();
+    if (!std::isfinite(row.tau) || !std::isfinite(row.dilation))
+      throw std::runtime_error("NaN in the measurements");
+    if (row.outside > 0)
+      throw std::runtime_error(std::to_string(row.outside) + " beads left the box");
+  }
+  if (sim.state().late_builds > 0)
+    throw std::runtime_error("a bead outran its neighbour list (skin too small for the step)");
+}
+
+constexpr const char* kCaseWallKey = "\ncase_wall_seconds ";
+
+}  // namespace
+
+ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s,
+                           const ShearCaseControl& control) {
   ShearResult r;
   try {
-    const Scene base = parse_scene(default_shear_scene_text(), "assets/scenes/shear_box.toml");
-    const double d = preset.diameter_mm * 1e-3;
-    const Scene sc = paper_test_scene(
-        base, "assets/scenes/shear_box.toml", preset.diameter_mm, preset.stress_kpa, preset.layers,
-        [&](Scene& x) {
-          x.numerics.precision = s.precision;
-          x.numerics.dt_fraction = s.dt_fraction;
-          x.numerics.dt = 0;
-          x.numerics.force_dt = s.dt_fraction > kMaxDtFraction;
-          x.numerics.skin = s.skin_factor * d;
-          for (Material& m : x.materials) m.young_modulus *= s.stiffness_scale;
-          x.effects.rolling = s.rolling ? RollingModel::ConstantTorque : RollingModel::None;
-          x.effects.damping = s.damping ? DampingModel::Viscous : DampingModel::None;
-          x.shear_box->inertial_number = s.inertial_number;
-          x.shear_box->shear_speed = 0;
-          x.shear_box->shear_displacement = preset.displacement_mm * 1e-3;
-          x.shear_box->rows = preset.rows;
-        });
-    Simulation sim(default_device(), sc);
-    ShearTest test(sim);
+    std::unique_ptr<Simulation> sim;
+    std::string state;
+    double wall_before = 0;
+    if (!control.checkpoint.empty() && std::filesystem::exists(control.checkpoint)) {
+      sim = load_checkpoint(default_device(), control.checkpoint, &state);
+      if (const size_t at = state.rfind(kCaseWallKey); at != std::string::npos)
+        wall_before = std::atof(state.c_str() + at + std::strlen(kCaseWallKey));
+    } else {
+      sim = std::make_unique<Simulation>(default_device(), shear_case_scene(preset, s));
+    }
+    ShearTest test(*sim);
+    if (!state.empty()) test.restore_state(state);
     const auto t0 = Clock::now();
     while (!test.done()) {
-      test.advance(5000);
-      if (!test.rows().empty()) {
-        const ShearRow& row = test.rows().back();
-        if (!std::isfinite(row.tau) || !std::isfinite(row.dilation))
-          throw std::runtime_error("NaN in the measurements");
-        if (row.outside > 0)
-          throw std::runtime_error(std::to_string(row.outside) + " beads left the box");
+      if (control.stop_requested && control.stop_requested()) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%s%.3f\n", kCaseWallKey,
+                      wall_before + std::chrono::duration<double>(Clock::now() - t0).count());
+        save_checkpoint(*sim, control.checkpoint, test.save_state() + buf);
+        r.interrupted = true;
+        return r;
       }
-      if (sim.state().late_builds > 0)
-        throw std::runtime_error("a bead outran its neighbour list (skin too small for the step)");
-      const Observables o = sim.steps() % 50000 < 5000 ? sim.observe() : Observables{};
+      test.advance(5000);
+      check_case(*sim, test);
+      const Observables o = sim->steps() % 50000 < 5000 ? sim->observe() : Observables{};
       if (!std::isfinite(o.kinetic())) throw std::runtime_error("NaN in the kinetic energy");
     }
-    r.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    r.wall_seconds = wall_before + std::chrono::duration<double>(Clock::now() - t0).count();
     const ShearSummary sum = test.summary();
     r.peak_angle = sum.peak_angle;
     r.residual_angle = sum.residual_angle;
     r.dilatancy_angle = sum.max_dilatancy_angle;
-    r.steps = sim.steps();
-    r.list_builds = sim.state().list_builds;
-    r.particles = sim.model().particles();
+    r.steps = sim->steps();
+    r.list_builds = sim->state().list_builds;
+    r.particles = sim->model().particles();
     r.particle_steps_per_second = r.wall_seconds > 0 ? double(r.particles) * r.steps / r.wall_seconds : 0;
     if (!std::isfinite(r.peak_angle) || !std::isfinite(r.residual_angle))
       throw std::runtime_error("NaN in the summary");
     r.ok = true;
+  } catch (const SceneError&) {
+    throw;  // a damaged case checkpoint is the user's to hear about, not a failed case
   } catch (const std::exception& x) {
     r.ok = false;
     r.failure = x.what();

@@ -22,6 +22,7 @@
 // speed (inertial number), neighbour skin, and the optional effects.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -55,6 +56,7 @@ struct ShearResult {
   double wall_seconds = 0, particle_steps_per_second = 0;
   long long steps = 0, list_builds = 0;
   int particles = 0;
+  bool interrupted = false;  // stopped by ShearCaseControl::stop_requested (checkpointed)
 };
 
 struct StudyCase {
@@ -79,7 +81,16 @@ struct StudyPreset {
 std::optional<StudyPreset> study_preset(const std::string& name);
 
 ContactErrors run_contact_checks(const StudySettings& s);
-ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s);
+// Where a shear case may be stopped and continued (study_state.h): polled
+// between chunks; when it answers true the case's state goes to
+// `checkpoint` and the result comes back with `interrupted`. A case whose
+// `checkpoint` exists when it starts continues from it.
+struct ShearCaseControl {
+  std::function<bool()> stop_requested;
+  std::string checkpoint;
+};
+ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s,
+                           const ShearCaseControl& control = {});
 // Fills the errors against cases[0] (the reference).
 void compare_to_reference(std::vector<StudyCase>& cases);
 

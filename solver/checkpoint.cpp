@@ -1,6 +1,10 @@
 #include "checkpoint.h"
 
+#include <zlib.h>
+
+#include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -13,17 +17,42 @@ namespace simsols {
 namespace {
 
 constexpr char kMagic[12] = {'S', 'I', 'M', 'S', 'O', 'L', 'S', '-', 'C', 'K', 'P', 'T'};
-constexpr std::uint32_t kVersion = 3;
+constexpr std::uint32_t kUnverifiedVersion = 3;  // same payload, no size or checksum
 
+[[noreturn]] void refuse(const std::string& path, const std::string& what) {
+  throw SceneError("bad_checkpoint", path, 0, "", "not a usable SimSols checkpoint: " + what);
+}
+
+std::uint32_t crc_update(std::uint32_t crc, const void* p, size_t n) {
+  const auto* b = static_cast<const Bytef*>(p);
+  while (n > 0) {  // zlib takes uInt lengths
+    const uInt chunk = static_cast<uInt>(std::min<size_t>(n, 1u << 30));
+    crc = static_cast<std::uint32_t>(crc32(crc, b, chunk));
+    b += chunk;
+    n -= chunk;
+  }
+  return crc;
+}
+
+// Streams the payload into the file, keeping its size and checksum.
 class Writer {
  public:
   explicit Writer(std::ofstream& out) : out_(out) {}
-  template <typename T> void pod(const T& v) { out_.write(reinterpret_cast<const char*>(&v), sizeof v); }
-  void bytes(const void* p, size_t n) { pod<std::uint64_t>(n); out_.write(static_cast<const char*>(p), n); }
+  template <typename T> void pod(const T& v) { raw(&v, sizeof v); }
+  void bytes(const void* p, size_t n) { pod<std::uint64_t>(n); raw(p, n); }
   void str(const std::string& s) { bytes(s.data(), s.size()); }
+  std::uint64_t size() const { return size_; }
+  std::uint32_t crc() const { return crc_; }
 
  private:
+  void raw(const void* p, size_t n) {
+    out_.write(static_cast<const char*>(p), static_cast<std::streamsize>(n));
+    crc_ = crc_update(crc_, p, n);
+    size_ += n;
+  }
   std::ofstream& out_;
+  std::uint64_t size_ = 0;
+  std::uint32_t crc_ = 0;
 };
 
 class Reader {
@@ -44,14 +73,75 @@ class Reader {
     return b;
   }
   std::string str() { auto b = bytes(); return std::string(b.begin(), b.end()); }
-  [[noreturn]] void fail(const std::string& what) {
-    throw SceneError("bad_checkpoint", path_, 0, "", "not a usable SimSols checkpoint: " + what);
-  }
+  [[noreturn]] void fail(const std::string& what) { refuse(path_, what); }
 
  private:
   std::ifstream& in_;
   std::string path_;
 };
+
+struct Header {
+  std::uint32_t version = 0;
+  std::uint64_t payload = 0;
+  std::uint32_t crc = 0;
+};
+
+// Reads and checks magic and version; leaves `in` at the payload.
+Header read_header(std::ifstream& in, const std::string& path) {
+  char magic[sizeof kMagic];
+  in.read(magic, sizeof magic);
+  if (!in || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
+    refuse(path, "it does not start with SIMSOLS-CKPT");
+  Reader r(in, path);
+  Header h;
+  h.version = r.pod<std::uint32_t>();
+  if (h.version == kUnverifiedVersion) return h;
+  if (h.version != kCheckpointVersion)
+    refuse(path, "format version " + std::to_string(h.version) + ", this build reads versions " +
+                     std::to_string(kUnverifiedVersion) + " and " +
+                     std::to_string(kCheckpointVersion));
+  h.payload = r.pod<std::uint64_t>();
+  h.crc = r.pod<std::uint32_t>();
+  return h;
+}
+
+void write_payload(Writer& w, Simulation& sim, const std::string& extra) {
+  w.str(to_toml(sim.scene()));
+  State& s = sim.state();
+  w.pod<std::int64_t>(s.step);
+  w.pod<std::int64_t>(s.list_builds);
+  w.pod<std::int64_t>(s.next_check);
+  w.pod<std::int64_t>(s.late_builds);
+  w.pod<std::int32_t>(s.cap);
+  std::vector<char> data;
+  for (auto& [name, buf] : s.dynamic_buffers()) {
+    data.resize(buf->bytes);
+    sim.model().device().read(buf->get(), buf->bytes, data.data());
+    w.str(name);
+    w.bytes(data.data(), data.size());
+  }
+  w.str(extra);
+}
+
+void read_buffers(Reader& r, Simulation& sim) {
+  for (auto& [name, buf] : sim.state().dynamic_buffers()) {
+    if (r.str() != name) r.fail("buffer '" + name + "' missing");
+    const std::vector<char> data = r.bytes();
+    // flags grew from 4 to 8 ints (the runaway mark, guard.h): an older
+    // file's 4 keep the new ones at their initial values
+    const bool older_flags = name == "flags" && data.size() == 16 && buf->bytes == 32;
+    // before the effect slots, every scene kept a tangential spring per list
+    // and wall slot; a scene whose slots need no history now has a 16-byte
+    // stand-in, and the older file's (zero, unused) springs are dropped
+    const bool unused_history =
+        (name == "spring" || name == "wall_spring") && buf->bytes == 16 && data.size() > 16 &&
+        sim.model().config().history_planes() == 0;
+    if (unused_history) continue;
+    if (data.size() != buf->bytes && !older_flags)
+      r.fail("buffer '" + name + "' has the wrong size");
+    sim.model().device().write(buf->get(), data.size(), data.data());
+  }
+}
 
 }  // namespace
 
@@ -61,39 +151,62 @@ void save_checkpoint(Simulation& sim, const std::string& path, const std::string
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw DeviceError("cannot write checkpoint " + tmp);
-    Writer w(out);
     out.write(kMagic, sizeof kMagic);
-    w.pod(kVersion);
-    w.str(to_toml(sim.scene()));
-    State& s = sim.state();
-    w.pod<std::int64_t>(s.step);
-    w.pod<std::int64_t>(s.list_builds);
-    w.pod<std::int64_t>(s.next_check);
-    w.pod<std::int64_t>(s.late_builds);
-    w.pod<std::int32_t>(s.cap);
-    std::vector<char> data;
-    for (auto& [name, buf] : s.dynamic_buffers()) {
-      data.resize(buf->bytes);
-      sim.model().device().read(buf->get(), buf->bytes, data.data());
-      w.str(name);
-      w.bytes(data.data(), data.size());
-    }
-    w.str(extra);
+    out.write(reinterpret_cast<const char*>(&kCheckpointVersion), 4);
+    const char placeholder[12] = {};
+    out.write(placeholder, sizeof placeholder);  // payload size and CRC, below
+    Writer w(out);
+    write_payload(w, sim, extra);
+    const std::uint64_t size = w.size();
+    const std::uint32_t crc = w.crc();
+    out.seekp(sizeof kMagic + 4);
+    out.write(reinterpret_cast<const char*>(&size), sizeof size);
+    out.write(reinterpret_cast<const char*>(&crc), sizeof crc);
     out.flush();
-    if (!out) throw DeviceError("failed writing checkpoint " + tmp);
+    if (!out) {
+      out.close();
+      std::filesystem::remove(tmp);
+      throw DeviceError("failed writing checkpoint " + tmp + " (disk full?)");
+    }
   }
   std::filesystem::rename(tmp, path);
 }
 
-std::unique_ptr<Simulation> load_checkpoint(std::shared_ptr<Device> device, const std::string& path,
-                                            std::string* extra) {
+std::uint32_t verify_checkpoint(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError("io", path, 0, "", "cannot open checkpoint");
+  const Header h = read_header(in, path);
+  if (h.version == kUnverifiedVersion) return h.version;
+  std::uint32_t crc = 0;
+  std::uint64_t seen = 0;
+  std::vector<char> chunk(1 << 20);
+  while (in) {
+    in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+    const auto got = static_cast<size_t>(in.gcount());
+    crc = crc_update(crc, chunk.data(), got);
+    seen += got;
+  }
+  if (seen != h.payload)
+    refuse(path, "its payload is " + std::to_string(seen) + " bytes, the header says " +
+                     std::to_string(h.payload) + " (truncated or damaged file)");
+  if (crc != h.crc) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "checksum mismatch (CRC-32 %08x, the header says %08x)", crc,
+                  h.crc);
+    refuse(path, std::string(buf) + ": the file is damaged");
+  }
+  return h.version;
+}
+
+std::unique_ptr<Simulation> load_checkpoint(std::shared_ptr<Device> device, const std::string& path,
+                                            std::string* extra) {
+  if (verify_checkpoint(path) == kUnverifiedVersion)
+    std::fprintf(stderr, "warning: %s is a version 3 checkpoint, without a checksum: loaded unverified\n",
+                 path.c_str());
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError("io", path, 0, "", "cannot open checkpoint");
+  read_header(in, path);
   Reader r(in, path);
-  char magic[sizeof kMagic];
-  in.read(magic, sizeof magic);
-  if (!in || std::memcmp(magic, kMagic, sizeof kMagic) != 0) r.fail("wrong magic");
-  if (r.pod<std::uint32_t>() != kVersion) r.fail("unsupported version");
   const std::string text = r.str();
   Scene scene = parse_scene(text, path + " (embedded scene)");
   auto sim = std::make_unique<Simulation>(std::move(device), scene);
@@ -105,23 +218,7 @@ std::unique_ptr<Simulation> load_checkpoint(std::shared_ptr<Device> device, cons
   s.late_builds = r.pod<std::int64_t>();
   const int cap = r.pod<std::int32_t>();
   if (cap != s.cap) s.resize_lists(sim->model(), cap);
-  for (auto& [name, buf] : s.dynamic_buffers()) {
-    if (r.str() != name) r.fail("buffer '" + name + "' missing");
-    const std::vector<char> data = r.bytes();
-    // flags grew from 4 to 8 ints (the runaway mark, guard.h): an older
-    // file's 4 keep the new ones at their initial values
-    const bool older_flags = name == "flags" && data.size() == 16 && buf->bytes == 32;
-    // before the effect slots, every scene kept a tangential spring per list
-    // and wall slot; a scene whose slots need no history now has a 16-byte
-    // stand-in, and the older file's (zero, unused) springs are dropped
-    const bool unused_history =
-        (name == "spring" || name == "wall_spring") && buf->bytes == 16 && data.size() > 16 &&
-        sim->model().config().history_planes() == 0;
-    if (unused_history) continue;
-    if (data.size() != buf->bytes && !older_flags)
-      r.fail("buffer '" + name + "' has the wrong size");
-    sim->model().device().write(buf->get(), data.size(), data.data());
-  }
+  read_buffers(r, *sim);
   derive_state(sim->model(), sim->state());
   sim->state_replaced();
   const std::string rest = r.str();

@@ -2,13 +2,26 @@
 // continues bit for bit as if it had never stopped (same device, same
 // precision).
 //
-// File layout (little endian): "SIMSOLS-CKPT" magic, format version, the
-// scene as exact TOML (to_toml), step, list builds, next list check, late
-// builds, neighbour capacity, then
-// every dynamic buffer as (name, byte count, bytes), then the driver's `extra`. Files are written to a
-// temporary name and renamed, so a crash never leaves half a checkpoint.
+// File layout (format version 4, little endian):
+//   "SIMSOLS-CKPT"   12 bytes of magic
+//   version          u32 (4)
+//   payload bytes    u64
+//   payload CRC-32   u32 (zlib's crc32 of the payload)
+//   payload          the scene as exact TOML (to_toml), step, list builds,
+//                    next list check, late builds, neighbour capacity, every
+//                    dynamic buffer as (name, byte count, bytes), then the
+//                    driver's `extra` (e.g. the shear test's loading program)
+// The whole file is verified (size and checksum) before anything is built
+// from it, so a damaged file is refused with the reason instead of
+// resuming from garbage. Version 3 files (the same payload without size and
+// checksum) are still read, unverified, with a warning.
+//
+// Files are written to a temporary name in the same folder and renamed, so
+// a crash or a kill -9 never leaves half a checkpoint: the previous one
+// stays loadable until the new one is complete.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -16,12 +29,20 @@
 
 namespace simsols {
 
+inline constexpr std::uint32_t kCheckpointVersion = 4;
+
 // `extra`: the state of whatever drives the run (e.g. the shear test's
 // loading program), stored verbatim and handed back by load_checkpoint.
 void save_checkpoint(Simulation& sim, const std::string& path, const std::string& extra = {});
 
-// Rebuilds the simulation from a checkpoint. Throws SceneError (bad or
-// foreign file, named with its path) or DeviceError.
+// Throws SceneError naming `path` unless it is a complete checkpoint whose
+// size and checksum match (version 4) or a version 3 file. Reads the file
+// once; builds nothing. Returns the format version.
+std::uint32_t verify_checkpoint(const std::string& path);
+
+// Rebuilds the simulation from a checkpoint (verified first). Throws
+// SceneError (bad, damaged or foreign file, named with its path) or
+// DeviceError.
 std::unique_ptr<Simulation> load_checkpoint(std::shared_ptr<Device> device,
                                             const std::string& path,
                                             std::string* extra = nullptr);

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "errors.h"
@@ -37,13 +38,19 @@ void write_file_atomic(const std::string& path, const std::string& content) {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw DeviceError("cannot write " + tmp);
     out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    if (!out) throw DeviceError("failed writing " + tmp);
+    out.flush();
+    if (!out) {
+      out.close();
+      std::filesystem::remove(tmp);
+      throw DeviceError("failed writing " + tmp + " (disk full?)");
+    }
   }
   std::filesystem::rename(tmp, path);
 }
 
 void write_particles_csv(const std::string& path, const ParticleSnapshot& p) {
-  std::string s = "id,material,radius,x,y,z,vx,vy,vz,wx,wy,wz,fx,fy,fz,contacts\n";
+  std::string s = "id,material,radius_m,x_m,y_m,z_m,vx_m_s,vy_m_s,vz_m_s,wx_rad_s,wy_rad_s,wz_rad_s,"
+                  "fx_N,fy_N,fz_N,contacts\n";
   s.reserve(p.radius.size() * 200);
   for (size_t i = 0; i < p.radius.size(); ++i) {
     s += std::to_string(i) + "," + std::to_string(p.material[i]) + "," + fmt(p.radius[i]);
@@ -87,12 +94,13 @@ void write_particles_vtk(const std::string& path, const ParticleSnapshot& p, dou
 }
 
 TimeSeries::TimeSeries(const std::string& path, const std::vector<std::string>& wall_names,
-                       long long resume_step) {
-  std::string header = "time,step,kinetic_energy,rotational_energy,elastic_energy,"
-                       "gravitational_energy,contacts,coordination";
+                       long long resume_step)
+    : path_(path), written_(std::chrono::steady_clock::now()) {
+  std::string header = "time_s,step,kinetic_energy_J,rotational_energy_J,elastic_energy_J,"
+                       "gravitational_energy_J,contacts,coordination";
   for (const std::string& w : wall_names)
-    for (const char* c : {"_fx", "_fy", "_fz", "_x", "_y", "_z"}) header += "," + w + c;
-  std::string keep = header + "\n";
+    for (const char* c : {"_fx_N", "_fy_N", "_fz_N", "_x_m", "_y_m", "_z_m"}) header += "," + w + c;
+  text_ = header + "\n";
   if (resume_step >= 0) {
     std::ifstream in(path);
     std::string line;
@@ -102,12 +110,23 @@ TimeSeries::TimeSeries(const std::string& path, const std::vector<std::string>& 
       const size_t b = line.find(',', a + 1);
       if (a == std::string::npos || b == std::string::npos) break;
       if (std::stoll(line.substr(a + 1, b - a - 1)) > resume_step) break;
-      keep += line + "\n";
+      text_ += line + "\n";
     }
   }
-  write_file_atomic(path, keep);
-  out_.open(path, std::ios::app);
-  if (!out_) throw DeviceError("cannot append to " + path);
+  flush();
+}
+
+TimeSeries::~TimeSeries() {
+  try {
+    if (dirty_) flush();
+  } catch (...) {  // a destructor must not throw; the last flush() reported it
+  }
+}
+
+void TimeSeries::flush() {
+  write_file_atomic(path_, text_);
+  dirty_ = false;
+  written_ = std::chrono::steady_clock::now();
 }
 
 void TimeSeries::append(double time, long long step, const Observables& o,
@@ -125,8 +144,11 @@ void TimeSeries::append(double time, long long step, const Observables& o,
     for (double c : walls[w].force) s += "," + fmt(c);
     for (double c : wall_points[w]) s += "," + fmt(c);
   }
-  out_ << s << "\n";
-  out_.flush();
+  text_ += s + "\n";
+  dirty_ = true;
+  const double since =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - written_).count();
+  if (since > 10) flush();
 }
 
 }  // namespace simsols

@@ -5,12 +5,13 @@
 //                                velocity, force, contacts, material)
 //   series.csv                   one row per output step (TimeSeries)
 //
-// Every file except series.csv is written to a temporary name and renamed,
-// so no reader ever sees half a file. series.csv is appended row by row and
-// flushed; a resumed run truncates it back to its checkpoint.
+// Every file is written to a temporary name and renamed, so no reader (and
+// no kill) ever sees half a file. series.csv is kept in memory and written
+// whole at least every 10 s of wall time, at every checkpoint and at the
+// end; a resumed run keeps its rows up to the checkpoint's step.
 #pragma once
 
-#include <fstream>
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -28,11 +29,15 @@ class TimeSeries {
   // otherwise starts a new file.
   TimeSeries(const std::string& path, const std::vector<std::string>& wall_names,
              long long resume_step = -1);
+  ~TimeSeries();  // writes what is not written yet (errors ignored)
   void append(double time, long long step, const Observables& o,
               const std::vector<WallReaction>& walls, const std::vector<Vec3>& wall_points);
+  void flush();  // writes the file now (atomically)
 
  private:
-  std::ofstream out_;
+  std::string path_, text_;
+  bool dirty_ = false;
+  std::chrono::steady_clock::time_point written_;
 };
 
 }  // namespace simsols

@@ -1,6 +1,8 @@
 // TOML scene files: loader, particle generators and writer. See scene_toml.h
 // for the design and docs/scene-format.md for the format.
 #include "scene_toml.h"
+
+#include "input_file.h"
 #include "shear_box.h"
 
 #include <toml++/toml.h>
@@ -1138,6 +1140,11 @@ Scene load_scene(const std::string& path) {
   if (!std::filesystem::is_regular_file(path, ec))
     throw SceneError("io", path, 0, "",
                      "cannot read the scene: no such file (or not a regular file)");
+  if (require_scene_or_checkpoint(path, "a scene (TOML)") == InputKind::Checkpoint)
+    throw SceneError("not_a_scene", path, 0, "",
+                     "a SimSols checkpoint, not a scene: resume it with 'simsols run --resume "
+                     "--out DIR' (DIR holding it as checkpoint.bin) or draw it with 'simsols "
+                     "snapshot'");
   std::ifstream in(path, std::ios::binary);
   std::ostringstream text;
   if (in) text << in.rdbuf();

@@ -22,6 +22,11 @@ constexpr double kRad = 180.0 / kPi;
 constexpr double kGainFraction = 0.5;
 constexpr double kIntegralPeriods = 5.0;
 
+// Shares of the settle and consolidate caps the paper's tests take before
+// their end criteria hold (for progress estimates only).
+constexpr double kSettleShare = 0.3;
+constexpr double kConsolidateShare = 0.3;
+
 const ShearBox& box_of(const Simulation& sim) {
   if (!sim.scene().shear_box) throw std::invalid_argument("ShearTest: the scene has no shear box");
   return *sim.scene().shear_box;
@@ -299,23 +304,41 @@ bool ShearTest::advance(std::int64_t max_steps) {
   return false;
 }
 
-double ShearTest::progress() const {
+// The preparation phases end when their criteria hold (settled(),
+// consolidated()), usually well before their caps; the estimates use the
+// shares of the caps the paper's tests take (kSettleShare, kConsolidateShare)
+// and the shear its exact step count once it has begun.
+ShearTest::StepCount ShearTest::step_count() const {
   const double dt = sim_.dt();
-  const double settle = box_.settle_time / dt, consolidate = 0.3 * box_.consolidate_time / dt;
+  const double elapsed = started_ ? double(sim_.steps() - phase_start_) : 0;
+  const double settle = box_.settle_time / dt * kSettleShare;
+  const double consolidate = box_.consolidate_time / dt * kConsolidateShare;
   const double shear = shear_steps_ > 0 ? double(shear_steps_)
                                         : box_.shear_displacement /
-                                              (shear_speed_for(4 * diameter_) * dt);
-  const double total = 0.3 * settle + consolidate + shear;
-  const double elapsed = double(sim_.steps() - phase_start_);
+                                              (shear_speed_for(layers_ * diameter_) * dt);
+  const double settled = settle_seconds_ / dt, consolidated = consolidate_seconds_ / dt;
+  StepCount c;
   switch (phase_) {
-    case ShearPhase::Settle: return std::min(0.3 * settle, elapsed) / total;
+    case ShearPhase::Settle:
+      c.done = elapsed;
+      c.total = std::max(settle, elapsed) + consolidate + shear;
+      break;
     case ShearPhase::Consolidate:
-      return (0.3 * settle + std::min(consolidate, elapsed)) / total;
+      c.done = settled + elapsed;
+      c.total = settled + std::max(consolidate, elapsed) + shear;
+      break;
     case ShearPhase::Shear:
-      return (0.3 * settle + consolidate + std::min(shear, elapsed)) / total;
-    case ShearPhase::Done: return 1;
+      c.done = settled + consolidated + elapsed;
+      c.total = settled + consolidated + std::max(shear, elapsed);
+      break;
+    case ShearPhase::Done: c.done = c.total = settled + consolidated + double(shear_steps_); break;
   }
-  return 0;
+  return c;
+}
+
+double ShearTest::progress() const {
+  const StepCount c = step_count();
+  return c.total > 0 ? std::min(1.0, c.done / c.total) : 0;
 }
 
 std::string ShearTest::status() const {

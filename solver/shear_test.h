@@ -94,7 +94,13 @@ class ShearTest {
   double inertial_number() const;
   double servo_gain() const { return gain_; }
   double servo_integral_time() const { return integral_time_; }
-  // Rough fraction of the whole test done (phases weighted by their caps).
+  // Steps of the whole loading programme (settle, consolidate, shear):
+  // done so far, and done plus an estimate of those left (exact once the
+  // shear has begun). progress() = done / total.
+  struct StepCount {
+    double done = 0, total = 0;
+  };
+  StepCount step_count() const;
   double progress() const;
   // A one-line description of where the test is, for progress lines.
   std::string status() const;

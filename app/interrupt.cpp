@@ -1,0 +1,53 @@
+#include "interrupt.h"
+
+#include <unistd.h>
+
+#include <cstring>
+
+namespace simsols {
+namespace {
+
+volatile std::sig_atomic_t g_signal = 0;  // see interrupt.h: the one process-wide flag
+
+void on_signal(int sig) {
+  if (g_signal != 0) {  // the second one: leave now
+    static const char msg[] = "\nsecond interrupt: exiting at once\n";
+    [[maybe_unused]] const ssize_t n = write(STDERR_FILENO, msg, sizeof msg - 1);
+    _exit(128 + sig);
+  }
+  g_signal = sig;
+  static const char msg[] =
+      "\ninterrupted: finishing the current step, then writing the checkpoint (interrupt again "
+      "to exit at once)\n";
+  [[maybe_unused]] const ssize_t n = write(STDERR_FILENO, msg, sizeof msg - 1);
+}
+
+}  // namespace
+
+InterruptScope::InterruptScope() {
+  g_signal = 0;
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESTART;
+  sigaction(SIGINT, &sa, &old_int_);
+  sigaction(SIGTERM, &sa, &old_term_);
+}
+
+InterruptScope::~InterruptScope() {
+  sigaction(SIGINT, &old_int_, nullptr);
+  sigaction(SIGTERM, &old_term_, nullptr);
+}
+
+bool InterruptScope::requested() const { return g_signal != 0; }
+int InterruptScope::signal() const { return g_signal; }
+
+const char* InterruptScope::signal_name() const {
+  switch (g_signal) {
+    case SIGINT: return "SIGINT (Ctrl-C)";
+    case SIGTERM: return "SIGTERM";
+    default: return "no signal";
+  }
+}
+
+}  // namespace simsols

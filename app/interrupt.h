@@ -1,0 +1,40 @@
+// Ctrl-C and kill for long commands (run, campaign, study).
+//
+// While an InterruptScope lives, SIGINT and SIGTERM do not end the process:
+// they set a flag that the command's loop reads between steps. The command
+// then finishes the step it is in, writes its checkpoint and the rows it
+// measured, prints how to resume, and exits with 128 + the signal (130 for
+// Ctrl-C, 143 for kill). A second signal while it does that ends the
+// process at once with the same status (the previous checkpoint stays
+// loadable: every file is written to a temporary name and renamed).
+//
+// The flag is the one piece of process-wide state in the program: a signal
+// handler can reach nothing else. Code below the command sees it only as
+// the `stop_requested` function it is handed.
+#pragma once
+
+#include <csignal>
+#include <functional>
+
+namespace simsols {
+
+class InterruptScope {
+ public:
+  InterruptScope();
+  ~InterruptScope();
+  InterruptScope(const InterruptScope&) = delete;
+  InterruptScope& operator=(const InterruptScope&) = delete;
+
+  bool requested() const;
+  int signal() const;                             // 0 until one arrived
+  int exit_status() const { return 128 + signal(); }
+  const char* signal_name() const;                // "SIGINT (Ctrl-C)", "SIGTERM"
+  std::function<bool()> stop_function() const {  // for the loops below the command
+    return [this] { return requested(); };
+  }
+
+ private:
+  struct sigaction old_int_{}, old_term_{};
+};
+
+}  // namespace simsols
