@@ -165,8 +165,9 @@ int campaign(const CampaignOptions& opt) {
     t.result = run_shear(t.scene, o);
     if (t.result.interrupted) {
       std::printf("campaign interrupted in test %zu/%zu (%s): its checkpoint and rows are in %s; "
-                  "%zu tests finished. Resume with the same command.\n",
-                  k + 1, tests.size(), t.scene.name.c_str(), t.dir.string().c_str(), k);
+                  "%zu of %zu tests finished. Resume with the same command.\n",
+                  k + 1, tests.size(), t.scene.name.c_str(), t.dir.string().c_str(), k,
+                  tests.size());
       return interrupt.exit_status();
     }
     spent += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -78,6 +78,12 @@ std::vector<StudyCase> resumed_cases(const StudyOptions& opt, const StudyPreset&
   return done;
 }
 
+std::string resume_command(const StudyOptions& opt) {
+  std::string c = "simsols study " + opt.what + " --out " + opt.out + " --preset " + opt.preset;
+  for (const std::string& k : opt.knobs) c += " --knob '" + k + "'";
+  return c + (opt.no_shear ? " --no-shear" : "") + " --resume";
+}
+
 int study(const StudyOptions& opt) {
   if (opt.what != "accuracy")
     throw SceneError("bad_enum", "command line", 0, "STUDY", "'" + opt.what + "' is not one of: accuracy");
@@ -109,11 +115,10 @@ int study(const StudyOptions& opt) {
     c.contact = run_contact_checks(cases[i]);
     if (preset->shear) c.shear = run_shear_case(*preset, cases[i], control);
     if (c.shear.interrupted) {
-      std::printf("study interrupted in case %zu/%zu (%s): %zu cases finished, the case's state is "
-                  "in %s. Resume with: simsols study %s --out %s --preset %s%s --resume\n",
+      std::printf("study interrupted in case %zu/%zu (%s): %zu of the cases finished, the case's "
+                  "state is in %s. Resume with: %s\n",
                   i + 1, cases.size(), cases[i].label.c_str(), done.size(),
-                  control.checkpoint.c_str(), opt.what.c_str(), opt.out.c_str(),
-                  opt.preset.c_str(), opt.no_shear ? " --no-shear" : "");
+                  control.checkpoint.c_str(), resume_command(opt).c_str());
       return interrupt.exit_status();
     }
     fs::remove(control.checkpoint);
@@ -124,10 +129,8 @@ int study(const StudyOptions& opt) {
     write_file_atomic((fs::path(opt.out) / "study_state.txt").string(),
                       study_state_text(*preset, cases, done));
     if (interrupt.requested() && i + 1 < cases.size()) {
-      std::printf("study interrupted after case %zu/%zu. Resume with: simsols study %s --out %s "
-                  "--preset %s%s --resume\n",
-                  i + 1, cases.size(), opt.what.c_str(), opt.out.c_str(), opt.preset.c_str(),
-                  opt.no_shear ? " --no-shear" : "");
+      std::printf("study interrupted after case %zu/%zu. Resume with: %s\n", i + 1, cases.size(),
+                  resume_command(opt).c_str());
       return interrupt.exit_status();
     }
   }

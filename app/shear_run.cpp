@@ -215,12 +215,10 @@ ShearRunResult resume_shear(std::unique_ptr<Simulation> sim, const std::string& 
   } catch (const std::exception& e) {
     throw SceneError("bad_checkpoint", ck, 0, "--resume", e.what());
   }
-  if (!opt.quiet) {
-    const double dx = test.rows().empty() ? 0 : test.rows().back().displacement;
-    std::fprintf(stderr, "[%s] resumed at step %lld, t = %.6g s, %s, dx = %.3f mm (%zu rows)\n",
-                 opt.label.c_str(), static_cast<long long>(sim->steps()), sim->time(),
-                 phase_name(test.phase()), dx * 1e3, test.rows().size());
-  }
+  const double dx = test.rows().empty() ? 0 : test.rows().back().displacement;
+  std::fprintf(stderr, "[%s] resumed at step %lld, t = %.6g s, %s, dx = %.3f mm (%zu rows)\n",
+               opt.label.c_str(), static_cast<long long>(sim->steps()), sim->time(),
+               phase_name(test.phase()), dx * 1e3, test.rows().size());
   return drive(*sim, test, opt, wall_before);
 }
 

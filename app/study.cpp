@@ -281,7 +281,13 @@ ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s,
       sim = std::make_unique<Simulation>(default_device(), shear_case_scene(preset, s));
     }
     ShearTest test(*sim);
-    if (!state.empty()) test.restore_state(state);
+    if (!state.empty()) {
+      test.restore_state(state);
+      const double dx = test.rows().empty() ? 0 : test.rows().back().displacement;
+      std::fprintf(stderr, "[study] case resumed at step %lld, t = %.6g s, %s, dx = %.3f mm\n",
+                   static_cast<long long>(sim->steps()), sim->time(), phase_name(test.phase()),
+                   dx * 1e3);
+    }
     const auto t0 = Clock::now();
     while (!test.done()) {
       if (control.stop_requested && control.stop_requested()) {
