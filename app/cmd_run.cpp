@@ -280,8 +280,9 @@ Scene load_run_scene(const RunOptions& opt) {
 std::unique_ptr<Simulation> load_resume(const std::filesystem::path& dir, std::string* extra) {
   const auto ck = dir / "checkpoint.bin";
   if (!std::filesystem::exists(ck)) {
-    std::string hint = "no checkpoint to resume from. A run writes one every minute of wall time, "
-                       "at --stop-after and when stopped with Ctrl-C or kill";
+    std::string hint = "no checkpoint to resume from. A shear test writes one every minute of wall "
+                       "time, a plain run at output.checkpoint_interval, both at the end, at "
+                       "--stop-after and when stopped with Ctrl-C or kill";
     if (std::filesystem::exists(dir / "scene.toml"))
       hint += "; this run stopped before its first: start it again with 'simsols run " +
               (dir / "scene.toml").string() + " --out " + dir.string() + "'";

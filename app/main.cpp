@@ -9,7 +9,8 @@
 //   simsols study accuracy --out DIR     what accuracy costs in time
 //
 // Exit status: 0 success, 2 bad input, 3 device or I/O failure, 4 the run ran
-// away (NaN or a particle too fast; see solver/guard.h).
+// away (NaN or a particle too fast; see solver/guard.h), 130 / 143 stopped by
+// SIGINT / SIGTERM with a checkpoint (app/interrupt.h).
 #include <cstdio>
 #include <map>
 
