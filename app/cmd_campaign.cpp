@@ -2,7 +2,7 @@
 // 5 bead sizes (its Table 1) x 4 normal stresses (50, 160, 280, 400 kPa),
 // or any subset, any sizes and stresses.
 //
-// Every test runs from a base scene (default assets/scenes/shear_box.toml)
+// Every test runs from a base scene (default: the built-in shear_box.toml)
 // with specimen.diameter, specimen.layers (Table 1, or --layers) and
 // normal_stress replaced, in OUT/d<size>mm_<stress>kPa/ (see shear_run.h).
 // Resumable: a test whose summary.txt exists is not rerun, an interrupted
@@ -36,7 +36,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct CampaignOptions {
-  std::string base = "assets/scenes/shear_box.toml";
+  std::string base;  // empty = the built-in shear_box.toml (kDefaultSceneName)
   std::string out_dir;
   std::vector<double> sizes_mm{2.38125, 3.175, 3.96875, 4.7625, 6.35};
   std::vector<double> stresses_kpa{50, 160, 280, 400};
@@ -83,9 +83,11 @@ double estimated_cost(const Scene& s) {
 
 int campaign(const CampaignOptions& opt) {
   // Everything is checked and every scene built before anything runs.
-  Scene base = load_scene(opt.base);
+  const std::string base_name = opt.base.empty() ? kDefaultSceneName : opt.base;
+  Scene base = opt.base.empty() ? parse_scene(default_shear_scene_text(), base_name)
+                                : load_scene(opt.base);
   if (!base.shear_box)
-    throw SceneError("missing_field", opt.base, 0, "shear_box",
+    throw SceneError("missing_field", base_name, 0, "shear_box",
                      "the campaign's base scene must describe a shear box");
   for (double d : opt.sizes_mm)
     if (!(d > 0 && d < 60))
@@ -116,12 +118,12 @@ int campaign(const CampaignOptions& opt) {
       Test t;
       t.d_mm = d;
       t.s_kpa = s;
-      Scene sc = paper_test_scene(base, opt.base, d, s, layers, [&](Scene& x) {
+      Scene sc = paper_test_scene(base, base_name, d, s, opt.layers, [&](Scene& x) {
         if (opt.displacement_mm > 0) x.shear_box->shear_displacement = opt.displacement_mm * 1e-3;
         if (!opt.precision.empty())
           x.numerics.precision = opt.precision == "float" ? Precision::Float : Precision::Double;
       });
-      validate_scene(sc, opt.base + " (" + sc.name + ")");
+      validate_scene(sc, base_name + " (" + sc.name + ")");
       t.scene = std::move(sc);
       t.dir = fs::path(opt.out_dir) / t.scene.name;
       t.cost = estimated_cost(t.scene);
@@ -186,7 +188,7 @@ int campaign(const CampaignOptions& opt) {
          "peak_friction_angle_deg,peak_displacement_mm,residual_tau_kPa,"
          "residual_friction_angle_deg,max_dilatancy_angle_deg,max_inertial_number,"
          "sigma_band_min_percent,sigma_band_max_percent,beads,wall_seconds\n";
-  md << "# Direct shear campaign\n\nBase scene: `" << opt.base << "`; "
+  md << "# Direct shear campaign\n\nBase scene: `" << base_name << "`; "
      << tests.size() << " tests; wall time of the tests run now: " << fmt("%.0f", spent)
      << " s.\n\n| d (mm) | σ (kPa) | τ peak (kPa) | φ peak (°) | φ residual (°) | ψ max (°) | "
         "σ band (%) | I max | wall (s) |\n|---|---|---|---|---|---|---|---|---|\n";
@@ -254,7 +256,7 @@ CommandRunner add_campaign_command(CLI::App& app) {
   auto opt = std::make_shared<CampaignOptions>();
   CLI::App* cmd = app.add_subcommand(
       "campaign", "Run the paper's direct shear programme (5 sizes x 4 stresses), resumable");
-  cmd->add_option("base", opt->base, "Base shear-box scene (default assets/scenes/shear_box.toml)");
+  cmd->add_option("base", opt->base, "Base shear-box scene (default: the built-in shear_box.toml)");
   cmd->add_option("--out,-o", opt->out_dir, "Output folder (rerun to resume)")->required();
   cmd->add_option("--sizes", opt->sizes_mm, "Bead diameters in mm (default: Table 1)")
       ->delimiter(',');

@@ -7,6 +7,7 @@
 
 #include "alioscopy.h"
 #include "colormap.h"
+#include "did_you_mean.h"
 #include "errors.h"
 #include "png.h"
 #include "sim_view.h"
@@ -53,7 +54,8 @@ void add_frame_flags(CLI::App* cmd, FrameFlags& f) {
   cmd->add_option("--stereo", f.stereo,
                   "alioscopy: the 8-view interleaved image for the display, and its views");
   cmd->add_option("--display", f.display,
-                  "Display profile for --stereo (default assets/displays/alioscopy_hd.toml)");
+                  "Display profile for --stereo: a .toml file, or a built-in profile by name "
+                  "(alioscopy_hd, the default)");
 }
 
 namespace {
@@ -136,23 +138,32 @@ FrameOptions FrameOptions::resolve(const FrameFlags& flags, const Scene* scene) 
   if (!f.display.empty() && !o.alioscopy)
     throw flag_error("--display", "a display profile goes with --stereo alioscopy");
   if (o.alioscopy) {
-    // No --display: the built-in defaults, which are those of
-    // assets/displays/alioscopy_hd.toml (a test keeps them equal).
     o.display_path = f.display;
-    render::DisplayProfile p;
-    if (!o.display_path.empty()) {
-      if (!std::filesystem::exists(o.display_path))
-        throw SceneError("io", o.display_path, 0, "--display", "no such display profile");
-      try {
-        p = render::load_display_profile(o.display_path);
-      } catch (const std::exception& e) {
-        throw SceneError("bad_value", o.display_path, 0, "--display", e.what());
-      }
-    }
+    const render::DisplayProfile p = display_profile(o.display_path);
     o.width = p.width;
     o.height = p.height;
   }
   return o;
+}
+
+render::DisplayProfile display_profile(const std::string& given) {
+  // No --display: the built-in defaults, which are those of
+  // assets/displays/alioscopy_hd.toml (a test keeps them equal).
+  if (given.empty()) return {};
+  const std::string name = std::filesystem::path(given).stem().string();
+  try {
+    if (std::filesystem::exists(given)) return render::load_display_profile(given);
+    if (auto text = render::builtin_display_profile(name))
+      return render::parse_display_profile(*text, "built-in " + name + ".toml");
+  } catch (const render::DisplayProfileError& e) {
+    throw SceneError(e.file, e.problems);
+  }
+  const std::vector<std::string> names = render::builtin_display_profiles();
+  std::string list;
+  for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+  throw SceneError("io", given, 0, "--display",
+                   "no such file, and '" + name + "' is not a built-in display profile" +
+                       did_you_mean(name, names) + "; built-in profiles: " + list);
 }
 
 struct FrameExporter::Attached {
@@ -235,9 +246,7 @@ std::vector<std::string> FrameExporter::outputs(const std::string& path) const {
 }
 
 void FrameExporter::write_alioscopy(const std::string& path) {
-  const render::DisplayProfile profile = opt_.display_path.empty()
-                                             ? render::DisplayProfile{}
-                                             : render::load_display_profile(opt_.display_path);
+  const render::DisplayProfile profile = display_profile(opt_.display_path);
   if (!alioscopy_) alioscopy_ = std::make_unique<render::AlioscopyOutput>(context_->gl(), profile);
   const render::ViewSettings s = update_view();
   render::StereoRig rig;

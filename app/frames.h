@@ -27,6 +27,7 @@
 
 namespace simsols::render {
 class AlioscopyOutput;
+struct DisplayProfile;
 }
 #include "view_pack.h"
 
@@ -47,7 +48,7 @@ struct FrameFlags {
   bool no_walls = false;
   std::string gl = "auto";
   std::string stereo;   // "alioscopy": the 8-view interleaved image and the views
-  std::string display;  // display profile (TOML); default assets/displays/alioscopy_hd.toml
+  std::string display;  // display profile: a file or a built-in name (display_profile)
   // The registered options, to tell a flag given on the command line from
   // its default (set by add_frame_flags).
   std::map<std::string, const CLI::Option*> options;
@@ -66,13 +67,19 @@ struct FrameOptions {
   bool legend = true;
   render::GlBackend backend = render::GlBackend::Auto;
   bool alioscopy = false;
-  std::string display_path;  // profile file (alioscopy); empty = the built-in Alioscopy HD
+  std::string display_path;  // --display (alioscopy); empty = the built-in Alioscopy HD
 
   // The flags, with the scene's [view] hints for those not given on the
   // command line. Throws SceneError naming the flag (or the scene file and
   // its view.* field) and the allowed values.
   static FrameOptions resolve(const FrameFlags& flags, const Scene* scene = nullptr);
 };
+
+// The display profile --display names: a file, else the built-in profile
+// named by its file name ("alioscopy_hd", or assets/displays/alioscopy_hd.toml
+// from any directory); empty = the built-in Alioscopy HD. Throws SceneError
+// listing every problem of the profile, or "did you mean" for a bad name.
+render::DisplayProfile display_profile(const std::string& given);
 
 // Parses "WxH" (each side 1..16384); throws SceneError naming `flag`.
 std::pair<int, int> parse_frame_size(const std::string& text, const std::string& flag);

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "checkpoint.h"
@@ -37,15 +38,23 @@ LabExperiment::~LabExperiment() {
 }
 
 std::string LabExperiment::load_preset(double d_mm, double s_kpa) {
+  char given[96];
+  std::snprintf(given, sizeof given, "preset %g mm, %g kPa: ", d_mm, s_kpa);
+  if (!nearest_table1_size(d_mm))
+    return given + std::string("the presets' sizes are ") + table1_sizes_text() + " (Table 1)";
+  if (!(s_kpa > 0 && s_kpa <= 1e6))
+    return given + std::string("the normal stress must be in (0, 1e6] kPa");
   try {
-    const Scene base = parse_scene(default_shear_scene_text(), "assets/scenes/shear_box.toml");
-    Scene sc = paper_test_scene(base, "assets/scenes/shear_box.toml", d_mm, s_kpa, 0,
+    const Scene base = parse_scene(default_shear_scene_text(), kDefaultSceneName);
+    Scene sc = paper_test_scene(base, kDefaultSceneName, d_mm, s_kpa, 0,
                                 [&](Scene& x) { x.numerics.precision = scene_.numerics.precision; });
     if (!label_.empty()) sc.effects = scene_.effects;  // keep the panel's choices
     validate_scene(sc, sc.name);
     scene_ = std::move(sc);
     label_ = "preset " + scene_.name;
     return {};
+  } catch (const SceneError& e) {
+    return given + (e.field.empty() ? "" : "field '" + e.field + "': ") + e.message;
   } catch (const std::exception& e) {
     return e.what();
   }

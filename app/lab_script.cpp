@@ -2,9 +2,10 @@
 // run in order, one per frame, while the window keeps drawing. Commands
 // that start something wait until it is there. '#' starts a comment.
 //
-//   preset D_MM S_KPA     choose a Table 1 preset (then `prepare`)
+//   preset D_MM S_KPA     choose a Table 1 preset, e.g. preset 4.76 280 (then `prepare`)
 //   open SCENE.toml       choose a scene file
 //   precision float|double
+//   effect SLOT CHOICE    an effect slot's model (damping viscous; applies at the next prepare)
 //   prepare               build the specimen; waits until it is built
 //   load                  apply the normal stress; waits until consolidated
 //   start                 start shearing (then paused: continue with rows, steps or resume)
@@ -24,6 +25,7 @@
 //   export DIR            shear.csv, summary.txt, plots
 //   state FILE            the experiment's state as key = value lines
 //   quit
+// kCommands below lists the same commands for messages: keep both in step.
 // A failing command prints "FILE:LINE: message" and ends the lab with
 // status 1 (2 for an unknown command or a bad argument).
 #define GLFW_INCLUDE_NONE  // GL comes from render/gl_api.h
@@ -35,6 +37,7 @@
 #include <functional>
 #include <sstream>
 
+#include "did_you_mean.h"
 #include "lab_script.h"
 #include "output.h"
 #include "paper_tests.h"
@@ -58,6 +61,61 @@ bool pick(E& field, const std::string& choice, std::initializer_list<E> all) {
   for (E c : all)
     if (choice == slot_name(c)) return field = c, true;
   return false;
+}
+
+// The commands and their arguments, as the header above lists them: the
+// message for an unknown command lists them.
+const std::pair<const char*, const char*> kCommands[] = {
+    {"preset", "D_MM S_KPA"},
+    {"open", "SCENE.toml"},
+    {"precision", "float|double"},
+    {"effect", "SLOT CHOICE"},
+    {"prepare", ""},
+    {"load", ""},
+    {"start", ""},
+    {"rows", "N"},
+    {"steps", "N"},
+    {"set_stress", "KPA"},
+    {"set_speed", "MM_S"},
+    {"pause", ""},
+    {"resume", ""},
+    {"step", ""},
+    {"view", "opaque|transparent|chains|alioscopy|grid|single"},
+    {"color", "size|layer|speed|displacement|contacts|rotation"},
+    {"camera", "front|side|top|three-quarter"},
+    {"frames", "N"},
+    {"screenshot", "FILE.png"},
+    {"frame", "FILE.png"},
+    {"checkpoint", "FILE"},
+    {"load_checkpoint", "FILE"},
+    {"export", "DIR"},
+    {"state", "FILE"},
+    {"quit", ""},
+};
+
+std::string unknown_command(const std::string& cmd) {
+  std::vector<std::string> names;
+  std::string list;
+  for (const auto& [name, args] : kCommands) {
+    names.push_back(name);
+    list += "\n  " + std::string(name) + (*args ? " " + std::string(args) : "");
+  }
+  return "unknown command '" + cmd + "'" + did_you_mean(cmd, names) + "; the commands:" + list;
+}
+
+// "damping none|viscous; tangential none|mindlin; ...": what `effect` takes.
+std::string effect_choices() {
+  auto names = [](auto... c) {
+    std::string s;
+    ((s += (s.empty() ? "" : "|") + std::string(slot_name(c))), ...);
+    return s;
+  };
+  using R = RollingModel;
+  return "damping " + names(DampingModel::None, DampingModel::Viscous) + "; tangential " +
+         names(TangentialModel::None, TangentialModel::Mindlin) + "; rolling " +
+         names(R::None, R::ConstantTorque, R::SpringDashpot) + "; cohesion " +
+         names(CohesionModel::None, CohesionModel::Capillary) + "; fluid " +
+         names(FluidModel::None, FluidModel::Drag);
 }
 
 bool set_slot(Effects& e, const std::string& slot, const std::string& choice) {
@@ -151,8 +209,9 @@ void LabApp::run_script() {
     if (std::sscanf(arg.c_str(), "%lf %lf", &d, &kpa) != 2) return fail("preset D_MM S_KPA", 2);
     if (check(exp_->load_preset(d, kpa))) {
       sigma_kpa_ = float(kpa);
+      const double size = nearest_table1_size(d).value_or(d);
       for (int k = 0; k < 5; ++k)  // the panel's combo boxes follow
-        if (std::fabs(kTable1SizesMm[k] - d) < 1e-6) preset_size_ = k;
+        if (kTable1SizesMm[k] == size) preset_size_ = k;
       for (int k = 0; k < 4; ++k)
         if (std::fabs(kPaperStressesKpa[k] - kpa) < 1e-9) preset_stress_ = k;
     }
@@ -165,10 +224,10 @@ void LabApp::run_script() {
     // the panel's slot choices: effect SLOT CHOICE (applies at the next prepare)
     char slot[32] = {0}, choice[32] = {0};
     if (std::sscanf(arg.c_str(), "%31s %31s", slot, choice) != 2)
-      return fail("effect damping|tangential|rolling|cohesion|fluid CHOICE", 2);
+      return fail("effect SLOT CHOICE, one of: " + effect_choices(), 2);
     Effects e = exp_->scene().effects;
     if (!set_slot(e, slot, choice))
-      return fail("effect " + arg + ": unknown slot or choice (the names of docs/scene-format.md)", 2);
+      return fail("effect " + arg + ": unknown slot or choice; allowed: " + effect_choices(), 2);
     exp_->set_effects(e);
   } else if (cmd == "prepare") {
     if (check(exp_->prepare())) s.until = [this] { return exp_->stage() == LabStage::Prepared; };
@@ -245,7 +304,7 @@ void LabApp::run_script() {
   } else if (cmd == "quit") {
     quit_ = true;
   } else {
-    fail("unknown command '" + cmd + "' (see app/lab_script.cpp)", 2);
+    fail(unknown_command(cmd), 2);
   }
 }
 

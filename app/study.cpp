@@ -229,10 +229,10 @@ ContactErrors run_contact_checks(const StudySettings& s) {
 namespace {
 
 Scene shear_case_scene(const StudyPreset& preset, const StudySettings& s) {
-  const Scene base = parse_scene(default_shear_scene_text(), "assets/scenes/shear_box.toml");
+  const Scene base = parse_scene(default_shear_scene_text(), kDefaultSceneName);
   const double d = preset.diameter_mm * 1e-3;
   return paper_test_scene(
-      base, "assets/scenes/shear_box.toml", preset.diameter_mm, preset.stress_kpa, preset.layers,
+      base, kDefaultSceneName, preset.diameter_mm, preset.stress_kpa, preset.layers,
       [&](Scene& x) {
         x.numerics.precision = s.precision;
         x.numerics.dt_fraction = s.dt_fraction;

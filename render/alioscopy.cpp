@@ -1,9 +1,6 @@
 #include "alioscopy.h"
 
-#include <toml++/toml.h>
-
 #include <cmath>
-#include <set>
 #include <stdexcept>
 
 #include "shader.h"
@@ -12,84 +9,6 @@ namespace simsols::render {
 
 int DisplayProfile::view_width() const { return std::max(1, int(std::ceil(width * view_scale))); }
 int DisplayProfile::view_height() const { return std::max(1, int(std::ceil(height * view_scale))); }
-
-namespace {
-
-[[noreturn]] void profile_error(const std::string& file, const std::string& field,
-                                const std::string& what) {
-  throw std::runtime_error(file + ": field '" + field + "': " + what);
-}
-
-}  // namespace
-
-DisplayProfile load_display_profile(const std::string& path) {
-  toml::table root;
-  try {
-    root = toml::parse_file(path);
-  } catch (const toml::parse_error& e) {
-    const auto& b = e.source().begin;
-    throw std::runtime_error(path + (b.line ? ":" + std::to_string(b.line) : std::string()) +
-                             ": " + std::string(e.description()));
-  }
-  DisplayProfile p;
-  const std::set<std::string> sections = {"display", "rig"};
-  for (const auto& [k, v] : root)
-    if (!sections.count(std::string(k.str())))
-      profile_error(path, std::string(k.str()), "unknown section (allowed: display, rig)");
-  auto check_keys = [&](const char* section, std::set<std::string> allowed) {
-    if (const toml::table* t = root[section].as_table())
-      for (const auto& [k, v] : *t)
-        if (!allowed.count(std::string(k.str())))
-          profile_error(path, std::string(section) + "." + std::string(k.str()), "unknown key");
-  };
-  check_keys("display", {"name", "width", "height", "views", "phase", "reversed", "flip_slant"});
-  check_keys("rig", {"view_scale", "interaxial_ratio", "interaxial", "focus", "nearest_views"});
-  auto integer = [&](const char* key, int& dst, int lo, int hi) {
-    const std::string field = std::string("display.") + key;
-    const toml::node* n = root["display"][key].node();
-    if (!n) return;
-    const auto v = n->value<std::int64_t>();
-    if (!v || !n->is_integer()) profile_error(path, field, "must be an integer");
-    if (*v < lo || *v > hi)
-      profile_error(path, field, std::to_string(*v) + " is outside [" + std::to_string(lo) + ", " +
-                                     std::to_string(hi) + "]");
-    dst = int(*v);
-  };
-  auto boolean = [&](const char* section, const char* key, bool& dst) {
-    const toml::node* n = root[section][key].node();
-    if (!n) return;
-    if (!n->is_boolean())
-      profile_error(path, std::string(section) + "." + key, "must be true or false");
-    dst = *n->value<bool>();
-  };
-  auto number = [&](const char* key, double& dst, double lo, double hi, bool open_lo) {
-    const std::string field = std::string("rig.") + key;
-    const toml::node* n = root["rig"][key].node();
-    if (!n) return;
-    const auto v = n->value<double>();
-    if (!v) profile_error(path, field, "must be a number");
-    if (!std::isfinite(*v) || (open_lo ? *v <= lo : *v < lo) || *v > hi)
-      profile_error(path, field, std::to_string(*v) + " is outside " + (open_lo ? "(" : "[") +
-                                     std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    dst = *v;
-  };
-  if (const toml::node* n = root["display"]["name"].node()) {
-    if (!n->is_string()) profile_error(path, "display.name", "must be a string");
-    p.name = *n->value<std::string>();
-  }
-  integer("width", p.width, 1, 16384);
-  integer("height", p.height, 1, 16384);
-  integer("views", p.views, 8, 8);
-  integer("phase", p.phase, 0, 7);
-  boolean("display", "reversed", p.reversed);
-  boolean("display", "flip_slant", p.flip_slant);
-  number("view_scale", p.view_scale, 0, 1, true);
-  number("interaxial_ratio", p.interaxial_ratio, 0, 1, true);
-  number("interaxial", p.interaxial, 0, 10, false);
-  number("focus", p.focus, 0, 1e4, false);
-  boolean("rig", "nearest_views", p.nearest_views);
-  return p;
-}
 
 int alioscopy_view(int x, int y, int c, const DisplayProfile& p) {
   const int s = (p.flip_slant ? -y : y) - (3 * x + c) + p.phase;

@@ -14,7 +14,7 @@
 // and adds the window offset. The pass writes the output 1:1 into an RGBA8
 // target; nothing filters or scales the image afterwards.
 //
-// The display profile (assets/displays/*.toml) holds the panel size, the
+// The display profile (assets/displays/*.toml, also built in) holds the panel size, the
 // phase, the reversed-order and flipped-slant switches (public descriptions
 // disagree on both), the per-view resolution and the rig's spacing ratio.
 //
@@ -30,11 +30,16 @@
 #include <array>
 #include <glm/glm.hpp>
 #include <memory>
+#include <optional>
+#include <stdexcept>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "camera.h"
 #include "gl_api.h"
 #include "image.h"
+#include "problems.h"
 #include "renderer.h"
 #include "stereo_rig.h"
 
@@ -59,9 +64,23 @@ struct DisplayProfile {
   int view_height() const;
 };
 
-// Reads a profile; throws std::runtime_error naming the file, the field and
-// the allowed range for a bad value, an unknown key or a missing file.
+// A display profile that cannot be used: every problem found in one pass
+// (unknown keys, with a "did you mean", and values out of range), each
+// naming the field and what is allowed; what() names the file once.
+struct DisplayProfileError : std::runtime_error {
+  DisplayProfileError(std::string file, std::vector<FileProblem> problems);
+  std::string file;
+  std::vector<FileProblem> problems;
+};
+
+// Reads a profile file (display_profile.cpp); throws DisplayProfileError.
 DisplayProfile load_display_profile(const std::string& path);
+// The same from text; `name` names it in messages.
+DisplayProfile parse_display_profile(std::string_view text, const std::string& name);
+// The profiles of assets/displays, embedded at build time: their names
+// ("alioscopy_hd"), and the text of one (nullopt for another name).
+std::vector<std::string> builtin_display_profiles();
+std::optional<std::string_view> builtin_display_profile(std::string_view name);
 
 // The view index of subpixel (X, Y, c) (screen pixels, Y from the top).
 int alioscopy_view(int x, int y, int c, const DisplayProfile& profile);

@@ -86,8 +86,8 @@ void SphereGrid::insert(int index, const Vec3& center) { cells_[cell_of(center)]
 }  // namespace detail
 
 // ---------------------------------------------------------------------------
-// Validation. Checks throw an Issue internally; find_scene_issue() catches
-// the first one.
+// Validation. Values out of range are collected (Found) and the checks go
+// on; any other problem throws an Issue, which ends them.
 
 namespace {
 
@@ -104,6 +104,12 @@ struct Issue {
 
 [[noreturn]] void fail(std::string code, std::string field, std::string message) {
   throw Issue{{std::move(code), std::move(field), std::move(message)}};
+}
+
+// Values out of range or not finite: collected, the checks go on.
+using Found = std::vector<SceneIssue>;
+void note(Found& found, std::string code, std::string field, std::string message) {
+  found.push_back({std::move(code), std::move(field), std::move(message)});
 }
 
 // A real interval with open or closed ends, printed as "[0, 0.5)".
@@ -126,24 +132,24 @@ constexpr Interval kContactAngle{0, 1.5707963267948966, false, true};  // [0, pi
 
 std::string at(const std::string& base, size_t i) { return base + "[" + std::to_string(i) + "]"; }
 
-void check_finite(const std::string& field, double v) {
+void check_number(Found& found, const std::string& field, double v, const Interval& allowed) {
   if (!std::isfinite(v))
-    fail("not_finite", field, detail::format_number(v) + " is not a finite number");
-}
-
-void check_number(const std::string& field, double v, const Interval& allowed) {
-  check_finite(field, v);
-  if (!allowed.contains(v))
-    fail("out_of_range", field,
+    note(found, "not_finite", field, detail::format_number(v) + " is not a finite number");
+  else if (!allowed.contains(v))
+    note(found, "out_of_range", field,
          detail::format_number(v) + " is out of range, allowed " + allowed.str());
 }
 
-void check_vector(const std::string& field, const Vec3& v) {
+// False (and noted) when a component is not finite.
+bool check_vector(Found& found, const std::string& field, const Vec3& v) {
   for (size_t k = 0; k < 3; ++k)
-    if (!std::isfinite(v[k]))
-      fail("not_finite", field,
+    if (!std::isfinite(v[k])) {
+      note(found, "not_finite", field,
            "component " + std::to_string(k) + " is " + detail::format_number(v[k]) +
                ", not a finite number");
+      return false;
+    }
+  return true;
 }
 
 
@@ -160,22 +166,22 @@ void check_name(const std::string& field, const std::string& name, std::set<std:
     fail("duplicate_name", field, "the name '" + name + "' is already used");
 }
 
-void check_materials(const Scene& s) {
+void check_materials(const Scene& s, Found& found) {
   std::set<std::string> names;
   for (size_t i = 0; i < s.materials.size(); ++i) {
     const Material& m = s.materials[i];
     const std::string f = at("materials", i);
     check_name(f + ".name", m.name, names);
-    check_number(f + ".young_modulus", m.young_modulus, kPositive);
-    check_number(f + ".poisson_ratio", m.poisson_ratio, {0, 0.5, false, true});
-    check_number(f + ".density", m.density, kPositive);
-    check_number(f + ".restitution", m.restitution, kRestitution);
-    check_number(f + ".sliding_friction", m.sliding_friction, kNonNegative);
-    check_number(f + ".rolling_friction", m.rolling_friction, kNonNegative);
+    check_number(found, f + ".young_modulus", m.young_modulus, kPositive);
+    check_number(found, f + ".poisson_ratio", m.poisson_ratio, {0, 0.5, false, true});
+    check_number(found, f + ".density", m.density, kPositive);
+    check_number(found, f + ".restitution", m.restitution, kRestitution);
+    check_number(found, f + ".sliding_friction", m.sliding_friction, kNonNegative);
+    check_number(found, f + ".rolling_friction", m.rolling_friction, kNonNegative);
   }
 }
 
-void check_pair_overrides(const Scene& s) {
+void check_pair_overrides(const Scene& s, Found& found) {
   std::set<std::pair<int, int>> pairs;
   for (size_t i = 0; i < s.pair_overrides.size(); ++i) {
     const PairOverride& o = s.pair_overrides[i];
@@ -186,17 +192,17 @@ void check_pair_overrides(const Scene& s) {
       fail("duplicate_name", f + ".materials",
            "the pair ('" + s.materials[o.material_a].name + "', '" +
                s.materials[o.material_b].name + "') already has an interaction");
-    if (o.restitution) check_number(f + ".restitution", *o.restitution, kRestitution);
+    if (o.restitution) check_number(found, f + ".restitution", *o.restitution, kRestitution);
     if (o.sliding_friction)
-      check_number(f + ".sliding_friction", *o.sliding_friction, kNonNegative);
+      check_number(found, f + ".sliding_friction", *o.sliding_friction, kNonNegative);
     if (o.rolling_friction)
-      check_number(f + ".rolling_friction", *o.rolling_friction, kNonNegative);
-    if (o.liquid_volume) check_number(f + ".liquid_volume", *o.liquid_volume, kPositive);
-    if (o.contact_angle) check_number(f + ".contact_angle", *o.contact_angle, kContactAngle);
+      check_number(found, f + ".rolling_friction", *o.rolling_friction, kNonNegative);
+    if (o.liquid_volume) check_number(found, f + ".liquid_volume", *o.liquid_volume, kPositive);
+    if (o.contact_angle) check_number(found, f + ".contact_angle", *o.contact_angle, kContactAngle);
   }
 }
 
-void check_particles(const Scene& s) {
+void check_particles(const Scene& s, Found& found) {
   if (s.particles.empty())
     fail("no_particles", "particles",
          "the scene has no particles; add [[particles]] or [[generators]]");
@@ -204,15 +210,15 @@ void check_particles(const Scene& s) {
     const Particle& p = s.particles[i];
     const std::string f = at("particles", i);
     check_material_ref(s, f + ".material", p.material);
-    check_number(f + ".radius", p.radius, kPositive);
-    check_vector(f + ".position", p.position);
-    check_vector(f + ".velocity", p.velocity);
-    check_vector(f + ".angular_velocity", p.angular_velocity);
+    check_number(found, f + ".radius", p.radius, kPositive);
+    check_vector(found, f + ".position", p.position);
+    check_vector(found, f + ".velocity", p.velocity);
+    check_vector(found, f + ".angular_velocity", p.angular_velocity);
   }
 }
 
-void check_unit(const std::string& field, const Vec3& v, const char* zero_code) {
-  check_vector(field, v);
+void check_unit(Found& found, const std::string& field, const Vec3& v, const char* zero_code) {
+  if (!check_vector(found, field, v)) return;
   const double n = norm(v);
   if (n == 0) fail(zero_code, field, "must not be the zero vector");
   if (std::abs(n - 1) > kUnitTolerance)
@@ -221,32 +227,32 @@ void check_unit(const std::string& field, const Vec3& v, const char* zero_code) 
              detail::format_number(kUnitTolerance) + ")");
 }
 
-void check_wall(const Scene& s, size_t i, std::set<std::string>& names) {
+void check_wall(const Scene& s, size_t i, std::set<std::string>& names, Found& found) {
   const Wall& w = s.walls[i];
   const std::string f = at("walls", i);
   check_name(f + ".name", w.name, names);
   check_material_ref(s, f + ".material", w.material);
-  check_vector(f + ".point", w.point);
-  check_vector(f + ".velocity", w.velocity);
-  check_unit(f + ".normal", w.normal, "zero_normal");
+  check_vector(found, f + ".point", w.point);
+  check_vector(found, f + ".velocity", w.velocity);
+  check_unit(found, f + ".normal", w.normal, "zero_normal");
   if (w.servo.enabled) {
-    check_number(f + ".servo.target_force", w.servo.target_force, kPositive);
-    check_number(f + ".servo.gain", w.servo.gain, kPositive);
-    check_number(f + ".servo.max_speed", w.servo.max_speed, kPositive);
-    check_number(f + ".servo.integral_time", w.servo.integral_time, kNonNegative);
+    check_number(found, f + ".servo.target_force", w.servo.target_force, kPositive);
+    check_number(found, f + ".servo.gain", w.servo.gain, kPositive);
+    check_number(found, f + ".servo.max_speed", w.servo.max_speed, kPositive);
+    check_number(found, f + ".servo.integral_time", w.servo.integral_time, kNonNegative);
     if (norm(w.velocity) != 0)
       fail("conflicting_keys", f + ".velocity",
            "a servo-controlled wall moves by itself; remove its velocity");
   }
   if (w.shape != WallShape::Rectangle) return;
-  check_unit(f + ".axis_u", w.axis_u, "bad_vector");
+  check_unit(found, f + ".axis_u", w.axis_u, "bad_vector");
   const double d = dot(w.normal, w.axis_u);
   if (std::abs(d) > kPerpendicularTolerance)
     fail("bad_vector", f + ".axis_u",
          "must be perpendicular to the normal: normal . axis_u = " + detail::format_number(d) +
              ", allowed |.| <= " + detail::format_number(kPerpendicularTolerance));
-  check_number(f + ".half_u", w.half_u, kPositive);
-  check_number(f + ".half_v", w.half_v, kPositive);
+  check_number(found, f + ".half_u", w.half_u, kPositive);
+  check_number(found, f + ".half_v", w.half_v, kPositive);
 }
 
 std::array<Vec3, 4> rectangle_corners(const Wall& w) {
@@ -300,39 +306,39 @@ void check_wall_pair(const Scene& s, size_t i, size_t j) {
              detail::format_number(diameter) + " m (the smallest particle diameter)");
 }
 
-void check_walls(const Scene& s) {
+void check_walls(const Scene& s, Found& found) {
   if (s.walls.size() > kMaxWalls)
     fail("out_of_range", at("walls", kMaxWalls),
          std::to_string(s.walls.size()) + " walls; at most " + std::to_string(kMaxWalls) +
              " are allowed");
   std::set<std::string> names;
-  for (size_t i = 0; i < s.walls.size(); ++i) check_wall(s, i, names);
+  for (size_t i = 0; i < s.walls.size(); ++i) check_wall(s, i, names, found);
   for (size_t j = 0; j < s.walls.size(); ++j)
     for (size_t i = 0; i < j; ++i) check_wall_pair(s, i, j);
 }
 
-void check_numerics(const Scene& s) {
+void check_numerics(const Scene& s, Found& found) {
   const Numerics& n = s.numerics;
-  check_number("numerics.dt", n.dt, kNonNegative);
-  check_number("numerics.dt_fraction", n.dt_fraction, {0, kMaxDtFraction, true, false});
-  check_number("numerics.duration", n.duration, kPositive);
-  check_number("numerics.skin", n.skin, kNonNegative);
+  check_number(found, "numerics.dt", n.dt, kNonNegative);
+  check_number(found, "numerics.dt_fraction", n.dt_fraction, {0, kMaxDtFraction, true, false});
+  check_number(found, "numerics.duration", n.duration, kPositive);
+  check_number(found, "numerics.skin", n.skin, kNonNegative);
   if (n.neighbor_capacity != 0 && (n.neighbor_capacity < 4 || n.neighbor_capacity > 256))
-    fail("out_of_range", "numerics.neighbor_capacity",
+    note(found, "out_of_range", "numerics.neighbor_capacity",
          std::to_string(n.neighbor_capacity) +
              " is out of range, allowed 0 (automatic) or [4, 256]");
   if (n.precision != Precision::Float && n.precision != Precision::Double)
     fail("bad_enum", "numerics.precision", "allowed values: \"float\", \"double\"");
 }
 
-void check_effects(const Scene& s) {
+void check_effects(const Scene& s, Found& found) {
   const Effects& e = s.effects;
-  check_vector("effects.gravity", e.gravity);
-  check_number("effects.rolling_damping", e.rolling_damping, {0, 1, false, false});
+  check_vector(found, "effects.gravity", e.gravity);
+  check_number(found, "effects.rolling_damping", e.rolling_damping, {0, 1, false, false});
   if (e.cohesion == CohesionModel::Capillary) {
-    check_number("effects.capillary.surface_tension", e.capillary.surface_tension, kPositive);
-    check_number("effects.capillary.contact_angle", e.capillary.contact_angle, kContactAngle);
-    check_number("effects.capillary.liquid_volume", e.capillary.liquid_volume, kPositive);
+    check_number(found, "effects.capillary.surface_tension", e.capillary.surface_tension, kPositive);
+    check_number(found, "effects.capillary.contact_angle", e.capillary.contact_angle, kContactAngle);
+    check_number(found, "effects.capillary.liquid_volume", e.capillary.liquid_volume, kPositive);
     // pairs within the rupture distance must be in the neighbour lists, which
     // hold pairs within skin and stay valid while each bead moves < skin/4
     const double need = 2 * s.rupture_distance();
@@ -343,16 +349,16 @@ void check_effects(const Scene& s) {
                ", inf) (twice the capillary rupture distance), or 0 (automatic)");
   }
   if (e.fluid == FluidModel::Drag) {
-    check_number("effects.drag.density", e.fluid_params.density, kNonNegative);
-    check_number("effects.drag.viscosity", e.fluid_params.viscosity, kPositive);
-    check_vector("effects.drag.velocity", e.fluid_params.velocity);
+    check_number(found, "effects.drag.density", e.fluid_params.density, kNonNegative);
+    check_number(found, "effects.drag.viscosity", e.fluid_params.viscosity, kPositive);
+    check_vector(found, "effects.drag.velocity", e.fluid_params.velocity);
   }
 }
 
-void check_outputs(const Scene& s) {
-  check_number("output.series_interval", s.outputs.series_interval, kNonNegative);
-  check_number("output.dump_interval", s.outputs.dump_interval, kNonNegative);
-  check_number("output.checkpoint_interval", s.outputs.checkpoint_interval, kNonNegative);
+void check_outputs(const Scene& s, Found& found) {
+  check_number(found, "output.series_interval", s.outputs.series_interval, kNonNegative);
+  check_number(found, "output.dump_interval", s.outputs.dump_interval, kNonNegative);
+  check_number(found, "output.checkpoint_interval", s.outputs.checkpoint_interval, kNonNegative);
 }
 
 // O(N): a hash grid with cells as large as the largest diameter.
@@ -431,27 +437,37 @@ void check_time_step(const Scene& s) {
 
 }  // namespace
 
-std::optional<SceneIssue> find_scene_issue(const Scene& scene) {
+std::vector<SceneIssue> find_scene_issues(const Scene& scene) {
+  Found found;
   try {
-    check_materials(scene);
-    check_pair_overrides(scene);
-    check_particles(scene);
-    check_walls(scene);
-    check_numerics(scene);
-    check_effects(scene);
-    check_outputs(scene);
+    check_materials(scene, found);
+    check_pair_overrides(scene, found);
+    check_particles(scene, found);
+    check_walls(scene, found);
+    check_numerics(scene, found);
+    check_effects(scene, found);
+    check_outputs(scene, found);
+    if (!found.empty()) return found;  // the checks below need valid values
     check_particle_overlaps(scene);
     check_wall_overlaps(scene);
     check_time_step(scene);
   } catch (Issue& e) {
-    return std::move(e.issue);
+    found.push_back(std::move(e.issue));
   }
-  return std::nullopt;
+  return found;
+}
+
+std::optional<SceneIssue> find_scene_issue(const Scene& scene) {
+  std::vector<SceneIssue> all = find_scene_issues(scene);
+  if (all.empty()) return std::nullopt;
+  return std::move(all[0]);
 }
 
 void validate_scene(const Scene& scene, const std::string& file) {
-  if (auto issue = find_scene_issue(scene))
-    throw SceneError(issue->code, file, 0, issue->field, issue->message);
+  std::vector<SceneProblem> all;
+  for (SceneIssue& i : find_scene_issues(scene))
+    all.push_back({std::move(i.code), 0, std::move(i.field), std::move(i.message)});
+  if (!all.empty()) throw SceneError(file, std::move(all));
 }
 
 }  // namespace simsols

@@ -18,6 +18,7 @@
 #include <sstream>
 #include <utility>
 
+#include "did_you_mean.h"
 #include "errors.h"
 
 namespace simsols {
@@ -75,32 +76,6 @@ const char* type_name(const toml::node& n) {
   }
 }
 
-size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<size_t> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diagonal = row[0];
-    row[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      const size_t next = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
-      diagonal = row[j];
-      row[j] = next;
-    }
-  }
-  return row[b.size()];
-}
-
-// " (did you mean 'x'?)" for the closest allowed key, if close enough.
-std::string suggestion(std::string_view key, const std::vector<std::string>& allowed) {
-  const std::string* best = nullptr;
-  size_t best_distance = std::max<size_t>(2, key.size() / 3) + 1;
-  for (const std::string& a : allowed) {
-    const size_t d = edit_distance(key, a);
-    if (d < best_distance) best = &a, best_distance = d;
-  }
-  return best ? " (did you mean '" + *best + "'?)" : "";
-}
-
 int line_of(const toml::source_region& r) { return static_cast<int>(r.begin.line); }
 
 // Divides by the length unless the vector is zero or already unit (so a
@@ -115,25 +90,37 @@ Vec3 normalized(const Vec3& v) {
 // ---------------------------------------------------------------------------
 // Reader: typed access to one TOML table, with its dotted path.
 
-// What every Reader needs besides its table.
+// What every Reader needs besides its table: the file, and the problems
+// that let the reading go on (unknown keys), reported together with the
+// first one that stops it, or at the end.
 struct Context {
   std::string file;
+  std::vector<SceneProblem> found;
 
+  void note(const std::string& code, int line, const std::string& field,
+            const std::string& message) {
+    found.push_back({code, line, field, message});
+  }
   [[noreturn]] void fail(const std::string& code, int line, const std::string& field,
-                         const std::string& message) const {
-    throw SceneError(code, file, line, field, message);
+                         const std::string& message) {
+    note(code, line, field, message);
+    throw SceneError(file, found);
+  }
+  void throw_if_any() const {
+    if (!found.empty()) throw SceneError(file, found);
   }
 };
 
 class Reader {
  public:
-  // Refuses keys outside `allowed` at once (unknown_key).
+  // Notes every key outside `allowed` (unknown_key); the reading goes on.
   Reader(const toml::table& table, std::string path, Context& ctx, std::vector<std::string> allowed)
       : table_(table), path_(std::move(path)), ctx_(ctx), allowed_(std::move(allowed)) {
     for (auto&& [key, node] : table_) {
       if (std::find(allowed_.begin(), allowed_.end(), key.str()) != allowed_.end()) continue;
-      ctx_.fail("unknown_key", line_of(key.source()), child(path_, key.str()),
-                "unknown key '" + std::string(key.str()) + "'" + suggestion(key.str(), allowed_) +
+      ctx_.note("unknown_key", line_of(key.source()), child(path_, key.str()),
+                "unknown key '" + std::string(key.str()) + "'" +
+                    did_you_mean(key.str(), allowed_) +
                     "; allowed keys: " + join(allowed_, false));
     }
   }
@@ -155,10 +142,12 @@ class Reader {
     if (!ok) fail("out_of_range", key, num(v) + " is out of range, allowed " + allowed);
   }
 
-  // Keys allowed by the table kind but not by its `type`.
+  // Keys allowed by the table kind but not by its `type` (noted, as unknown keys).
   void forbid(const std::vector<std::string>& keys, const std::string& reason) const {
     for (const std::string& k : keys)
-      if (has(k)) fail("unknown_key", k, "unknown key '" + k + "': " + reason);
+      if (has(k))
+        ctx_.note("unknown_key", line_of(table_.get(k)->source()), field(k),
+                  "unknown key '" + k + "': " + reason);
   }
 
   double number(std::string_view key) const { return to_number(key, require(key)); }
@@ -415,7 +404,8 @@ class Loader {
     read_numerics(r);
     read_outputs(r);
     read_view(r);
-    if (auto issue = find_scene_issue(scene_)) fail(std::move(*issue));
+    for (SceneIssue& issue : find_scene_issues(scene_)) note(std::move(issue));
+    ctx_.throw_if_any();
     return std::move(scene_);
   }
 
@@ -867,13 +857,18 @@ class Loader {
   }
 
   // Issues about generated particles are reported at their generator.
-  [[noreturn]] void fail(SceneIssue issue) const {
+  void note(SceneIssue issue) {
     size_t k = 0;
     if (std::sscanf(issue.field.c_str(), "particles[%zu]", &k) == 1 && k >= explicit_particles_) {
       issue.message = "generated particle " + std::to_string(k) + ": " + issue.message;
       issue.field = item("generators", generator_of_[k - explicit_particles_]);
     }
-    ctx_.fail(issue.code, line_for(issue.field), issue.field, issue.message);
+    ctx_.note(issue.code, line_for(issue.field), issue.field, issue.message);
+  }
+  // The reading cannot go on: this issue and those noted before it.
+  [[noreturn]] void fail(SceneIssue issue) {
+    note(std::move(issue));
+    throw SceneError(ctx_.file, ctx_.found);
   }
 
   Context ctx_;

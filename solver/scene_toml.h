@@ -5,11 +5,14 @@
 //      the dotted path of the table it reads ("materials[1]"), refuses
 //      unknown keys, wrong types and non-finite numbers, resolves material
 //      names and expands [[generators]] into particles.
-//   2. find_scene_issue() checks the rules shared with scenes built in code
+//   2. find_scene_issues() checks the rules shared with scenes built in code
 //      (ranges, unit normals, overlaps, the time-step limit). parse_scene()
-//      turns its first issue into a SceneError, finding the line by looking
+//      turns its issues into one SceneError, finding each line by looking
 //      the issue's field path up in the document; validate_scene() does the
 //      same without lines.
+// Problems that let the reading go on are all reported at once: every
+// unknown key (pass 1) and every value out of range (pass 2), with the first
+// problem that stops it (a missing field, a wrong type, an overlap).
 // Every failure is a SceneError whose `code` is one of the stable identifiers
 // listed in docs/scene-format.md, and whose `field` is the dotted TOML path.
 //
@@ -46,10 +49,13 @@ struct SceneIssue {
   std::string message;
 };
 
-// The first semantic problem of `scene`, or nullopt when it is valid.
+// The semantic problems of `scene`, empty when it is valid: every value out
+// of range or not finite, or the first other problem (the checks stop there).
+std::vector<SceneIssue> find_scene_issues(const Scene& scene);
+// The first of them, or nullopt when the scene is valid.
 std::optional<SceneIssue> find_scene_issue(const Scene& scene);
 
-// Throws SceneError (with `file`, line unknown) for the first issue.
+// Throws one SceneError (with `file`, line unknown) listing every issue.
 void validate_scene(const Scene& scene, const std::string& file);
 
 namespace detail {
