@@ -33,6 +33,10 @@ PACKAGES=(
   xvfb
   xauth
   clinfo
+  # app/lab_window.cpp includes <GLFW/glfw3native.h> for X11, which includes
+  # X11/Xlib.h and X11/extensions/Xrandr.h; libglfw3-dev only recommends these.
+  libx11-dev
+  libxrandr-dev
 )
 
 PRESET=release
