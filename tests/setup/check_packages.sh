@@ -18,6 +18,7 @@
 # Usage: check_packages.sh BUILD_DIR SETUP_SH [--drop PACKAGE]...
 #   --drop PACKAGE  check as if PACKAGE were not in the list (self-test).
 # Exit status: 0 all covered, 1 something is not, 2 usage, 77 no dpkg.
+# shellcheck disable=SC2206,SC2004 # package lists split on spaces; out[$p] is an associative array
 set -euo pipefail
 
 die() { printf 'check_packages: %s\n' "$*" >&2; exit 2; }
@@ -59,7 +60,7 @@ add() { [[ -n ${WHY[$1]:-} ]] || { WHY[$1]=$2; NOTE[$1]=${3:-}; }; }
 
 # Headers: every absolute dependency outside the source and build trees.
 mapfile -t deps < <(find "$BUILD" \( -name '*.o.d' -o -name compiler_depend.make \) -print0 |
-  xargs -0 cat | tr -s ' \\\t' '\n\n\n' | grep '^/' | grep -v ':$' | sort -u)
+  xargs -0 cat | tr -s ' \\\t' '\n' | grep '^/' | grep -v ':$' | sort -u)
 NHEADERS=0
 if ((${#deps[@]})); then
   while read -r p; do
@@ -140,7 +141,7 @@ while IFS= read -r line; do
 done < <(printf "%s\n" "${SELF[@]}" "${REALF[@]}" | tr ' ' '\n' | sort -u | xargs -d '\n' dpkg -S 2>/dev/null || true)
 
 # The installed packages: Depends/Pre-Depends, Provides and the base set.
-declare -A DEPS=() PROV=() LISTED=() PULLED=() BASE=()
+declare -A DEPS=() PROV=() PULLED=() BASE=()
 base_seed=()
 while IFS='#' read -r st name ess prio pre dep prov; do
   [[ $st == ii* ]] || continue
@@ -179,7 +180,7 @@ closure() {
 mapfile -t PACKAGES < <(bash "$SETUP" packages)
 ((${#PACKAGES[@]})) || die "$SETUP packages printed no packages"
 KEPT=()
-for p in "${PACKAGES[@]}"; do [[ -n ${DROP[$p]:-} ]] || { KEPT+=("$p"); LISTED[$p]=1; }; done
+for p in "${PACKAGES[@]}"; do [[ -n ${DROP[$p]:-} ]] || KEPT+=("$p"); done
 for p in "${KEPT[@]}"; do
   [[ -n ${DEPS[$p]+x} ]] || printf 'check_packages: note: %s is listed but not installed here\n' "$p"
 done
@@ -208,7 +209,8 @@ covered() {
 }
 owned() { local c; for c in "$@"; do [[ -n ${OWNER[$c]:-} ]] && return 0; done; return 1; }
 for f in $(printf '%s\n' "${!WHY[@]}" | sort); do
-  self=(${SELF[$f]}) real=(${REALF[$f]:-})
+  read -ra self <<<"${SELF[$f]}"
+  read -ra real <<<"${REALF[$f]:-}"
   if owned "${self[@]}"; then covered "$f" "${self[@]}" || true
   elif ((${#real[@]} == 0)) || ! owned "${real[@]}"; then
     ERRORS+=("${WHY[$f]} $f${NOTE[$f]:+ (${NOTE[$f]})} belongs to no Debian package")
