@@ -33,6 +33,10 @@ PACKAGES=(
   xvfb
   xauth
   clinfo
+  # app/lab_window.cpp includes <GLFW/glfw3native.h> for X11, which includes
+  # X11/Xlib.h and X11/extensions/Xrandr.h; libglfw3-dev only recommends these.
+  libx11-dev
+  libxrandr-dev
 )
 
 PRESET=release
@@ -57,6 +61,7 @@ Commands:
                  ARGS go to 'simsols run' (e.g. --precision double).
   test           install missing packages, build Release, run the whole
                  test suite (ctest --preset $PRESET); exits with its status.
+  packages       print the Debian packages this script installs, one per line.
   help           show this text.
 
 Environment:
@@ -148,6 +153,7 @@ main() {
       (($# == 0)) || { usage >&2; exit 2; }
       cmd_test
       ;;
+    packages) printf '%s\n' "${PACKAGES[@]}" ;;
     help | -h | --help) usage ;;
     -*) cmd_run "$cmd" "$@" ;; # ./setup.sh --precision double = ./setup.sh run --precision double
     *)
