@@ -230,7 +230,7 @@ TEST(Interrupt, StudyCtrlCThenResumeGivesTheSameCases) {
 }
 
 // `layers` x 20 x 20 beads of 1 mm settling on a floor (6 000 for 15
-// layers: about 1 000 steps/s on two cores); with `checkpoint_every_step`
+// layers: 1 000 to 4 000 steps/s on two cores); with `checkpoint_every_step`
 // most of the run is spent writing checkpoints (4 MB for 6 000 beads).
 fs::path heavy_scene(const fs::path& dir, int layers, bool checkpoint_every_step) {
   const fs::path p = dir / "heavy.toml";
@@ -276,14 +276,14 @@ TEST(Interrupt, PlainRunKillThenResumeGivesTheSameState) {
   const fs::path d = fresh_dir("plain");
   const std::string scene = heavy_scene(d, 15, false).string();
   const fs::path a = d / "straight", b = d / "interrupted";
-  const std::vector<std::string> common{"--duration", "0.0005", "-q"};
+  const std::vector<std::string> common{"--duration", "0.002", "-q"};  // 26 000 steps, > 6 s
   std::vector<std::string> args{"run", scene, "--out", a.string()};
   args.insert(args.end(), common.begin(), common.end());
   ASSERT_EQ(run(args, d / "a.log"), 0) << read(d / "a.log");
   args[3] = b.string();
   Child c(args, d / "b.log");
   ASSERT_TRUE(c.wait_for("cost:")) << c.output();
-  std::this_thread::sleep_for(2s);
+  std::this_thread::sleep_for(1s);
   kill(c.pid, SIGTERM);
   ASSERT_EQ(c.wait(), 143) << c.output();
   EXPECT_NE(c.output().find("interrupted at step "), std::string::npos) << c.output();
