@@ -8,7 +8,8 @@
 // Resumable: a test whose summary.txt exists is not rerun, an interrupted
 // one continues from its checkpoint. Afterwards, per bead size, the curves
 // of its stresses on common axes (the paper's Figures 3-7), the
-// Mohr-Coulomb envelope fitted to the peaks, and OUT/summary.csv / .md.
+// Mohr-Coulomb envelopes of the peak and residual strengths, and
+// OUT/summary.csv / .md (campaign_report.h).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -18,6 +19,7 @@
 #include <map>
 #include <sstream>
 
+#include "campaign_report.h"
 #include "commands.h"
 #include "paper_tests.h"
 #include "contact_model.h"
@@ -182,69 +184,12 @@ int campaign(const CampaignOptions& opt) {
     std::fflush(stdout);
   }
 
-  // Per size: curves and envelope; the tables.
-  std::ostringstream csv, md;
-  csv << "diameter_mm,layers,normal_stress_kPa,peak_tau_kPa,peak_tau_over_sigma,"
-         "peak_friction_angle_deg,peak_displacement_mm,residual_tau_kPa,"
-         "residual_friction_angle_deg,max_dilatancy_angle_deg,max_inertial_number,"
-         "sigma_band_min_percent,sigma_band_max_percent,beads,wall_seconds\n";
-  md << "# Direct shear campaign\n\nBase scene: `" << base_name << "`; "
-     << tests.size() << " tests; wall time of the tests run now: " << fmt("%.0f", spent)
-     << " s.\n\n| d (mm) | σ (kPa) | τ peak (kPa) | φ peak (°) | φ residual (°) | ψ max (°) | "
-        "σ band (%) | I max | wall (s) |\n|---|---|---|---|---|---|---|---|---|\n";
-  std::vector<EnvelopeSeries> envelopes;
-  std::ostringstream fits;
-  fits << "\n## Mohr-Coulomb envelopes (peak), τ = c + σ tan φ\n\n| d (mm) | φ (°) | c (kPa) | "
-          "R² | points |\n|---|---|---|---|---|\n";
-  for (double d : opt.sizes_mm) {
-    std::vector<ShearCurve> curves;
-    EnvelopeSeries env;
-    env.label = fmt("%g mm", d);
-    for (const Test& t : tests) {
-      if (t.d_mm != d) continue;
-      const ShearSummary& s = t.result.summary;
-      const int beads = static_cast<int>(t.scene.particles.size());
-      csv << fmt("%g", d) << ',' << t.scene.shear_box->specimen.layers << ',' << fmt("%g", t.s_kpa)
-          << ',' << fmt("%.6g", s.peak_tau * 1e-3) << ',' << fmt("%.6g", s.peak_ratio) << ','
-          << fmt("%.4f", s.peak_angle) << ',' << fmt("%.6g", s.peak_displacement * 1e3) << ','
-          << fmt("%.6g", s.residual_tau * 1e-3) << ',' << fmt("%.4f", s.residual_angle) << ','
-          << fmt("%.4f", s.max_dilatancy_angle) << ',' << fmt("%.4g", s.max_inertial_number)
-          << ',' << fmt("%.3f", 100 * (s.sigma_min / s.normal_stress_target - 1)) << ','
-          << fmt("%.3f", 100 * (s.sigma_max / s.normal_stress_target - 1)) << ',' << beads << ','
-          << fmt("%.1f", s.wall_seconds) << '\n';
-      md << "| " << fmt("%g", d) << " | " << fmt("%g", t.s_kpa) << " | "
-         << fmt("%.1f", s.peak_tau * 1e-3) << " | " << fmt("%.2f", s.peak_angle) << " | "
-         << fmt("%.2f", s.residual_angle) << " | " << fmt("%.2f", s.max_dilatancy_angle) << " | "
-         << fmt("%+.2f", 100 * (s.sigma_min / s.normal_stress_target - 1)) << " / "
-         << fmt("%+.2f", 100 * (s.sigma_max / s.normal_stress_target - 1)) << " | "
-         << fmt("%.2g", s.max_inertial_number) << " | " << fmt("%.0f", s.wall_seconds) << " |\n";
-      curves.push_back({fmt("%g kPa", t.s_kpa), t.result.rows, s});
-      env.sigma.push_back(s.normal_stress_target);
-      env.tau.push_back(s.peak_tau);
-    }
-    const fs::path out = opt.out_dir;
-    const std::string stem = fmt("d%gmm", d);
-    write_size_plots((out / (stem + "_stress.png")).string(),
-                     (out / (stem + "_dilation.png")).string(),
-                     fmt("Glass beads d = %g mm", d), curves);
-    if (env.sigma.size() < 2) {  // a line needs two normal stresses
-      fits << "| " << fmt("%g", d) << " | – | – | – | " << env.sigma.size() << " |\n";
-      std::printf("Mohr-Coulomb d = %g mm: needs two or more normal stresses\n", d);
-      continue;
-    }
-    const MohrCoulomb mc = fit_mohr_coulomb(env.sigma, env.tau);
-    env.cohesion = mc.cohesion;
-    env.tan_phi = mc.tan_phi;
-    envelopes.push_back(env);
-    fits << "| " << fmt("%g", d) << " | " << fmt("%.2f", mc.phi_deg) << " | "
-         << fmt("%.2f", mc.cohesion * 1e-3) << " | " << fmt("%.4f", mc.r2) << " | "
-         << env.sigma.size() << " |\n";
-    std::printf("Mohr-Coulomb d = %g mm: phi = %.2f deg, c = %.2f kPa, R^2 = %.4f\n", d,
-                mc.phi_deg, mc.cohesion * 1e-3, mc.r2);
-  }
-  write_envelope_plot((fs::path(opt.out_dir) / "mohr_coulomb.png").string(), envelopes);
-  write_file_atomic((fs::path(opt.out_dir) / "summary.csv").string(), csv.str());
-  write_file_atomic((fs::path(opt.out_dir) / "summary.md").string(), md.str() + fits.str());
+  std::vector<CampaignEntry> entries;
+  for (const Test& t : tests)
+    entries.push_back({t.d_mm, t.s_kpa, t.scene.shear_box->specimen.layers,
+                       static_cast<int>(t.scene.particles.size()), t.result.rows,
+                       t.result.summary});
+  write_campaign_report(opt.out_dir, base_name, opt.sizes_mm, entries, spent);
   std::printf("campaign done: %zu tests in %s (summary.md, summary.csv, *.png)\n", tests.size(),
               opt.out_dir.c_str());
   return 0;

@@ -24,10 +24,6 @@ const char* kViews[] = {"flat opaque", "flat transparent", "force chains",
 const char* kFields[] = {"size", "layer", "speed", "displacement", "contacts", "rotation"};
 const char* kPresets[] = {"front", "side", "top", "three-quarter"};
 
-std::optional<std::size_t> peak_of(const std::vector<double>& y) {
-  if (y.empty()) return std::nullopt;
-  return std::size_t(std::max_element(y.begin(), y.end()) - y.begin());
-}
 
 }  // namespace
 
@@ -227,8 +223,9 @@ void LabApp::draw_plots() {
     dil.x.push_back(r.displacement * 1e3);
     dil.y.push_back(r.dilation * 1e3);
   }
-  ratio.peak = peak_of(ratio.y);
-  tau.peak = peak_of(tau.y);
+  // the peak as in the summaries: the first peak of tau/sigma (shear_test.h)
+  const FirstPeak first = first_peak(t->rows(), t->normal_stress());
+  if (first.row >= 0) ratio.peak = tau.peak = std::size_t(first.row);
   const float w = ImGui::GetContentRegionAvail().x;
   const float h = std::max(120.0f, (ImGui::GetContentRegionAvail().y - 40) / 3);
   draw_lab_plot("##ratio", ratio, {w, h});

@@ -27,12 +27,21 @@ plot::Series column(const std::string& label, const std::vector<ShearRow>& rows,
   return s;
 }
 
-// The row the summary's peak came from (displacements increase, so at most
-// one matches); null when the test has no rows.
-const ShearRow* peak_row(const std::vector<ShearRow>& rows, const ShearSummary& s) {
+// The row at displacement `x` (displacements increase, so at most one
+// matches); null when there is none.
+const ShearRow* row_at(const std::vector<ShearRow>& rows, double x) {
   for (const ShearRow& r : rows)
-    if (std::fabs(r.displacement - s.peak_displacement) < 1e-12) return &r;
+    if (std::fabs(r.displacement - x) < 1e-12) return &r;
   return nullptr;
+}
+const ShearRow* peak_row(const std::vector<ShearRow>& rows, const ShearSummary& s) {
+  return s.peak_ratio > 0 ? row_at(rows, s.peak_displacement) : nullptr;
+}
+// The largest tau/sigma when it comes after the peak and exceeds it.
+const ShearRow* later_max_row(const std::vector<ShearRow>& rows, const ShearSummary& s) {
+  return s.max_ratio > s.peak_ratio && s.max_displacement > s.peak_displacement
+             ? row_at(rows, s.max_displacement)
+             : nullptr;
 }
 
 double tau_kpa(const ShearRow& r) { return r.tau * 1e-3; }
@@ -50,11 +59,16 @@ void write_shear_plots(const std::string& dir, const std::string& title,
   tau.x_label = x_label;
   tau.y_label = "Shear stress τ (kPa)";
   tau.series.push_back(column("τ on the nominal area", rows, tau_kpa));
-  // the peak of tau/sigma, on the tau curve
+  // the peak (the first peak of tau/sigma) and a later, larger maximum, on
+  // both curves
   const ShearRow* peak = peak_row(rows, s);
+  const ShearRow* later = later_max_row(rows, s);
   if (peak)
     tau.markers.push_back({peak->displacement * 1e3, peak->tau * 1e-3,
                            "peak φ = " + fixed(s.peak_angle, 1) + "°"});
+  if (later)
+    tau.markers.push_back({later->displacement * 1e3, later->tau * 1e-3,
+                           "later maximum φ = " + fixed(s.max_angle, 1) + "°"});
   tau.legend = false;
   plot::write_chart_png(tau, (d / "shear_stress.png").string());
 
@@ -67,6 +81,10 @@ void write_shear_plots(const std::string& dir, const std::string& title,
     rat.markers.push_back({peak->displacement * 1e3, s.peak_ratio,
                            "peak " + fixed(s.peak_ratio, 3) + " (φ = " + fixed(s.peak_angle, 1) +
                                "°)"});
+  if (later)
+    rat.markers.push_back({later->displacement * 1e3, s.max_ratio,
+                           "later maximum " + fixed(s.max_ratio, 3) + " (φ = " +
+                               fixed(s.max_angle, 1) + "°)"});
   plot::Series residual;
   residual.label = "residual " + fixed(s.residual_ratio, 3) + " (φ = " + fixed(s.residual_angle, 1) + "°)";
   if (!rows.empty()) {
@@ -105,11 +123,12 @@ void write_size_plots(const std::string& stress_png, const std::string& dilation
   plot::write_chart_png(dil, dilation_png);
 }
 
-void write_envelope_plot(const std::string& png, const std::vector<EnvelopeSeries>& sizes) {
+void write_envelope_plot(const std::string& png, const std::string& which,
+                         const std::vector<EnvelopeSeries>& sizes) {
   plot::Chart c;
-  c.title = "Mohr-Coulomb envelopes (peak)";
+  c.title = "Mohr-Coulomb envelopes (" + which + ")";
   c.x_label = "Normal stress σ (kPa)";
-  c.y_label = "Peak shear stress τ (kPa)";
+  c.y_label = "Shear stress τ (kPa), " + which;
   double s_max = 0;
   for (const EnvelopeSeries& e : sizes)
     for (double v : e.sigma) s_max = std::max(s_max, v);

@@ -1,10 +1,12 @@
 // The direct shear test's pictures, drawn like the reference paper's
 // Figures 3-7 (render/chart.h rasterises them to PNG):
-//   one test:      shear_stress.png   tau (kPa) vs horizontal displacement (mm), peak marked
+//   one test:      shear_stress.png   tau (kPa) vs horizontal displacement (mm), the peak
+//                                     (first peak) marked, and a later maximum, labelled so
 //                  shear_ratio.png    tau/sigma vs horizontal displacement
 //                  dilation.png       vertical vs horizontal displacement (dilation up)
 //   a bead size:   <size>_stress.png / <size>_dilation.png, one curve per normal stress
-//   the envelope:  mohr_coulomb.png   peak tau vs sigma with the fitted lines
+//   the envelopes: mohr_coulomb.png, mohr_coulomb_residual.png: peak and
+//                  residual tau vs sigma with the fitted lines
 #pragma once
 
 #include <string>
@@ -28,9 +30,11 @@ void write_size_plots(const std::string& stress_png, const std::string& dilation
 
 struct EnvelopeSeries {
   std::string label;                  // bead size
-  std::vector<double> sigma, tau;     // Pa, the peaks
+  std::vector<double> sigma, tau;     // Pa: the peaks, or the residuals
   double cohesion = 0, tan_phi = 0;   // fitted tau = c + sigma tan(phi)
 };
-void write_envelope_plot(const std::string& png, const std::vector<EnvelopeSeries>& sizes);
+// `which`: "peak" or "residual", in the title and the axis.
+void write_envelope_plot(const std::string& png, const std::string& which,
+                         const std::vector<EnvelopeSeries>& sizes);
 
 }  // namespace simsols

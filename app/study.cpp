@@ -305,7 +305,9 @@ ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s,
     }
     r.wall_seconds = wall_before + std::chrono::duration<double>(Clock::now() - t0).count();
     const ShearSummary sum = test.summary();
-    r.peak_angle = sum.peak_angle;
+    // the study's phi_peak is the largest tau/sigma of the test, as measured
+    // in docs/accuracy.md (not the first peak of ShearSummary::peak_angle)
+    r.peak_angle = sum.max_angle;
     r.residual_angle = sum.residual_angle;
     r.dilatancy_angle = sum.max_dilatancy_angle;
     r.steps = sim->steps();

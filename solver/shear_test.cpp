@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -26,6 +28,11 @@ constexpr double kIntegralPeriods = 5.0;
 // their end criteria hold (for progress estimates only).
 constexpr double kSettleShare = 0.3;
 constexpr double kConsolidateShare = 0.3;
+
+// A first peak is a maximum of mobilised strength: while the running
+// maximum of tau/sigma is below this share of the test's largest, its
+// wiggles (noise about zero at the start of shearing) are not softening.
+constexpr double kPeakMobilised = 0.25;
 
 const ShearBox& box_of(const Simulation& sim) {
   if (!sim.scene().shear_box) throw std::invalid_argument("ShearTest: the scene has no shear box");
@@ -368,21 +375,22 @@ ShearSummary ShearTest::summary() const {
   for (const ShearRow& r : rows_) {
     // a platen that lost contact (sigma far below target) gives no ratio
     const double ratio = r.sigma > 0.5 * sigma_target_ ? r.tau / r.sigma : 0;
-    if (ratio > s.peak_ratio) {
-      s.peak_ratio = ratio;
-      s.peak_displacement = r.displacement;
+    if (ratio > s.max_ratio) {
+      s.max_ratio = ratio;
+      s.max_displacement = r.displacement;
     }
-    s.peak_tau = std::max(s.peak_tau, r.tau);
+    s.max_tau = std::max(s.max_tau, r.tau);
     s.max_inertial_number = std::max(s.max_inertial_number, r.inertial_number);
     s.sigma_min = std::min(s.sigma_min, r.sigma);
     s.sigma_max = std::max(s.sigma_max, r.sigma);
     s.max_outside = std::max(s.max_outside, r.outside);
   }
-  s.peak_angle = std::atan(s.peak_ratio) * kRad;
+  s.max_angle = std::atan(s.max_ratio) * kRad;
   const FirstPeak first = first_peak(rows_, sigma_target_);
-  s.first_peak_ratio = first.ratio;
-  s.first_peak_displacement = first.displacement;
-  s.first_peak_angle = std::atan(first.ratio) * kRad;
+  s.peak_ratio = first.ratio;
+  s.peak_displacement = first.displacement;
+  s.peak_angle = std::atan(first.ratio) * kRad;
+  s.peak_tau = first.row >= 0 ? rows_[first.row].tau : 0;
   const double end = rows_.back().displacement;
   double sum_tau = 0, sum_ratio = 0;
   int count = 0;
@@ -471,6 +479,10 @@ std::string shear_rows_csv(const std::vector<ShearRow>& rows) {
 }
 
 FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target, double softening) {
+  // the largest ratio of the test: the scale of what counts as a peak
+  double top = 0;
+  for (const ShearRow& r : rows)
+    if (r.sigma > 0.5 * sigma_target) top = std::max(top, r.tau / r.sigma);
   FirstPeak best;
   for (const ShearRow& r : rows) {
     if (!(r.sigma > 0.5 * sigma_target)) continue;
@@ -478,7 +490,8 @@ FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target, dou
     if (ratio > best.ratio) {
       best.ratio = ratio;
       best.displacement = r.displacement;
-    } else if (best.ratio > 0 && ratio < (1 - softening) * best.ratio) {
+      best.row = static_cast<int>(&r - rows.data());
+    } else if (best.ratio >= kPeakMobilised * top && ratio < (1 - softening) * best.ratio) {
       break;  // softened: the running maximum was the first peak
     }
   }
@@ -492,16 +505,16 @@ std::string shear_summary_text(const ShearSummary& s) {
       "normal_stress_kPa = %.6g\nbead_diameter_mm = %.6g\nspecimen_height_mm = %.6g\n"
       "shear_speed_mm_s = %.6g\npeak_tau_kPa = %.6g\npeak_tau_over_sigma = %.6g\n"
       "peak_friction_angle_deg = %.4f\npeak_displacement_mm = %.6g\n"
-      "first_peak_tau_over_sigma = %.6g\nfirst_peak_friction_angle_deg = %.4f\n"
-      "first_peak_displacement_mm = %.6g\nresidual_tau_kPa = %.6g\n"
+      "max_tau_kPa = %.6g\nmax_tau_over_sigma = %.6g\nmax_friction_angle_deg = %.4f\n"
+      "max_displacement_mm = %.6g\nresidual_tau_kPa = %.6g\n"
       "residual_tau_over_sigma = %.6g\nresidual_friction_angle_deg = %.4f\n"
       "max_dilatancy_angle_deg = %.4f\nmax_inertial_number = %.4g\nsigma_min_kPa = %.6g\n"
       "sigma_max_kPa = %.6g\nsigma_band_percent = %+.3f %+.3f\nmax_beads_outside = %d\n"
       "settle_time_s = %.6g\nconsolidate_time_s = %.6g\nwall_seconds = %.1f\n",
       s.normal_stress_target * 1e-3, s.bead_diameter * 1e3, s.specimen_height * 1e3,
       s.shear_speed * 1e3, s.peak_tau * 1e-3, s.peak_ratio, s.peak_angle,
-      s.peak_displacement * 1e3, s.first_peak_ratio, s.first_peak_angle,
-      s.first_peak_displacement * 1e3, s.residual_tau * 1e-3, s.residual_ratio, s.residual_angle,
+      s.peak_displacement * 1e3, s.max_tau * 1e-3, s.max_ratio, s.max_angle,
+      s.max_displacement * 1e3, s.residual_tau * 1e-3, s.residual_ratio, s.residual_angle,
       s.max_dilatancy_angle, s.max_inertial_number, s.sigma_min * 1e-3, s.sigma_max * 1e-3,
       100 * (s.sigma_min / s.normal_stress_target - 1),
       100 * (s.sigma_max / s.normal_stress_target - 1), s.max_outside, s.settle_time,
@@ -579,47 +592,65 @@ std::vector<ShearRow> parse_shear_rows_csv(const std::string& text) {
   return rows;
 }
 
-ShearSummary parse_shear_summary(const std::string& text) {
-  std::istringstream in(text);
-  std::string line;
-  ShearSummary s;
-  int seen = 0;
-  while (std::getline(in, line)) {
-    const size_t eq = line.find(" = ");
-    if (eq == std::string::npos) continue;
-    const std::string key = line.substr(0, eq), value = line.substr(eq + 3);
-    const struct {
-      const char* key;
-      double* target;
-      double scale;
-    } fields[] = {{"normal_stress_kPa", &s.normal_stress_target, 1e3},
-                  {"bead_diameter_mm", &s.bead_diameter, 1e-3},
-                  {"specimen_height_mm", &s.specimen_height, 1e-3},
-                  {"shear_speed_mm_s", &s.shear_speed, 1e-3},
-                  {"peak_tau_kPa", &s.peak_tau, 1e3},
-                  {"peak_tau_over_sigma", &s.peak_ratio, 1},
-                  {"peak_friction_angle_deg", &s.peak_angle, 1},
-                  {"peak_displacement_mm", &s.peak_displacement, 1e-3},
-                  {"first_peak_tau_over_sigma", &s.first_peak_ratio, 1},
-                  {"first_peak_friction_angle_deg", &s.first_peak_angle, 1},
-                  {"first_peak_displacement_mm", &s.first_peak_displacement, 1e-3},
-                  {"residual_tau_kPa", &s.residual_tau, 1e3},
-                  {"residual_tau_over_sigma", &s.residual_ratio, 1},
-                  {"residual_friction_angle_deg", &s.residual_angle, 1},
-                  {"max_dilatancy_angle_deg", &s.max_dilatancy_angle, 1},
-                  {"max_inertial_number", &s.max_inertial_number, 1},
-                  {"sigma_min_kPa", &s.sigma_min, 1e3},
-                  {"sigma_max_kPa", &s.sigma_max, 1e3},
-                  {"settle_time_s", &s.settle_time, 1},
-                  {"consolidate_time_s", &s.consolidate_time, 1},
-                  {"wall_seconds", &s.wall_seconds, 1}};
-    for (const auto& f : fields)
-      if (key == f.key) {
-        *f.target = to_double(value, "summary key " + key) * f.scale;
-        ++seen;
-      }
-    if (key == "max_beads_outside") s.max_outside = static_cast<int>(to_double(value, key));
+namespace {
+
+// Summaries written before the peak meant the first peak called the overall
+// maximum peak_* and the first peak first_peak_*: their keys, renamed.
+void rename_older_keys(std::map<std::string, std::string>& kv) {
+  if (!kv.count("first_peak_tau_over_sigma")) return;
+  for (const char* k : {"tau_kPa", "tau_over_sigma", "friction_angle_deg", "displacement_mm"}) {
+    const std::string peak = std::string("peak_") + k, first = "first_" + peak;
+    if (kv.count(peak)) kv["max_" + std::string(k)] = kv[peak];
+    kv.erase(peak);
+    if (kv.count(first)) kv[peak] = kv[first];
   }
+}
+
+}  // namespace
+
+ShearSummary parse_shear_summary(const std::string& text) {
+  std::map<std::string, std::string> kv;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    const size_t eq = line.find(" = ");
+    if (eq != std::string::npos) kv[line.substr(0, eq)] = line.substr(eq + 3);
+  }
+  rename_older_keys(kv);
+  ShearSummary s;
+  const struct {
+    const char* key;
+    double* target;
+    double scale;
+  } fields[] = {{"normal_stress_kPa", &s.normal_stress_target, 1e3},
+                {"bead_diameter_mm", &s.bead_diameter, 1e-3},
+                {"specimen_height_mm", &s.specimen_height, 1e-3},
+                {"shear_speed_mm_s", &s.shear_speed, 1e-3},
+                {"peak_tau_kPa", &s.peak_tau, 1e3},
+                {"peak_tau_over_sigma", &s.peak_ratio, 1},
+                {"peak_friction_angle_deg", &s.peak_angle, 1},
+                {"peak_displacement_mm", &s.peak_displacement, 1e-3},
+                {"max_tau_kPa", &s.max_tau, 1e3},
+                {"max_tau_over_sigma", &s.max_ratio, 1},
+                {"max_friction_angle_deg", &s.max_angle, 1},
+                {"max_displacement_mm", &s.max_displacement, 1e-3},
+                {"residual_tau_kPa", &s.residual_tau, 1e3},
+                {"residual_tau_over_sigma", &s.residual_ratio, 1},
+                {"residual_friction_angle_deg", &s.residual_angle, 1},
+                {"max_dilatancy_angle_deg", &s.max_dilatancy_angle, 1},
+                {"max_inertial_number", &s.max_inertial_number, 1},
+                {"sigma_min_kPa", &s.sigma_min, 1e3},
+                {"sigma_max_kPa", &s.sigma_max, 1e3},
+                {"settle_time_s", &s.settle_time, 1},
+                {"consolidate_time_s", &s.consolidate_time, 1},
+                {"wall_seconds", &s.wall_seconds, 1}};
+  int seen = 0;
+  for (const auto& f : fields)
+    if (const auto it = kv.find(f.key); it != kv.end()) {
+      *f.target = to_double(it->second, "summary key " + it->first) * f.scale;
+      ++seen;
+    }
+  if (const auto it = kv.find("max_beads_outside"); it != kv.end())
+    s.max_outside = static_cast<int>(to_double(it->second, it->first));
   if (seen < 10) throw std::runtime_error("not a shear-test summary (too few keys)");
   return s;
 }
@@ -627,27 +658,39 @@ ShearSummary parse_shear_summary(const std::string& text) {
 MohrCoulomb fit_mohr_coulomb(const std::vector<double>& sigma, const std::vector<double>& tau) {
   MohrCoulomb m;
   const size_t n = std::min(sigma.size(), tau.size());
+  m.points = static_cast<int>(n);
   if (n < 2) return m;
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  double sx = 0, sy = 0;
   for (size_t i = 0; i < n; ++i) {
     sx += sigma[i];
     sy += tau[i];
-    sxx += sigma[i] * sigma[i];
-    sxy += sigma[i] * tau[i];
   }
-  const double den = n * sxx - sx * sx;
-  if (den <= 0) return m;
-  m.tan_phi = (n * sxy - sx * sy) / den;
-  m.cohesion = (sy - m.tan_phi * sx) / n;
+  const double mx = sx / n, my = sy / n;
+  double sxx = 0, sxy = 0, ss_tot = 0;
+  for (size_t i = 0; i < n; ++i) {
+    sxx += (sigma[i] - mx) * (sigma[i] - mx);
+    sxy += (sigma[i] - mx) * (tau[i] - my);
+    ss_tot += (tau[i] - my) * (tau[i] - my);
+  }
+  if (sxx <= 0) return m;
+  m.tan_phi = sxy / sxx;
+  m.cohesion = my - m.tan_phi * mx;
   m.phi_deg = std::atan(m.tan_phi) * kRad;
-  const double mean = sy / n;
-  double ss_res = 0, ss_tot = 0;
+  double ss_res = 0;
   for (size_t i = 0; i < n; ++i) {
     const double e = tau[i] - (m.cohesion + m.tan_phi * sigma[i]);
     ss_res += e * e;
-    ss_tot += (tau[i] - mean) * (tau[i] - mean);
   }
   m.r2 = ss_tot > 0 ? 1 - ss_res / ss_tot : 1;
+  m.exact = n == 2;
+  if (m.exact) {
+    m.cohesion_se = m.tan_phi_se = m.phi_se_deg = std::numeric_limits<double>::quiet_NaN();
+    return m;
+  }
+  const double s2 = ss_res / double(n - 2);
+  m.tan_phi_se = std::sqrt(s2 / sxx);
+  m.cohesion_se = std::sqrt(s2 * (1.0 / n + mx * mx / sxx));
+  m.phi_se_deg = m.tan_phi_se / (1 + m.tan_phi * m.tan_phi) * kRad;
   return m;
 }
 

@@ -60,13 +60,16 @@ struct ShearSummary {
   double shear_speed = 0;           // m/s
   double specimen_height = 0;       // m, at the start of shearing
   double bead_diameter = 0;         // m, mean
+  // The peak strength in the geotechnical sense (ASTM D3080's reading of a
+  // tau-displacement curve): the first maximum of tau/sigma after which the
+  // specimen softens (tau/sigma falls by more than 5 % of it); peak_tau is
+  // tau in that row.
   double peak_tau = 0, peak_ratio = 0, peak_angle = 0, peak_displacement = 0;
+  // The largest tau/sigma of the whole test (max_ratio, max_angle at
+  // max_displacement) and the largest tau: in a layered specimen this can be
+  // a late jamming event, reported beside the peak but never as it.
+  double max_tau = 0, max_ratio = 0, max_angle = 0, max_displacement = 0;
   double residual_tau = 0, residual_ratio = 0, residual_angle = 0;  // mean over the last 20%
-  // The first peak: the first maximum of tau/sigma after which the specimen
-  // softens (tau/sigma falls by more than 5 % of it); the peak strength in
-  // the geotechnical sense. peak_* above is the largest tau/sigma of the
-  // whole test, which in a layered specimen can be a late jamming event.
-  double first_peak_ratio = 0, first_peak_angle = 0, first_peak_displacement = 0;
   double max_dilatancy_angle = 0;   // deg, steepest rise of dz/dx (smoothed)
   double max_inertial_number = 0;
   double sigma_min = 0, sigma_max = 0;  // Pa, band of the row means during shear
@@ -153,12 +156,15 @@ class ShearTest {
   std::vector<ShearRow> rows_;
 };
 
-// The first peak of a test's rows (ShearSummary::first_peak_*): the first
+// The first peak of a test's rows (ShearSummary::peak_*): the first
 // running maximum of tau/sigma followed by a fall of more than `softening`
-// of it; the largest value when the curve never softens. Rows whose sigma
-// is below half the target (a platen that lost contact) are skipped.
+// of it, once that maximum has reached a quarter of the test's largest
+// tau/sigma (before, the curve's wiggles about zero are noise, not a peak);
+// the largest value when the curve never softens. Rows whose sigma is below
+// half the target (a platen that lost contact) are skipped.
 struct FirstPeak {
   double ratio = 0, displacement = 0;
+  int row = -1;  // its index in `rows`; -1 when there is none
 };
 FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target,
                      double softening = 0.05);
@@ -171,12 +177,20 @@ std::string shear_summary_text(const ShearSummary& s);
 ShearSummary parse_shear_summary(const std::string& text);
 
 // Mohr-Coulomb envelope tau = c + sigma tan(phi) by least squares over
-// (sigma, tau) points (Pa), with the coefficient of determination R^2.
+// (sigma, tau) points (Pa), with the coefficient of determination R^2 and,
+// from three points on, the standard errors of c and tan(phi) (ordinary
+// least squares: s^2 = SS_res / (n - 2), se(tan phi) = s / sqrt(Sxx),
+// se(c) = s sqrt(1/n + mean(sigma)^2 / Sxx)) and of phi (se(tan phi) /
+// (1 + tan^2 phi), in degrees). Two points give the exact line through
+// them: no error estimate (the standard errors are NaN, `exact` is true).
 struct MohrCoulomb {
   double cohesion = 0;   // Pa
   double tan_phi = 0;
   double phi_deg = 0;
   double r2 = 0;
+  int points = 0;
+  bool exact = false;    // two points: the line through them
+  double cohesion_se = 0, tan_phi_se = 0, phi_se_deg = 0;  // NaN when exact
 };
 MohrCoulomb fit_mohr_coulomb(const std::vector<double>& sigma, const std::vector<double>& tau);
 

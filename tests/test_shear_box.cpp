@@ -176,11 +176,56 @@ TEST(ShearAnalysis, RowsAndSummaryRoundTripThroughText) {
   EXPECT_NEAR(back.peak_angle, 35.26, 1e-9);
   EXPECT_NEAR(back.sigma_max, 161e3, 1e-6);
   EXPECT_THROW(parse_shear_summary("hello = 1\n"), std::runtime_error);
-  s.first_peak_ratio = 0.704;
-  s.first_peak_displacement = 2e-4;
+  s.max_ratio = 0.924;
+  s.max_displacement = 4.56e-3;
+  s.peak_tau = 112.6e3;
   const ShearSummary again = parse_shear_summary(shear_summary_text(s));
-  EXPECT_NEAR(again.first_peak_ratio, 0.704, 1e-9);
-  EXPECT_NEAR(again.first_peak_displacement, 2e-4, 1e-12);
+  EXPECT_NEAR(again.max_ratio, 0.924, 1e-9);
+  EXPECT_NEAR(again.max_displacement, 4.56e-3, 1e-12);
+  EXPECT_NEAR(again.peak_tau, 112.6e3, 1e-6);
+  EXPECT_NEAR(again.peak_ratio, 0.7071, 1e-9);
+}
+
+// Summaries written when peak_* meant the largest tau/sigma and
+// first_peak_* the first peak read with today's meaning: peak = the first
+// peak, max = the largest.
+TEST(ShearAnalysis, OlderSummaryKeysKeepTheirMeaning) {
+  const std::string older =
+      "normal_stress_kPa = 160\nbead_diameter_mm = 6.35\nspecimen_height_mm = 20.2\n"
+      "shear_speed_mm_s = 21.5\npeak_tau_kPa = 147.98\npeak_tau_over_sigma = 0.924\n"
+      "peak_friction_angle_deg = 42.75\npeak_displacement_mm = 4.56\n"
+      "first_peak_tau_over_sigma = 0.704\nfirst_peak_friction_angle_deg = 35.16\n"
+      "first_peak_displacement_mm = 0.2\nresidual_tau_kPa = 50.34\n"
+      "residual_tau_over_sigma = 0.315\nresidual_friction_angle_deg = 17.47\n";
+  const ShearSummary s = parse_shear_summary(older);
+  EXPECT_NEAR(s.peak_ratio, 0.704, 1e-12);
+  EXPECT_NEAR(s.peak_angle, 35.16, 1e-12);
+  EXPECT_NEAR(s.peak_displacement, 0.2e-3, 1e-15);
+  EXPECT_NEAR(s.max_ratio, 0.924, 1e-12);
+  EXPECT_NEAR(s.max_angle, 42.75, 1e-12);
+  EXPECT_NEAR(s.max_tau, 147.98e3, 1e-9);
+  EXPECT_NEAR(s.max_displacement, 4.56e-3, 1e-15);
+}
+
+// Standard errors of an ordinary least-squares line, against a case worked
+// by hand: x = 1..4 (x 100 kPa), y = 1, 3, 2, 4 (x 100 kPa): slope 0.8,
+// intercept 0.5, s^2 = 1.8 / 2, se(slope) = sqrt(0.9 / 5), se(intercept) =
+// sqrt(0.9 (1/4 + 2.5^2 / 5)). Two points: the line through them, no error.
+TEST(ShearAnalysis, MohrCoulombStandardErrors) {
+  const MohrCoulomb m = fit_mohr_coulomb({1e5, 2e5, 3e5, 4e5}, {1e5, 3e5, 2e5, 4e5});
+  EXPECT_EQ(m.points, 4);
+  EXPECT_FALSE(m.exact);
+  EXPECT_NEAR(m.tan_phi, 0.8, 1e-12);
+  EXPECT_NEAR(m.cohesion, 0.5e5, 1e-6);
+  EXPECT_NEAR(m.tan_phi_se, std::sqrt(0.9 / 5), 1e-12);
+  EXPECT_NEAR(m.cohesion_se, std::sqrt(0.9 * 1.5) * 1e5, 1e-6);
+  EXPECT_NEAR(m.phi_se_deg, std::sqrt(0.9 / 5) / 1.64 * 180 / std::numbers::pi, 1e-9);
+  const MohrCoulomb two = fit_mohr_coulomb({50e3, 400e3}, {30e3, 240e3});
+  EXPECT_TRUE(two.exact);
+  EXPECT_EQ(two.points, 2);
+  EXPECT_NEAR(two.tan_phi, 0.6, 1e-12);
+  EXPECT_TRUE(std::isnan(two.cohesion_se));
+  EXPECT_TRUE(std::isnan(two.phi_se_deg));
 }
 
 // The first peak: the first running maximum of tau/sigma that the specimen
@@ -201,6 +246,7 @@ TEST(ShearAnalysis, FirstPeakIsTheFirstMaximumBeforeSoftening) {
   FirstPeak p = first_peak(rows_of({0.2, 0.5, 0.70, 0.68, 0.71, 0.66, 0.60, 0.65, 0.92, 0.5}), 100e3);
   EXPECT_DOUBLE_EQ(p.ratio, 0.71);  // 0.68 is within 5 % of 0.70: not yet softening
   EXPECT_DOUBLE_EQ(p.displacement, 5e-4);
+  EXPECT_EQ(p.row, 4);
   p = first_peak(rows_of({-0.01, 0.1, 0.3, 0.5, 0.6}), 100e3);  // starts slightly negative
   EXPECT_DOUBLE_EQ(p.ratio, 0.6);
   std::vector<ShearRow> lost = rows_of({0.3, 0.8, 0.4, 0.5});
@@ -208,7 +254,13 @@ TEST(ShearAnalysis, FirstPeakIsTheFirstMaximumBeforeSoftening) {
   lost[1].tau = 0.8 * 10e3;
   p = first_peak(lost, 100e3);
   EXPECT_DOUBLE_EQ(p.ratio, 0.5);
+  // noise about zero at the start is no peak: 0.001 -> 0.0005 halves, but
+  // is far below a quarter of the test's 0.7
+  p = first_peak(rows_of({0.001, 0.0005, 0.2, 0.5, 0.7, 0.6}), 100e3);
+  EXPECT_DOUBLE_EQ(p.ratio, 0.7);
+  EXPECT_EQ(p.row, 4);
   EXPECT_DOUBLE_EQ(first_peak({}, 100e3).ratio, 0.0);
+  EXPECT_EQ(first_peak({}, 100e3).row, -1);
 }
 
 // --- Running tests -----------------------------------------------------------
