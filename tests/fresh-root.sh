@@ -97,7 +97,7 @@ installed=$(sed -n 's/.*==> Installing missing packages: //p' "$LOG" | head -n 1
   grep -m1 -o '[0-9]* newly installed' "$LOG" | sed 's/^/  apt: /' || true
   [[ -n $b0 && -n $b1 ]] && echo "  build: $((b1 - b0)) s"
   echo "  ./setup.sh: exit $run_rc in ${t_run} s; ./setup.sh test: exit $test_rc in ${t_test} s"
-  grep -E 'shear test finished|first peak|phi_peak|phi_residual' "$LOG" | sed 's/^\[ *[0-9]*s\] /  /' || true
+  grep -E 'shear test finished|phi_peak|phi_residual|largest  tau' "$LOG" | sed 's/^\[ *[0-9]*s\] /  /' || true
   grep -E 'tests passed,|Total Test time' "$LOG" | sed 's/^\[ *[0-9]*s\] /  /' || true
   sed -n '/The following tests FAILED/,/Errors while running/p' "$LOG" | sed 's/^\[ *[0-9]*s\] /  /'
   echo "  result: $([[ $status == 0 ]] && echo PASS || echo FAIL); log: $LOG"
