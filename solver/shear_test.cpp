@@ -370,47 +370,7 @@ ShearSummary ShearTest::summary() const {
   s.bead_diameter = diameter_;
   s.settle_time = settle_seconds_;
   s.consolidate_time = consolidate_seconds_;
-  if (rows_.empty()) return s;
-  s.sigma_min = s.sigma_max = rows_[0].sigma;
-  for (const ShearRow& r : rows_) {
-    // a platen that lost contact (sigma far below target) gives no ratio
-    const double ratio = r.sigma > 0.5 * sigma_target_ ? r.tau / r.sigma : 0;
-    if (ratio > s.max_ratio) {
-      s.max_ratio = ratio;
-      s.max_displacement = r.displacement;
-    }
-    s.max_tau = std::max(s.max_tau, r.tau);
-    s.max_inertial_number = std::max(s.max_inertial_number, r.inertial_number);
-    s.sigma_min = std::min(s.sigma_min, r.sigma);
-    s.sigma_max = std::max(s.sigma_max, r.sigma);
-    s.max_outside = std::max(s.max_outside, r.outside);
-  }
-  s.max_angle = std::atan(s.max_ratio) * kRad;
-  const FirstPeak first = first_peak(rows_, sigma_target_);
-  s.peak_ratio = first.ratio;
-  s.peak_displacement = first.displacement;
-  s.peak_angle = std::atan(first.ratio) * kRad;
-  s.peak_tau = first.row >= 0 ? rows_[first.row].tau : 0;
-  const double end = rows_.back().displacement;
-  double sum_tau = 0, sum_ratio = 0;
-  int count = 0;
-  for (const ShearRow& r : rows_)
-    if (r.displacement >= 0.8 * end && r.sigma > 0.5 * sigma_target_) {
-      sum_tau += r.tau;
-      sum_ratio += r.tau / r.sigma;
-      ++count;
-    }
-  if (count > 0) {
-    s.residual_tau = sum_tau / count;
-    s.residual_ratio = sum_ratio / count;
-    s.residual_angle = std::atan(s.residual_ratio) * kRad;
-  }
-  // Dilatancy: least-squares slope of dz(dx) over a sliding window of
-  // ~1/40 of the test (at least 3 rows), the steepest rise.
-  const size_t w = std::max<size_t>(3, rows_.size() / 40);
-  double steepest = 0;
-  for (size_t a = 0; a + w <= rows_.size(); ++a) steepest = std::max(steepest, slope(rows_, a, a + w));
-  s.max_dilatancy_angle = std::atan(steepest) * kRad;
+  analyse_shear_rows(rows_, s);
   return s;
 }
 
@@ -478,11 +438,31 @@ std::string shear_rows_csv(const std::vector<ShearRow>& rows) {
   return out;
 }
 
+Residual residual_of(const std::vector<ShearRow>& rows, double sigma_target) {
+  Residual r;
+  if (rows.empty()) return r;
+  const double end = rows.back().displacement;
+  int count = 0;
+  for (const ShearRow& row : rows)
+    if (row.displacement >= 0.8 * end && row.sigma > 0.5 * sigma_target) {
+      r.tau += row.tau;
+      r.ratio += row.tau / row.sigma;
+      ++count;
+    }
+  if (count > 0) {
+    r.tau /= count;
+    r.ratio /= count;
+  }
+  return r;
+}
+
 FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target, double softening) {
-  // the largest ratio of the test: the scale of what counts as a peak
+  // what counts as a peak: a quarter of the test's largest ratio, and no
+  // less than its residual strength
   double top = 0;
   for (const ShearRow& r : rows)
     if (r.sigma > 0.5 * sigma_target) top = std::max(top, r.tau / r.sigma);
+  const double floor = std::max(kPeakMobilised * top, residual_of(rows, sigma_target).ratio);
   FirstPeak best;
   for (const ShearRow& r : rows) {
     if (!(r.sigma > 0.5 * sigma_target)) continue;
@@ -491,11 +471,57 @@ FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target, dou
       best.ratio = ratio;
       best.displacement = r.displacement;
       best.row = static_cast<int>(&r - rows.data());
-    } else if (best.ratio >= kPeakMobilised * top && ratio < (1 - softening) * best.ratio) {
+    } else if (best.ratio >= floor && ratio < (1 - softening) * best.ratio) {
       break;  // softened: the running maximum was the first peak
     }
   }
   return best;
+}
+
+void analyse_shear_rows(const std::vector<ShearRow>& rows, ShearSummary& out) {
+  // the apparatus' fields are kept; the rest is derived afresh
+  ShearSummary s;
+  s.normal_stress_target = out.normal_stress_target;
+  s.shear_speed = out.shear_speed;
+  s.specimen_height = out.specimen_height;
+  s.bead_diameter = out.bead_diameter;
+  s.settle_time = out.settle_time;
+  s.consolidate_time = out.consolidate_time;
+  s.wall_seconds = out.wall_seconds;
+  out = s;
+  if (rows.empty()) return;
+  const double target = s.normal_stress_target;
+  s.sigma_min = s.sigma_max = rows[0].sigma;
+  for (const ShearRow& r : rows) {
+    // a platen that lost contact (sigma far below target) gives no ratio
+    const double ratio = r.sigma > 0.5 * target ? r.tau / r.sigma : 0;
+    if (ratio > s.max_ratio) {
+      s.max_ratio = ratio;
+      s.max_displacement = r.displacement;
+    }
+    s.max_tau = std::max(s.max_tau, r.tau);
+    s.max_inertial_number = std::max(s.max_inertial_number, r.inertial_number);
+    s.sigma_min = std::min(s.sigma_min, r.sigma);
+    s.sigma_max = std::max(s.sigma_max, r.sigma);
+    s.max_outside = std::max(s.max_outside, r.outside);
+  }
+  s.max_angle = std::atan(s.max_ratio) * kRad;
+  const FirstPeak first = first_peak(rows, target);
+  s.peak_ratio = first.ratio;
+  s.peak_displacement = first.displacement;
+  s.peak_angle = std::atan(first.ratio) * kRad;
+  s.peak_tau = first.row >= 0 ? rows[first.row].tau : 0;
+  const Residual res = residual_of(rows, target);
+  s.residual_tau = res.tau;
+  s.residual_ratio = res.ratio;
+  s.residual_angle = std::atan(res.ratio) * kRad;
+  // Dilatancy: least-squares slope of dz(dx) over a sliding window of
+  // ~1/40 of the test (at least 3 rows), the steepest rise.
+  const size_t w = std::max<size_t>(3, rows.size() / 40);
+  double steepest = 0;
+  for (size_t a = 0; a + w <= rows.size(); ++a) steepest = std::max(steepest, slope(rows, a, a + w));
+  s.max_dilatancy_angle = std::atan(steepest) * kRad;
+  out = s;
 }
 
 std::string shear_summary_text(const ShearSummary& s) {

@@ -156,12 +156,27 @@ class ShearTest {
   std::vector<ShearRow> rows_;
 };
 
+// The analysis of a test's rows, apart from the apparatus that measured
+// them (shared by ShearTest::summary, the campaign's kept tests and the
+// lab): fills the row-derived fields of `s` (peak, largest, residual,
+// dilatancy, sigma band, inertial number, beads outside) using
+// s.normal_stress_target. Rows whose sigma is below half the target (a
+// platen that lost contact) count for no ratio.
+void analyse_shear_rows(const std::vector<ShearRow>& rows, ShearSummary& s);
+
+// The residual strength: mean tau and tau/sigma over the last 20 % of the
+// displacement.
+struct Residual {
+  double tau = 0, ratio = 0;
+};
+Residual residual_of(const std::vector<ShearRow>& rows, double sigma_target);
+
 // The first peak of a test's rows (ShearSummary::peak_*): the first
 // running maximum of tau/sigma followed by a fall of more than `softening`
 // of it, once that maximum has reached a quarter of the test's largest
-// tau/sigma (before, the curve's wiggles about zero are noise, not a peak);
-// the largest value when the curve never softens. Rows whose sigma is below
-// half the target (a platen that lost contact) are skipped.
+// tau/sigma and the residual strength (before, the curve's wiggles about
+// zero and the stick-slip teeth of a hardening curve are not a peak); the
+// largest value when the curve never softens.
 struct FirstPeak {
   double ratio = 0, displacement = 0;
   int row = -1;  // its index in `rows`; -1 when there is none

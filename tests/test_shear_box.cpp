@@ -230,9 +230,10 @@ TEST(ShearAnalysis, MohrCoulombStandardErrors) {
 
 // The first peak: the first running maximum of tau/sigma that the specimen
 // softens from by more than 5 %; a later, higher jamming spike is the
-// overall peak but not the first. A dip of 3 % is noise, not softening; a
+// largest value but not the peak. A dip of 3 % is noise, not softening; a
 // row whose platen lost contact (sigma < target / 2) is skipped; a curve
-// that never softens has its maximum as first peak.
+// that never softens has its maximum as first peak; a maximum below the
+// residual strength or a quarter of the largest is not a peak.
 TEST(ShearAnalysis, FirstPeakIsTheFirstMaximumBeforeSoftening) {
   auto rows_of = [](std::vector<double> ratios, double sigma = 100e3) {
     std::vector<ShearRow> rows(ratios.size());
@@ -259,6 +260,11 @@ TEST(ShearAnalysis, FirstPeakIsTheFirstMaximumBeforeSoftening) {
   p = first_peak(rows_of({0.001, 0.0005, 0.2, 0.5, 0.7, 0.6}), 100e3);
   EXPECT_DOUBLE_EQ(p.ratio, 0.7);
   EXPECT_EQ(p.row, 4);
+  // a hardening curve with stick-slip teeth: no tooth below the residual
+  // strength (mean of the last 20 %: 0.235) is a peak; it never softens
+  p = first_peak(rows_of({0.05, 0.12, 0.10, 0.15, 0.2, 0.18, 0.22, 0.24, 0.23, 0.24}), 100e3);
+  EXPECT_DOUBLE_EQ(p.ratio, 0.24);
+  EXPECT_EQ(p.row, 7);
   EXPECT_DOUBLE_EQ(first_peak({}, 100e3).ratio, 0.0);
   EXPECT_EQ(first_peak({}, 100e3).row, -1);
 }
