@@ -33,7 +33,13 @@ logged() {
 }
 
 cleanup() {
-  local m
+  local m p
+  # processes a failed test left running inside the root (an Xvfb, say)
+  # would keep its mounts busy
+  for p in /proc/[0-9]*; do
+    [[ $(readlink "$p/root" 2>/dev/null) == "$ROOT" ]] && kill "${p#/proc/}" 2>/dev/null
+  done
+  sleep 1
   for m in dev sys proc; do
     mountpoint -q "$ROOT/$m" 2>/dev/null && { umount -R "$ROOT/$m" || umount -R -l "$ROOT/$m"; }
   done

@@ -207,11 +207,19 @@ namespace {
 
 bool have_xvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
 
-// The lab under Xvfb, running `script` from directory `d`.
+// The lab under Xvfb, running `script` from directory `d`. The status is
+// the lab's own, printed by the shell inside xvfb-run: xvfb-run's is its
+// own when its clean-up fails (status 5, "problem while cleaning up
+// temporary directory", seen once in a fresh root when the lab stopped
+// within a fraction of a second).
 Result lab_script(const fs::path& d, const std::string& script) {
   std::ofstream(d / "s.txt") << script;
-  return shell_in(d, "xvfb-run -a -s '-screen 0 1000x700x24' " + std::string(SIMSOLS_EXE) +
-                         " lab --size 900x600 --script s.txt");
+  Result r = shell_in(d, "xvfb-run -a -s '-screen 0 1000x700x24' sh -c '\"$0\" lab --size 900x600 "
+                         "--script s.txt; echo \"[lab exit status $?]\"' " +
+                         std::string(SIMSOLS_EXE));
+  const size_t at = r.out.rfind("[lab exit status ");
+  r.status = at == std::string::npos ? -1 : std::atoi(r.out.c_str() + at + 17);
+  return r;
 }
 
 }  // namespace
