@@ -69,9 +69,9 @@ ShearSummary reanalysed(const fs::path& dir, const std::string& name,
   const std::string text = read_text(dir / "summary.txt");
   ShearSummary s = parse_shear_summary(text);
   analyse_shear_rows(rows, s);
-  if (shear_summary_text(s) != text) {
+  if (const std::string now = shear_summary_text(s); now != text) {
     write_shear_plots(dir.string(), name, rows, s);
-    write_file_atomic((dir / "summary.txt").string(), shear_summary_text(s));
+    write_file_atomic((dir / "summary.txt").string(), now);
   }
   return s;
 }

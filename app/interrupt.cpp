@@ -2,8 +2,6 @@
 
 #include <unistd.h>
 
-#include <cstring>
-
 namespace simsols {
 namespace {
 
@@ -41,13 +39,5 @@ InterruptScope::~InterruptScope() {
 
 bool InterruptScope::requested() const { return g_signal != 0; }
 int InterruptScope::signal() const { return g_signal; }
-
-const char* InterruptScope::signal_name() const {
-  switch (g_signal) {
-    case SIGINT: return "SIGINT (Ctrl-C)";
-    case SIGTERM: return "SIGTERM";
-    default: return "no signal";
-  }
-}
 
 }  // namespace simsols

@@ -28,7 +28,6 @@ class InterruptScope {
   bool requested() const;
   int signal() const;                             // 0 until one arrived
   int exit_status() const { return 128 + signal(); }
-  const char* signal_name() const;                // "SIGINT (Ctrl-C)", "SIGTERM"
   std::function<bool()> stop_function() const {  // for the loops below the command
     return [this] { return requested(); };
   }

@@ -11,12 +11,12 @@
 #include <vector>
 
 #include "errors.h"
+#include "input_file.h"
 #include "scene_toml.h"
 
 namespace simsols {
 namespace {
 
-constexpr char kMagic[12] = {'S', 'I', 'M', 'S', 'O', 'L', 'S', '-', 'C', 'K', 'P', 'T'};
 constexpr std::uint32_t kUnverifiedVersion = 3;  // same payload, no size or checksum
 
 [[noreturn]] void refuse(const std::string& path, const std::string& what) {
@@ -88,9 +88,9 @@ struct Header {
 
 // Reads and checks magic and version; leaves `in` at the payload.
 Header read_header(std::ifstream& in, const std::string& path) {
-  char magic[sizeof kMagic];
+  char magic[sizeof kCheckpointMagic];
   in.read(magic, sizeof magic);
-  if (!in || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
+  if (!in || std::memcmp(magic, kCheckpointMagic, sizeof kCheckpointMagic) != 0)
     refuse(path, "it does not start with SIMSOLS-CKPT");
   Reader r(in, path);
   Header h;
@@ -151,7 +151,7 @@ void save_checkpoint(Simulation& sim, const std::string& path, const std::string
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw DeviceError("cannot write checkpoint " + tmp);
-    out.write(kMagic, sizeof kMagic);
+    out.write(kCheckpointMagic, sizeof kCheckpointMagic);
     out.write(reinterpret_cast<const char*>(&kCheckpointVersion), 4);
     const char placeholder[12] = {};
     out.write(placeholder, sizeof placeholder);  // payload size and CRC, below
@@ -159,7 +159,7 @@ void save_checkpoint(Simulation& sim, const std::string& path, const std::string
     write_payload(w, sim, extra);
     const std::uint64_t size = w.size();
     const std::uint32_t crc = w.crc();
-    out.seekp(sizeof kMagic + 4);
+    out.seekp(sizeof kCheckpointMagic + 4);
     out.write(reinterpret_cast<const char*>(&size), sizeof size);
     out.write(reinterpret_cast<const char*>(&crc), sizeof crc);
     out.flush();

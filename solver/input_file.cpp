@@ -12,12 +12,11 @@ namespace simsols {
 InputKind classify_input(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError("io", path, 0, "", "cannot open the file");
-  static constexpr char kMagic[] = "SIMSOLS-CKPT";
-  constexpr size_t kMagicBytes = sizeof kMagic - 1;
+  constexpr size_t kMagicBytes = sizeof kCheckpointMagic;
   char head[512];
   in.read(head, sizeof head);
   const size_t n = static_cast<size_t>(in.gcount());
-  if (n > 0 && std::memcmp(head, kMagic, std::min(n, kMagicBytes)) == 0)
+  if (n > 0 && std::memcmp(head, kCheckpointMagic, std::min(n, kMagicBytes)) == 0)
     return n >= kMagicBytes ? InputKind::Checkpoint : InputKind::TruncatedCheckpoint;
   bool blank = true, binary = false;
   for (size_t i = 0; i < n; ++i) {

@@ -9,6 +9,10 @@
 
 namespace simsols {
 
+// The first bytes of every checkpoint (checkpoint.h writes them).
+inline constexpr char kCheckpointMagic[12] = {'S', 'I', 'M', 'S', 'O', 'L',
+                                              'S', '-', 'C', 'K', 'P', 'T'};
+
 enum class InputKind {
   Checkpoint,           // starts with the checkpoint magic (checked in full on load)
   TruncatedCheckpoint,  // shorter than the magic, but the start of it
