@@ -76,19 +76,9 @@ class ProgressLine {
   Clock::time_point last_ = Clock::now() - std::chrono::hours(1);
 };
 
-// The checkpoint carries the test's state and the wall time spent so far
-// (summed over interrupted invocations).
-constexpr const char* kWallKey = "\nwall_seconds_so_far ";
-
-std::string driver_state(const ShearTest& test, double wall) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%s%.3f\n", kWallKey, wall);
-  return test.save_state() + buf;
-}
-
 void save(Simulation& sim, const ShearTest& test, const fs::path& dir, double wall) {
   write_file_atomic((dir / "shear.csv").string(), shear_rows_csv(test.rows()));
-  save_checkpoint(sim, (dir / "checkpoint.bin").string(), driver_state(test, wall));
+  save_checkpoint(sim, (dir / "checkpoint.bin").string(), shear_driver_state(test, wall));
 }
 
 void print_header(const ShearRunOptions& opt, Simulation& sim, const ShearTest& test) {
@@ -142,7 +132,7 @@ ShearRunResult drive(Simulation& sim, ShearTest& test, const ShearRunOptions& op
       // The simulation is at the step before the fault; the driver's state
       // is the one it had then (it only acts at readings, which are guarded).
       progress.end(test, sim, seconds_since(start));
-      save_fault(sim, dir, e, driver_state(test, wall_before + seconds_since(start)));
+      save_fault(sim, dir, e, shear_driver_state(test, wall_before + seconds_since(start)));
       write_file_atomic((dir / "shear.csv").string(), shear_rows_csv(test.rows()));
       throw;
     }
@@ -193,6 +183,30 @@ void save_fault(Simulation& sim, const std::filesystem::path& dir, const Runaway
                static_cast<long long>(sim.steps()), ck.string().c_str());
 }
 
+namespace {
+constexpr const char* kWallKey = "\nwall_seconds_so_far ";
+}  // namespace
+
+std::string shear_driver_state(const ShearTest& test, double wall_seconds) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%s%.3f\n", kWallKey, wall_seconds);
+  return test.save_state() + buf;
+}
+
+double driver_wall_seconds(const std::string& state) {
+  const size_t at = state.rfind(kWallKey);
+  return at == std::string::npos ? 0 : std::atof(state.c_str() + at + std::strlen(kWallKey));
+}
+
+std::string where_test_is(const Simulation& sim, const ShearTest& test) {
+  const double dx = test.rows().empty() ? 0 : test.rows().back().displacement;
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "step %lld, t = %.6g s, %s, dx = %.3f mm (%zu rows)",
+                static_cast<long long>(sim.steps()), sim.time(), phase_name(test.phase()),
+                dx * 1e3, test.rows().size());
+  return buf;
+}
+
 bool shear_finished(const std::string& out_dir) {
   return fs::exists(fs::path(out_dir) / "summary.txt");
 }
@@ -207,18 +221,13 @@ ShearRunResult resume_shear(std::unique_ptr<Simulation> sim, const std::string& 
   if (!sim->scene().shear_box)
     throw SceneError("bad_checkpoint", ck, 0, "--resume", "the checkpoint is not a shear test");
   ShearTest test(*sim);
-  double wall_before = 0;  // of earlier, interrupted invocations
-  if (const size_t at = state.rfind(kWallKey); at != std::string::npos)
-    wall_before = std::atof(state.c_str() + at + std::strlen(kWallKey));
+  const double wall_before = driver_wall_seconds(state);  // of earlier, interrupted invocations
   try {
     test.restore_state(state);
   } catch (const std::exception& e) {
     throw SceneError("bad_checkpoint", ck, 0, "--resume", e.what());
   }
-  const double dx = test.rows().empty() ? 0 : test.rows().back().displacement;
-  std::fprintf(stderr, "[%s] resumed at step %lld, t = %.6g s, %s, dx = %.3f mm (%zu rows)\n",
-               opt.label.c_str(), static_cast<long long>(sim->steps()), sim->time(),
-               phase_name(test.phase()), dx * 1e3, test.rows().size());
+  std::fprintf(stderr, "[%s] resumed at %s\n", opt.label.c_str(), where_test_is(*sim, test).c_str());
   return drive(*sim, test, opt, wall_before);
 }
 

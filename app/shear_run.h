@@ -63,6 +63,16 @@ ShearRunResult run_shear(const Scene& scene, const ShearRunOptions& options);
 ShearRunResult resume_shear(std::unique_ptr<Simulation> sim, const std::string& extra,
                             const ShearRunOptions& options);
 
+// A shear test's state for a checkpoint's `extra` (checkpoint.h): its
+// loading programme (ShearTest::save_state) and the wall seconds spent on
+// it so far, summed over interrupted invocations; and that time back from
+// such a state (0 when it has none).
+std::string shear_driver_state(const ShearTest& test, double wall_seconds);
+double driver_wall_seconds(const std::string& state);
+
+// Where a test stands: "step N, t = ... s, shear, dx = ... mm (R rows)".
+std::string where_test_is(const Simulation& sim, const ShearTest& test);
+
 // One line for a run that stopped (interrupted or --stop-after): where, and
 // the command that resumes it.
 std::string resume_hint(const std::string& out_dir);

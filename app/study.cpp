@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <numbers>
 #include <sstream>
@@ -16,6 +15,7 @@
 #include "output.h"
 #include "paper_tests.h"
 #include "scene_toml.h"
+#include "shear_run.h"
 #include "shear_test.h"
 #include "simulation.h"
 
@@ -262,8 +262,6 @@ void check_case(Simulation& sim, const ShearTest& test) {
     throw std::runtime_error("a bead outran its neighbour list (skin too small for the step)");
 }
 
-constexpr const char* kCaseWallKey = "\ncase_wall_seconds ";
-
 }  // namespace
 
 ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s,
@@ -275,26 +273,20 @@ ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s,
     double wall_before = 0;
     if (!control.checkpoint.empty() && std::filesystem::exists(control.checkpoint)) {
       sim = load_checkpoint(default_device(), control.checkpoint, &state);
-      if (const size_t at = state.rfind(kCaseWallKey); at != std::string::npos)
-        wall_before = std::atof(state.c_str() + at + std::strlen(kCaseWallKey));
+      wall_before = driver_wall_seconds(state);
     } else {
       sim = std::make_unique<Simulation>(default_device(), shear_case_scene(preset, s));
     }
     ShearTest test(*sim);
     if (!state.empty()) {
       test.restore_state(state);
-      const double dx = test.rows().empty() ? 0 : test.rows().back().displacement;
-      std::fprintf(stderr, "[study] case resumed at step %lld, t = %.6g s, %s, dx = %.3f mm\n",
-                   static_cast<long long>(sim->steps()), sim->time(), phase_name(test.phase()),
-                   dx * 1e3);
+      std::fprintf(stderr, "[study] case resumed at %s\n", where_test_is(*sim, test).c_str());
     }
     const auto t0 = Clock::now();
     while (!test.done()) {
       if (control.stop_requested && control.stop_requested()) {
-        char buf[64];
-        std::snprintf(buf, sizeof buf, "%s%.3f\n", kCaseWallKey,
-                      wall_before + std::chrono::duration<double>(Clock::now() - t0).count());
-        save_checkpoint(*sim, control.checkpoint, test.save_state() + buf);
+        const double wall = wall_before + std::chrono::duration<double>(Clock::now() - t0).count();
+        save_checkpoint(*sim, control.checkpoint, shear_driver_state(test, wall));
         r.interrupted = true;
         return r;
       }
