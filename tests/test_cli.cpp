@@ -2,10 +2,8 @@
 // with status 2; a run stopped at a checkpoint and resumed with --resume ends
 // with the same state hash as the uninterrupted run; outputs exist.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -13,27 +11,17 @@
 #include <string>
 #include <vector>
 
+#include "cli_support.h"
 #include "png.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int status = -1;
-  std::string out;
-};
+using Result = simsols::testing::CliResult;
 
 Result run(const std::string& args) {
-  const std::string cmd = std::string(SIMSOLS_EXE) + " " + args + " 2>&1";
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), p)) r.out += buf.data();
-  const int s = pclose(p);
-  r.status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
-  return r;
+  return simsols::testing::shell(std::string(SIMSOLS_EXE) + " " + args);
 }
 
 std::string hash_of(const std::string& out) {

@@ -5,9 +5,7 @@
 // accepted (the commands, the Table 1 sizes) and name no file the user did
 // not give.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -15,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli_support.h"
 #include "alioscopy.h"
 #include "errors.h"
 #include "scene_toml.h"
@@ -23,21 +22,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int status = -1;
-  std::string out;
-};
+using Result = simsols::testing::CliResult;
 
 // Runs the shell command `cmd` in directory `cwd`.
 Result shell_in(const fs::path& cwd, const std::string& cmd) {
-  Result r;
-  FILE* p = popen(("cd '" + cwd.string() + "' && " + cmd + " 2>&1").c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), p)) r.out += buf.data();
-  const int s = pclose(p);
-  r.status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
-  return r;
+  return simsols::testing::shell("cd '" + cwd.string() + "' && " + cmd);
 }
 
 // Runs `simsols ARGS` in directory `cwd`.
