@@ -19,14 +19,14 @@ std::string fmt(const char* f, double v) {
   return buf;
 }
 
-double band(const ShearSummary& s, double sigma) { return 100 * (sigma / s.normal_stress_target - 1); }
 
 std::string csv_header() {
   return "diameter_mm,layers,normal_stress_kPa,peak_tau_kPa,peak_tau_over_sigma,"
          "peak_friction_angle_deg,peak_displacement_mm,max_tau_over_sigma,"
          "max_friction_angle_deg,max_displacement_mm,residual_tau_kPa,"
          "residual_friction_angle_deg,max_dilatancy_angle_deg,max_inertial_number,"
-         "sigma_band_min_percent,sigma_band_max_percent,beads,wall_seconds\n";
+         "sigma_band_min_percent,sigma_band_max_percent,sigma_rms_percent,valid,"
+         "start_tau_over_sigma,beads,wall_seconds\n";
 }
 
 std::string csv_row(const CampaignEntry& e) {
@@ -38,9 +38,10 @@ std::string csv_row(const CampaignEntry& e) {
     << fmt("%.6g", s.max_ratio) << ',' << fmt("%.4f", s.max_angle) << ','
     << fmt("%.6g", s.max_displacement * 1e3) << ',' << fmt("%.6g", s.residual_tau * 1e-3) << ','
     << fmt("%.4f", s.residual_angle) << ',' << fmt("%.4f", s.max_dilatancy_angle) << ','
-    << fmt("%.4g", s.max_inertial_number) << ',' << fmt("%.3f", band(s, s.sigma_min)) << ','
-    << fmt("%.3f", band(s, s.sigma_max)) << ',' << e.beads << ',' << fmt("%.1f", s.wall_seconds)
-    << '\n';
+    << fmt("%.4g", s.max_inertial_number) << ',' << fmt("%.3f", 100 * s.sigma_band_lo) << ','
+    << fmt("%.3f", 100 * s.sigma_band_hi) << ',' << fmt("%.3f", 100 * s.sigma_rms) << ','
+    << (s.valid ? "yes" : "no") << ',' << fmt("%.4f", s.start_ratio) << ',' << e.beads << ','
+    << fmt("%.1f", s.wall_seconds) << '\n';
   return o.str();
 }
 
@@ -51,8 +52,10 @@ std::string md_row(const CampaignEntry& e) {
     << fmt("%.1f", s.peak_tau * 1e-3) << " | " << fmt("%.2f", s.peak_angle) << " at "
     << fmt("%.2f", s.peak_displacement * 1e3) << " mm | " << fmt("%.2f", s.max_angle) << " | "
     << fmt("%.2f", s.residual_angle) << " | " << fmt("%.2f", s.max_dilatancy_angle) << " | "
-    << fmt("%+.2f", band(s, s.sigma_min)) << " / " << fmt("%+.2f", band(s, s.sigma_max)) << " | "
-    << fmt("%.2g", s.max_inertial_number) << " | " << fmt("%.0f", s.wall_seconds) << " |\n";
+    << fmt("%+.2f", 100 * s.sigma_band_lo) << " / " << fmt("%+.2f", 100 * s.sigma_band_hi)
+    << " (" << fmt("%.2f", 100 * s.sigma_rms) << ")" << (s.valid ? "" : " **invalid**") << " | "
+    << fmt("%.3f", s.start_ratio) << " | " << fmt("%.2g", s.max_inertial_number) << " | "
+    << fmt("%.0f", s.wall_seconds) << " |\n";
   return o.str();
 }
 
@@ -123,10 +126,14 @@ void write_campaign_report(const std::string& out_dir, const std::string& base_n
                    std::to_string(entries.size()) + " tests; wall time of the tests run now: " +
                    fmt("%.0f", wall_seconds) +
                    " s. Peak: the first peak of τ/σ; largest: the largest τ/σ of the test; "
-                   "residual: the mean over the last 20 % of the shear.\n\n"
+                   "residual: the mean over the last 20 % of the shear; σ band: the row means' "
+                   "deviation from the target, with its RMS; a test beyond ±" +
+                   fmt("%.0f", 100 * kValidSigmaBand) +
+                   " % is invalid and left out of the envelopes.\n\n"
                    "| d (mm) | σ (kPa) | τ peak (kPa) | φ peak (°) | φ largest (°) | "
-                   "φ residual (°) | ψ max (°) | σ band (%) | I max | wall (s) |\n"
-                   "|---|---|---|---|---|---|---|---|---|---|\n";
+                   "φ residual (°) | ψ max (°) | σ band (RMS) (%) | τ/σ at rest | I max | "
+                   "wall (s) |\n"
+                   "|---|---|---|---|---|---|---|---|---|---|---|\n";
   std::string fits = "\n## Mohr-Coulomb envelopes, τ = c + σ tan φ (± one standard error)\n\n"
                      "| d (mm) | strength | φ (°) | c (kPa) | points | fit |\n"
                      "|---|---|---|---|---|---|\n";
@@ -139,7 +146,7 @@ void write_campaign_report(const std::string& out_dir, const std::string& base_n
       csv += csv_row(e);
       md += md_row(e);
       curves.push_back({fmt("%g kPa", e.s_kpa), e.rows, e.summary});
-      tests.push_back(&e);
+      if (e.summary.valid) tests.push_back(&e);
     }
     const std::string stem = fmt("d%gmm", d);
     write_size_plots((out / (stem + "_stress.png")).string(),

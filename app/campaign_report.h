@@ -3,12 +3,13 @@
 //   summary.csv, summary.md   one row per test: the peak (the first peak of
 //                             tau/sigma), the largest tau/sigma, the residual
 //                             (mean over the last 20 % of the shear), the
-//                             dilatancy, the normal-stress band
+//                             dilatancy, the normal-stress band (its RMS,
+//                             valid or not), tau/sigma at rest
 //   d<size>mm_stress.png, d<size>mm_dilation.png   the curves of each size
 //   mohr_coulomb.png, mohr_coulomb_residual.png    the envelopes
 // The envelopes are fitted per bead size for the peak and for the residual
-// strength, with c, phi, their standard errors and the number of points
-// (two points: the exact line, said so; fit_mohr_coulomb in shear_test.h).
+// strength over the valid tests (ShearSummary::valid), with c, phi, their standard errors and the number of points
+// (two points: the exact line, said so; fit_mohr_coulomb in shear_analysis.h).
 #pragma once
 
 #include <string>

@@ -117,11 +117,12 @@ void print_summary(const ShearRunResult& r, const std::string& dir) {
     if (s.max_ratio > s.peak_ratio)
       std::printf("  largest  tau/sigma = %.3f  (phi = %.2f deg at %.2f mm, after the peak)\n",
                   s.max_ratio, s.max_angle, s.max_displacement * 1e3);
-    std::printf("  max dilatancy angle %.2f deg; inertial number <= %.2g; sigma band %+.2f%% / "
-                "%+.2f%%; beads outside %d\n",
-                s.max_dilatancy_angle, s.max_inertial_number,
-                100 * (s.sigma_min / s.normal_stress_target - 1),
-                100 * (s.sigma_max / s.normal_stress_target - 1), s.max_outside);
+    std::printf("  max dilatancy angle %.2f deg; inertial number <= %.2g; beads outside %d\n"
+                "  sigma band %+.2f%% / %+.2f%% (RMS %.2f%%)%s; tau/sigma at rest %.3f\n",
+                s.max_dilatancy_angle, s.max_inertial_number, s.max_outside,
+                100 * s.sigma_band_lo, 100 * s.sigma_band_hi, 100 * s.sigma_rms,
+                s.valid ? "" : " INVALID: the load was not held within +-10 %",
+                s.start_ratio);
     if (!r.finished)
       std::printf("  (so far: %zu of the test's rows, at %.2f mm)\n", r.rows.size(),
                   r.rows.back().displacement * 1e3);

@@ -237,9 +237,12 @@ void check_wall(const Scene& s, size_t i, std::set<std::string>& names, Found& f
   check_unit(found, f + ".normal", w.normal, "zero_normal");
   if (w.servo.enabled) {
     check_number(found, f + ".servo.target_force", w.servo.target_force, kPositive);
-    check_number(found, f + ".servo.gain", w.servo.gain, kPositive);
-    check_number(found, f + ".servo.max_speed", w.servo.max_speed, kPositive);
-    check_number(found, f + ".servo.integral_time", w.servo.integral_time, kNonNegative);
+    check_number(found, f + ".servo.mass", w.servo.mass, kNonNegative);
+    if (w.servo.mass == 0) {
+      check_number(found, f + ".servo.gain", w.servo.gain, kPositive);
+      check_number(found, f + ".servo.max_speed", w.servo.max_speed, kPositive);
+      check_number(found, f + ".servo.integral_time", w.servo.integral_time, kNonNegative);
+    }
     if (norm(w.velocity) != 0)
       fail("conflicting_keys", f + ".velocity",
            "a servo-controlled wall moves by itself; remove its velocity");

@@ -61,18 +61,24 @@ struct Particle {
 
 enum class WallShape : std::uint8_t { Plane, Rectangle };
 
-// Servo control of a wall: it moves along its normal so that the force the
+// Force control of a wall: it moves along its normal so that the force the
 // particles exert on it, F = -(force on the wall) . normal, tends to
-// target_force, with a proportional-integral law on e = target_force - F:
-//   v = clamp(gain e + v_i, -max_speed, max_speed) normal,
-//   dv_i/dt = gain e / integral_time   (off when integral_time = 0).
-// A servo wall has no prescribed velocity.
+// target_force, in one of two ways.
+//   servo (mass = 0): a proportional-integral law on e = target_force - F,
+//     v = clamp(gain e + v_i, -max_speed, max_speed) normal,
+//     dv_i/dt = gain e / integral_time   (off when integral_time = 0);
+//   dead weight (mass > 0): the wall is a rigid body of that mass pushed
+//     along its normal by the constant force target_force (a hanger's
+//     weight), so M du/dt = target_force - F; gain, max_speed and
+//     integral_time are unused.
+// A force-controlled wall has no prescribed velocity.
 struct WallServo {
   bool enabled = false;
   double target_force = 0;   // N, > 0
-  double gain = 0;           // m/(s N), > 0
-  double max_speed = 0;      // m/s, > 0
-  double integral_time = 0;  // s, >= 0; 0 = proportional only
+  double gain = 0;           // m/(s N), > 0 (servo)
+  double max_speed = 0;      // m/s, > 0 (servo)
+  double integral_time = 0;  // s, >= 0; 0 = proportional only (servo)
+  double mass = 0;           // kg, >= 0; > 0 = dead weight
 };
 
 // A rigid wall moving with a prescribed constant velocity, or servo-controlled.
@@ -222,6 +228,13 @@ struct ShearBox {
   double shear_speed = 0;          // m/s; 0 = from inertial_number
   double inertial_number = 8e-4;   // target I = (v/H) d sqrt(rho/sigma) for the automatic speed
   double shear_displacement = 6e-3;  // m of horizontal displacement to shear
+  // How the platen carries the normal load (docs/shear-box.md): a dead
+  // weight (a rigid platen of platen_mass under the constant force
+  // sigma x area, as a hanger loads a real box) or a servo (PI on the
+  // reaction, servo_* below). Consolidation is servo-controlled in both.
+  enum class Loading : std::uint8_t { DeadWeight, Servo };
+  Loading loading = Loading::DeadWeight;
+  double platen_mass = 0;          // kg; 0 = automatic (a layer of beads, pi rho d A / 6)
   double servo_gain = 0;           // m/(s N); 0 = automatic (from the Hertz stiffness)
   double servo_max_speed = 0.5;    // m/s, the platen's speed cap
   double servo_integral_time = 0;  // s; 0 = automatic

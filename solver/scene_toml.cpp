@@ -651,12 +651,19 @@ class Loader {
       w.normal = normalized(r.vec3("normal"));
       w.velocity = r.vec3("velocity", {});
       if (r.has("servo")) {
-        Reader sv(r.table("servo"), r.field("servo"), ctx_, {"target_force", "gain", "max_speed", "integral_time"});
+        Reader sv(r.table("servo"), r.field("servo"), ctx_,
+                  {"target_force", "gain", "max_speed", "integral_time", "mass"});
         w.servo.enabled = true;
         w.servo.target_force = sv.number("target_force");
-        w.servo.gain = sv.number("gain");
-        w.servo.max_speed = sv.number("max_speed");
-        w.servo.integral_time = sv.number("integral_time", 0);
+        w.servo.mass = sv.number("mass", 0);
+        if (w.servo.mass > 0) {
+          sv.forbid({"gain", "max_speed", "integral_time"},
+                    "a dead-weight wall (mass > 0) has no servo settings");
+        } else {
+          w.servo.gain = sv.number("gain");
+          w.servo.max_speed = sv.number("max_speed");
+          w.servo.integral_time = sv.number("integral_time", 0);
+        }
       }
       if (rectangle) {
         w.shape = WallShape::Rectangle;
@@ -672,7 +679,8 @@ class Loader {
     if (!root.has("shear_box")) return;
     Reader r(root.table("shear_box"), "shear_box", ctx_,
              {"length", "width", "split_height", "gap", "wall_material", "normal_stress",
-              "shear_speed", "inertial_number", "shear_displacement", "servo_gain",
+              "shear_speed", "inertial_number", "shear_displacement", "loading",
+              "platen_mass", "servo_gain",
               "servo_max_speed", "servo_integral_time", "settle_time", "consolidate_time", "rows",
               "specimen"});
     ShearBox b;
@@ -690,6 +698,10 @@ class Loader {
     b.shear_speed = r.number("shear_speed", b.shear_speed);
     b.inertial_number = r.number("inertial_number", b.inertial_number);
     b.shear_displacement = r.number("shear_displacement", b.shear_displacement);
+    b.loading = r.choice("loading", "dead_weight", {"dead_weight", "servo"}) == "servo"
+                    ? ShearBox::Loading::Servo
+                    : ShearBox::Loading::DeadWeight;
+    b.platen_mass = r.number("platen_mass", b.platen_mass);
     b.servo_gain = r.number("servo_gain", b.servo_gain);
     b.servo_max_speed = r.number("servo_max_speed", b.servo_max_speed);
     b.servo_integral_time = r.number("servo_integral_time", b.servo_integral_time);
@@ -1003,7 +1015,10 @@ class Writer {
       line("half_v", w.half_v);
     }
     if (!is_default_zero(w.velocity)) line("velocity", w.velocity);
-    if (w.servo.enabled)
+    if (w.servo.enabled && w.servo.mass > 0)
+      line("servo", "{ target_force = " + toml_float(w.servo.target_force) +
+                        ", mass = " + toml_float(w.servo.mass) + " }");
+    else if (w.servo.enabled)
       line("servo", "{ target_force = " + toml_float(w.servo.target_force) +
                         ", gain = " + toml_float(w.servo.gain) +
                         ", max_speed = " + toml_float(w.servo.max_speed) +
@@ -1031,6 +1046,8 @@ class Writer {
     line("shear_speed", b.shear_speed);
     line("inertial_number", b.inertial_number);
     line("shear_displacement", b.shear_displacement);
+    line("loading", toml_string(b.loading == ShearBox::Loading::Servo ? "servo" : "dead_weight"));
+    line("platen_mass", b.platen_mass);
     line("servo_gain", b.servo_gain);
     line("servo_max_speed", b.servo_max_speed);
     line("servo_integral_time", b.servo_integral_time);

@@ -62,6 +62,8 @@ void check_box(const ShearBox& b, const Scene& scene) {
           "(0, 1)");
   require(b.shear_displacement > 0 && b.shear_displacement <= 0.5 * b.length,
           "shear_displacement", b.shear_displacement, "(0, " + num(0.5 * b.length) + "] m (half the length)");
+  require(b.platen_mass >= 0 && b.platen_mass <= 1e4, "platen_mass", b.platen_mass,
+          "[0, 1e4] kg (0 = automatic)");
   require(b.servo_gain >= 0, "servo_gain", b.servo_gain, "[0, inf) m/(s N) (0 = automatic)");
   require(b.servo_max_speed > 0 && b.servo_max_speed <= 10, "servo_max_speed",
           b.servo_max_speed, "(0, 10] m/s");

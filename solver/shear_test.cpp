@@ -29,28 +29,16 @@ constexpr double kIntegralPeriods = 5.0;
 constexpr double kSettleShare = 0.3;
 constexpr double kConsolidateShare = 0.3;
 
-// A first peak is a maximum of mobilised strength: while the running
-// maximum of tau/sigma is below this share of the test's largest, its
-// wiggles (noise about zero at the start of shearing) are not softening.
-constexpr double kPeakMobilised = 0.25;
+// Equilibrium at the end of consolidation (consolidated()): the reaction's
+// error, the beads' RMS speed and the platen's speed, the last two as
+// fractions of the shear speed.
+constexpr double kEquilibriumForce = 0.01;
+constexpr double kEquilibriumBeads = 0.1;
+constexpr double kEquilibriumPlaten = 0.01;
 
 const ShearBox& box_of(const Simulation& sim) {
   if (!sim.scene().shear_box) throw std::invalid_argument("ShearTest: the scene has no shear box");
   return *sim.scene().shear_box;
-}
-
-// Slope of y(x) by least squares over rows [a, b).
-double slope(const std::vector<ShearRow>& r, size_t a, size_t b) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = static_cast<double>(b - a);
-  for (size_t i = a; i < b; ++i) {
-    sx += r[i].displacement;
-    sy += r[i].dilation;
-    sxx += r[i].displacement * r[i].displacement;
-    sxy += r[i].displacement * r[i].dilation;
-  }
-  const double den = n * sxx - sx * sx;
-  return den > 0 ? (n * sxy - sx * sy) / den : 0;
 }
 
 }  // namespace
@@ -85,6 +73,12 @@ ShearTest::ShearTest(Simulation& sim) : sim_(sim), box_(box_of(sim)) {
   double top = 0;
   for (const Particle& p : scene.particles) top = std::max(top, p.position[2] + p.radius);
   layers_ = std::max(1.0, top / diameter_);
+  // A layer of touching beads over the platen's area: heavy enough that the
+  // platen on its contacts rings no faster than a bead on one (the step
+  // that resolves the beads resolves it), light enough to follow a collapse
+  // of the specimen within a fraction of a row (docs/shear-box.md).
+  platen_mass_ = box_.platen_mass > 0 ? box_.platen_mass
+                                      : density_ * kPi * diameter_ * shear_area(box_) / 6;
   tune_servo();
 }
 
@@ -128,6 +122,7 @@ void ShearTest::apply_servo(bool on) {
   s.gain = gain_;
   s.max_speed = box_.servo_max_speed;
   s.integral_time = integral_time_;
+  s.mass = loaded_ ? platen_mass_ : 0;
   sim_.set_servo(box_.first_wall + kPlaten, s);
 }
 
@@ -137,6 +132,10 @@ void ShearTest::set_normal_stress(double pascals) {
   sigma_target_ = pascals;
   tune_servo();
   if (phase_ == ShearPhase::Consolidate || phase_ == ShearPhase::Shear) apply_servo(true);
+  if (phase_ != ShearPhase::Shear || speed_override_ > 0 || box_.shear_speed > 0) return;
+  const Vec3 floor = sim_.wall_point(box_.first_wall + kFloor);
+  const Vec3 platen = sim_.wall_point(box_.first_wall + kPlaten);
+  retime_rows(shear_speed_for(platen[2] - floor[2]));
 }
 
 void ShearTest::start_shear() {
@@ -147,11 +146,14 @@ void ShearTest::start_shear() {
 void ShearTest::set_shear_speed(double v) {
   if (!(v > 0) || !std::isfinite(v)) throw std::invalid_argument("shear speed must be > 0 m/s");
   speed_override_ = v;
-  if (phase_ != ShearPhase::Shear) return;
+  if (phase_ == ShearPhase::Shear) retime_rows(v);
+}
+
+void ShearTest::retime_rows(double v) {
   speed_ = v;
   move_lower_half(v);
   const double done = rows_.empty() ? 0 : rows_.back().displacement;
-  const int left = std::max(1, box_.rows - static_cast<int>(rows_.size()));
+  const int left = std::max(1, box_.rows + 1 - static_cast<int>(rows_.size()));
   const double remaining = std::max(0.0, box_.shear_displacement - done);
   row_steps_ = std::max<std::int64_t>(1, std::llround(remaining / (v * sim_.dt()) / left));
   next_row_ = sim_.steps() + row_steps_;
@@ -185,6 +187,7 @@ void ShearTest::enter(ShearPhase p) {
       p[2] = std::min(p[2], top + 0.1 * diameter_);
       sim_.set_wall_point(box_.first_wall + kPlaten, p);
       sim_.read_servo(box_.first_wall + kPlaten);
+      loaded_ = false;
       apply_servo(true);
       break;
     }
@@ -197,9 +200,8 @@ void ShearTest::enter(ShearPhase p) {
           box_.rows, std::llround(box_.shear_displacement / (speed_ * sim_.dt())));
       row_steps_ = std::max<std::int64_t>(1, shear_steps_ / box_.rows);
       shear_steps_ = row_steps_ * box_.rows;
+      measure_row();  // at rest: the means over the last equilibrium check
       move_lower_half(speed_);
-      sim_.read_wall_means();
-      sim_.read_servo(box_.first_wall + kPlaten);
       next_row_ = now + row_steps_;
       break;
     }
@@ -221,19 +223,41 @@ bool ShearTest::settled() {
   return o.kinetic() < 1e-4 * scale;
 }
 
+// Equilibrium under the load: the mean reaction since the last check
+// within 1 % of the target, the beads' RMS speed and the platen's speed
+// small against the shear speed, twice in a row. With a dead weight the
+// servo that brought the load hands it over at the first such state, and
+// equilibrium is then sought again under the weight alone.
 bool ShearTest::consolidated() {
   const std::int64_t now = sim_.steps();
   const double elapsed = (now - phase_start_) * sim_.dt();
-  if (elapsed >= box_.consolidate_time) return true;
+  const int platen = box_.first_wall + kPlaten;
+  const Simulation::ServoReading r = sim_.read_servo(platen);
+  if (elapsed >= box_.consolidate_time || equilibrium(r.mean)) return true;
+  sim_.read_wall_means();  // restart the means: the row at rest uses the last window
+  return false;
+}
+
+bool ShearTest::equilibrium(double reaction) {
+  const int platen = box_.first_wall + kPlaten;
   const double target = sigma_target_ * shear_area(box_);
-  const Simulation::ServoReading r = sim_.read_servo(box_.first_wall + kPlaten);
   const Observables o = sim_.observe();
   const double v_rms = std::sqrt(2 * o.kinetic_translational / (o.particles * bead_mass_));
-  const double height = sim_.wall_point(box_.first_wall + kPlaten)[2];
+  const double v_platen = std::fabs(sim_.wall_velocity(platen)[2]);
+  const double height = sim_.wall_point(platen)[2] - sim_.wall_point(box_.first_wall + kFloor)[2];
   const double v_shear = shear_speed_for(height);
-  const bool quiet = std::fabs(r.mean - target) < 0.01 * target && v_rms < 0.1 * v_shear;
+  const bool quiet = std::fabs(reaction - target) < kEquilibriumForce * target &&
+                     v_rms < kEquilibriumBeads * v_shear &&
+                     v_platen < kEquilibriumPlaten * v_shear;
   quiet_checks_ = quiet ? quiet_checks_ + 1 : 0;
-  return quiet_checks_ >= 2;
+  if (quiet_checks_ < 2) return false;
+  if (dead_weight() && !loaded_) {
+    loaded_ = true;
+    apply_servo(true);
+    quiet_checks_ = 0;
+    return false;
+  }
+  return true;
 }
 
 void ShearTest::measure_row() {
@@ -241,6 +265,7 @@ void ShearTest::measure_row() {
   sim_.read_servo(box_.first_wall + kPlaten);
   const int f = box_.first_wall;
   ShearRow row;
+  row.sigma_target = sigma_target_;
   row.time = sim_.time();
   row.step = sim_.steps();
   const Vec3 floor = sim_.wall_point(f + kFloor);
@@ -303,7 +328,7 @@ bool ShearTest::advance(std::int64_t max_steps) {
       case ShearPhase::Shear:
         measure_row();
         next_row_ = sim_.steps() + row_steps_;
-        if (static_cast<int>(rows_.size()) >= box_.rows) enter(ShearPhase::Done);
+        if (static_cast<int>(rows_.size()) > box_.rows) enter(ShearPhase::Done);
         return true;
       case ShearPhase::Done: break;
     }
@@ -370,6 +395,7 @@ ShearSummary ShearTest::summary() const {
   s.bead_diameter = diameter_;
   s.settle_time = settle_seconds_;
   s.consolidate_time = consolidate_seconds_;
+  s.platen_mass = platen_mass();
   analyse_shear_rows(rows_, s);
   return s;
 }
@@ -377,20 +403,21 @@ ShearSummary ShearTest::summary() const {
 std::string ShearTest::save_state() const {
   std::ostringstream o;
   o.precision(17);
-  o << "shear_test 2\n"
+  o << "shear_test 3\n"
     << started_ << ' ' << static_cast<int>(phase_) << ' ' << phase_start_ << ' ' << next_check_
     << ' ' << next_row_ << ' ' << row_steps_ << ' ' << shear_steps_ << ' ' << quiet_checks_
     << '\n'
     << sigma_target_ << ' ' << speed_ << ' ' << gain_ << ' ' << integral_time_ << ' ' << x0_
     << ' ' << z0_ << ' ' << height0_ << ' ' << settle_seconds_ << ' ' << consolidate_seconds_
     << '\n'
-    << hold_ << ' ' << ready_ << ' ' << speed_override_ << '\n'
+    << hold_ << ' ' << ready_ << ' ' << speed_override_ << ' ' << loaded_ << '\n'
     << rows_.size() << '\n';
   for (const ShearRow& r : rows_)
     o << r.time << ' ' << r.step << ' ' << r.displacement << ' ' << r.shear_force << ' '
       << r.shear_force_upper << ' ' << r.tau << ' ' << r.tau_corrected << ' ' << r.normal_force
       << ' ' << r.sigma << ' ' << r.dilation << ' ' << r.friction_angle << ' ' << r.coordination
-      << ' ' << r.kinetic_energy << ' ' << r.inertial_number << ' ' << r.outside << '\n';
+      << ' ' << r.kinetic_energy << ' ' << r.inertial_number << ' ' << r.outside << ' '
+      << r.sigma_target << '\n';
   return o.str();
 }
 
@@ -400,327 +427,26 @@ void ShearTest::restore_state(const std::string& text) {
   int version = 0, phase = 0;
   size_t count = 0;
   in >> tag >> version;
-  if (tag != "shear_test" || (version != 1 && version != 2))
+  if (tag != "shear_test" || version < 1 || version > 3)
     throw std::runtime_error("the checkpoint holds no shear-test state");
   in >> started_ >> phase >> phase_start_ >> next_check_ >> next_row_ >> row_steps_ >>
       shear_steps_ >> quiet_checks_ >> sigma_target_ >> speed_ >> gain_ >> integral_time_ >>
       x0_ >> z0_ >> height0_ >> settle_seconds_ >> consolidate_seconds_;
-  hold_ = ready_ = false;
+  hold_ = ready_ = loaded_ = false;
   speed_override_ = 0;
-  if (version == 2) in >> hold_ >> ready_ >> speed_override_;  // version 1: no bench control
+  if (version >= 2) in >> hold_ >> ready_ >> speed_override_;  // version 1: no bench control
+  if (version >= 3) in >> loaded_;  // before: a servo throughout
   in >> count;
   if (!in || phase < 0 || phase > 3) throw std::runtime_error("malformed shear-test state");
   phase_ = static_cast<ShearPhase>(phase);
   rows_.assign(count, {});
-  for (ShearRow& r : rows_)
+  for (ShearRow& r : rows_) {
     in >> r.time >> r.step >> r.displacement >> r.shear_force >> r.shear_force_upper >> r.tau >>
         r.tau_corrected >> r.normal_force >> r.sigma >> r.dilation >> r.friction_angle >>
         r.coordination >> r.kinetic_energy >> r.inertial_number >> r.outside;
+    if (version >= 3) in >> r.sigma_target;
+  }
   if (!in) throw std::runtime_error("malformed shear-test rows");
-}
-
-std::string shear_rows_csv(const std::vector<ShearRow>& rows) {
-  std::string out =
-      "time_s,step,displacement_mm,shear_force_N,shear_force_upper_N,tau_kPa,tau_corrected_kPa,"
-      "normal_force_N,sigma_kPa,dilation_mm,tau_over_sigma,friction_angle_deg,coordination,"
-      "kinetic_energy_J,inertial_number,outside\n";
-  char buf[512];
-  for (const ShearRow& r : rows) {
-    std::snprintf(buf, sizeof buf,
-                  "%.9g,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d\n",
-                  r.time, static_cast<long long>(r.step), r.displacement * 1e3, r.shear_force,
-                  r.shear_force_upper, r.tau * 1e-3, r.tau_corrected * 1e-3, r.normal_force,
-                  r.sigma * 1e-3, r.dilation * 1e3, r.sigma > 0 ? r.tau / r.sigma : 0,
-                  r.friction_angle, r.coordination, r.kinetic_energy, r.inertial_number,
-                  r.outside);
-    out += buf;
-  }
-  return out;
-}
-
-Residual residual_of(const std::vector<ShearRow>& rows, double sigma_target) {
-  Residual r;
-  if (rows.empty()) return r;
-  // the window's first row sits at 0.8 x the end when rows are evenly
-  // spaced: included whether the displacements are exact or read back from
-  // shear.csv (9 digits)
-  const double from = 0.8 * rows.back().displacement * (1 - 1e-7);
-  int count = 0;
-  for (const ShearRow& row : rows)
-    if (row.displacement >= from && row.sigma > 0.5 * sigma_target) {
-      r.tau += row.tau;
-      r.ratio += row.tau / row.sigma;
-      ++count;
-    }
-  if (count > 0) {
-    r.tau /= count;
-    r.ratio /= count;
-  }
-  return r;
-}
-
-FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target, double softening) {
-  // what counts as a peak: a quarter of the test's largest ratio, and no
-  // less than its residual strength
-  double top = 0;
-  for (const ShearRow& r : rows)
-    if (r.sigma > 0.5 * sigma_target) top = std::max(top, r.tau / r.sigma);
-  const double floor = std::max(kPeakMobilised * top, residual_of(rows, sigma_target).ratio);
-  FirstPeak best;
-  for (const ShearRow& r : rows) {
-    if (!(r.sigma > 0.5 * sigma_target)) continue;
-    const double ratio = r.tau / r.sigma;
-    if (ratio > best.ratio) {
-      best.ratio = ratio;
-      best.displacement = r.displacement;
-      best.row = static_cast<int>(&r - rows.data());
-    } else if (best.ratio >= floor && ratio < (1 - softening) * best.ratio) {
-      break;  // softened: the running maximum was the first peak
-    }
-  }
-  return best;
-}
-
-void analyse_shear_rows(const std::vector<ShearRow>& rows, ShearSummary& out) {
-  // the apparatus' fields are kept; the rest is derived afresh
-  ShearSummary s;
-  s.normal_stress_target = out.normal_stress_target;
-  s.shear_speed = out.shear_speed;
-  s.specimen_height = out.specimen_height;
-  s.bead_diameter = out.bead_diameter;
-  s.settle_time = out.settle_time;
-  s.consolidate_time = out.consolidate_time;
-  s.wall_seconds = out.wall_seconds;
-  out = s;
-  if (rows.empty()) return;
-  const double target = s.normal_stress_target;
-  s.sigma_min = s.sigma_max = rows[0].sigma;
-  for (const ShearRow& r : rows) {
-    // a platen that lost contact (sigma far below target) gives no ratio
-    const double ratio = r.sigma > 0.5 * target ? r.tau / r.sigma : 0;
-    if (ratio > s.max_ratio) {
-      s.max_ratio = ratio;
-      s.max_displacement = r.displacement;
-    }
-    s.max_tau = std::max(s.max_tau, r.tau);
-    s.max_inertial_number = std::max(s.max_inertial_number, r.inertial_number);
-    s.sigma_min = std::min(s.sigma_min, r.sigma);
-    s.sigma_max = std::max(s.sigma_max, r.sigma);
-    s.max_outside = std::max(s.max_outside, r.outside);
-  }
-  s.max_angle = std::atan(s.max_ratio) * kRad;
-  const FirstPeak first = first_peak(rows, target);
-  s.peak_ratio = first.ratio;
-  s.peak_displacement = first.displacement;
-  s.peak_angle = std::atan(first.ratio) * kRad;
-  s.peak_tau = first.row >= 0 ? rows[first.row].tau : 0;
-  const Residual res = residual_of(rows, target);
-  s.residual_tau = res.tau;
-  s.residual_ratio = res.ratio;
-  s.residual_angle = std::atan(res.ratio) * kRad;
-  // Dilatancy: least-squares slope of dz(dx) over a sliding window of
-  // ~1/40 of the test (at least 3 rows), the steepest rise.
-  const size_t w = std::max<size_t>(3, rows.size() / 40);
-  double steepest = 0;
-  for (size_t a = 0; a + w <= rows.size(); ++a) steepest = std::max(steepest, slope(rows, a, a + w));
-  s.max_dilatancy_angle = std::atan(steepest) * kRad;
-  out = s;
-}
-
-std::string shear_summary_text(const ShearSummary& s) {
-  char buf[2048];
-  std::snprintf(
-      buf, sizeof buf,
-      "normal_stress_kPa = %.6g\nbead_diameter_mm = %.6g\nspecimen_height_mm = %.6g\n"
-      "shear_speed_mm_s = %.6g\npeak_tau_kPa = %.6g\npeak_tau_over_sigma = %.6g\n"
-      "peak_friction_angle_deg = %.4f\npeak_displacement_mm = %.6g\n"
-      "max_tau_kPa = %.6g\nmax_tau_over_sigma = %.6g\nmax_friction_angle_deg = %.4f\n"
-      "max_displacement_mm = %.6g\nresidual_tau_kPa = %.6g\n"
-      "residual_tau_over_sigma = %.6g\nresidual_friction_angle_deg = %.4f\n"
-      "max_dilatancy_angle_deg = %.4f\nmax_inertial_number = %.4g\nsigma_min_kPa = %.6g\n"
-      "sigma_max_kPa = %.6g\nsigma_band_percent = %+.3f %+.3f\nmax_beads_outside = %d\n"
-      "settle_time_s = %.6g\nconsolidate_time_s = %.6g\nwall_seconds = %.1f\n",
-      s.normal_stress_target * 1e-3, s.bead_diameter * 1e3, s.specimen_height * 1e3,
-      s.shear_speed * 1e3, s.peak_tau * 1e-3, s.peak_ratio, s.peak_angle,
-      s.peak_displacement * 1e3, s.max_tau * 1e-3, s.max_ratio, s.max_angle,
-      s.max_displacement * 1e3, s.residual_tau * 1e-3, s.residual_ratio, s.residual_angle,
-      s.max_dilatancy_angle, s.max_inertial_number, s.sigma_min * 1e-3, s.sigma_max * 1e-3,
-      100 * (s.sigma_min / s.normal_stress_target - 1),
-      100 * (s.sigma_max / s.normal_stress_target - 1), s.max_outside, s.settle_time,
-      s.consolidate_time, s.wall_seconds);
-  return buf;
-}
-
-}  // namespace simsols
-
-namespace simsols {
-namespace {
-
-std::vector<std::string> split(const std::string& line, char sep) {
-  std::vector<std::string> out;
-  std::string cur;
-  for (char c : line) {
-    if (c == sep) {
-      out.push_back(cur);
-      cur.clear();
-    } else if (c != '\r') {
-      cur += c;
-    }
-  }
-  out.push_back(cur);
-  return out;
-}
-
-double to_double(const std::string& s, const std::string& what) {
-  try {
-    size_t used = 0;
-    const double v = std::stod(s, &used);
-    if (used == 0) throw std::invalid_argument(s);
-    return v;
-  } catch (const std::exception&) {
-    throw std::runtime_error("malformed number '" + s + "' in " + what);
-  }
-}
-
-}  // namespace
-
-std::vector<ShearRow> parse_shear_rows_csv(const std::string& text) {
-  std::istringstream in(text);
-  std::string line;
-  std::getline(in, line);
-  if (line.rfind("time_s,step,displacement_mm", 0) != 0)
-    throw std::runtime_error("not a shear.csv (header differs)");
-  std::vector<ShearRow> rows;
-  while (std::getline(in, line)) {
-    if (line.empty()) continue;
-    const auto f = split(line, ',');
-    if (f.size() != 16)
-      throw std::runtime_error("shear.csv row " + std::to_string(rows.size() + 1) + " has " +
-                               std::to_string(f.size()) + " fields, expected 16");
-    const std::string where = "shear.csv row " + std::to_string(rows.size() + 1);
-    std::vector<double> v;
-    for (const std::string& x : f) v.push_back(to_double(x, where));
-    ShearRow r;
-    r.time = v[0];
-    r.step = static_cast<std::int64_t>(v[1]);
-    r.displacement = v[2] * 1e-3;
-    r.shear_force = v[3];
-    r.shear_force_upper = v[4];
-    r.tau = v[5] * 1e3;
-    r.tau_corrected = v[6] * 1e3;
-    r.normal_force = v[7];
-    r.sigma = v[8] * 1e3;
-    r.dilation = v[9] * 1e-3;
-    r.friction_angle = v[11];
-    r.coordination = v[12];
-    r.kinetic_energy = v[13];
-    r.inertial_number = v[14];
-    r.outside = static_cast<int>(v[15]);
-    rows.push_back(r);
-  }
-  return rows;
-}
-
-namespace {
-
-// Summaries written before the peak meant the first peak called the overall
-// maximum peak_* and the first peak first_peak_*: their keys, renamed.
-void rename_older_keys(std::map<std::string, std::string>& kv) {
-  if (!kv.count("first_peak_tau_over_sigma")) return;
-  for (const char* k : {"tau_kPa", "tau_over_sigma", "friction_angle_deg", "displacement_mm"}) {
-    const std::string peak = std::string("peak_") + k, first = "first_" + peak;
-    if (kv.count(peak)) kv["max_" + std::string(k)] = kv[peak];
-    kv.erase(peak);
-    if (kv.count(first)) kv[peak] = kv[first];
-  }
-}
-
-}  // namespace
-
-ShearSummary parse_shear_summary(const std::string& text) {
-  std::map<std::string, std::string> kv;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) {
-    const size_t eq = line.find(" = ");
-    if (eq != std::string::npos) kv[line.substr(0, eq)] = line.substr(eq + 3);
-  }
-  rename_older_keys(kv);
-  ShearSummary s;
-  const struct {
-    const char* key;
-    double* target;
-    double scale;
-  } fields[] = {{"normal_stress_kPa", &s.normal_stress_target, 1e3},
-                {"bead_diameter_mm", &s.bead_diameter, 1e-3},
-                {"specimen_height_mm", &s.specimen_height, 1e-3},
-                {"shear_speed_mm_s", &s.shear_speed, 1e-3},
-                {"peak_tau_kPa", &s.peak_tau, 1e3},
-                {"peak_tau_over_sigma", &s.peak_ratio, 1},
-                {"peak_friction_angle_deg", &s.peak_angle, 1},
-                {"peak_displacement_mm", &s.peak_displacement, 1e-3},
-                {"max_tau_kPa", &s.max_tau, 1e3},
-                {"max_tau_over_sigma", &s.max_ratio, 1},
-                {"max_friction_angle_deg", &s.max_angle, 1},
-                {"max_displacement_mm", &s.max_displacement, 1e-3},
-                {"residual_tau_kPa", &s.residual_tau, 1e3},
-                {"residual_tau_over_sigma", &s.residual_ratio, 1},
-                {"residual_friction_angle_deg", &s.residual_angle, 1},
-                {"max_dilatancy_angle_deg", &s.max_dilatancy_angle, 1},
-                {"max_inertial_number", &s.max_inertial_number, 1},
-                {"sigma_min_kPa", &s.sigma_min, 1e3},
-                {"sigma_max_kPa", &s.sigma_max, 1e3},
-                {"settle_time_s", &s.settle_time, 1},
-                {"consolidate_time_s", &s.consolidate_time, 1},
-                {"wall_seconds", &s.wall_seconds, 1}};
-  int seen = 0;
-  for (const auto& f : fields)
-    if (const auto it = kv.find(f.key); it != kv.end()) {
-      *f.target = to_double(it->second, "summary key " + it->first) * f.scale;
-      ++seen;
-    }
-  if (const auto it = kv.find("max_beads_outside"); it != kv.end())
-    s.max_outside = static_cast<int>(to_double(it->second, it->first));
-  if (seen < 10) throw std::runtime_error("not a shear-test summary (too few keys)");
-  return s;
-}
-
-MohrCoulomb fit_mohr_coulomb(const std::vector<double>& sigma, const std::vector<double>& tau) {
-  MohrCoulomb m;
-  const size_t n = std::min(sigma.size(), tau.size());
-  m.points = static_cast<int>(n);
-  if (n < 2) return m;
-  double sx = 0, sy = 0;
-  for (size_t i = 0; i < n; ++i) {
-    sx += sigma[i];
-    sy += tau[i];
-  }
-  const double mx = sx / n, my = sy / n;
-  double sxx = 0, sxy = 0, ss_tot = 0;
-  for (size_t i = 0; i < n; ++i) {
-    sxx += (sigma[i] - mx) * (sigma[i] - mx);
-    sxy += (sigma[i] - mx) * (tau[i] - my);
-    ss_tot += (tau[i] - my) * (tau[i] - my);
-  }
-  if (sxx <= 0) return m;
-  m.tan_phi = sxy / sxx;
-  m.cohesion = my - m.tan_phi * mx;
-  m.phi_deg = std::atan(m.tan_phi) * kRad;
-  double ss_res = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const double e = tau[i] - (m.cohesion + m.tan_phi * sigma[i]);
-    ss_res += e * e;
-  }
-  m.r2 = ss_tot > 0 ? 1 - ss_res / ss_tot : 1;
-  m.exact = n == 2;
-  if (m.exact) {
-    m.cohesion_se = m.tan_phi_se = m.phi_se_deg = std::numeric_limits<double>::quiet_NaN();
-    return m;
-  }
-  const double s2 = ss_res / double(n - 2);
-  m.tan_phi_se = std::sqrt(s2 / sxx);
-  m.cohesion_se = std::sqrt(s2 * (1.0 / n + mx * mx / sxx));
-  m.phi_se_deg = m.tan_phi_se / (1 + m.tan_phi * m.tan_phi) * kRad;
-  return m;
 }
 
 }  // namespace simsols

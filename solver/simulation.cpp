@@ -57,10 +57,9 @@ void Simulation::set_servo(int wall, const WallServo& c) {
   if (c.enabled && !model_->config().servo)
     throw std::logic_error("set_servo: the kernels were built without servo walls");
   if (!model_->config().servo) return;
-  write_real4(&State::servo, 2 * wall, c.target_force, c.gain, c.max_speed,
-              c.enabled ? 1 : 0);
-  write_real4(&State::servo, 2 * wall + 1, c.integral_time > 0 ? 1 / c.integral_time : 0,
-              0, 0, 0);
+  const std::array<double, 8> r = servo_record(c);
+  write_real4(&State::servo, 2 * wall, r[0], r[1], r[2], r[3]);
+  write_real4(&State::servo, 2 * wall + 1, r[4], r[5], r[6], r[7]);
   if (!c.enabled) {
     set_wall_velocity(wall, {0, 0, 0});
     const auto r = read_real4(*model_, state_->wall_reaction, wall);
@@ -84,6 +83,13 @@ Vec3 Simulation::wall_point(int wall) {
   check_wall(*model_, wall, "wall_point");
   guard_->before_reading();
   return wall_points(*model_, *state_)[wall];
+}
+
+Vec3 Simulation::wall_velocity(int wall) {
+  check_wall(*model_, wall, "wall_velocity");
+  guard_->before_reading();
+  const auto v = read_real4(*model_, state_->wall_vel, wall);
+  return {v[0], v[1], v[2]};
 }
 
 void Simulation::set_wall_point(int wall, const Vec3& p) {

@@ -42,6 +42,7 @@ class Simulation {
   };
   ServoReading read_servo(int wall);
   Vec3 wall_point(int wall);  // current reference point, absolute
+  Vec3 wall_velocity(int wall);  // m/s, prescribed or set by its force control
   // Moves a wall at once (no sweep: the caller makes sure it lands clear of
   // the particles, e.g. a platen lowered onto a specimen).
   void set_wall_point(int wall, const Vec3& point);

@@ -9,6 +9,12 @@
 #include "real_packer.h"
 
 namespace simsols {
+
+std::array<double, 8> servo_record(const WallServo& c) {
+  return {c.target_force, c.gain, c.max_speed, c.enabled ? 1.0 : 0.0,
+          c.integral_time > 0 ? 1 / c.integral_time : 0, c.mass > 0 ? 1 / c.mass : 0, 0, 0};
+}
+
 namespace {
 
 int default_capacity(const Scene& scene) {
@@ -109,9 +115,9 @@ State::State(const Model& model) {
   wall_mean = make(d, std::max(1, nw) * r4);
   RealPacker sv(dbl);
   for (const Wall& wall : s.walls) {
-    const WallServo& c = wall.servo;
-    sv.put4(c.target_force, c.gain, c.max_speed, c.enabled ? 1 : 0);
-    sv.put4(c.integral_time > 0 ? 1 / c.integral_time : 0, 0, 0, 0);
+    const std::array<double, 8> c = servo_record(wall.servo);
+    sv.put4(c[0], c[1], c[2], c[3]);
+    sv.put4(c[4], c[5], c[6], c[7]);
   }
   servo = make(d, std::max(1, nw) * 2 * r4, nw ? sv.data() : nullptr);
 

@@ -12,6 +12,7 @@
 // table has ~2N buckets.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -26,6 +27,10 @@ struct Buffer {
   size_t bytes = 0;
   cl_mem get() const { return mem.get(); }
 };
+
+// A wall's force control as the servo_walls kernel reads it (walls.cl):
+// (target, gain, max_speed, on) and (1/T_i, 1/mass, 0, 0).
+std::array<double, 8> servo_record(const WallServo& servo);
 
 class State {
  public:
@@ -42,8 +47,7 @@ class State {
   Buffer bucket, slot, cell_count, cell_start, sorted, chunk_sum;
   // walls: current reference point (+ float compensation), velocity, slots
   Buffer wall_point, wall_point_lo, wall_vel, wall_spring, wall_force, wall_touch;
-  // servo walls: per wall (target, gain, max speed, on), (1/T_i, 0, 0, 0), set
-  // by the scene and changed at run time (set_servo); and what the servo saw:
+  // servo walls: per wall servo_record() (below), set by the scene and changed at run time (set_servo); and what the servo saw:
   // (F last step, sum of F since the last read, integral velocity, steps)
   // wall_mean: per wall the force summed over steps (xyz) and the steps (w),
   // kept when the kernels have servo walls (read_wall_means)

@@ -193,17 +193,23 @@ __kernel void advance_walls(__global real4* wall_point
 #endif  // HAS_WALLS (servo_walls below needs it too)
 
 #ifdef HAS_SERVO
-// Servo-controlled walls (one work item): sums the group partials of
+// Force-controlled walls (one work item): sums the group partials of
 // reduce_walls into each wall's force, adds it to the wall's running sum
-// (mean: sum, steps in w) for the host's averaged readings, and for a servo
-// wall turns its reaction F = -(force on wall) . n into a velocity along n
-// with a PI law on the error e = target - F:
-//   v = clamp(gain e + v_i, +-max_speed),  v_i += gain e dt / T_i,
-// where v_i (clamped to +-max_speed) integrates only while the proportional
-// part alone is below the cap (no wind-up during the approach).
-// servo: 2 real4 per wall, (target, gain, max_speed, on) and (1/T_i, 0, 0, 0).
+// (mean: sum, steps in w) for the host's averaged readings, and moves a
+// controlled wall along its normal n from its reaction F = -(force on wall) . n
+// in one of two ways:
+//   servo        a PI law on the error e = target - F:
+//                  v = clamp(gain e + v_i, +-max_speed),  v_i += gain e dt / T_i,
+//                where v_i (clamped to +-max_speed) integrates only while the
+//                proportional part alone is below the cap (no wind-up);
+//   dead weight  a rigid body of mass M pushed along n by the constant force
+//                `target` (a hanger's weight) and back by the particles:
+//                  M du/dt = target - F,  u += dt (target - F) / M,
+//                the same symplectic Euler step as the particles' (integrate.cl).
+// servo: 2 real4 per wall, (target, gain, max_speed, on) and (1/T_i, 1/M, 0, 0);
+// 1/M > 0 selects the dead weight (gain, max_speed, T_i unused).
 // reading: 1 real4 per wall, (F this step, sum of F since the host last
-// reset it, v_i, steps in the sum).
+// reset it, v_i or u, steps in the sum).
 __kernel void servo_walls(__global const real4* walls, __global const real4* servo,
                           __global const real4* partial, __global real4* wall_vel,
                           __global real4* reading, __global real4* mean, real dt, int groups,
@@ -216,15 +222,23 @@ __kernel void servo_walls(__global const real4* walls, __global const real4* ser
     const real4 c = servo[2 * w];
     if (c.w == (real)0) continue;
     const real inv_ti = servo[2 * w + 1].x;
+    const real inv_mass = servo[2 * w + 1].y;
     const real3 n = walls[WALL_RECORD * w + 1].xyz;
     const real f = -dot(sum.xyz, n);
     real4 r = reading[w];
     const real e = c.x - f;
-    const real vp = c.y * e;
-    real vi = r.z;
-    if (fabs(vp) < c.z) vi = clamp(vi + vp * dt * inv_ti, -c.z, c.z);
-    const real v = clamp(vp + vi, -c.z, c.z);
-    reading[w] = (real4)(f, r.y + f, vi, r.w + 1);
+    real v;
+    if (inv_mass > (real)0) {
+      v = dot(wall_vel[w].xyz, n) + dt * e * inv_mass;
+      r.z = v;
+    } else {
+      const real vp = c.y * e;
+      real vi = r.z;
+      if (fabs(vp) < c.z) vi = clamp(vi + vp * dt * inv_ti, -c.z, c.z);
+      v = clamp(vp + vi, -c.z, c.z);
+      r.z = vi;
+    }
+    reading[w] = (real4)(f, r.y + f, r.z, r.w + 1);
     wall_vel[w] = (real4)(v * n, 0);
   }
 }

@@ -1,0 +1,130 @@
+// Shear analysis: a direct shear test's measurements and what is read
+// from them, apart from the apparatus that measured them.
+//
+// ShearRow is one row of the test (means over the steps of the row);
+// analyse_shear_rows() turns the rows into a ShearSummary with the
+// definitions of geotechnical practice (the first peak, the residual over a
+// stated late window, the normal-stress band and the test's validity);
+// fit_mohr_coulomb() fits an envelope over several tests. ShearTest
+// (shear_test.h) fills the rows, the campaign re-reads kept tests through
+// the CSV and summary parsers, the lab draws the same marks live; the
+// definitions live here once.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace simsols {
+
+struct ShearRow {
+  double time = 0;               // s
+  std::int64_t step = 0;
+  double displacement = 0;       // m, of the lower half since shearing started
+  double shear_force = 0;        // N, on the moving (lower) half, mean over the row
+  double shear_force_upper = 0;  // N, held by the upper half and platen (check of inertia)
+  double tau = 0;                // Pa, T / nominal area
+  double tau_corrected = 0;      // Pa, T / corrected area
+  double normal_force = 0;       // N, platen reaction, mean over the row
+  double sigma = 0;              // Pa, N / nominal area
+  double dilation = 0;           // m, platen rise since shearing started (up +)
+  double friction_angle = 0;     // deg, atan(tau / sigma)
+  double coordination = 0;       // contacts per bead (bead and wall contacts)
+  double kinetic_energy = 0;     // J
+  double inertial_number = 0;
+  int outside = 0;               // bead centres outside the box (must stay 0)
+  double sigma_target = 0;       // Pa, the target during the row (0: the test's)
+};
+
+// A test whose normal stress leaves this band (a fraction of its target, in
+// any row) is invalid: reported, but left out of envelopes, as a laboratory
+// discards a test whose load was not held.
+constexpr double kValidSigmaBand = 0.10;
+
+struct ShearSummary {
+  double normal_stress_target = 0;  // Pa
+  double shear_speed = 0;           // m/s
+  double specimen_height = 0;       // m, at the start of shearing
+  double bead_diameter = 0;         // m, mean
+  // The peak strength in the geotechnical sense (ASTM D3080's reading of a
+  // tau-displacement curve): the first maximum of tau/sigma after which the
+  // specimen softens (tau/sigma falls by more than 5 % of it); peak_tau is
+  // tau in that row.
+  double peak_tau = 0, peak_ratio = 0, peak_angle = 0, peak_displacement = 0;
+  // The largest tau/sigma of the whole test (max_ratio, max_angle at
+  // max_displacement) and the largest tau: in a layered specimen this can be
+  // a late jamming event, reported beside the peak but never as it.
+  double max_tau = 0, max_ratio = 0, max_angle = 0, max_displacement = 0;
+  double residual_tau = 0, residual_ratio = 0, residual_angle = 0;  // mean over the last 20%
+  double max_dilatancy_angle = 0;   // deg, steepest rise of dz/dx (smoothed)
+  double max_inertial_number = 0;
+  double sigma_min = 0, sigma_max = 0;  // Pa, band of the row means during shear
+  // The same band as fractions of each row's target (sigma / target - 1)
+  // and the RMS of that deviation; valid when the band is within
+  // +-kValidSigmaBand.
+  double sigma_band_lo = 0, sigma_band_hi = 0, sigma_rms = 0;
+  bool valid = true;
+  // The first row, at rest before the lower half moves (displacement 0):
+  // the horizontal force the specimen already exerts between the halves.
+  double start_tau = 0, start_ratio = 0;
+  double platen_mass = 0;           // kg, the dead weight's platen (0: servo)
+  int max_outside = 0;
+  double settle_time = 0, consolidate_time = 0;  // s spent in each phase
+  double wall_seconds = 0;          // filled in by the caller
+};
+
+// The analysis of a test's rows, apart from the apparatus that measured
+// them (shared by ShearTest::summary, the campaign's kept tests and the
+// lab): fills the row-derived fields of `s` (peak, largest, residual,
+// dilatancy, sigma band and validity, inertial number, beads outside, the
+// start) using each row's sigma_target (s.normal_stress_target for rows
+// without one). Rows whose sigma is below half the target (a platen that
+// lost contact) count for no ratio.
+void analyse_shear_rows(const std::vector<ShearRow>& rows, ShearSummary& s);
+
+// The residual strength: mean tau and tau/sigma over the last 20 % of the
+// displacement.
+struct Residual {
+  double tau = 0, ratio = 0;
+};
+Residual residual_of(const std::vector<ShearRow>& rows, double sigma_target);
+
+// The first peak of a test's rows (ShearSummary::peak_*): the first
+// running maximum of tau/sigma followed by a fall of more than `softening`
+// of it, once that maximum has reached a quarter of the test's largest
+// tau/sigma and the residual strength (before, the curve's wiggles about
+// zero and the stick-slip teeth of a hardening curve are not a peak); the
+// largest value when the curve never softens.
+struct FirstPeak {
+  double ratio = 0, displacement = 0;
+  int row = -1;  // its index in `rows`; -1 when there is none
+};
+FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target,
+                     double softening = 0.05);
+
+// The rows as CSV (mm, kPa, N, J) and back; the summary as "key = value"
+// lines and back. The parsers throw std::runtime_error on malformed text.
+std::string shear_rows_csv(const std::vector<ShearRow>& rows);
+std::vector<ShearRow> parse_shear_rows_csv(const std::string& text);
+std::string shear_summary_text(const ShearSummary& s);
+ShearSummary parse_shear_summary(const std::string& text);
+
+// Mohr-Coulomb envelope tau = c + sigma tan(phi) by least squares over
+// (sigma, tau) points (Pa), with the coefficient of determination R^2 and,
+// from three points on, the standard errors of c and tan(phi) (ordinary
+// least squares: s^2 = SS_res / (n - 2), se(tan phi) = s / sqrt(Sxx),
+// se(c) = s sqrt(1/n + mean(sigma)^2 / Sxx)) and of phi (se(tan phi) /
+// (1 + tan^2 phi), in degrees). Two points give the exact line through
+// them: no error estimate (the standard errors are NaN, `exact` is true).
+struct MohrCoulomb {
+  double cohesion = 0;   // Pa
+  double tan_phi = 0;
+  double phi_deg = 0;
+  double r2 = 0;
+  int points = 0;
+  bool exact = false;    // two points: the line through them
+  double cohesion_se = 0, tan_phi_se = 0, phi_se_deg = 0;  // NaN when exact
+};
+MohrCoulomb fit_mohr_coulomb(const std::vector<double>& sigma, const std::vector<double>& tau);
+
+}  // namespace simsols
