@@ -248,6 +248,11 @@ void LabApp::draw_status(int panel_width) {
     ImGui::Text("t = %.5f s   %.0f steps/s   %d beads   %zu contacts   I = %.2g   dt = %.3g s   %s",
                 sim->time(), exp_->steps_per_second(), sim->model().particles(), contacts_,
                 inertial, sim->dt(), sim->model().config().double_precision ? "double" : "float");
+    if (inertial > kQuasiStaticInertialNumber)
+      ImGui::TextColored({1.0f, 0.6f, 0.2f, 1.0f},
+                         "I = %.2g > %.0e: the shear is no longer quasi-static; lower the shear "
+                         "speed (the summary will say quasi_static = no)",
+                         inertial, kQuasiStaticInertialNumber);
     std::string device = sim->model().device().name();
     if (device.size() > 48) device = device.substr(0, 45) + "...";
     ImGui::Text("%s   %s   %.0f fps (view at %.0f%%)   H: help", device.c_str(),

@@ -158,7 +158,8 @@ std::string LabApp::state_text() {
     if (!t->rows().empty()) {
       const ShearRow& r = t->rows().back();
       o << "displacement_mm = " << r.displacement * 1e3 << "\nsigma_kpa = " << r.sigma * 1e-3
-        << "\ntau_kpa = " << r.tau * 1e-3 << "\n";
+        << "\ntau_kpa = " << r.tau * 1e-3 << "\ninertial_number = " << r.inertial_number
+        << "\n";
     }
   }
   o << "fps = " << fps_ << "\nrender_scale = " << render_scale_ << "\n";

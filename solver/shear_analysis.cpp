@@ -156,6 +156,7 @@ void analyse_shear_rows(const std::vector<ShearRow>& rows, ShearSummary& out) {
     s.max_outside = std::max(s.max_outside, r.outside);
   }
   sigma_band(rows, s);
+  s.quasi_static = s.max_inertial_number < kQuasiStaticInertialNumber;
   s.start_tau = rows[0].tau;
   s.start_ratio = rows[0].sigma > 0 ? rows[0].tau / rows[0].sigma : 0;
   s.max_angle = std::atan(s.max_ratio) * kRad;
@@ -188,7 +189,8 @@ std::string shear_summary_text(const ShearSummary& s) {
       "max_tau_kPa = %.6g\nmax_tau_over_sigma = %.6g\nmax_friction_angle_deg = %.4f\n"
       "max_displacement_mm = %.6g\nresidual_tau_kPa = %.6g\n"
       "residual_tau_over_sigma = %.6g\nresidual_friction_angle_deg = %.4f\n"
-      "max_dilatancy_angle_deg = %.4f\nmax_inertial_number = %.4g\nsigma_min_kPa = %.6g\n"
+      "max_dilatancy_angle_deg = %.4f\nmax_inertial_number = %.4g\nquasi_static = %s\n"
+      "sigma_min_kPa = %.6g\n"
       "sigma_max_kPa = %.6g\nsigma_band_percent = %+.3f %+.3f\nsigma_rms_percent = %.3f\n"
       "max_beads_outside = %d\nsettle_time_s = %.6g\nconsolidate_time_s = %.6g\n"
       "wall_seconds = %.1f\n",
@@ -197,7 +199,7 @@ std::string shear_summary_text(const ShearSummary& s) {
       s.start_ratio, s.peak_tau * 1e-3, s.peak_ratio, s.peak_angle, s.peak_displacement * 1e3,
       s.max_tau * 1e-3, s.max_ratio, s.max_angle, s.max_displacement * 1e3,
       s.residual_tau * 1e-3, s.residual_ratio, s.residual_angle, s.max_dilatancy_angle,
-      s.max_inertial_number, s.sigma_min * 1e-3, s.sigma_max * 1e-3, 100 * s.sigma_band_lo,
+      s.max_inertial_number, s.quasi_static ? "yes" : "no", s.sigma_min * 1e-3, s.sigma_max * 1e-3, 100 * s.sigma_band_lo,
       100 * s.sigma_band_hi, 100 * s.sigma_rms, s.max_outside, s.settle_time,
       s.consolidate_time, s.wall_seconds);
   return buf;
@@ -298,6 +300,7 @@ void read_band(const std::map<std::string, std::string>& kv, ShearSummary& s) {
     s.sigma_band_lo = s.sigma_min / s.normal_stress_target - 1;
     s.sigma_band_hi = s.sigma_max / s.normal_stress_target - 1;
   }
+  s.quasi_static = s.max_inertial_number < kQuasiStaticInertialNumber;
   const auto valid = kv.find("valid");
   s.valid = valid != kv.end() ? valid->second == "yes"
                               : s.sigma_band_lo >= -kValidSigmaBand &&

@@ -41,6 +41,10 @@ struct ShearRow {
 // discards a test whose load was not held.
 constexpr double kValidSigmaBand = 0.10;
 
+// A shear is quasi-static while its inertial number I = (v/H) d sqrt(rho/sigma)
+// stays below this (da Cruz et al. 2005: the rate-independent regime).
+constexpr double kQuasiStaticInertialNumber = 1e-3;
+
 struct ShearSummary {
   double normal_stress_target = 0;  // Pa
   double shear_speed = 0;           // m/s
@@ -64,6 +68,7 @@ struct ShearSummary {
   // +-kValidSigmaBand.
   double sigma_band_lo = 0, sigma_band_hi = 0, sigma_rms = 0;
   bool valid = true;
+  bool quasi_static = true;         // max_inertial_number < kQuasiStaticInertialNumber
   // The first row, at rest before the lower half moves (displacement 0):
   // the horizontal force the specimen already exerts between the halves.
   double start_tau = 0, start_ratio = 0;

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -49,7 +50,8 @@ TEST(Lab, ScriptedSessionShearsChangesStressAndCheckpoints) {
   const fs::path d = fs::temp_directory_path() / "simsols_lab";
   fs::remove_all(d);
   fs::create_directories(d);
-  std::ofstream(d / "one.txt") << "preset 6.35 160\nprepare\nload\nstart\nrows 3\n"
+  std::ofstream(d / "one.txt") << "preset 6.35 160\nprepare\nload\nstart\nrows 3\nstate "
+                               << (d / "pre.state").string() << "\n"
                                << "set_stress 280\nrows 6\nscreenshot " << (d / "shot.png").string()
                                << "\nstate " << (d / "a.state").string() << "\ncheckpoint "
                                << (d / "c.bin").string() << "\nrows 9\nstate "
@@ -68,6 +70,15 @@ TEST(Lab, ScriptedSessionShearsChangesStressAndCheckpoints) {
   EXPECT_DOUBLE_EQ(std::stod(a["sigma_target_kpa"]), 280);
   // the servo followed the new target: the measured stress is near 280, not 160
   EXPECT_NEAR(std::stod(a["sigma_kpa"]), 280, 0.1 * 280);
+  // and the shear speed followed, holding the inertial number (v ~ sqrt(sigma))
+  auto pre = read_state(d / "pre.state");
+  const double speed_ratio = std::stod(a["shear_speed_mm_s"]) / std::stod(pre["shear_speed_mm_s"]);
+  std::printf("[measure] shear speed x %.4f for sigma 160 -> 280 kPa (sqrt: %.4f); I %s -> %s\n",
+              speed_ratio, std::sqrt(280.0 / 160), pre["inertial_number"].c_str(),
+              a["inertial_number"].c_str());
+  EXPECT_NEAR(speed_ratio, std::sqrt(280.0 / 160), 0.01);
+  EXPECT_NEAR(std::stod(a["inertial_number"]), std::stod(pre["inertial_number"]),
+              0.05 * std::stod(pre["inertial_number"]));
   EXPECT_GT(std::stod(b["displacement_mm"]), std::stod(a["displacement_mm"]));
   // the checkpoint reloads to the same state and continues identically
   EXPECT_EQ(a2["hash"], a["hash"]);
