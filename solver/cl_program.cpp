@@ -19,7 +19,7 @@ std::string KernelConfig::build_options() const {
   if (capillary) o += " -DHAS_CAPILLARY";
   if (fluid) o += " -DHAS_FLUID";
   o += " -DHIST_PLANES=" + std::to_string(history_planes());
-  if (rolling && rolling_spring) o += " -DHIST_ROLL=" + std::to_string(friction ? 1 : 0);
+  if (rolling && rolling_spring) o += " -DHIST_ROLL=" + std::to_string(contact_record() ? 1 : 0);
   o += " -DPAIR_RECORD=" + std::to_string(pair_record());
   if (walls) o += " -DHAS_WALLS";
   if (servo) o += " -DHAS_SERVO";

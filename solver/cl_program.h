@@ -39,9 +39,11 @@ struct KernelConfig {
   std::string build_options() const;
 
   // Per-contact history, in records of 4 reals (one per history plane):
-  // the tangential spring (mindlin) and the elastic rolling torque
-  // (spring_dashpot). 0 when nothing needs history.
-  int history_planes() const { return (friction ? 1 : 0) + (rolling_spring ? 1 : 0); }
+  // the contact record (the tangential spring of mindlin in 3 reals, the
+  // normal dashpot's record of viscous damping in the 4th) and the elastic
+  // rolling torque (spring_dashpot). 0 when nothing needs history.
+  bool contact_record() const { return friction || damping; }
+  int history_planes() const { return (contact_record() ? 1 : 0) + (rolling_spring ? 1 : 0); }
   size_t real_size() const { return double_precision ? 8 : 4; }
   size_t history_bytes_per_contact() const { return history_planes() * 4 * real_size(); }
   int pair_record() const { return capillary ? 12 : 8; }  // reals per pair coefficient record

@@ -5,6 +5,8 @@
 #include <map>
 #include <mutex>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 
 namespace simsols {
 namespace {
@@ -48,6 +50,9 @@ double simulate_restitution(double gamma) {
 double restitution_for_damping(double gamma) { return simulate_restitution(gamma); }
 
 double damping_for_restitution(double e) {
+  if (!(e > 0.0))
+    throw std::invalid_argument("restitution " + std::to_string(e) +
+                                ": no finite damping gives a restitution of 0 or less");
   if (e >= 1.0) return 0.0;
   static std::mutex mutex;
   static std::map<double, double> cache;

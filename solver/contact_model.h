@@ -51,8 +51,15 @@ PairTable make_pair_table(const Scene& scene);
 
 // Dimensionless damping gamma such that a Hertz contact with
 // F = K d^{3/2} + gamma sqrt(m K) d^{1/4} v (clamped at F >= 0) rebounds with
-// restitution `e` in (0, 1]. gamma(1) = 0. Accurate to ~1e-10 in e.
+// restitution `e` in (0, 1]. gamma(1) = 0. Accurate to ~1e-10 in e. Throws
+// std::invalid_argument for e <= 0 (or not a number): no finite gamma stops
+// the rebound, e falls as ~1.24 / gamma^2 (docs/model.md).
 double damping_for_restitution(double e);
+
+// The smallest restitution a scene may ask for (scene validation): below it
+// a contact at 10 m/s is over in too few steps of the default time step for
+// the simulated e to stay within 1 % of the input (docs/model.md).
+inline constexpr double kMinRestitution = 0.01;
 // The inverse: restitution produced by a dimensionless damping gamma >= 0.
 double restitution_for_damping(double gamma);
 

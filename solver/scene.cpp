@@ -127,17 +127,29 @@ struct Interval {
 
 constexpr Interval kPositive{0, kInf, true, true};
 constexpr Interval kNonNegative{0, kInf, false, true};
-constexpr Interval kRestitution{0, 1, true, false};
+constexpr Interval kRestitution{kMinRestitution, 1, false, false};
 constexpr Interval kContactAngle{0, 1.5707963267948966, false, true};  // [0, pi/2)
 
 std::string at(const std::string& base, size_t i) { return base + "[" + std::to_string(i) + "]"; }
 
-void check_number(Found& found, const std::string& field, double v, const Interval& allowed) {
+void check_number(Found& found, const std::string& field, double v, const Interval& allowed,
+                  const std::string& why = "") {
   if (!std::isfinite(v))
     note(found, "not_finite", field, detail::format_number(v) + " is not a finite number");
   else if (!allowed.contains(v))
     note(found, "out_of_range", field,
-         detail::format_number(v) + " is out of range, allowed " + allowed.str());
+         detail::format_number(v) + " is out of range, allowed " + allowed.str() + why);
+}
+
+// Why a restitution below kMinRestitution is refused (docs/model.md).
+void check_restitution(Found& found, const std::string& field, double v) {
+  const std::string why =
+      v < kMinRestitution
+          ? " (the Hertz contact with its d^{1/4} dashpot always rebounds: e = 0 would need "
+            "infinite damping, and below " + detail::format_number(kMinRestitution) +
+            " a fast contact lasts too few time steps for e to come out as asked)"
+          : "";
+  check_number(found, field, v, kRestitution, why);
 }
 
 // False (and noted) when a component is not finite.
@@ -175,7 +187,7 @@ void check_materials(const Scene& s, Found& found) {
     check_number(found, f + ".young_modulus", m.young_modulus, kPositive);
     check_number(found, f + ".poisson_ratio", m.poisson_ratio, {0, 0.5, false, true});
     check_number(found, f + ".density", m.density, kPositive);
-    check_number(found, f + ".restitution", m.restitution, kRestitution);
+    check_restitution(found, f + ".restitution", m.restitution);
     check_number(found, f + ".sliding_friction", m.sliding_friction, kNonNegative);
     check_number(found, f + ".rolling_friction", m.rolling_friction, kNonNegative);
   }
@@ -192,7 +204,7 @@ void check_pair_overrides(const Scene& s, Found& found) {
       fail("duplicate_name", f + ".materials",
            "the pair ('" + s.materials[o.material_a].name + "', '" +
                s.materials[o.material_b].name + "') already has an interaction");
-    if (o.restitution) check_number(found, f + ".restitution", *o.restitution, kRestitution);
+    if (o.restitution) check_restitution(found, f + ".restitution", *o.restitution);
     if (o.sliding_friction)
       check_number(found, f + ".sliding_friction", *o.sliding_friction, kNonNegative);
     if (o.rolling_friction)

@@ -27,7 +27,7 @@ struct Material {
   double young_modulus = 0;      // E, Pa, > 0
   double poisson_ratio = 0;      // nu, in [0, 0.5)
   double density = 0;            // rho, kg/m^3, > 0
-  double restitution = 1;        // normal coefficient of restitution, (0, 1]
+  double restitution = 1;        // normal coefficient of restitution, [kMinRestitution = 0.01, 1]
   double sliding_friction = 0;   // mu_s, >= 0
   double rolling_friction = 0;   // mu_r, metres (a lever arm), >= 0
 };

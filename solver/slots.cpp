@@ -10,7 +10,8 @@ std::vector<SlotReport> slot_reports(const Scene& s, const KernelConfig& c) {
   std::vector<SlotReport> r;
   r.push_back({"normal", "hertz", true, "", 0});
   r.push_back({"damping", slot_name(e.damping), c.damping,
-               e.damping != DampingModel::None && !c.damping ? "every restitution is 1" : "", 0});
+               e.damping != DampingModel::None && !c.damping ? "every restitution is 1" : "",
+               c.damping ? 1 : 0});
   r.push_back({"tangential", slot_name(e.tangential), c.friction,
                e.tangential != TangentialModel::None && !c.friction ? "every sliding_friction is 0"
                                                                     : "",

@@ -4,7 +4,8 @@
 //     use (the rolling code compiled in through an unused material): the
 //     same trajectories, compared number for number, and the state hash;
 //   - the per-contact history the State allocates follows the slots: 0, 1
-//     or 2 records of 4 reals per list slot and wall slot;
+//     or 2 records of 4 reals per list slot and wall slot (the tangential
+//     spring and the normal dashpot share the first);
 //   - --explain's text names the options.
 #include <cmath>
 #include <string>
@@ -72,17 +73,24 @@ TEST_P(EffectSlots, RollingNoneEqualsZeroRollingFriction) {
 }
 
 TEST_P(EffectSlots, HistoryMemoryFollowsTheSlots) {
-  struct Case { TangentialModel t; RollingModel r; int planes; };
-  const Case cases[] = {{TangentialModel::Mindlin, RollingModel::ConstantTorque, 1},
-                        {TangentialModel::Mindlin, RollingModel::SpringDashpot, 2},
-                        {TangentialModel::None, RollingModel::SpringDashpot, 1},
-                        {TangentialModel::None, RollingModel::ConstantTorque, 0},
-                        {TangentialModel::None, RollingModel::None, 0}};
+  // plane 0, the contact record: the tangential spring and/or the normal
+  // dashpot's record; plane 1 the elastic rolling torque
+  struct Case { TangentialModel t; RollingModel r; DampingModel d; int planes; };
+  const auto viscous = DampingModel::Viscous, undamped = DampingModel::None;
+  const Case cases[] = {{TangentialModel::Mindlin, RollingModel::ConstantTorque, viscous, 1},
+                        {TangentialModel::Mindlin, RollingModel::ConstantTorque, undamped, 1},
+                        {TangentialModel::Mindlin, RollingModel::SpringDashpot, viscous, 2},
+                        {TangentialModel::None, RollingModel::SpringDashpot, viscous, 2},
+                        {TangentialModel::None, RollingModel::SpringDashpot, undamped, 1},
+                        {TangentialModel::None, RollingModel::ConstantTorque, viscous, 1},
+                        {TangentialModel::None, RollingModel::ConstantTorque, undamped, 0},
+                        {TangentialModel::None, RollingModel::None, undamped, 0}};
   const size_t real = GetParam() == Precision::Double ? 8 : 4;
   for (const Case& c : cases) {
     Scene s = tumbling_pile(GetParam());
     s.effects.tangential = c.t;
     s.effects.rolling = c.r;
+    s.effects.damping = c.d;
     Simulation sim(default_device(), s);
     const KernelConfig& k = sim.model().config();
     SCOPED_TRACE(compiled_slots_line(s, k));

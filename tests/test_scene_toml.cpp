@@ -408,6 +408,37 @@ restitution = 0.9
       "scene.toml:5: field 'materials[0].poisson_ratio': 0.7 is out of range, allowed [0, 0.5)");
 }
 
+// e = 0 cannot be simulated (docs/model.md, "Normal force"): the message
+// names the file, the line, the field and the allowed range, and says why.
+TEST(SceneToml, RestitutionBelowTheMinimumIsRefusedWithTheReason) {
+  for (const char* e : {"0", "0.005"}) {
+    const std::string text = std::string(R"([[materials]]
+name = "glass"
+young_modulus = 6.3e10
+poisson_ratio = 0.2
+density = 2500
+restitution = )") + e + "\n" + kOneParticle + kDuration;
+    const SceneError err = expect_error([&] { parse_scene(text, "scene.toml"); });
+    EXPECT_EQ(err.code, "out_of_range");
+    EXPECT_EQ(err.line, 6);
+    EXPECT_EQ(err.field, "materials[0].restitution");
+    EXPECT_STREQ(err.what(),
+                 (std::string("scene.toml:6: field 'materials[0].restitution': ") + e +
+                  " is out of range, allowed [0.01, 1] (the Hertz contact with its d^{1/4} "
+                  "dashpot always rebounds: e = 0 would need infinite damping, and below 0.01 a "
+                  "fast contact lasts too few time steps for e to come out as asked)")
+                     .c_str());
+  }
+  const std::string lowest = std::string(R"([[materials]]
+name = "glass"
+young_modulus = 6.3e10
+poisson_ratio = 0.2
+density = 2500
+restitution = 0.01
+)") + kOneParticle + kDuration;
+  EXPECT_EQ(parse_scene(lowest, "scene.toml").materials[0].restitution, 0.01);
+}
+
 TEST(SceneToml, UnknownKeySuggestsAndListsAllowedKeys) {
   const std::string text =
       std::string(kGlass) + kOneParticle + "[numerics]\nduration = 1\ndt_fractoin = 0.1\n";

@@ -394,10 +394,11 @@ __kernel void rigid_pair(__global const real* normals, __global const real* spri
   c.mu_r = (lane)coeff[4];
   c.kt_ratio = (lane)coeff[5];
   v3 sp = gather3(spring0, idx);
+  lane dash = (lane)0;  // no record: a contact that began overlapped, in equilibrium
   for (int s = 0; s < steps; ++s) {
     const v3 n = gather3(normals + (size_t)4 * m * s, idx);
     const ContactResult r = contact_law((lane)delta, n, v_zero(), v_zero(), (lane)rstar,
-                                        (lane)mstar, (lane)istar, c, dt, &sp);
+                                        (lane)mstar, (lane)istar, c, dt, &sp, &dash);
     scatter4(force_out + (size_t)4 * m * s, idx, keep, r.force, (lane)0);
     scatter4(spring_out + (size_t)4 * m * s, idx, keep, sp, (lane)0);
   }

@@ -7,8 +7,10 @@
 //   HAS_CAPILLARY       cohesion = capillary (pair records of 12 reals)
 //   HAS_FLUID           fluid = drag (integrate.cl)
 //   HIST_PLANES         per-contact history records (real4) each list or wall slot carries:
-//                       plane 0 the tangential spring (HAS_FRICTION), plane HIST_ROLL the
-//                       elastic rolling torque (HAS_ROLLING_SPRING); 0 = no history at all
+//                       plane 0 the contact record (HAS_CONTACT_RECORD, below): xyz the
+//                       tangential spring (HAS_FRICTION), w the normal dashpot's record
+//                       (HAS_DAMPING, contact_law.cl); plane HIST_ROLL the elastic rolling
+//                       torque (HAS_ROLLING_SPRING); 0 = no history at all
 //   PAIR_RECORD         reals per pair coefficient record (8, or 12 with HAS_CAPILLARY)
 //   NBR_INTERLEAVED    neighbour slot k of particle i at k*n+i (GPU) instead of i*cap+k (CPU)
 //
@@ -53,6 +55,9 @@ typedef float4 real4;
 #endif
 #ifndef HIST_PLANES
 #define HIST_PLANES 0
+#endif
+#if defined(HAS_FRICTION) || defined(HAS_DAMPING)
+#define HAS_CONTACT_RECORD 1
 #endif
 
 // Wall record: four real4 per wall:

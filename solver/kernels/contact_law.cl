@@ -10,7 +10,8 @@
 // so linear and angular momentum are conserved to round-off.
 //
 //   normal   F_n = K_n d^{3/2} + gamma sqrt(m* K_n) d^{1/4} v_n, clamped >= 0
-//            K_n = 4/3 E* sqrt(R*)
+//            K_n = 4/3 E* sqrt(R*); the dashpot at the time level of the
+//            positions (normal_force() below, docs/model.md)
 //   tangent  xi  <- xi rotated into the tangent plane, + v_t dt
 //            F_t = -k_t xi - gamma sqrt(m* k_t) v_t,  k_t = 8 G* sqrt(R* d)
 //            |F_t| > mu_s F_n  =>  F_t scaled to mu_s F_n, xi made consistent
@@ -102,21 +103,100 @@ INLINE lane capillary_force(lane s, lane rstar, PairLanes c) {
 }
 #endif
 
+#ifdef HAS_DAMPING
+// Mean of d^{1/4} over the overlaps from lo to hi (both >= 0) along a straight
+// path: 4/5 (hi^{5/4} - lo^{5/4}) / (hi - lo), written with s = lo^{1/4} and
+// t = hi^{1/4} so that lo = hi needs no limit and close values do not cancel:
+// 4/5 (t^4 + t^3 s + t^2 s^2 + t s^3 + s^4) / ((t + s)(t^2 + s^2)). 0 if both are 0.
+INLINE lane mean_quarter_power(lane s, lane t) {
+  const lane s2 = s * s, t2 = t * t;
+  const lane num = t2 * t2 + t * s * (t2 + s2) + s2 * (t2 + s2);
+  const lane den = (t + s) * (t2 + s2);
+  return SEL(den > (real)0, (real)0.8 * num / fmax(den, (real)1e-30), (lane)0);
+}
+
+// The normal force with the dashpot at the time level of the positions.
+// Leapfrog has the overlap d at step n and the approach speeds u- = v_{n-1/2}
+// (given) and u+ = v_{n+1/2} (the result of this step). The dashpot
+// gamma sqrt(m* K_n) d^{1/4} d' is the time derivative of
+// 4/5 gamma sqrt(m* K_n) d^{5/4}, so its impulse over the step, from the
+// overlap half a step back, a = d - u- dt/2, to half a step ahead,
+// b = a + ubar dt, is exact given a and b:
+//   F_n = K_n d^{3/2} + gamma sqrt(m* K_n) <d^{1/4}>_{a..b} ubar,  ubar = (u- + u+)/2.
+// u+ = u- + o - dt F_n / m*: this contact's own force, implicitly, plus o, the
+// change the rest of the world (other contacts, gravity, moving walls) made
+// to the approach speed in the last step, taken to persist: *record holds
+// z = u- - dt F_n / m* of the last step (0: no contact then), so o = u- - z.
+// One Newton step from the estimate with <d^{1/4}> = d^{1/4} solves this to
+// round-off for any damping. On the first step of a contact (no record, and
+// d <= u- dt) the impulse counts from the first touch (a = 0): the contact
+// began within the last step, unseen, and o = 0. A contact without a record
+// that began overlapped (a scene's initial packing) is taken to be in
+// equilibrium for its first step: ubar = u-. Two bodies at rest in
+// equilibrium (u- = 0, forces unchanged) get ubar = 0: no damping force.
+typedef struct {
+  lane fel, cn, half_other, back, lo, s, hm;
+  lmask interior;
+} Dashpot;
+
+// F_n for a trial ubar; *t receives b^{1/4} (the Newton slope is cn b^{1/4}).
+INLINE lane dashpot_force(const Dashpot* d, lane ub, real dt, lane* t) {
+  const lane b = d->back + ub * dt;
+  const lane hi = fmax(b, (real)0);
+  *t = sqrt(sqrt(hi));
+  // mean rate of the overlap: ubar inside the contact, (b - a)/dt where it starts or ends
+  const lane rate = SEL(d->interior & (b > (real)0), ub, (hi - d->lo) / dt);
+  return d->fel + d->cn * mean_quarter_power(d->s, *t) * rate;
+}
+
+INLINE lane normal_force(lane fel, lane delta, lane qd, lane vn, lane cn, lane mstar, real dt,
+                         lane* record) {
+  Dashpot d;
+  const lmask seen = *record != (real)0;
+  // a first touch: no record, and d <= u- dt, no overlap a step back (1.5 u- dt
+  // leaves room for round-off); not a contact that began overlapped, as in a
+  // scene's initial packing
+  const lmask first = !seen & (delta < (real)1.5 * dt * vn);
+  d.fel = fel;
+  d.cn = cn;
+  d.half_other = SEL(seen, (real)0.5 * (vn - *record), (lane)0);
+  d.back = delta - (real)0.5 * dt * vn;
+  d.lo = SEL(first, (lane)0, fmax(d.back, (real)0));
+  d.s = sqrt(sqrt(d.lo));
+  d.interior = !first & (d.back > (real)0);
+  d.hm = (real)0.5 * dt / mstar;
+  // ubar with <d^{1/4}> = d^{1/4}, then one Newton step on
+  // g(ubar) = ubar - u- - o/2 + dt/(2 m*) F_n(ubar), g' = 1 + dt/(2 m*) cn b^{1/4}
+  lane ub = (vn + d.half_other - d.hm * fel) / (1 + d.hm * cn * qd);
+  lane t;
+  const lane f0 = dashpot_force(&d, ub, dt, &t);
+  const lmask pushing = f0 > (real)0;
+  ub -= (ub - vn - d.half_other + d.hm * fmax(f0, (real)0)) /
+        (1 + SEL(pushing, d.hm * cn * t, (lane)0));
+  ub = SEL(seen | first, ub, vn);  // began overlapped: taken to be in equilibrium, u+ = u-
+  const lane fn = fmax(dashpot_force(&d, ub, dt, &t), (real)0);
+  *record = vn - (real)2 * d.hm * fn;
+  return fn;
+}
+#endif
+
 INLINE ContactResult contact_law_h(lane delta, v3 n, v3 vrel, v3 wrel, lane rstar,
                                    lane mstar, lane istar, PairLanes c, real dt, v3* spring,
-                                   v3* roll_spring, real rolling_damping) {
+                                   lane* dashpot, v3* roll_spring, real rolling_damping) {
   ContactResult out;
   const real tiny = (real)1e-30;
   const lane sd = sqrt(delta);
   const lane sqrt_r = sqrt(rstar);
   const lane kn = (real)(4.0 / 3.0) * c.estar * sqrt_r;
-  lane fn = kn * delta * sd;
-  out.energy = (real)0.4 * fn * delta;
+  const lane fel = kn * delta * sd;
+  out.energy = (real)0.4 * fel * delta;
   const lane vn = v_dot(vrel, n);
 #ifdef HAS_DAMPING
   const lane qd = sqrt(sd);              // d^{1/4}
   const lane cn = c.gamma * sqrt(mstar * kn);
-  fn = fmax(fn + cn * qd * vn, (real)0);
+  const lane fn = normal_force(fel, delta, qd, vn, cn, mstar, dt, dashpot);
+#else
+  const lane fn = fel;
 #endif
   out.force = v_mul(-fn, n);
   out.n_cross_ft = v_zero();
@@ -184,10 +264,12 @@ INLINE ContactResult contact_law_h(lane delta, v3 n, v3 vrel, v3 wrel, lane rsta
   return out;
 }
 
-// The law with the tangential history only (tests drive it directly);
-// under spring_dashpot rolling it starts from an unloaded rolling spring.
-INLINE ContactResult contact_law(lane delta, v3 n, v3 vrel, v3 wrel, lane rstar,
-                                 lane mstar, lane istar, PairLanes c, real dt, v3* spring) {
+// The law with the contact record only, the tangential spring and the
+// normal dashpot's record (tests drive it directly); under spring_dashpot
+// rolling it starts from an unloaded rolling spring.
+INLINE ContactResult contact_law(lane delta, v3 n, v3 vrel, v3 wrel, lane rstar, lane mstar,
+                                 lane istar, PairLanes c, real dt, v3* spring, lane* dashpot) {
   v3 roll = v_zero();
-  return contact_law_h(delta, n, vrel, wrel, rstar, mstar, istar, c, dt, spring, &roll, (real)0.3);
+  return contact_law_h(delta, n, vrel, wrel, rstar, mstar, istar, c, dt, spring, dashpot, &roll,
+                       (real)0.3);
 }

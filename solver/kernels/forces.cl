@@ -96,10 +96,13 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
                           v_add(vj, v_cross(wj, v_neg(v_mul(aj, nv)))));
     // per-contact history: the planes the compiled slots declare (common.cl)
     const size_t plane = (size_t)n * cap;
-#ifdef HAS_FRICTION
-    v3 sp = gather3(spring, slot);
+#ifdef HAS_CONTACT_RECORD
+    const Lane4 record = gather4(spring, slot);
+    v3 sp = record.xyz;
+    lane dash = record.w;
 #else
     v3 sp = v_zero();
+    lane dash = (lane)0;
 #endif
 #ifdef HAS_ROLLING_SPRING
     v3 rsp = gather3(spring + 4 * HIST_ROLL * plane, slot);
@@ -116,10 +119,11 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
     const lane istar = inertia_i * inertia_j / (inertia_i + inertia_j);
 #endif
     const ContactResult c = contact_law_h(delta, nv, vrel, v_sub(wi, wj), rstar,
-                                          mi * mj / (mi + mj), istar, coef, dt, &sp, &rsp,
-                                          rolling_damping);
-#ifdef HAS_FRICTION
-    scatter4(spring, slot, keep, v_sel(on, sp, v_zero()), (lane)0);  // lost contacts end their history
+                                          mi * mj / (mi + mj), istar, coef, dt, &sp, &dash,
+                                          &rsp, rolling_damping);
+#ifdef HAS_CONTACT_RECORD
+    // lost contacts end their history
+    scatter4(spring, slot, keep, v_sel(on, sp, v_zero()), SEL(on, dash, (lane)0));
 #endif
 #ifdef HAS_ROLLING_SPRING
     scatter4(spring + 4 * HIST_ROLL * plane, slot, keep, v_sel(on, rsp, v_zero()), (lane)0);

@@ -135,10 +135,13 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
     const v3 vw = V3((lane)wall_vel[4 * w], (lane)wall_vel[4 * w + 1], (lane)wall_vel[4 * w + 2]);
     const v3 vrel = v_sub(v_add(vi, v_cross(wi, v_mul(a, nv))), vw);
     // history planes of the (wall, particle) slots, as in forces.cl
-#ifdef HAS_FRICTION
-    v3 sp = gather3(wall_spring, slot);
+#ifdef HAS_CONTACT_RECORD
+    const Lane4 record = gather4(wall_spring, slot);
+    v3 sp = record.xyz;
+    lane dash = record.w;
 #else
     v3 sp = v_zero();
+    lane dash = (lane)0;
 #endif
 #ifdef HAS_ROLLING_SPRING
     __global real* roll_plane = wall_spring + 4 * HIST_ROLL * (size_t)nwalls * n;
@@ -149,11 +152,19 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
     const int wall_mat = (int)walls[4 * WALL_RECORD * w + 7];
 #pragma unroll
     for (int l = 0; l < LANES; ++l) pair[l] = (int)mat_i[l] * nmat + wall_mat;
+    // The normal dashpot's record (contact_law.cl) extrapolates what the rest
+    // of the world did to the approach speed. A wall is no body pushed by
+    // forces: it keeps its velocity, and a servo's step-to-step changes are
+    // not to be extrapolated. So the record is kept in the particle's frame,
+    // shifted by the wall's normal speed around the call (0 stays "none").
+    const lane wall_vn = v_dot(vw, nv);
+    dash = SEL(dash != (real)0, dash - wall_vn, (lane)0);
     const ContactResult c = contact_law_h(delta, nv, vrel, wi, ri, mi, roll_inertia,
-                                          gather_pairs(pairs, pair, nmat), dt, &sp, &rsp,
-                                          rolling_damping);
-#ifdef HAS_FRICTION
-    scatter4(wall_spring, slot, keep, v_sel(on, sp, v_zero()), (lane)0);
+                                          gather_pairs(pairs, pair, nmat), dt, &sp, &dash,
+                                          &rsp, rolling_damping);
+    dash += wall_vn;
+#ifdef HAS_CONTACT_RECORD
+    scatter4(wall_spring, slot, keep, v_sel(on, sp, v_zero()), SEL(on, dash, (lane)0));
 #endif
 #ifdef HAS_ROLLING_SPRING
     scatter4(roll_plane, slot, keep, v_sel(on, rsp, v_zero()), (lane)0);
