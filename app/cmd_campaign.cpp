@@ -54,13 +54,6 @@ std::string fmt(const char* f, double v) {
   return buf;
 }
 
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // A test finished earlier: its summary as today's analysis reads its rows
 // (the apparatus' fields from its summary.txt), rewritten with its plots
 // when that differs from the file.

@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
   add(simsols::add_snapshot_command);
   add(simsols::add_lab_command);
   add(simsols::add_study_command);
+  add(simsols::add_plot_command);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

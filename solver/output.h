@@ -20,6 +20,8 @@
 namespace simsols {
 
 void write_file_atomic(const std::string& path, const std::string& content);
+// The whole file as text; empty when it cannot be read.
+std::string read_text(const std::string& path);
 void write_particles_csv(const std::string& path, const ParticleSnapshot& p);
 void write_particles_vtk(const std::string& path, const ParticleSnapshot& p, double time);
 

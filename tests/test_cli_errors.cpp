@@ -17,6 +17,7 @@
 #include "alioscopy.h"
 #include "errors.h"
 #include "scene_toml.h"
+#include "shear_analysis.h"
 
 namespace {
 
@@ -76,6 +77,34 @@ TEST(CliErrors, CampaignRunsOutsideTheRepositoryFromTheBuiltInScene) {
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_TRUE(fs::exists(d / "c/d4.7625mm_160kPa/summary.txt")) << r.out;
   EXPECT_NE(read(d / "c/summary.md").find("built-in shear_box.toml"), std::string::npos);
+}
+
+// `plot` draws tests from their folders or CSVs; a mismatched --label and a
+// file that is not a shear.csv are refused with the flag / file named, and
+// nothing is drawn.
+TEST(CliErrors, PlotDrawsCurvesAndNamesBadInputs) {
+  const fs::path d = fresh_dir("plot");
+  std::vector<simsols::ShearRow> rows(5);
+  for (int i = 0; i < 5; ++i) {
+    rows[i].displacement = i * 1e-4;
+    rows[i].sigma = rows[i].sigma_target = 1e5;
+    rows[i].tau = (i == 2 ? 6e4 : 3e4);  // a peak at the third row
+  }
+  fs::create_directories(d / "a");
+  std::ofstream(d / "a/shear.csv") << simsols::shear_rows_csv(rows);
+  std::ofstream(d / "b.csv") << simsols::shear_rows_csv(rows);
+  std::ofstream(d / "bad.csv") << "x,y\n1,2\n";
+  const Result ok = run_in(d, "plot a b.csv --out fig --title T");
+  ASSERT_EQ(ok.status, 0) << ok.out;
+  EXPECT_TRUE(fs::exists(d / "fig_stress.png") && fs::exists(d / "fig_dilation.png"));
+  EXPECT_NE(ok.out.find("a: 5 rows, peak tau/sigma 0.600"), std::string::npos) << ok.out;
+  const Result labels = run_in(d, "plot a b.csv --label one --out g");
+  EXPECT_EQ(labels.status, 2);
+  EXPECT_NE(labels.out.find("--label"), std::string::npos) << labels.out;
+  const Result bad = run_in(d, "plot a bad.csv --out h");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.out.find("bad.csv"), std::string::npos) << bad.out;
+  EXPECT_FALSE(fs::exists(d / "g_stress.png") || fs::exists(d / "h_stress.png"));
 }
 
 TEST(CliErrors, CampaignChecksItsFlagsAfterLoadingTheBuiltInScene) {
