@@ -92,13 +92,25 @@ TEST(Cli, ExplainPrintsTheCompiledSlots) {
   }
   const auto at = text.find("[numerics]");
   ASSERT_NE(at, std::string::npos);
-  text.insert(at, "[effects]\ntangential = \"none\"\nrolling = \"none\"\n\n");
-  std::ofstream((dir / "dry_frictionless.toml").string()) << text;
-  const Result none = run("run " + (dir / "dry_frictionless.toml").string() + " --explain");
+  // no friction, no rolling: the normal dashpot's record is the only history;
+  // without the damping too, there is none
+  auto explain = [&](const std::string& name, const std::string& effects) {
+    std::string scene = text;
+    scene.insert(at, "[effects]\n" + effects + "\n");
+    std::ofstream((dir / name).string()) << scene;
+    return run("run " + (dir / name).string() + " --explain");
+  };
+  const Result none =
+      explain("dry_frictionless.toml", "tangential = \"none\"\nrolling = \"none\"\n");
   EXPECT_EQ(none.status, 0) << none.out;
   EXPECT_EQ(none.out.find("-DHAS_FRICTION"), std::string::npos) << none.out;
   EXPECT_EQ(none.out.find("-DHAS_ROLLING"), std::string::npos) << none.out;
-  EXPECT_NE(none.out.find("0 bytes per contact"), std::string::npos) << none.out;
+  EXPECT_NE(none.out.find("16 bytes per contact"), std::string::npos) << none.out;
+  const Result bare = explain("undamped.toml",
+                              "damping = \"none\"\ntangential = \"none\"\nrolling = \"none\"\n");
+  EXPECT_EQ(bare.status, 0) << bare.out;
+  EXPECT_EQ(bare.out.find("-DHAS_DAMPING"), std::string::npos) << bare.out;
+  EXPECT_NE(bare.out.find("0 bytes per contact"), std::string::npos) << bare.out;
 }
 
 TEST(Cli, BadFlagIsRefused) {

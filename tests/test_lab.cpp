@@ -105,8 +105,10 @@ TEST(Lab, ScriptedSessionShearsChangesStressAndCheckpoints) {
 // Issue 9 in the lab: the panel's slot choices (scripted with `effect`, the
 // same action as the combo boxes) rebuild the kernels at Prepare, and the
 // status line (here the state file, which prints the same line) shows what
-// is compiled in: no rolling and no tangential code, no per-contact history.
-// Then back to the paper's slots: both compiled, 16 bytes per contact.
+// is compiled in: no rolling and no tangential code; with the damping on,
+// the normal dashpot's record is the only history (16 bytes per contact),
+// without it there is none. Then back to the paper's slots: both compiled,
+// 16 bytes per contact.
 TEST(Lab, EffectSlotsSwitchTheCompiledKernels) {
   if (run("command -v xvfb-run") != 0) GTEST_SKIP() << "xvfb-run not installed (Debian: xvfb)";
   const fs::path d = fs::temp_directory_path() / "simsols_lab_slots";
@@ -114,14 +116,19 @@ TEST(Lab, EffectSlotsSwitchTheCompiledKernels) {
   fs::create_directories(d);
   std::ofstream(d / "s.txt") << "preset 6.35 160\neffect rolling none\neffect tangential none\n"
                              << "prepare\nstate " << (d / "off.state").string() << "\n"
+                             << "effect damping none\nprepare\nstate "
+                             << (d / "undamped.state").string() << "\neffect damping viscous\n"
                              << "effect rolling constant_torque\neffect tangential mindlin\n"
                              << "prepare\nstate " << (d / "on.state").string() << "\n";
   ASSERT_EQ(run(lab(d / "s.txt")), 0);
   auto off = read_state(d / "off.state"), on = read_state(d / "on.state");
+  auto undamped = read_state(d / "undamped.state");
   ASSERT_FALSE(off["compiled"].empty()) << "no compiled-slots line";
   EXPECT_NE(off["compiled"].find("tangential=none"), std::string::npos) << off["compiled"];
   EXPECT_NE(off["compiled"].find("rolling=none"), std::string::npos) << off["compiled"];
-  EXPECT_EQ(off["history_bytes"], "0");
+  EXPECT_EQ(off["history_bytes"], "16");  // float: the dashpot's record, in a record of 4 reals
+  EXPECT_NE(undamped["compiled"].find("damping=none"), std::string::npos) << undamped["compiled"];
+  EXPECT_EQ(undamped["history_bytes"], "0");
   EXPECT_NE(on["compiled"].find("tangential=mindlin"), std::string::npos) << on["compiled"];
   EXPECT_NE(on["compiled"].find("rolling=constant_torque"), std::string::npos) << on["compiled"];
   EXPECT_EQ(on["history_bytes"], "16");  // float: one spring of 4 reals
