@@ -222,6 +222,15 @@ INLINE lmask mask_of(const int* flag) {
 #endif
 }
 
+// True when the mask holds in some lane (a uniform branch per work item).
+INLINE int mask_any(lmask m) {
+#if LANES == 1
+  return m != 0;
+#else
+  return any(m);
+#endif
+}
+
 // Position of each lane's particle (compensated in float runs): separations
 // are formed as (hi_j - hi_i) + (lo_j - lo_i).
 typedef struct { v3 hi; v3 lo; } LanePos;

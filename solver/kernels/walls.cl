@@ -156,8 +156,9 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
     // of the world did to the approach speed. A wall is no body pushed by
     // forces: it keeps its velocity, and a servo's step-to-step changes are
     // not to be extrapolated. So the record is kept in the particle's frame,
-    // shifted by the wall's normal speed around the call (0 stays "none").
-    const lane wall_vn = v_dot(vw, nv);
+    // shifted by the wall's normal momentum m_i v_w.n around the call (0
+    // stays "none").
+    const lane wall_vn = mi * v_dot(vw, nv);
     dash = SEL(dash != (real)0, dash - wall_vn, (lane)0);
     const ContactResult c = contact_law_h(delta, nv, vrel, wi, ri, mi, roll_inertia,
                                           gather_pairs(pairs, pair, nmat), dt, &sp, &dash,
