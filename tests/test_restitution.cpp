@@ -26,9 +26,11 @@ namespace {
 constexpr double kR = 2.38125e-3 / 2;
 constexpr double kSpeeds[] = {0.1, 1.0, 10.0};
 
-// |measured / e - 1| allowed: about ten times the largest error measured at
-// the default step (docs/validation.md), never more than the 1 % promised.
-double tolerance(double e) { return e < 0.2 ? 0.01 : e < 0.99 ? 0.005 : 0.002; }
+// |measured / e - 1| allowed at the default step: about ten times the
+// largest error measured there (docs/validation.md: 0.27 % at e = 0.01,
+// 0.11 % at 0.3, 0.03 % at 0.5 and 0.87, 0.014 % at 1), never more than the
+// 1 % promised.
+double tolerance(double e) { return e < 0.4 ? 0.01 : e < 0.99 ? 0.004 : 0.002; }
 
 // Advances until the bodies have touched and separated again.
 void run_impact(Simulation& sim) {
