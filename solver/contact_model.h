@@ -15,8 +15,9 @@
 // gamma_n is not the linear-spring formula: for a Hertz spring with a
 // d^{1/4} dashpot the restitution coefficient depends on gamma_n alone
 // (not on the impact speed), and damping_for_restitution() inverts that
-// relation numerically so the simulated restitution equals the input.
-// See docs/model.md.
+// relation numerically; the kernels evaluate the dashpot at the time level
+// of the positions (contact_law.cl), so the simulated restitution equals
+// the input. See docs/model.md.
 #pragma once
 
 #include <vector>

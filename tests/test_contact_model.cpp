@@ -2,6 +2,7 @@
 // map of a Hertz contact with a d^{1/4} dashpot, pair averaging, the
 // Rayleigh step, and the kernel configuration derived from a scene.
 #include <cmath>
+#include <stdexcept>
 
 #include "cl_program.h"
 #include "contact_model.h"
@@ -18,6 +19,18 @@ TEST(ContactModel, DampingInvertsRestitution) {
   }
   EXPECT_EQ(damping_for_restitution(1.0), 0.0);
   EXPECT_NEAR(restitution_for_damping(0.0), 1.0, 1e-6);
+}
+
+// No finite damping stops the rebound: for large gamma e ~ 1.24 / gamma^2
+// (docs/model.md, "Normal force"), so e = 0 has no gamma and is refused.
+TEST(ContactModel, RestitutionZeroHasNoDamping) {
+  for (double e : {0.01, 0.002}) {
+    const double g = damping_for_restitution(e);
+    EXPECT_NEAR(e * g * g, 1.24, 0.1) << "e = " << e;
+  }
+  EXPECT_THROW(damping_for_restitution(0.0), std::invalid_argument);
+  EXPECT_THROW(damping_for_restitution(-0.1), std::invalid_argument);
+  EXPECT_THROW(damping_for_restitution(std::nan("")), std::invalid_argument);
 }
 
 TEST(ContactModel, DampingDiffersFromTheLinearSpringFormula) {

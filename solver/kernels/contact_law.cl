@@ -1,6 +1,8 @@
 // contact_law.cl — the paper's eq. (1), one contact at a time. Stateless
-// except for the tangential spring passed in and out. Branch-free (selects
-// only) so that it vectorises across work items on CPUs.
+// except for the contact's history passed in and out (tangential spring,
+// normal dashpot's record, elastic rolling torque). Branch-free (selects
+// only) so that it vectorises across work items on CPUs, but for one
+// uniform branch to the dashpot's exact treatment of a contact's ends.
 //
 // Conventions: n is the unit normal from particle i towards its partner,
 // delta > 0 the overlap, vrel the velocity of i's contact point relative to
@@ -156,8 +158,8 @@ INLINE lane dashpot_force(const Dashpot* d, lane ub, real dt, lane* t) {
 // F_n on the first and last steps of a contact, from the estimate ub. Not
 // inlined: few contacts are at an edge in any step, and inlined, the code
 // cost the whole contact stage ~8 % in float on PoCL even when not taken.
-__attribute__((noinline)) lane dashpot_edge(lane fel, lane delta, lane vn, lane cn, lane hm, lane half_other,
-                         lmask first, lane ub, real dt) {
+__attribute__((noinline)) lane dashpot_edge(lane fel, lane delta, lane vn, lane cn, lane hm,
+                                            lane half_other, lmask first, lane ub, real dt) {
   Dashpot d;
   d.fel = fel;
   d.cn = cn;
