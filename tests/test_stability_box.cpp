@@ -220,6 +220,7 @@ TEST(ServoUnderShock, SigmaSettlesAfterJumps50To400To50kPa) {
   Scene s = small_shear_box("servo_shock", low, 0.3e-3 * scale);  // the paper's glass
   if (HasFailure()) return;
   s.shear_box->rows = rows;
+  s.shear_box->loading = ShearBox::Loading::Servo;  // the servo's case
   validate_scene(s, "servo_shock");
 
   const auto t0 = std::chrono::steady_clock::now();
@@ -233,6 +234,7 @@ TEST(ServoUnderShock, SigmaSettlesAfterJumps50To400To50kPa) {
   while (!test.done()) {
     if (!test.advance(1 << 20)) continue;
     const size_t k = test.rows().size();
+    instant.resize(k - 1, 0.0);  // instant[i] belongs to row i; row 0 (at rest) has none
     instant.push_back(sim.read_servo(platen).last);  // (rows use the wall means)
     finite = finite && all_finite(sim.snapshot());
     if (k == size_t(rows / 3) || k == size_t(2 * rows / 3)) {
@@ -243,7 +245,7 @@ TEST(ServoUnderShock, SigmaSettlesAfterJumps50To400To50kPa) {
   }
   const double wall_s = seconds_since(t0);
   const std::vector<ShearRow>& r = test.rows();
-  ASSERT_EQ(r.size(), size_t(rows));
+  ASSERT_EQ(r.size(), size_t(rows) + 1);  // the row at rest and `rows`
   ASSERT_EQ(jump_step.size(), 2u);
   EXPECT_TRUE(finite) << "NaN or inf in the state";
   int outside = 0;
