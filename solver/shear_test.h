@@ -8,8 +8,8 @@
 //                and holds it; with a dead weight (ShearBox::loading) the
 //                load is then handed to it; the phase ends in equilibrium:
 //                twice in a row (0.5 ms apart) the reaction is within 1 % of
-//                the target, the beads' RMS speed is below 1 % and the
-//                platen's speed below 0.1 % of the shear speed (or
+//                the target, the beads' RMS speed is below 10 % and the
+//                platen's speed below 1 % of the shear speed (or
 //                consolidate_time has passed);
 //   Shear        a first row is measured at rest (displacement 0), then the
 //                lower half moves in +x at the shear speed while the platen
