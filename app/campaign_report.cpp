@@ -11,14 +11,9 @@
 namespace simsols {
 namespace {
 
+constexpr auto fmt = format_number;  // printf conversion of one number (output.h)
+
 namespace fs = std::filesystem;
-
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
 
 std::string csv_header() {
   return "diameter_mm,layers,normal_stress_kPa,peak_tau_kPa,peak_tau_over_sigma,"

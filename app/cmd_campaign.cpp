@@ -35,6 +35,8 @@
 namespace simsols {
 namespace {
 
+constexpr auto fmt = format_number;  // printf conversion of one number (output.h)
+
 namespace fs = std::filesystem;
 
 struct CampaignOptions {
@@ -47,12 +49,6 @@ struct CampaignOptions {
   double displacement_mm = 0;  // 0 = the base scene's
   bool quiet = false;
 };
-
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
 
 // A test finished earlier: its summary as today's analysis reads its rows
 // (the apparatus' fields from its summary.txt), rewritten with its plots

@@ -6,14 +6,16 @@
 #include <filesystem>
 
 #include "chart.h"
+#include "output.h"
 
 namespace simsols {
 namespace {
 
-std::string fixed(double v, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
+constexpr auto fmt = format_number;  // printf conversion of one number (output.h)
+
+// "peak 0.704 (φ = 35.2°)"
+std::string ratio_label(const std::string& what, double ratio, double degrees) {
+  return what + " " + fmt("%.3f", ratio) + " (φ = " + fmt("%.1f", degrees) + "°)";
 }
 
 plot::Series column(const std::string& label, const std::vector<ShearRow>& rows,
@@ -65,10 +67,10 @@ void write_shear_plots(const std::string& dir, const std::string& title,
   const ShearRow* later = later_max_row(rows, s);
   if (peak)
     tau.markers.push_back({peak->displacement * 1e3, peak->tau * 1e-3,
-                           "peak φ = " + fixed(s.peak_angle, 1) + "°"});
+                           "peak φ = " + fmt("%.1f", s.peak_angle) + "°"});
   if (later)
     tau.markers.push_back({later->displacement * 1e3, later->tau * 1e-3,
-                           "later maximum φ = " + fixed(s.max_angle, 1) + "°"});
+                           "later maximum φ = " + fmt("%.1f", s.max_angle) + "°"});
   tau.legend = false;
   plot::write_chart_png(tau, (d / "shear_stress.png").string());
 
@@ -79,14 +81,12 @@ void write_shear_plots(const std::string& dir, const std::string& title,
   rat.series.push_back(column("τ/σ", rows, ratio));
   if (peak)
     rat.markers.push_back({peak->displacement * 1e3, s.peak_ratio,
-                           "peak " + fixed(s.peak_ratio, 3) + " (φ = " + fixed(s.peak_angle, 1) +
-                               "°)"});
+                           ratio_label("peak", s.peak_ratio, s.peak_angle)});
   if (later)
     rat.markers.push_back({later->displacement * 1e3, s.max_ratio,
-                           "later maximum " + fixed(s.max_ratio, 3) + " (φ = " +
-                               fixed(s.max_angle, 1) + "°)"});
+                           ratio_label("later maximum", s.max_ratio, s.max_angle)});
   plot::Series residual;
-  residual.label = "residual " + fixed(s.residual_ratio, 3) + " (φ = " + fixed(s.residual_angle, 1) + "°)";
+  residual.label = ratio_label("residual", s.residual_ratio, s.residual_angle);
   if (!rows.empty()) {
     const double end = rows.back().displacement * 1e3;
     residual.x = {0.8 * end, end};
@@ -135,8 +135,8 @@ void write_envelope_plot(const std::string& png, const std::string& which,
   for (size_t k = 0; k < sizes.size(); ++k) {
     const EnvelopeSeries& e = sizes[k];
     plot::Series pts;
-    pts.label = e.label + ": φ = " + fixed(std::atan(e.tan_phi) * 180 / M_PI, 1) + "°, c = " +
-                fixed(e.cohesion * 1e-3, 1) + " kPa";
+    pts.label = e.label + ": φ = " + fmt("%.1f", std::atan(e.tan_phi) * 180 / M_PI) + "°, c = " +
+                fmt("%.1f", e.cohesion * 1e-3) + " kPa";
     pts.color = plot::palette_color(k);
     pts.line = false;
     pts.markers = true;

@@ -332,11 +332,7 @@ void compare_to_reference(std::vector<StudyCase>& cases) {
 
 namespace {
 
-std::string num(double v, const char* f = "%.6g") {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
+std::string num(double v, const char* f = "%.6g") { return format_number(f, v); }
 
 std::string quoted(std::string s) {
   for (char& c : s)

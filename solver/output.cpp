@@ -12,11 +12,7 @@
 namespace simsols {
 namespace {
 
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
+std::string fmt(double v) { return format_number("%.9g", v); }
 
 // Legacy VTK binary data is big endian.
 void put_be(std::string& out, float v) {
@@ -37,6 +33,12 @@ std::string read_text(const std::string& path) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+std::string format_number(const char* printf_format, double value) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, printf_format, value);
+  return buf;
 }
 
 void write_file_atomic(const std::string& path, const std::string& content) {

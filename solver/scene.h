@@ -234,7 +234,7 @@ struct ShearBox {
   // reaction, servo_* below). Consolidation is servo-controlled in both.
   enum class Loading : std::uint8_t { DeadWeight, Servo };
   Loading loading = Loading::DeadWeight;
-  double platen_mass = 0;          // kg; 0 = automatic (a layer of beads, pi rho d A / 6)
+  double platen_mass = 0;          // kg; 0 = automatic (a quarter layer of beads, pi rho d A / 24)
   double servo_gain = 0;           // m/(s N); 0 = automatic (from the Hertz stiffness)
   double servo_max_speed = 0.5;    // m/s, the platen's speed cap
   double servo_integral_time = 0;  // s; 0 = automatic

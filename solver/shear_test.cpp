@@ -73,12 +73,13 @@ ShearTest::ShearTest(Simulation& sim) : sim_(sim), box_(box_of(sim)) {
   double top = 0;
   for (const Particle& p : scene.particles) top = std::max(top, p.position[2] + p.radius);
   layers_ = std::max(1.0, top / diameter_);
-  // A layer of touching beads over the platen's area: heavy enough that the
-  // platen on its contacts rings no faster than a bead on one (the step
-  // that resolves the beads resolves it), light enough to follow a collapse
-  // of the specimen within a fraction of a row (docs/shear-box.md).
+  // A quarter of a layer of touching beads over the platen's area: on its
+  // contacts (one per d^2) the platen rings like a bead on four, no faster
+  // than a bead in the packing (about six), so the step that resolves the
+  // beads resolves it; light enough to follow a collapse of the specimen
+  // within a fraction of a row (docs/shear-box.md).
   platen_mass_ = box_.platen_mass > 0 ? box_.platen_mass
-                                      : density_ * kPi * diameter_ * shear_area(box_) / 6;
+                                      : density_ * kPi * diameter_ * shear_area(box_) / 24;
   tune_servo();
 }
 
@@ -133,9 +134,12 @@ void ShearTest::set_normal_stress(double pascals) {
   tune_servo();
   if (phase_ == ShearPhase::Consolidate || phase_ == ShearPhase::Shear) apply_servo(true);
   if (phase_ != ShearPhase::Shear || speed_override_ > 0 || box_.shear_speed > 0) return;
-  const Vec3 floor = sim_.wall_point(box_.first_wall + kFloor);
-  const Vec3 platen = sim_.wall_point(box_.first_wall + kPlaten);
-  retime_rows(shear_speed_for(platen[2] - floor[2]));
+  retime_rows(shear_speed_for(specimen_height()));
+}
+
+double ShearTest::specimen_height() const {
+  return sim_.wall_point(box_.first_wall + kPlaten)[2] -
+         sim_.wall_point(box_.first_wall + kFloor)[2];
 }
 
 void ShearTest::start_shear() {
@@ -194,7 +198,7 @@ void ShearTest::enter(ShearPhase p) {
     case ShearPhase::Shear: {
       x0_ = sim_.wall_point(box_.first_wall + kFloor)[0];
       z0_ = sim_.wall_point(box_.first_wall + kPlaten)[2];
-      height0_ = z0_ - sim_.wall_point(box_.first_wall + kFloor)[2];
+      height0_ = specimen_height();
       speed_ = shear_speed_for(height0_);
       shear_steps_ = std::max<std::int64_t>(
           box_.rows, std::llround(box_.shear_displacement / (speed_ * sim_.dt())));
@@ -244,8 +248,7 @@ bool ShearTest::equilibrium(double reaction) {
   const Observables o = sim_.observe();
   const double v_rms = std::sqrt(2 * o.kinetic_translational / (o.particles * bead_mass_));
   const double v_platen = std::fabs(sim_.wall_velocity(platen)[2]);
-  const double height = sim_.wall_point(platen)[2] - sim_.wall_point(box_.first_wall + kFloor)[2];
-  const double v_shear = shear_speed_for(height);
+  const double v_shear = shear_speed_for(specimen_height());
   const bool quiet = std::fabs(reaction - target) < kEquilibriumForce * target &&
                      v_rms < kEquilibriumBeads * v_shear &&
                      v_platen < kEquilibriumPlaten * v_shear;

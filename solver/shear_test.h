@@ -107,6 +107,7 @@ class ShearTest {
   void measure_row();
   void retime_rows(double speed);  // the remaining rows at a new shear speed
   std::int64_t steps_for(double seconds) const;
+  double specimen_height() const;  // m, platen to floor
   double shear_speed_for(double height) const;  // shear_speed, or from inertial_number
 
   Simulation& sim_;
