@@ -223,8 +223,9 @@ void LabApp::draw_plots() {
     dil.x.push_back(r.displacement * 1e3);
     dil.y.push_back(r.dilation * 1e3);
   }
-  // the peak as in the summaries: the first peak of tau/sigma (shear_test.h)
-  const FirstPeak first = first_peak(t->rows(), t->normal_stress());
+  // the peak as in the summaries: the first peak of tau/sigma (shear_analysis.h)
+  const FirstPeak first =
+      first_peak(t->rows(), t->normal_stress(), kPeakRecoveryDiameters * t->bead_diameter());
   if (first.row >= 0) ratio.peak = tau.peak = std::size_t(first.row);
   const float w = ImGui::GetContentRegionAvail().x;
   const float h = std::max(120.0f, (ImGui::GetContentRegionAvail().y - 40) / 3);

@@ -86,7 +86,8 @@ Residual residual_of(const std::vector<ShearRow>& rows, double sigma_target) {
   return r;
 }
 
-FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target, double softening) {
+FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target, double recovery,
+                     double softening) {
   // what counts as a peak: a quarter of the test's largest ratio, and no
   // less than its residual strength
   double top = 0;
@@ -94,6 +95,8 @@ FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target, dou
     if (loaded(r, sigma_target)) top = std::max(top, r.tau / r.sigma);
   const double floor = std::max(kPeakMobilised * top, residual_of(rows, sigma_target).ratio);
   FirstPeak best;
+  double fell_at = 0;  // displacement where the curve fell below (1 - softening) x best
+  bool fallen = false;
   for (const ShearRow& r : rows) {
     if (!loaded(r, sigma_target)) continue;
     const double ratio = r.tau / r.sigma;
@@ -101,9 +104,12 @@ FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target, dou
       best.ratio = ratio;
       best.displacement = r.displacement;
       best.row = static_cast<int>(&r - rows.data());
-    } else if (best.ratio >= floor && ratio < (1 - softening) * best.ratio) {
-      break;  // softened: the running maximum was the first peak
+      fallen = false;
+    } else if (!fallen && best.ratio >= floor && ratio < (1 - softening) * best.ratio) {
+      fallen = true;
+      fell_at = r.displacement;
     }
+    if (fallen && r.displacement - fell_at >= recovery) break;  // softened, not regained
   }
   return best;
 }
@@ -160,7 +166,7 @@ void analyse_shear_rows(const std::vector<ShearRow>& rows, ShearSummary& out) {
   s.start_tau = rows[0].tau;
   s.start_ratio = rows[0].sigma > 0 ? rows[0].tau / rows[0].sigma : 0;
   s.max_angle = std::atan(s.max_ratio) * kRad;
-  const FirstPeak first = first_peak(rows, target);
+  const FirstPeak first = first_peak(rows, target, kPeakRecoveryDiameters * s.bead_diameter);
   s.peak_ratio = first.ratio;
   s.peak_displacement = first.displacement;
   s.peak_angle = std::atan(first.ratio) * kRad;

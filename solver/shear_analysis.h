@@ -94,17 +94,23 @@ struct Residual {
 };
 Residual residual_of(const std::vector<ShearRow>& rows, double sigma_target);
 
-// The first peak of a test's rows (ShearSummary::peak_*): the first
-// running maximum of tau/sigma followed by a fall of more than `softening`
-// of it, once that maximum has reached a quarter of the test's largest
-// tau/sigma and the residual strength (before, the curve's wiggles about
-// zero and the stick-slip teeth of a hardening curve are not a peak); the
-// largest value when the curve never softens.
+// The first peak of a test's rows (ShearSummary::peak_*): the running
+// maximum of tau/sigma at the first sustained softening, a fall of more
+// than `softening` below it that does not regain it within `recovery` of
+// shear (m); counted once that maximum has reached a quarter of the test's
+// largest tau/sigma and the residual strength (before, the curve's wiggles
+// about zero and the stick-slip teeth of a hardening curve are not a
+// peak). The largest value when the curve never softens. A granular
+// specimen's tau fluctuates with rearrangements at the scale of a grain:
+// a dip regained within a quarter of a bead diameter of shear
+// (kPeakRecoveryDiameters) is such a fluctuation, not the softening after
+// the peak (docs/shear-box.md).
+constexpr double kPeakRecoveryDiameters = 0.25;
 struct FirstPeak {
   double ratio = 0, displacement = 0;
   int row = -1;  // its index in `rows`; -1 when there is none
 };
-FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target,
+FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target, double recovery,
                      double softening = 0.05);
 
 // The rows as CSV (mm, kPa, N, J) and back; the summary as "key = value"

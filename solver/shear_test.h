@@ -81,6 +81,7 @@ class ShearTest {
   // The dead weight's platen mass (kg), 0 with a servo.
   double platen_mass() const { return dead_weight() ? platen_mass_ : 0; }
   double normal_stress() const { return sigma_target_; }
+  double bead_diameter() const { return diameter_; }  // m
 
   // Bench control (the desktop lab): with a hold, the test stops after
   // consolidation with the servo holding the normal stress, until

@@ -229,8 +229,10 @@ TEST(ShearAnalysis, MohrCoulombStandardErrors) {
 }
 
 // The first peak: the first running maximum of tau/sigma that the specimen
-// softens from by more than 5 %; a later, higher jamming spike is the
-// largest value but not the peak. A dip of 3 % is noise, not softening; a
+// softens from by more than 5 % and does not regain within the recovery
+// displacement; a later, higher jamming spike is the largest value but not
+// the peak. A dip of 3 % is noise, not softening, and so is a deeper one
+// regained within the recovery displacement; a
 // row whose platen lost contact (sigma < target / 2) is skipped; a curve
 // that never softens has its maximum as first peak; a maximum below the
 // residual strength or a quarter of the largest is not a peak.
@@ -244,29 +246,39 @@ TEST(ShearAnalysis, FirstPeakIsTheFirstMaximumBeforeSoftening) {
     }
     return rows;
   };
-  FirstPeak p = first_peak(rows_of({0.2, 0.5, 0.70, 0.68, 0.71, 0.66, 0.60, 0.65, 0.92, 0.5}), 100e3);
+  FirstPeak p = first_peak(rows_of({0.2, 0.5, 0.70, 0.68, 0.71, 0.66, 0.60, 0.65, 0.92, 0.5}), 100e3, 0);
   EXPECT_DOUBLE_EQ(p.ratio, 0.71);  // 0.68 is within 5 % of 0.70: not yet softening
   EXPECT_DOUBLE_EQ(p.displacement, 5e-4);
   EXPECT_EQ(p.row, 4);
-  p = first_peak(rows_of({-0.01, 0.1, 0.3, 0.5, 0.6}), 100e3);  // starts slightly negative
+  p = first_peak(rows_of({-0.01, 0.1, 0.3, 0.5, 0.6}), 100e3, 0);  // starts slightly negative
   EXPECT_DOUBLE_EQ(p.ratio, 0.6);
   std::vector<ShearRow> lost = rows_of({0.3, 0.8, 0.4, 0.5});
   lost[1].sigma = 10e3;  // the 0.8 row: platen off the specimen
   lost[1].tau = 0.8 * 10e3;
-  p = first_peak(lost, 100e3);
+  p = first_peak(lost, 100e3, 0);
   EXPECT_DOUBLE_EQ(p.ratio, 0.5);
   // noise about zero at the start is no peak: 0.001 -> 0.0005 halves, but
   // is far below a quarter of the test's 0.7
-  p = first_peak(rows_of({0.001, 0.0005, 0.2, 0.5, 0.7, 0.6}), 100e3);
+  p = first_peak(rows_of({0.001, 0.0005, 0.2, 0.5, 0.7, 0.6}), 100e3, 0);
   EXPECT_DOUBLE_EQ(p.ratio, 0.7);
   EXPECT_EQ(p.row, 4);
   // a hardening curve with stick-slip teeth: no tooth below the residual
   // strength (mean of the last 20 %: 0.235) is a peak; it never softens
-  p = first_peak(rows_of({0.05, 0.12, 0.10, 0.15, 0.2, 0.18, 0.22, 0.24, 0.23, 0.24}), 100e3);
+  p = first_peak(rows_of({0.05, 0.12, 0.10, 0.15, 0.2, 0.18, 0.22, 0.24, 0.23, 0.24}), 100e3, 0);
   EXPECT_DOUBLE_EQ(p.ratio, 0.24);
   EXPECT_EQ(p.row, 7);
-  EXPECT_DOUBLE_EQ(first_peak({}, 100e3).ratio, 0.0);
-  EXPECT_EQ(first_peak({}, 100e3).row, -1);
+  // a dip regained within the recovery displacement is a fluctuation: the
+  // 0.66, 0.60, 0.65 after 0.71 span 0.2 mm (rows 0.1 mm apart) before 0.92
+  const std::vector<ShearRow> dip =
+      rows_of({0.2, 0.5, 0.70, 0.68, 0.71, 0.66, 0.60, 0.65, 0.92, 0.5, 0.4, 0.4});
+  p = first_peak(dip, 100e3, 0.25e-3);
+  EXPECT_DOUBLE_EQ(p.ratio, 0.92);
+  EXPECT_EQ(p.row, 8);
+  p = first_peak(dip, 100e3, 0.15e-3);  // not regained within 0.15 mm
+  EXPECT_DOUBLE_EQ(p.ratio, 0.71);
+  EXPECT_EQ(p.row, 4);
+  EXPECT_DOUBLE_EQ(first_peak({}, 100e3, 0).ratio, 0.0);
+  EXPECT_EQ(first_peak({}, 100e3, 0).row, -1);
 }
 
 // --- Running tests -----------------------------------------------------------

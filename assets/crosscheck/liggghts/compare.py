@@ -14,7 +14,7 @@ apply to both:
   collapse     the largest fall of the platen over 0.1 mm of shear (5 rows
                of 0.02 mm), where it starts, and the change of tau over it
   tau drop     the largest fall of tau from one row to the next
-  first peak   SimSols' first peak (solver/shear_test.cpp, first_peak)
+  first peak   SimSols' first peak (solver/shear_analysis.cpp, first_peak)
   largest      the largest tau/sigma and where
   window mean  mean tau/sigma over FROM_MM..TO_MM (default 1..6 mm) and over
                the last 20 % (SimSols' residual window), with the standard
@@ -46,19 +46,21 @@ def read_summary(path):
     return kv
 
 
-def first_peak(rows, target, softening=0.05):
+def first_peak(rows, target, recovery_mm, softening=0.05):
     ok = [r for r in rows if r["sigma_kPa"] > 0.5 * target]
     top = max((r["tau_kPa"] / r["sigma_kPa"] for r in ok), default=0)
     end = rows[-1]["displacement_mm"]
     res = [r["tau_kPa"] / r["sigma_kPa"] for r in ok if r["displacement_mm"] >= 0.8 * end * (1 - 1e-7)]
     floor = max(0.25 * top, sum(res) / len(res) if res else 0)
-    best, at = 0.0, 0.0
+    best, at, fell_at = 0.0, 0.0, None
     for r in ok:
-        ratio = r["tau_kPa"] / r["sigma_kPa"]
+        ratio, x = r["tau_kPa"] / r["sigma_kPa"], r["displacement_mm"]
         if ratio > best:
-            best, at = ratio, r["displacement_mm"]
-        elif best >= floor and ratio < (1 - softening) * best:
-            break
+            best, at, fell_at = ratio, x, None
+        elif fell_at is None and best >= floor and ratio < (1 - softening) * best:
+            fell_at = x
+        if fell_at is not None and x - fell_at >= recovery_mm:
+            break  # softened and not regained within a quarter of a bead diameter
     return best, at
 
 
@@ -69,7 +71,7 @@ def mean_sd(values):
     return m, math.sqrt(sum((v - m) ** 2 for v in values) / max(1, len(values) - 1))
 
 
-def measures(rows, height, target, lo, hi):
+def measures(rows, height, target, diameter_mm, lo, hi):
     out = {"height_mm": height}
     best = (0.0, 0, 0.0)
     for i in range(len(rows) - 5):
@@ -82,7 +84,7 @@ def measures(rows, height, target, lo, hi):
     drop = max(range(1, len(rows)), key=lambda i: rows[i - 1]["tau_kPa"] - rows[i]["tau_kPa"])
     out["tau_drop_kPa"] = rows[drop - 1]["tau_kPa"] - rows[drop]["tau_kPa"]
     out["tau_drop_at_mm"] = rows[drop]["displacement_mm"]
-    out["first_peak"], out["first_peak_at_mm"] = first_peak(rows, target)
+    out["first_peak"], out["first_peak_at_mm"] = first_peak(rows, target, 0.25 * diameter_mm)
     big = max(rows, key=lambda r: r["tau_over_sigma"])
     out["largest"], out["largest_at_mm"] = big["tau_over_sigma"], big["displacement_mm"]
     w = [r["tau_over_sigma"] for r in rows if lo - 1e-9 <= r["displacement_mm"] <= hi + 1e-9]
@@ -107,10 +109,11 @@ def main():
     lo, hi = (float(sys.argv[3]), float(sys.argv[4])) if len(sys.argv) == 5 else (1.0, 6.0)
     lsum, ssum = read_summary(os.path.join(lg, "summary.txt")), read_summary(os.path.join(ss, "summary.txt"))
     target = float(ssum.get("normal_stress_kPa", lsum.get("normal_stress_kPa", 160)))
+    d = float(ssum.get("bead_diameter_mm", lsum.get("bead_diameter_mm", 2.38125)))
     a = measures(read_csv(os.path.join(lg, "liggghts_shear.csv")),
-                 float(lsum["specimen_height_mm"]), target, lo, hi)
+                 float(lsum["specimen_height_mm"]), target, d, lo, hi)
     b = measures(read_csv(os.path.join(ss, "shear.csv")),
-                 float(ssum["specimen_height_mm"]), target, lo, hi)
+                 float(ssum["specimen_height_mm"]), target, d, lo, hi)
     print("%-22s %14s %14s" % ("", "LIGGGHTS", "SimSols"))
     for k in a:
         print("%-22s %14.5g %14.5g" % (k, a[k], b[k]))
