@@ -7,12 +7,17 @@
 // another code's written in the same columns (the LIGGGHTS cross-check's
 // post.py does). Writes PREFIX_stress.png (tau against displacement, each
 // test's first peak marked) and PREFIX_dilation.png, as the campaign's
-// per-size figures. The first peak needs the test's target normal stress:
-// from SimSols' summary.txt, else the rows' sigma_target column, else the
-// mean sigma of the rows. Inputs and the output folder are checked before anything is
+// per-size figures. The first peak needs the test's target normal stress
+// and bead diameter: from the folder's summary.txt (SimSols' keys
+// normal_stress_kPa and bead_diameter_mm, which the LIGGGHTS cross-check's
+// summary shares); else the rows' sigma_target column or their mean sigma,
+// and no recovery displacement (the first softening counts). Inputs and the output folder are checked before anything is
 // drawn; a bad file is named with its problem (exit status 2).
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <sstream>
 
 #include "commands.h"
 #include "errors.h"
@@ -29,20 +34,37 @@ struct PlotOptions {
   std::string out, title = "Direct shear";
 };
 
-// The test's target normal stress (Pa), for its first peak.
-double target_of(const fs::path& dir, const std::vector<ShearRow>& rows) {
-  if (fs::exists(dir / "summary.txt")) {
-    try {  // another code's summary.txt is not ours: then the rows tell
-      const double s = parse_shear_summary(read_text((dir / "summary.txt").string()))
-                           .normal_stress_target;
-      if (s > 0) return s;
-    } catch (const std::runtime_error&) {
+// A number from a summary.txt's "key = value" line; 0 when absent or not
+// a number (another code's summary has its own keys).
+double summary_value(const std::string& text, const std::string& key) {
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(key + " = ", 0) == 0) {
+      char* end = nullptr;
+      const double v = std::strtod(line.c_str() + key.size() + 3, &end);
+      return end != line.c_str() + key.size() + 3 && std::isfinite(v) && v > 0 ? v : 0;
     }
+  return 0;
+}
+
+// The test's target normal stress (Pa) and bead diameter (m), for its
+// first peak.
+ShearSummary apparatus_of(const fs::path& dir, const std::vector<ShearRow>& rows) {
+  ShearSummary s;
+  if (fs::exists(dir / "summary.txt")) {
+    const std::string text = read_text((dir / "summary.txt").string());
+    s.normal_stress_target = 1e3 * summary_value(text, "normal_stress_kPa");
+    s.bead_diameter = 1e-3 * summary_value(text, "bead_diameter_mm");
   }
-  if (rows.front().sigma_target > 0) return rows.front().sigma_target;
+  if (s.normal_stress_target > 0) return s;
+  if (rows.front().sigma_target > 0) {
+    s.normal_stress_target = rows.front().sigma_target;
+    return s;
+  }
   double sum = 0;
   for (const ShearRow& r : rows) sum += r.sigma;
-  return sum / static_cast<double>(rows.size());
+  s.normal_stress_target = sum / static_cast<double>(rows.size());
+  return s;
 }
 
 ShearCurve read_curve(const std::string& input, const std::string& label) {
@@ -56,7 +78,7 @@ ShearCurve read_curve(const std::string& input, const std::string& label) {
     throw SceneError("bad_file", csv.string(), 0, "INPUT", e.what());
   }
   if (c.rows.empty()) throw SceneError("bad_file", csv.string(), 0, "INPUT", "has no rows");
-  c.summary.normal_stress_target = target_of(csv.parent_path(), c.rows);
+  c.summary = apparatus_of(csv.parent_path(), c.rows);
   analyse_shear_rows(c.rows, c.summary);
   c.label = label.empty() ? (fs::is_directory(p) ? p.filename().string() : p.stem().string())
                           : label;
