@@ -37,6 +37,8 @@ PACKAGES=(
   # X11/Xlib.h and X11/extensions/Xrandr.h; libglfw3-dev only recommends these.
   libx11-dev
   libxrandr-dev
+  # Boost.Math, header-only: Student's t quantiles (app/study_stats.cpp)
+  libboost-math-dev
 )
 
 PRESET=release

@@ -1,10 +1,13 @@
 // simsols study accuracy: the accuracy study (study.h).
 //
-//   simsols study accuracy --out DIR [--preset quick|full|ci] [--knob NAME ...] [--no-shear] [-q]
+//   simsols study accuracy --out DIR [--preset quick|full|ci] [--ensemble N] [--knob NAME ...]
+//                                    [--no-shear] [--resume] [-q]
 //
-// Outputs in DIR, rewritten after every case (an interrupted study keeps the
-// cases it finished): cases.csv, summary.md (tables and the recommendation),
-// error_vs_time_<knob>.png per knob and pareto.png.
+// Outputs in DIR, rewritten after every run (an interrupted study keeps the
+// runs it finished): cases.csv (one row per run), ensemble.csv (one row per
+// setting: means, 95 % intervals, errors and their significance),
+// summary.md (tables, chaos, the recommendation), error_vs_time_<knob>.png
+// per knob and pareto.png.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -29,6 +32,7 @@ struct StudyOptions {
   std::string out;
   std::string preset = "quick";
   std::vector<std::string> knobs;
+  int ensemble = 0;  // 0 = the preset's
   bool no_shear = false;
   bool quiet = false;
   bool resume = false;
@@ -59,6 +63,18 @@ void report_case(const StudyCase& c, bool shear) {
     std::fprintf(stderr, "    shear: failed: %s\n", c.shear.failure.c_str());
 }
 
+// The contact checks have no specimen and no shear speed or skin: a run
+// whose time step, precision, stiffness and effects an earlier run had
+// (another member, the round-off twin) reuses that run's results.
+ContactErrors contact_checks_of(const StudySettings& s, const std::vector<StudyCase>& done) {
+  for (const StudyCase& c : done)
+    if (c.settings.dt_fraction == s.dt_fraction && c.settings.precision == s.precision &&
+        c.settings.stiffness_scale == s.stiffness_scale && c.settings.rolling == s.rolling &&
+        c.settings.damping == s.damping)
+      return c.contact;
+  return run_contact_checks(s);
+}
+
 // The finished cases of an earlier invocation (--resume), or none.
 std::vector<StudyCase> resumed_cases(const StudyOptions& opt, const StudyPreset& preset,
                                      const std::vector<StudySettings>& cases) {
@@ -80,6 +96,7 @@ std::vector<StudyCase> resumed_cases(const StudyOptions& opt, const StudyPreset&
 
 std::string resume_command(const StudyOptions& opt) {
   std::string c = "simsols study " + opt.what + " --out " + opt.out + " --preset " + opt.preset;
+  if (opt.ensemble > 0) c += " --ensemble " + std::to_string(opt.ensemble);
   for (const std::string& k : opt.knobs) c += " --knob '" + k + "'";
   return c + (opt.no_shear ? " --no-shear" : "") + " --resume";
 }
@@ -87,12 +104,16 @@ std::string resume_command(const StudyOptions& opt) {
 int study(const StudyOptions& opt) {
   if (opt.what != "accuracy")
     throw SceneError("bad_enum", "command line", 0, "STUDY", "'" + opt.what + "' is not one of: accuracy");
-  auto preset = study_preset(opt.preset);
+  if (opt.ensemble < 0 || opt.ensemble > 50)
+    throw SceneError("out_of_range", "command line", 0, "--ensemble",
+                     std::to_string(opt.ensemble) +
+                         " is out of range, allowed [1, 50] members per setting (0 = the preset's)");
+  auto preset = study_preset(opt.preset, opt.ensemble);
   if (!preset)
     throw SceneError("bad_enum", "command line", 0, "--preset",
                      "'" + opt.preset + "' is not one of: quick, full, ci");
   if (opt.no_shear) preset->shear = false;
-  const std::vector<StudySettings> cases = selected_cases(*preset, opt);
+  const std::vector<StudySettings> cases = study_runs(*preset, selected_cases(*preset, opt));
   std::vector<StudyCase> done = resumed_cases(opt, *preset, cases);
   if (!opt.resume) fs::remove(fs::path(opt.out) / "case_checkpoint.bin");
   InterruptScope interrupt;
@@ -112,7 +133,7 @@ int study(const StudyOptions& opt) {
                    eta.c_str());
     StudyCase c;
     c.settings = cases[i];
-    c.contact = run_contact_checks(cases[i]);
+    c.contact = contact_checks_of(cases[i], done);
     if (preset->shear) c.shear = run_shear_case(*preset, cases[i], control);
     if (c.shear.interrupted) {
       std::printf("study interrupted in case %zu/%zu (%s): %zu of the cases finished, the case's "
@@ -151,6 +172,9 @@ CommandRunner add_study_command(CLI::App& app) {
   cmd->add_option("--knob", opt->knobs,
                   "Only these knobs (with the reference): time step, precision, stiffness, "
                   "inertial number, skin, effects, combination, baseline");
+  cmd->add_option("--ensemble", opt->ensemble,
+                  "Members per setting, specimens differing only in their seed (default: quick 3, "
+                  "full 5, ci 2)");
   cmd->add_flag("--no-shear", opt->no_shear, "Contact checks only");
   cmd->add_flag("--resume", opt->resume,
                 "Continue the study in --out after its finished cases (same --preset and --knob)");

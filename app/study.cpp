@@ -17,6 +17,7 @@
 #include "scene_toml.h"
 #include "shear_run.h"
 #include "shear_test.h"
+#include "study_ensemble.h"
 #include "simulation.h"
 
 namespace simsols {
@@ -85,6 +86,18 @@ Scene contact_scene(const StudySettings& s, const Material& m) {
 
 double pct(double measured, double theory) { return 100 * std::fabs(measured / theory - 1); }
 
+// The quick preset's settings: one step each way on the knobs that matter
+// most, so that its ensembles cost about what one run per setting of the
+// whole sweep did.
+std::vector<StudySettings> quick_sweep() {
+  std::vector<StudySettings> all = sweep(), quick;
+  for (const char* label : {"reference: dt 0.10 double I 2e-4", "baseline: dt 0.25 float I 8e-4",
+                            "dt 0.10", "dt 0.50", "double", "E x 0.1", "I 2e-3",
+                            "no rolling friction"})
+    for (const StudySettings& s : all)
+      if (s.label == label) quick.push_back(s);
+  return quick;
+}
 
 }  // namespace
 
@@ -92,15 +105,17 @@ double ContactErrors::worst() const {
   return std::max({overlap, force, duration, restitution, rolling});
 }
 
-std::optional<StudyPreset> study_preset(const std::string& name) {
+std::optional<StudyPreset> study_preset(const std::string& name, int ensemble) {
   StudyPreset p;
   p.name = name;
   if (name == "quick") {
-    p.cases = sweep();
+    p.cases = quick_sweep();
+    p.ensemble = 3;
   } else if (name == "full") {
     p.displacement_mm = 6;
     p.rows = 300;
     p.cases = sweep();
+    p.ensemble = 5;
   } else if (name == "ci") {
     // reduced: two layers, 0.6 mm of shear, few cases
     p.layers = 2;
@@ -113,10 +128,32 @@ std::optional<StudyPreset> study_preset(const std::string& name) {
                make("time step", "dt 0.4", 0.4),
                make("precision", "double dt 0.2", 0.2, D),
                make("time step", "dt 3.0 (forced)", 3.0)};
+    p.ensemble = 2;
   } else {
     return std::nullopt;
   }
+  if (ensemble > 0) p.ensemble = ensemble;
   return p;
+}
+
+std::vector<StudySettings> study_runs(const StudyPreset& preset,
+                                      const std::vector<StudySettings>& settings) {
+  std::vector<StudySettings> runs;
+  for (size_t i = 0; i < settings.size(); ++i) {
+    for (int seed = 1; seed <= preset.ensemble; ++seed) {
+      StudySettings m = settings[i];
+      m.seed = seed;
+      runs.push_back(m);
+    }
+    if (i == 0 && preset.shear) {
+      StudySettings twin = settings[0];
+      twin.knob = "round-off";
+      twin.label = settings[0].label + " (round-off twin)";
+      twin.perturbation = kRoundOffPerturbation;
+      runs.push_back(twin);
+    }
+  }
+  return runs;
 }
 
 ContactErrors run_contact_checks(const StudySettings& s) {
@@ -231,7 +268,7 @@ namespace {
 Scene shear_case_scene(const StudyPreset& preset, const StudySettings& s) {
   const Scene base = parse_scene(default_shear_scene_text(), kDefaultSceneName);
   const double d = preset.diameter_mm * 1e-3;
-  return paper_test_scene(
+  Scene sc = paper_test_scene(
       base, kDefaultSceneName, preset.diameter_mm, preset.stress_kpa, preset.layers,
       [&](Scene& x) {
         x.numerics.precision = s.precision;
@@ -246,7 +283,10 @@ Scene shear_case_scene(const StudyPreset& preset, const StudySettings& s) {
         x.shear_box->shear_speed = 0;
         x.shear_box->shear_displacement = preset.displacement_mm * 1e-3;
         x.shear_box->rows = preset.rows;
+        x.shear_box->specimen.seed = s.seed;
       });
+  if (s.perturbation != 0 && !sc.particles.empty()) sc.particles[0].position[0] += s.perturbation * d;
+  return sc;
 }
 
 // Throws when the run broke (NaN, beads out, a neighbour list outrun).
@@ -297,9 +337,12 @@ ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s,
     }
     r.wall_seconds = wall_before + std::chrono::duration<double>(Clock::now() - t0).count();
     const ShearSummary sum = test.summary();
-    // the study's phi_peak is the largest tau/sigma of the test, as measured
-    // in docs/accuracy.md (not the first peak of ShearSummary::peak_angle)
-    r.peak_angle = sum.max_angle;
+    // phi_peak: the first peak, as every summary reads it (shear_analysis.h)
+    r.peak_angle = sum.peak_angle;
+    for (const ShearRow& row : test.rows()) {
+      r.curve_mm.push_back(row.displacement * 1e3);
+      r.curve_ratio.push_back(row.sigma > 0 ? row.tau / row.sigma : 0);
+    }
     r.residual_angle = sum.residual_angle;
     r.dilatancy_angle = sum.max_dilatancy_angle;
     r.steps = sim->steps();
@@ -319,8 +362,20 @@ ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s,
 }
 
 void compare_to_reference(std::vector<StudyCase>& cases) {
-  if (cases.empty() || !cases[0].shear.ok) return;
-  const ShearResult& ref = cases[0].shear;
+  if (cases.empty()) return;
+  ShearResult ref;  // the mean of the reference's members
+  int n = 0;
+  for (const StudyCase& c : cases)
+    if (c.settings.same_setting(cases[0].settings) && c.shear.ok) {
+      ref.peak_angle += c.shear.peak_angle;
+      ref.residual_angle += c.shear.residual_angle;
+      ref.dilatancy_angle += c.shear.dilatancy_angle;
+      ++n;
+    }
+  if (n == 0) return;
+  ref.peak_angle /= n;
+  ref.residual_angle /= n;
+  ref.dilatancy_angle /= n;
   auto rel = [](double a, double b) { return b != 0 ? 100 * std::fabs(a - b) / std::fabs(b) : 0.0; };
   for (StudyCase& c : cases) {
     if (!c.shear.ok) continue;
@@ -348,7 +403,7 @@ std::string study_csv(const std::vector<StudyCase>& cases) {
       "damping,contact_status,overlap_err_pct,force_err_pct,contact_time_err_pct,"
       "restitution_err_pct,rolling_time_err_pct,shear_status,peak_deg,residual_deg,"
       "dilatancy_deg,peak_err_pct,residual_err_pct,dilatancy_err_pct,wall_s,"
-      "particle_steps_per_s,steps,list_builds\n";
+      "particle_steps_per_s,steps,list_builds,seed,perturbation_d\n";
   for (const StudyCase& c : cases) {
     const StudySettings& s = c.settings;
     o += quoted(s.knob) + "," + quoted(s.label) + "," + num(s.dt_fraction) + "," +
@@ -367,11 +422,12 @@ std::string study_csv(const std::vector<StudyCase>& cases) {
            num(c.shear.dilatancy_angle) + "," + opt(c.peak_error) + "," + opt(c.residual_error) +
            "," + opt(c.dilatancy_error) + "," + num(c.shear.wall_seconds, "%.2f") + "," +
            num(c.shear.particle_steps_per_second, "%.4g") + "," + std::to_string(c.shear.steps) +
-           "," + std::to_string(c.shear.list_builds) + "\n";
+           "," + std::to_string(c.shear.list_builds);
     } else {
       o += quoted(c.shear.failure.empty() ? "not run" : "failed: " + c.shear.failure) +
-           ",,,,,,,,,,\n";
+           ",,,,,,,,,,";
     }
+    o += "," + std::to_string(s.seed) + "," + num(s.perturbation) + "\n";
   }
   return o;
 }
@@ -382,7 +438,6 @@ void write_study_outputs(const std::string& dir, const StudyPreset& preset,
   fs::create_directories(dir);
   write_file_atomic((fs::path(dir) / "cases.csv").string(), study_csv(cases));
   if (cases.empty()) return;
-  const double ref_time = cases[0].shear.ok ? cases[0].shear.wall_seconds : 0;
 
   // error of the peak friction angle against wall time, one chart per knob
   std::vector<std::string> knobs;
@@ -441,55 +496,11 @@ void write_study_outputs(const std::string& dir, const StudyPreset& preset,
   pc.y_min = 0;
   plot::write_chart_png(pc, (fs::path(dir) / "pareto.png").string());
 
-  // summary.md
-  std::ostringstream md;
-  md << "# Accuracy study `" << preset.name << "`\n\n"
-     << "Shear test: " << preset.diameter_mm << " mm beads, " << preset.stress_kpa << " kPa, "
-     << preset.displacement_mm << " mm of shear, " << preset.rows << " rows. "
-     << "Errors of the shear test are against the reference case (first row); contact "
-        "errors against theory.\n\n"
-     << "| case | contact: overlap / force / t_c / e / t_roll (%) | phi_peak (deg) | err (%) | "
-        "phi_res (deg) | err (%) | psi_max (deg) | err (%) | wall (s) | x ref |\n"
-     << "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
-  for (const StudyCase& c : cases) {
-    md << "| " << c.settings.label << " | ";
-    if (c.contact.ok)
-      md << num(c.contact.overlap, "%.2g") << " / " << num(c.contact.force, "%.2g") << " / "
-         << num(c.contact.duration, "%.2g") << " / " << num(c.contact.restitution, "%.2g") << " / "
-         << num(c.contact.rolling, "%.2g");
-    else
-      md << "failed: " << c.contact.failure;
-    md << " | ";
-    if (c.shear.ok) {
-      auto e = [](const std::optional<double>& v) { return v ? num(*v, "%.2f") : std::string("–"); };
-      md << num(c.shear.peak_angle, "%.2f") << " | " << e(c.peak_error) << " | "
-         << num(c.shear.residual_angle, "%.2f") << " | " << e(c.residual_error) << " | "
-         << num(c.shear.dilatancy_angle, "%.2f") << " | " << e(c.dilatancy_error) << " | "
-         << num(c.shear.wall_seconds, "%.1f") << " | "
-         << (ref_time > 0 ? num(c.shear.wall_seconds / ref_time, "%.2f") : std::string("–"))
-         << " |\n";
-    } else {
-      md << (preset.shear ? "failed: " + c.shear.failure : std::string("not run"))
-         << " | | | | | | | |\n";
-    }
-  }
-  md << "\n## Recommendation\n\n";
-  for (double tol : {1.0, 5.0}) {
-    const StudyCase* cheapest = nullptr;
-    for (const StudyCase* c : ok)
-      if (*c->peak_error <= tol && c->settings.knob != "reference" &&
-          (!cheapest || c->shear.wall_seconds < cheapest->shear.wall_seconds))
-        cheapest = c;
-    md << "- Error on phi_peak <= " << tol << " %: ";
-    if (cheapest)
-      md << "**" << cheapest->settings.label << "** (" << num(*cheapest->peak_error, "%.2f")
-         << " %), " << num(cheapest->shear.wall_seconds, "%.1f") << " s = "
-         << num(ref_time > 0 ? cheapest->shear.wall_seconds / ref_time : 0, "%.2f")
-         << " x the reference's " << num(ref_time, "%.1f") << " s\n";
-    else
-      md << "no case of this sweep\n";
-  }
-  write_file_atomic((fs::path(dir) / "summary.md").string(), md.str());
+  // the ensembles: ensemble.csv and summary.md
+  const std::vector<SettingSummary> settings = summarise_settings(cases);
+  write_file_atomic((fs::path(dir) / "ensemble.csv").string(), ensemble_csv(settings));
+  write_file_atomic((fs::path(dir) / "summary.md").string(),
+                    ensemble_summary_md(preset, settings, measure_chaos(cases)));
 }
 
 }  // namespace simsols

@@ -40,6 +40,13 @@ struct StudySettings {
   double inertial_number = 8e-4;
   double skin_factor = 0.1;       // neighbour skin / bead diameter
   bool rolling = true, damping = true;
+  // The ensemble member: the specimen's preparation seed, and a
+  // displacement of one bead (bead 0, along x, in bead diameters) that
+  // makes a twin differing from its member only at round-off.
+  int seed = 1;
+  double perturbation = 0;
+  // Same settings, any member.
+  bool same_setting(const StudySettings& o) const { return knob == o.knob && label == o.label; }
 };
 
 struct ContactErrors {
@@ -57,6 +64,9 @@ struct ShearResult {
   long long steps = 0, list_builds = 0;
   int particles = 0;
   bool interrupted = false;  // stopped by ShearCaseControl::stop_requested (checkpointed)
+  // tau/sigma against the displacement (mm), one point per row: where a
+  // member and its round-off twin part
+  std::vector<double> curve_mm, curve_ratio;
 };
 
 struct StudyCase {
@@ -74,11 +84,19 @@ struct StudyPreset {
   int rows = 150;
   int layers = 0;     // 0 = Table 1
   bool shear = true;  // false: contact checks only
+  int ensemble = 1;   // members per setting (seeds 1..ensemble)
   std::vector<StudySettings> cases;  // cases[0] is the reference
 };
 
-// "full", "quick" (default) or "ci"; nullopt for other names.
-std::optional<StudyPreset> study_preset(const std::string& name);
+// "full", "quick" (default) or "ci"; nullopt for other names. `ensemble`
+// > 0 replaces the preset's ensemble size.
+std::optional<StudyPreset> study_preset(const std::string& name, int ensemble = 0);
+// The runs of a study: each setting's members (seeds 1..ensemble), the
+// reference's first, then the reference's round-off twin (seed 1, one bead
+// moved by kRoundOffPerturbation d), then the other settings'.
+constexpr double kRoundOffPerturbation = 1e-9;  // bead diameters
+std::vector<StudySettings> study_runs(const StudyPreset& preset,
+                                      const std::vector<StudySettings>& settings);
 
 ContactErrors run_contact_checks(const StudySettings& s);
 // Where a shear case may be stopped and continued (study_state.h): polled
@@ -91,7 +109,8 @@ struct ShearCaseControl {
 };
 ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s,
                            const ShearCaseControl& control = {});
-// Fills the errors against cases[0] (the reference).
+// Fills each run's errors against the mean of the reference's members
+// (the setting of cases[0]), in %.
 void compare_to_reference(std::vector<StudyCase>& cases);
 
 std::string study_csv(const std::vector<StudyCase>& cases);

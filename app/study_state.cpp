@@ -8,7 +8,7 @@
 namespace simsols {
 namespace {
 
-constexpr const char* kTag = "simsols-study-state 1";
+constexpr const char* kTag = "simsols-study-state 2";
 
 std::string one_line(std::string s) {
   for (char& c : s)
@@ -54,6 +54,23 @@ class LineReader {
   int line_ = 0;
 };
 
+// "knob | label | seed S perturbation P": a run's identity.
+std::string identity(const StudySettings& s) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, " | seed %d perturbation %.17g", s.seed, s.perturbation);
+  return one_line(s.knob) + " | " + one_line(s.label) + buf;
+}
+
+std::string curve_text(const ShearResult& s) {
+  std::string o = std::to_string(s.curve_mm.size());
+  char buf[64];
+  for (size_t i = 0; i < s.curve_mm.size(); ++i) {
+    std::snprintf(buf, sizeof buf, " %.9g %.9g", s.curve_mm[i], s.curve_ratio[i]);
+    o += buf;
+  }
+  return o;
+}
+
 }  // namespace
 
 std::string study_state_text(const StudyPreset& preset, const std::vector<StudySettings>& cases,
@@ -64,7 +81,7 @@ std::string study_state_text(const StudyPreset& preset, const std::vector<StudyS
   for (const StudyCase& c : done) {
     const ContactErrors& k = c.contact;
     const ShearResult& s = c.shear;
-    o << "case " << one_line(c.settings.knob) << " | " << one_line(c.settings.label) << '\n'
+    o << "case " << identity(c.settings) << '\n'
       << "contact " << k.ok
       << nums({k.overlap, k.force, k.duration, k.restitution, k.rolling}) << '\n'
       << "contact_failure " << one_line(k.failure) << '\n'
@@ -73,7 +90,8 @@ std::string study_state_text(const StudyPreset& preset, const std::vector<StudyS
                s.particle_steps_per_second, double(s.steps), double(s.list_builds),
                double(s.particles)})
       << '\n'
-      << "shear_failure " << one_line(s.failure) << '\n';
+      << "shear_failure " << one_line(s.failure) << '\n'
+      << "curve " << curve_text(s) << '\n';
   }
   return o.str();
 }
@@ -91,8 +109,8 @@ std::vector<StudyCase> parse_study_state(const std::string& text, const std::str
   for (size_t i = 0; i < finished; ++i) {
     StudyCase& c = done[i];
     c.settings = cases[i];
-    if (r.rest("case") != one_line(cases[i].knob) + " | " + one_line(cases[i].label))
-      r.fail("case " + std::to_string(i + 1) + " is not '" + cases[i].label + "'");
+    if (r.rest("case") != identity(cases[i]))
+      r.fail("case " + std::to_string(i + 1) + " is not '" + identity(cases[i]) + "' (--ensemble?)");
     ContactErrors& k = c.contact;
     ShearResult& s = c.shear;
     if (!(r.expect("contact") >> k.ok >> k.overlap >> k.force >> k.duration >> k.restitution >>
@@ -107,6 +125,13 @@ std::vector<StudyCase> parse_study_state(const std::string& text, const std::str
     s.list_builds = static_cast<long long>(builds);
     s.particles = static_cast<int>(particles);
     s.failure = r.rest("shear_failure");
+    std::istringstream curve = r.expect("curve");
+    size_t points = 0;
+    if (!(curve >> points) || points > 100000) r.fail("malformed curve");
+    s.curve_mm.resize(points);
+    s.curve_ratio.resize(points);
+    for (size_t k = 0; k < points; ++k)
+      if (!(curve >> s.curve_mm[k] >> s.curve_ratio[k])) r.fail("malformed curve");
   }
   return done;
 }

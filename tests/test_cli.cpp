@@ -405,9 +405,9 @@ TEST(Cli, AccuracyStudyReducedForm) {
   const Result r = run("study accuracy --preset ci --out " + out.string() + " -q");
   ASSERT_EQ(r.status, 0) << r.out;
   const auto rows = read_csv(out / "cases.csv");
-  ASSERT_EQ(rows.size(), 7u) << "header + 6 cases";
+  ASSERT_EQ(rows.size(), 14u) << "header + 6 settings x 2 members + the reference's round-off twin";
   std::map<std::string, std::vector<std::string>> by;
-  for (size_t i = 1; i < rows.size(); ++i) by[rows[i][1]] = rows[i];
+  for (size_t i = 1; i < rows.size(); ++i) by.emplace(rows[i][1], rows[i]);  // seed 1's
   auto val = [&](const std::string& label, int col) { return std::stod(by.at(label)[col]); };
   // columns: 10 overlap, 12 contact time, 13 restitution (errors, %), 16 peak, 19 peak error
   for (int col : {10, 12, 13}) {
@@ -426,6 +426,18 @@ TEST(Cli, AccuracyStudyReducedForm) {
   EXPECT_TRUE(fs::exists(out / "pareto.png"));
   EXPECT_TRUE(fs::exists(out / "summary.md"));
   EXPECT_TRUE(fs::exists(out / "error_vs_time_time_step.png"));
+  // the ensembles: one row per setting, each member's seed in cases.csv
+  const auto ens = read_csv(out / "ensemble.csv");
+  ASSERT_EQ(ens.size(), 7u) << "header + 6 settings";
+  EXPECT_EQ(ens[1][9], "2");  // runs of the reference
+  EXPECT_EQ(rows[2][rows[0].size() - 2], "2");  // the reference's second member: seed 2
+  std::ifstream md(out / "summary.md");
+  const std::string summary((std::istreambuf_iterator<char>(md)), {});
+  EXPECT_NE(summary.find("## Chaos"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("round-off twin"), std::string::npos) << summary;
+  const Result bad_ensemble = run("study accuracy --preset ci --ensemble 99 --out " + out.string());
+  EXPECT_EQ(bad_ensemble.status, 2) << bad_ensemble.out;
+  EXPECT_NE(bad_ensemble.out.find("--ensemble"), std::string::npos) << bad_ensemble.out;
   const Result bad_preset = run("study accuracy --preset huge --out " + out.string());
   EXPECT_EQ(bad_preset.status, 2) << bad_preset.out;
   EXPECT_NE(bad_preset.out.find("--preset"), std::string::npos);

@@ -191,12 +191,14 @@ std::vector<std::string> cases_without_wall(const fs::path& csv) {
   return rows;
 }
 
-// The reduced accuracy study (its reference and one precision case),
-// interrupted while the second case shears and resumed: the same table.
+// The reduced accuracy study (its reference, the reference's round-off twin
+// and one precision case, one member each), interrupted while the third
+// run shears and resumed: the same table.
 TEST(Interrupt, StudyCtrlCThenResumeGivesTheSameCases) {
   const fs::path d = fresh_dir("study");
   const fs::path a = d / "straight", b = d / "interrupted";
-  const std::vector<std::string> args{"study", "accuracy", "--preset", "ci", "--knob", "precision"};
+  const std::vector<std::string> args{"study",    "accuracy", "--preset",   "ci",
+                                      "--ensemble", "1",      "--knob", "precision"};
   auto with = [&](std::vector<std::string> extra) {
     std::vector<std::string> v = args;
     v.insert(v.end(), extra.begin(), extra.end());
@@ -204,22 +206,22 @@ TEST(Interrupt, StudyCtrlCThenResumeGivesTheSameCases) {
   };
   ASSERT_EQ(run(with({"--out", a.string(), "-q"}), d / "a.log"), 0) << read(d / "a.log");
   Child c(with({"--out", b.string()}), d / "b.log");
-  ASSERT_TRUE(c.wait_for("[study 2/2]")) << c.output();
+  ASSERT_TRUE(c.wait_for("[study 3/3]")) << c.output();
   std::this_thread::sleep_for(4s);
   kill(c.pid, SIGINT);
   ASSERT_EQ(c.wait(), 130) << c.output();
-  EXPECT_NE(c.output().find("study interrupted in case 2/2"), std::string::npos) << c.output();
+  EXPECT_NE(c.output().find("study interrupted in case 3/3"), std::string::npos) << c.output();
   EXPECT_NE(c.output().find("--knob 'precision' --resume"), std::string::npos) << c.output();
   ASSERT_TRUE(fs::exists(b / "case_checkpoint.bin")) << c.output();
   ASSERT_EQ(run(with({"--out", b.string(), "--resume", "-q"}), d / "c.log"), 0)
       << read(d / "c.log");
-  EXPECT_NE(read(d / "c.log").find("resumed after 1 of 2 cases (the next one from its checkpoint)"),
+  EXPECT_NE(read(d / "c.log").find("resumed after 2 of 3 cases (the next one from its checkpoint)"),
             std::string::npos)
       << read(d / "c.log");
   EXPECT_NE(read(d / "c.log").find("case resumed at step "), std::string::npos) << read(d / "c.log");
   EXPECT_FALSE(fs::exists(b / "case_checkpoint.bin"));
   const auto straight = cases_without_wall(a / "cases.csv");
-  EXPECT_EQ(straight.size(), 3u) << "header and two cases";
+  EXPECT_EQ(straight.size(), 4u) << "header and three runs";
   EXPECT_EQ(cases_without_wall(b / "cases.csv"), straight);
   // another study's state is refused, naming the file
   Child other(std::vector<std::string>{"study", "accuracy", "--preset", "quick", "--out",

@@ -1,0 +1,239 @@
+#include "study_ensemble.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "output.h"
+
+namespace simsols {
+namespace {
+
+constexpr const char* kTwinKnob = "round-off";
+
+struct Samples {
+  std::vector<double> peak, residual, dilatancy;
+  double wall = 0;
+};
+
+Samples samples_of(const std::vector<StudyCase>& runs, const StudySettings& s) {
+  Samples x;
+  for (const StudyCase& c : runs) {
+    if (!c.settings.same_setting(s) || !c.shear.ok) continue;
+    x.peak.push_back(c.shear.peak_angle);
+    x.residual.push_back(c.shear.residual_angle);
+    x.dilatancy.push_back(c.shear.dilatancy_angle);
+    x.wall += c.shear.wall_seconds;
+  }
+  if (!x.peak.empty()) x.wall /= static_cast<double>(x.peak.size());
+  return x;
+}
+
+const StudyCase* find_run(const std::vector<StudyCase>& runs, const char* knob, int seed) {
+  for (const StudyCase& c : runs)
+    if (c.settings.knob == knob && c.settings.seed == seed) return &c;
+  return nullptr;
+}
+
+}  // namespace
+
+std::vector<SettingSummary> summarise_settings(const std::vector<StudyCase>& runs) {
+  std::vector<SettingSummary> out;
+  for (const StudyCase& c : runs) {
+    if (c.settings.knob == kTwinKnob) continue;
+    auto it = std::find_if(out.begin(), out.end(),
+                           [&](const SettingSummary& s) { return s.settings.same_setting(c.settings); });
+    if (it == out.end()) {
+      out.push_back({});
+      it = out.end() - 1;
+      it->settings = c.settings;
+      it->contact = c.contact;
+    }
+    ++it->runs;
+    if (!c.shear.ok && it->failed++ == 0) it->failure = c.shear.failure;
+  }
+  if (out.empty()) return out;
+  const Samples ref = samples_of(runs, out[0].settings);
+  for (SettingSummary& s : out) {
+    const Samples x = samples_of(runs, s.settings);
+    if (x.peak.empty()) continue;
+    s.peak = mean_ci95(x.peak);
+    s.residual = mean_ci95(x.residual);
+    s.dilatancy = mean_ci95(x.dilatancy);
+    s.wall_seconds = x.wall;
+    if (ref.peak.empty()) continue;
+    s.peak_error = difference_ci95(x.peak, ref.peak);
+    s.residual_error = difference_ci95(x.residual, ref.residual);
+    s.dilatancy_error = difference_ci95(x.dilatancy, ref.dilatancy);
+  }
+  return out;
+}
+
+std::optional<double> separation_mm(const ShearResult& a, const ShearResult& b, double threshold) {
+  const size_t n = std::min(a.curve_ratio.size(), b.curve_ratio.size());
+  for (size_t i = 0; i < n; ++i)
+    if (std::fabs(a.curve_ratio[i] - b.curve_ratio[i]) > threshold) return a.curve_mm[i];
+  return std::nullopt;
+}
+
+Chaos measure_chaos(const std::vector<StudyCase>& runs) {
+  Chaos c;
+  if (runs.empty()) return c;
+  const StudyCase* member = find_run(runs, runs[0].settings.knob.c_str(), 1);
+  const StudyCase* twin = find_run(runs, kTwinKnob, 1);
+  if (!member || !twin || !member->shear.ok || !twin->shear.ok) return c;
+  const ShearResult &a = member->shear, &b = twin->shear;
+  c.measured = true;
+  c.separation = separation_mm(a, b);
+  const size_t n = std::min(a.curve_ratio.size(), b.curve_ratio.size());
+  for (size_t i = 0; i < n; ++i)
+    c.largest_difference = std::max(c.largest_difference, std::fabs(a.curve_ratio[i] - b.curve_ratio[i]));
+  c.peak_difference = b.peak_angle - a.peak_angle;
+  c.residual_difference = b.residual_angle - a.residual_angle;
+  c.dilatancy_difference = b.dilatancy_angle - a.dilatancy_angle;
+  return c;
+}
+
+namespace {
+
+std::string quoted(std::string s) {
+  for (char& ch : s)
+    if (ch == '"') ch = '\'';
+  return "\"" + s + "\"";
+}
+
+// "mean,half_width" ("mean," when the interval is unknown)
+std::string pair(const Interval& i) {
+  return format_number("%.6g", i.mean) + "," +
+         (std::isfinite(i.half_width) ? format_number("%.6g", i.half_width) : std::string());
+}
+
+std::string error_cells(const std::optional<Interval>& e) {
+  if (!e) return ",,";
+  return pair(*e) + "," + (e->significant() ? "yes" : "no");
+}
+
+}  // namespace
+
+std::string ensemble_csv(const std::vector<SettingSummary>& settings) {
+  std::string o =
+      "knob,label,dt_fraction,precision,stiffness_scale,inertial_number,skin_over_d,rolling,"
+      "damping,runs,failed,peak_deg,peak_ci95_deg,residual_deg,residual_ci95_deg,dilatancy_deg,"
+      "dilatancy_ci95_deg,peak_err_deg,peak_err_ci95_deg,peak_err_significant,residual_err_deg,"
+      "residual_err_ci95_deg,residual_err_significant,dilatancy_err_deg,dilatancy_err_ci95_deg,"
+      "dilatancy_err_significant,wall_s_per_run\n";
+  for (const SettingSummary& s : settings) {
+    const StudySettings& k = s.settings;
+    o += quoted(k.knob) + "," + quoted(k.label) + "," + format_number("%.6g", k.dt_fraction) + "," +
+         (k.precision == Precision::Float ? "float" : "double") + "," +
+         format_number("%.6g", k.stiffness_scale) + "," + format_number("%.6g", k.inertial_number) +
+         "," + format_number("%.6g", k.skin_factor) + "," + (k.rolling ? "1" : "0") + "," +
+         (k.damping ? "1" : "0") + "," + std::to_string(s.runs) + "," + std::to_string(s.failed);
+    if (s.peak.n > 0)
+      o += "," + pair(s.peak) + "," + pair(s.residual) + "," + pair(s.dilatancy) + "," +
+           error_cells(s.peak_error) + "," + error_cells(s.residual_error) + "," +
+           error_cells(s.dilatancy_error) + "," + format_number("%.2f", s.wall_seconds) + "\n";
+    else
+      o += ",,,,,,,,,,,,,,,,\n";
+  }
+  return o;
+}
+
+namespace {
+
+// "35.16 ± 0.05" ("35.16" for one run)
+std::string pm(const Interval& i, const char* f = "%.2f") {
+  return format_number(f, i.mean) +
+         (std::isfinite(i.half_width) ? " ± " + format_number(f, i.half_width) : std::string());
+}
+
+// "+0.12 ± 0.30" with a bold mark when significant; "–" without one
+std::string err(const std::optional<Interval>& e) {
+  if (!e) return "–";
+  const std::string t = (e->mean >= 0 ? "+" : "") + pm(*e);
+  return e->significant() ? "**" + t + "**" : t;
+}
+
+void settings_table(std::string& md, const std::vector<SettingSummary>& settings) {
+  const double ref_wall = settings.empty() ? 0 : settings[0].wall_seconds;
+  md += "| setting | runs | φ_peak (°) | error (°) | φ_res (°) | error (°) | ψ_max (°) | "
+        "error (°) | wall per run (s) | × ref |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+  for (const SettingSummary& s : settings) {
+    md += "| " + s.settings.label + " | " + std::to_string(s.runs - s.failed) + "/" +
+          std::to_string(s.runs) + " | ";
+    if (s.peak.n == 0) {
+      md += "failed: " + s.failure + " | | | | | | | |\n";
+      continue;
+    }
+    md += pm(s.peak) + " | " + err(s.peak_error) + " | " + pm(s.residual) + " | " +
+          err(s.residual_error) + " | " + pm(s.dilatancy) + " | " + err(s.dilatancy_error) + " | " +
+          format_number("%.1f", s.wall_seconds) + " | " +
+          (ref_wall > 0 ? format_number("%.2f", s.wall_seconds / ref_wall) : std::string("–")) +
+          " |\n";
+  }
+}
+
+void chaos_text(std::string& md, const Chaos& c) {
+  md += "\n## Chaos\n\n";
+  if (!c.measured) {
+    md += "Not measured (the reference's first member and its round-off twin did not both run).\n";
+    return;
+  }
+  md += "The reference's first member and its round-off twin, one bead moved by " +
+        format_number("%g", kRoundOffPerturbation) + " d: τ/σ ";
+  md += c.separation ? "first differs by more than " + format_number("%g", kSeparationThreshold) +
+                           " at " + format_number("%.2f", *c.separation) + " mm of shear"
+                     : "never differs by more than " + format_number("%g", kSeparationThreshold);
+  md += " (largest difference " + format_number("%.3f", c.largest_difference) + "); φ_peak " +
+        format_number("%+.2f", c.peak_difference) + "°, φ_res " +
+        format_number("%+.2f", c.residual_difference) + "°, ψ_max " +
+        format_number("%+.2f", c.dilatancy_difference) + "° apart.\n";
+}
+
+}  // namespace
+
+std::string ensemble_summary_md(const StudyPreset& preset,
+                                const std::vector<SettingSummary>& settings, const Chaos& chaos) {
+  std::string md = "# Accuracy study `" + preset.name + "`\n\nShear test: " +
+                   format_number("%g", preset.diameter_mm) + " mm beads, " +
+                   format_number("%g", preset.stress_kpa) + " kPa, " +
+                   format_number("%g", preset.displacement_mm) + " mm of shear, " +
+                   std::to_string(preset.rows) + " rows; " + std::to_string(preset.ensemble) +
+                   " specimens per setting (preparation seeds 1.." +
+                   std::to_string(preset.ensemble) +
+                   "). Each result is the ensemble mean ± its 95 % confidence interval; "
+                   "an error is the difference from the reference's mean (first row) ± "
+                   "Welch's 95 % interval, **bold** when significant (the interval excludes "
+                   "zero).\n\n";
+  settings_table(md, settings);
+  md += "\nContact checks against theory (%; the same for every member): overlap / force / "
+        "contact time / restitution / time to roll\n\n| setting | errors (%) |\n| --- | --- |\n";
+  for (const SettingSummary& s : settings) {
+    const ContactErrors& c = s.contact;
+    md += "| " + s.settings.label + " | " +
+          (c.ok ? format_number("%.2g", c.overlap) + " / " + format_number("%.2g", c.force) +
+                      " / " + format_number("%.2g", c.duration) + " / " +
+                      format_number("%.2g", c.restitution) + " / " + format_number("%.2g", c.rolling)
+                : "failed: " + c.failure) +
+          " |\n";
+  }
+  chaos_text(md, chaos);
+  md += "\n## Recommendation\n\n";
+  for (double tol : {0.1, 0.5}) {
+    const SettingSummary* cheapest = nullptr;
+    for (size_t i = 1; i < settings.size(); ++i) {
+      const SettingSummary& s = settings[i];
+      if (!s.peak_error || !std::isfinite(s.peak_error->half_width) || s.failed > 0) continue;
+      if (std::fabs(s.peak_error->mean) + s.peak_error->half_width > tol) continue;
+      if (!cheapest || s.wall_seconds < cheapest->wall_seconds) cheapest = &s;
+    }
+    md += "- φ_peak within " + format_number("%g", tol) + "° of the reference (95 %): ";
+    md += cheapest ? "**" + cheapest->settings.label + "**, " +
+                         format_number("%.1f", cheapest->wall_seconds) + " s per run\n"
+                   : "no setting of this study\n";
+  }
+  return md;
+}
+
+}  // namespace simsols

@@ -1,0 +1,62 @@
+// The accuracy study's ensembles: what one setting gives over its members,
+// and how far a run can be predicted at all.
+//
+// A setting runs as an ensemble of specimens that differ only in their
+// preparation seed (study_runs in study.h). Its results are the ensemble
+// means with their 95 % confidence intervals, and its error is the
+// difference of its mean from the reference's mean, with Welch's interval
+// (study_stats.h): significant only when that interval excludes zero.
+//
+// Chaos: the reference's seed-1 member and its round-off twin (one bead
+// moved by 1e-9 d) differ only at round-off. The displacement at which
+// their tau/sigma curves first differ by more than kSeparationThreshold
+// is where the test stops being predictable run by run; past it only the
+// ensemble statistics are.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "study.h"
+#include "study_stats.h"
+
+namespace simsols {
+
+constexpr double kSeparationThreshold = 0.02;  // in tau/sigma
+
+struct SettingSummary {
+  StudySettings settings;  // the first member's (seed 1)
+  ContactErrors contact;   // the first member's: the contact checks have no specimen
+  int runs = 0, failed = 0;
+  std::string failure;     // the first failed member's reason
+  Interval peak, residual, dilatancy;                          // deg
+  std::optional<Interval> peak_error, residual_error, dilatancy_error;  // deg, vs the reference
+  double wall_seconds = 0;  // mean per member
+};
+
+// One summary per setting, in the order of first appearance; runs[0] is a
+// reference member. Round-off twins are not a setting of their own.
+std::vector<SettingSummary> summarise_settings(const std::vector<StudyCase>& runs);
+
+// Where two runs' tau/sigma curves first differ by more than `threshold`
+// (mm of shear), or nullopt when they never do over their common rows.
+std::optional<double> separation_mm(const ShearResult& a, const ShearResult& b,
+                                    double threshold = kSeparationThreshold);
+
+struct Chaos {
+  bool measured = false;               // the reference member and its twin both ran
+  std::optional<double> separation;    // mm
+  double largest_difference = 0;       // of tau/sigma over the test
+  double peak_difference = 0, residual_difference = 0, dilatancy_difference = 0;  // deg
+};
+Chaos measure_chaos(const std::vector<StudyCase>& runs);
+
+// ensemble.csv: one row per setting, every interval as mean and half width.
+std::string ensemble_csv(const std::vector<SettingSummary>& settings);
+// summary.md: the settings' table (means, intervals, errors and their
+// significance, cost), the chaos measured, the recommendation.
+std::string ensemble_summary_md(const StudyPreset& preset,
+                                const std::vector<SettingSummary>& settings, const Chaos& chaos);
+
+}  // namespace simsols

@@ -1,0 +1,100 @@
+// The accuracy study's ensembles (app/study_ensemble.h): a setting's
+// members are summarised as means with intervals, its error against the
+// reference is significant only when the interval excludes zero, round-off
+// twins are no setting, and two curves separate where they first differ by
+// more than the threshold.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "study_ensemble.h"
+
+using namespace simsols;
+
+namespace {
+
+StudyCase run(const char* knob, const char* label, int seed, double peak, double residual = 10,
+              double dilatancy = 30) {
+  StudyCase c;
+  c.settings.knob = knob;
+  c.settings.label = label;
+  c.settings.seed = seed;
+  c.shear.ok = true;
+  c.shear.peak_angle = peak;
+  c.shear.residual_angle = residual;
+  c.shear.dilatancy_angle = dilatancy;
+  c.shear.wall_seconds = 10 * seed;
+  return c;
+}
+
+}  // namespace
+
+TEST(StudyEnsemble, SettingsAreMeansWithIntervalsAndSignificantErrors) {
+  std::vector<StudyCase> runs = {
+      run("reference", "ref", 1, 35.10, 10, 30), run("reference", "ref", 2, 35.20, 14, 31),
+      run("reference", "ref", 3, 35.15, 6, 29),
+      run("round-off", "ref (round-off twin)", 1, 35.11, 20, 30),
+      run("time step", "dt 0.5", 1, 35.60, 9, 30), run("time step", "dt 0.5", 2, 35.70, 15, 31),
+      run("time step", "dt 0.5", 3, 35.65, 8, 29),
+      run("time step", "dt 0.3", 1, 35.00, 12, 30), run("time step", "dt 0.3", 2, 35.30, 9, 30),
+      run("time step", "dt 0.3", 3, 35.20, 11, 30)};
+  runs.push_back(run("time step", "dt 2", 1, 0));
+  runs.back().shear.ok = false;
+  runs.back().shear.failure = "NaN";
+  const std::vector<SettingSummary> s = summarise_settings(runs);
+  ASSERT_EQ(s.size(), 4u);  // the twin is not a setting
+  EXPECT_EQ(s[0].settings.label, "ref");
+  EXPECT_EQ(s[0].runs, 3);
+  EXPECT_NEAR(s[0].peak.mean, 35.15, 1e-12);
+  EXPECT_NEAR(s[0].peak.half_width, 4.3027 * 0.05 / std::sqrt(3.0), 1e-4);  // t(0.975, 2)
+  ASSERT_TRUE(s[0].peak_error);
+  EXPECT_NEAR(s[0].peak_error->mean, 0, 1e-12);
+  EXPECT_FALSE(s[0].peak_error->significant());
+  // 0.5 deg above the reference, spread 0.05: significant
+  EXPECT_NEAR(s[1].peak_error->mean, 0.5, 1e-12);
+  EXPECT_TRUE(s[1].peak_error->significant());
+  // the residuals scatter by several degrees: the same difference is not
+  EXPECT_FALSE(s[1].residual_error->significant());
+  // dt 0.3: mean 35.1667 against 35.15, within the spread
+  EXPECT_FALSE(s[2].peak_error->significant());
+  EXPECT_EQ(s[3].failed, 1);
+  EXPECT_EQ(s[3].failure, "NaN");
+  EXPECT_EQ(s[3].peak.n, 0);
+  const std::string csv = ensemble_csv(s);
+  EXPECT_NE(csv.find("\"dt 0.5\""), std::string::npos);
+  EXPECT_NE(csv.find(",yes,"), std::string::npos);
+  // every row has the header's number of fields
+  const auto fields = [](const std::string& line) { return std::count(line.begin(), line.end(), ','); };
+  std::istringstream in(csv);
+  std::string header, line;
+  std::getline(in, header);
+  while (std::getline(in, line)) EXPECT_EQ(fields(line), fields(header)) << line;
+}
+
+TEST(StudyEnsemble, TwinsSeparateWhereTheCurvesFirstDifferBeyondTheThreshold) {
+  ShearResult a, b;
+  for (int i = 0; i < 10; ++i) {
+    a.curve_mm.push_back(0.1 * i);
+    b.curve_mm.push_back(0.1 * i);
+    a.curve_ratio.push_back(0.5);
+    b.curve_ratio.push_back(i < 6 ? 0.5 + 0.001 * i : 0.45);  // 0.005 apart at 5, 0.05 at 6
+  }
+  const std::optional<double> at = separation_mm(a, b, 0.02);
+  ASSERT_TRUE(at);
+  EXPECT_NEAR(*at, 0.6, 1e-12);
+  EXPECT_FALSE(separation_mm(a, a, 0.02));
+  std::vector<StudyCase> runs = {run("reference", "ref", 1, 35.1),
+                                 run("round-off", "ref (round-off twin)", 1, 35.3)};
+  runs[0].shear.curve_mm = a.curve_mm;
+  runs[0].shear.curve_ratio = a.curve_ratio;
+  runs[1].shear.curve_mm = b.curve_mm;
+  runs[1].shear.curve_ratio = b.curve_ratio;
+  const Chaos c = measure_chaos(runs);
+  EXPECT_TRUE(c.measured);
+  ASSERT_TRUE(c.separation);
+  EXPECT_NEAR(*c.separation, 0.6, 1e-12);
+  EXPECT_NEAR(c.largest_difference, 0.05, 1e-12);
+  EXPECT_NEAR(c.peak_difference, 0.2, 1e-12);
+}
