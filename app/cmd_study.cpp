@@ -8,6 +8,10 @@
 // setting: means, 95 % intervals, errors and their significance),
 // summary.md (tables, chaos, the recommendation), error_vs_time_<knob>.png
 // per knob and pareto.png.
+//
+//   simsols study table --from DIR/ensemble.csv
+//
+// prints that study's settings table (markdown), as docs/accuracy.md holds it.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -20,6 +24,7 @@
 #include "output.h"
 #include "run_cost.h"
 #include "study.h"
+#include "study_ensemble.h"
 #include "study_state.h"
 
 namespace simsols {
@@ -30,6 +35,7 @@ namespace fs = std::filesystem;
 struct StudyOptions {
   std::string what;
   std::string out;
+  std::string from;  // study table: the ensemble.csv to print
   std::string preset = "quick";
   std::vector<std::string> knobs;
   int ensemble = 0;  // 0 = the preset's
@@ -101,9 +107,26 @@ std::string resume_command(const StudyOptions& opt) {
   return c + (opt.no_shear ? " --no-shear" : "") + " --resume";
 }
 
+// `simsols study table --from ENSEMBLE_CSV`: the settings' table of a
+// finished study, as markdown (docs/accuracy.md holds the shipped one's).
+int print_table(const StudyOptions& opt) {
+  if (opt.from.empty())
+    throw SceneError("missing_field", "command line", 0, "--from", "give the study's ensemble.csv");
+  if (!fs::exists(opt.from)) throw SceneError("io", opt.from, 0, "--from", "no such file");
+  try {
+    std::fputs(ensemble_table_md(parse_ensemble_csv(read_text(opt.from))).c_str(), stdout);
+  } catch (const std::runtime_error& e) {
+    throw SceneError("bad_file", opt.from, 0, "--from", e.what());
+  }
+  return 0;
+}
+
 int study(const StudyOptions& opt) {
+  if (opt.what == "table") return print_table(opt);
   if (opt.what != "accuracy")
-    throw SceneError("bad_enum", "command line", 0, "STUDY", "'" + opt.what + "' is not one of: accuracy");
+    throw SceneError("bad_enum", "command line", 0, "STUDY",
+                     "'" + opt.what + "' is not one of: accuracy, table");
+  if (opt.out.empty()) throw SceneError("missing_field", "command line", 0, "--out", "give an output folder");
   if (opt.ensemble < 0 || opt.ensemble > 50)
     throw SceneError("out_of_range", "command line", 0, "--ensemble",
                      std::to_string(opt.ensemble) +
@@ -115,6 +138,7 @@ int study(const StudyOptions& opt) {
   if (opt.no_shear) preset->shear = false;
   const std::vector<StudySettings> cases = study_runs(*preset, selected_cases(*preset, opt));
   std::vector<StudyCase> done = resumed_cases(opt, *preset, cases);
+  if (!done.empty()) write_study_outputs(opt.out, *preset, done);  // today's tables and charts
   if (!opt.resume) fs::remove(fs::path(opt.out) / "case_checkpoint.bin");
   InterruptScope interrupt;
   ShearCaseControl control{interrupt.stop_function(),
@@ -165,8 +189,10 @@ int study(const StudyOptions& opt) {
 CommandRunner add_study_command(CLI::App& app) {
   auto opt = std::make_shared<StudyOptions>();
   CLI::App* cmd = app.add_subcommand("study", "Measured studies: what accuracy costs in time");
-  cmd->add_option("study", opt->what, "accuracy")->required();
-  cmd->add_option("--out,-o", opt->out, "Output folder")->required();
+  cmd->add_option("study", opt->what, "accuracy (run the study), table (print a study's table)")
+      ->required();
+  cmd->add_option("--out,-o", opt->out, "Output folder (accuracy)");
+  cmd->add_option("--from", opt->from, "A finished study's ensemble.csv (table)");
   cmd->add_option("--preset", opt->preset, "quick (3 mm of shear, default), full (6 mm), ci (reduced)")
       ->capture_default_str();
   cmd->add_option("--knob", opt->knobs,

@@ -102,16 +102,10 @@ void LabApp::draw_controls() {
     if (ImGui::SliderFloat("time step (x Rayleigh)", &dt_fraction, 0.05f, 0.5f, "%.2f"))
       exp_->set_dt_fraction(dt_fraction);
     // what the accuracy study measured for these settings (docs/accuracy.md)
-    if (const AccuracyEntry* a = expected_accuracy(dt_fraction, exp_->scene().numerics.precision)) {
+    if (const SettingSummary* a = expected_accuracy(dt_fraction, exp_->scene().numerics.precision)) {
       ImGui::PushTextWrapPos(0);
       const ImVec4 grey = ImGui::GetStyle().Colors[ImGuiCol_TextDisabled];
-      if (a->peak_error_pct && a->reference_wall_s > 0)
-        ImGui::TextColored(grey,
-                           "expected (accuracy study): phi_peak within %.2f %%, %.2fx the time of "
-                           "the most accurate run (case '%s', docs/accuracy.md)",
-                           *a->peak_error_pct, a->wall_s / a->reference_wall_s, a->label.c_str());
-      else
-        ImGui::TextColored(grey, "accuracy study, case '%s': %s", a->label.c_str(), a->status.c_str());
+      ImGui::TextColored(grey, "%s", expected_accuracy_text(*a).c_str());
       ImGui::PopTextWrapPos();
     }
     if (draw_effect_slots()) {

@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
 
 #include "output.h"
 
@@ -115,13 +119,90 @@ std::string error_cells(const std::optional<Interval>& e) {
 
 }  // namespace
 
+namespace {
+
+// A row's field by column name.
+class Columns {
+ public:
+  explicit Columns(const std::string& header) : names_(split_csv_line(header)) {}
+  size_t at(const std::string& name) const {
+    for (size_t i = 0; i < names_.size(); ++i)
+      if (names_[i] == name) return i;
+    throw std::runtime_error("ensemble.csv has no column '" + name + "'");
+  }
+
+ private:
+  std::vector<std::string> names_;
+};
+
+double number(const std::string& field, const std::string& what) {
+  if (field.empty()) return std::numeric_limits<double>::quiet_NaN();
+  char* end = nullptr;
+  const double v = std::strtod(field.c_str(), &end);
+  if (end == field.c_str() || *end != '\0')
+    throw std::runtime_error("ensemble.csv: '" + field + "' is not a number (" + what + ")");
+  return v;
+}
+
+Interval interval(const std::vector<std::string>& f, size_t mean, size_t half, int n) {
+  Interval i;
+  i.mean = number(f[mean], "mean");
+  i.half_width = number(f[half], "half width");
+  i.n = n;
+  return i;
+}
+
+}  // namespace
+
+std::vector<SettingSummary> parse_ensemble_csv(const std::string& text) {
+  std::istringstream in(text);
+  std::string line;
+  if (!std::getline(in, line)) throw std::runtime_error("ensemble.csv is empty");
+  const Columns c(line);
+  const size_t knob = c.at("knob"), label = c.at("label"), dt = c.at("dt_fraction"),
+               precision = c.at("precision"), stiffness = c.at("stiffness_scale"),
+               inertial = c.at("inertial_number"), runs = c.at("runs"), failed = c.at("failed"),
+               wall = c.at("wall_s_per_run"), failure = c.at("failure");
+  const char* names[3] = {"peak", "residual", "dilatancy"};
+  std::vector<SettingSummary> out;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    const std::vector<std::string> f = split_csv_line(line);
+    if (f.size() <= failure) throw std::runtime_error("ensemble.csv: a short row: " + line);
+    SettingSummary s;
+    s.settings.knob = f[knob];
+    s.settings.label = f[label];
+    s.settings.dt_fraction = number(f[dt], "dt_fraction");
+    s.settings.precision = f[precision] == "double" ? Precision::Double : Precision::Float;
+    s.settings.stiffness_scale = number(f[stiffness], "stiffness_scale");
+    s.settings.inertial_number = number(f[inertial], "inertial_number");
+    s.runs = static_cast<int>(number(f[runs], "runs"));
+    s.failed = static_cast<int>(number(f[failed], "failed"));
+    s.failure = f[failure];
+    const int ok = s.runs - s.failed;
+    if (!f[c.at("peak_deg")].empty()) {
+      Interval* value[3] = {&s.peak, &s.residual, &s.dilatancy};
+      std::optional<Interval>* error[3] = {&s.peak_error, &s.residual_error, &s.dilatancy_error};
+      for (int k = 0; k < 3; ++k) {
+        const std::string n = names[k];
+        *value[k] = interval(f, c.at(n + "_deg"), c.at(n + "_ci95_deg"), ok);
+        if (!f[c.at(n + "_err_deg")].empty())
+          *error[k] = interval(f, c.at(n + "_err_deg"), c.at(n + "_err_ci95_deg"), ok);
+      }
+      s.wall_seconds = number(f[wall], "wall_s_per_run");
+    }
+    out.push_back(s);
+  }
+  return out;
+}
+
 std::string ensemble_csv(const std::vector<SettingSummary>& settings) {
   std::string o =
       "knob,label,dt_fraction,precision,stiffness_scale,inertial_number,skin_over_d,rolling,"
       "damping,runs,failed,peak_deg,peak_ci95_deg,residual_deg,residual_ci95_deg,dilatancy_deg,"
       "dilatancy_ci95_deg,peak_err_deg,peak_err_ci95_deg,peak_err_significant,residual_err_deg,"
       "residual_err_ci95_deg,residual_err_significant,dilatancy_err_deg,dilatancy_err_ci95_deg,"
-      "dilatancy_err_significant,wall_s_per_run\n";
+      "dilatancy_err_significant,wall_s_per_run,failure\n";
   for (const SettingSummary& s : settings) {
     const StudySettings& k = s.settings;
     o += quoted(k.knob) + "," + quoted(k.label) + "," + format_number("%.6g", k.dt_fraction) + "," +
@@ -132,9 +213,10 @@ std::string ensemble_csv(const std::vector<SettingSummary>& settings) {
     if (s.peak.n > 0)
       o += "," + pair(s.peak) + "," + pair(s.residual) + "," + pair(s.dilatancy) + "," +
            error_cells(s.peak_error) + "," + error_cells(s.residual_error) + "," +
-           error_cells(s.dilatancy_error) + "," + format_number("%.2f", s.wall_seconds) + "\n";
+           error_cells(s.dilatancy_error) + "," + format_number("%.2f", s.wall_seconds);
     else
-      o += ",,,,,,,,,,,,,,,,\n";
+      o += ",,,,,,,,,,,,,,,,";
+    o += "," + quoted(s.failure) + "\n";
   }
   return o;
 }
@@ -154,7 +236,10 @@ std::string err(const std::optional<Interval>& e) {
   return e->significant() ? "**" + t + "**" : t;
 }
 
-void settings_table(std::string& md, const std::vector<SettingSummary>& settings) {
+}  // namespace
+
+std::string ensemble_table_md(const std::vector<SettingSummary>& settings) {
+  std::string md;
   const double ref_wall = settings.empty() ? 0 : settings[0].wall_seconds;
   md += "| setting | runs | φ_peak (°) | error (°) | φ_res (°) | error (°) | ψ_max (°) | "
         "error (°) | wall per run (s) | × ref |\n"
@@ -172,7 +257,10 @@ void settings_table(std::string& md, const std::vector<SettingSummary>& settings
           (ref_wall > 0 ? format_number("%.2f", s.wall_seconds / ref_wall) : std::string("–")) +
           " |\n";
   }
+  return md;
 }
+
+namespace {
 
 void chaos_text(std::string& md, const Chaos& c) {
   md += "\n## Chaos\n\n";
@@ -206,7 +294,7 @@ std::string ensemble_summary_md(const StudyPreset& preset,
                    "an error is the difference from the reference's mean (first row) ± "
                    "Welch's 95 % interval, **bold** when significant (the interval excludes "
                    "zero).\n\n";
-  settings_table(md, settings);
+  md += ensemble_table_md(settings);
   md += "\nContact checks against theory (%; the same for every member): overlap / force / "
         "contact time / restitution / time to roll\n\n| setting | errors (%) |\n| --- | --- |\n";
   for (const SettingSummary& s : settings) {

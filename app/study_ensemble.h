@@ -52,8 +52,15 @@ struct Chaos {
 };
 Chaos measure_chaos(const std::vector<StudyCase>& runs);
 
-// ensemble.csv: one row per setting, every interval as mean and half width.
+// ensemble.csv: one row per setting, every interval as mean and half width,
+// and back (the columns found by their names; throws std::runtime_error
+// naming a missing column or a malformed row). What comes back is what the
+// tables need: the settings, runs, intervals, errors, cost and failure.
 std::string ensemble_csv(const std::vector<SettingSummary>& settings);
+std::vector<SettingSummary> parse_ensemble_csv(const std::string& text);
+// The settings' table of summary.md (and of docs/accuracy.md, generated
+// from the shipped ensemble.csv by `simsols study table`).
+std::string ensemble_table_md(const std::vector<SettingSummary>& settings);
 // summary.md: the settings' table (means, intervals, errors and their
 // significance, cost), the chaos measured, the recommendation.
 std::string ensemble_summary_md(const StudyPreset& preset,

@@ -283,7 +283,13 @@ ChartLayout chart_layout(const Chart& c, int w, int h) {
     xlo = std::min(xlo, x), xhi = std::max(xhi, x), ylo = std::min(ylo, y), yhi = std::max(yhi, y);
   };
   for (const Series& s : c.series)
-    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) add(s.x[i], s.y[i]);
+    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
+      add(s.x[i], s.y[i]);
+      if (i < s.y_err.size() && std::isfinite(s.y_err[i])) {
+        add(s.x[i], s.y[i] - s.y_err[i]);
+        add(s.x[i], s.y[i] + s.y_err[i]);
+      }
+    }
   for (const Marker& m : c.markers) add(m.x, m.y);
 
   ChartLayout L;
@@ -317,6 +323,25 @@ ChartLayout chart_layout(const Chart& c, int w, int h) {
   return L;
 }
 
+namespace {
+
+// Vertical bars of +-y_err with short caps, in the series' colour.
+void draw_error_bars(Image& img, const Series& s, const ChartLayout& L, const Style& st,
+                     const Color& col, const Rect& clip) {
+  const std::size_t n = std::min({s.x.size(), s.y.size(), s.y_err.size()});
+  const double cap = 4 * st.u;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double e = s.y_err[i];
+    if (!std::isfinite(e) || e <= 0 || !std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+    const double x = L.px(s.x[i]), y0 = L.py(s.y[i] - e), y1 = L.py(s.y[i] + e);
+    draw_line(img, {x, y0}, {x, y1}, st.line, col, clip);
+    draw_line(img, {x - cap, y0}, {x + cap, y0}, st.line, col, clip);
+    draw_line(img, {x - cap, y1}, {x + cap, y1}, st.line, col, clip);
+  }
+}
+
+}  // namespace
+
 Image render_chart(const Chart& c, int w, int h) {
   const ChartLayout L = chart_layout(c, w, h);
   const Style st = style_for(w, h);
@@ -344,6 +369,7 @@ Image render_chart(const Chart& c, int w, int h) {
     if (s.markers)
       for (const auto& line : lines)
         for (const Point& p : line) fill_circle(img, p.x, p.y, 4 * st.u, colors[i], clip);
+    draw_error_bars(img, s, L, st, colors[i], clip);
   }
   const std::vector<Point> samples = curve_samples(c, L);
   for (const Marker& m : c.markers) draw_marker(img, m, L, st, samples);

@@ -25,6 +25,9 @@ struct Series {
   bool line = true;
   bool markers = false;
   bool dashed = false;
+  // Error bars: the half height of a vertical bar at each point (a 95 %
+  // interval, say); empty for none, NaN or 0 for a point without one.
+  std::vector<double> y_err = {};
 };
 
 struct Marker {

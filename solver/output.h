@@ -23,6 +23,8 @@ void write_file_atomic(const std::string& path, const std::string& content);
 // One number through a printf conversion ("%.3f", "%g"): the tables and
 // labels of every report share it.
 std::string format_number(const char* printf_format, double value);
+// One CSV line's fields; a field in double quotes may hold commas.
+std::vector<std::string> split_csv_line(const std::string& line);
 // The whole file as text; empty when it cannot be read.
 std::string read_text(const std::string& path);
 void write_particles_csv(const std::string& path, const ParticleSnapshot& p);

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "accuracy_table.h"
+#include "output.h"
 #include "study_ensemble.h"
 
 using namespace simsols;
@@ -97,4 +99,39 @@ TEST(StudyEnsemble, TwinsSeparateWhereTheCurvesFirstDifferBeyondTheThreshold) {
   EXPECT_NEAR(*c.separation, 0.6, 1e-12);
   EXPECT_NEAR(c.largest_difference, 0.05, 1e-12);
   EXPECT_NEAR(c.peak_difference, 0.2, 1e-12);
+}
+
+// ensemble.csv back into the tables: the same table as from the summaries.
+TEST(StudyEnsemble, EnsembleCsvRoundTripsToTheSameTable) {
+  std::vector<StudyCase> runs = {run("reference", "ref", 1, 35.10), run("reference", "ref", 2, 35.20),
+                                 run("time step", "dt 0.5", 1, 35.60), run("time step", "dt 0.5", 2, 35.70)};
+  runs.push_back(run("time step", "dt 2", 1, 0));
+  runs.back().shear.ok = false;
+  runs.back().shear.failure = "runaway, at step 12";
+  const std::vector<SettingSummary> s = summarise_settings(runs);
+  const std::vector<SettingSummary> back = parse_ensemble_csv(ensemble_csv(s));
+  ASSERT_EQ(back.size(), s.size());
+  EXPECT_EQ(ensemble_table_md(back), ensemble_table_md(s));
+  EXPECT_EQ(back[2].failure, "runaway, at step 12");
+  EXPECT_THROW(parse_ensemble_csv("knob,label\n"), std::runtime_error);  // columns missing
+}
+
+// One source for every table: docs/accuracy.md holds the table that
+// `simsols study table` prints from the shipped assets/accuracy/ensemble.csv,
+// and the lab's embedded table is that file.
+TEST(StudyEnsemble, DocsAndLabTablesAreTheShippedCsv) {
+  const std::string csv = read_text(SIMSOLS_SOURCE_DIR "/assets/accuracy/ensemble.csv");
+  const std::string docs = read_text(SIMSOLS_SOURCE_DIR "/docs/accuracy.md");
+  ASSERT_FALSE(csv.empty());
+  const std::vector<SettingSummary> shipped = parse_ensemble_csv(csv);
+  EXPECT_NE(docs.find(ensemble_table_md(shipped)), std::string::npos)
+      << "docs/accuracy.md does not hold the table of assets/accuracy/ensemble.csv; regenerate it "
+         "with: simsols study table --from assets/accuracy/ensemble.csv";
+  const std::vector<SettingSummary>& lab = accuracy_table();
+  EXPECT_EQ(ensemble_table_md(lab), ensemble_table_md(shipped))
+      << "the lab's embedded table is not the shipped CSV (reconfigure the build)";
+  const SettingSummary* base = expected_accuracy(0.25, Precision::Float);
+  ASSERT_NE(base, nullptr);
+  EXPECT_EQ(base->settings.dt_fraction, 0.25);
+  EXPECT_NE(expected_accuracy_text(*base).find("phi_peak"), std::string::npos);
 }
