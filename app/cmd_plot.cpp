@@ -17,7 +17,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <sstream>
+#include <map>
 
 #include "commands.h"
 #include "errors.h"
@@ -34,17 +34,14 @@ struct PlotOptions {
   std::string out, title = "Direct shear";
 };
 
-// A number from a summary.txt's "key = value" line; 0 when absent or not
-// a number (another code's summary has its own keys).
-double summary_value(const std::string& text, const std::string& key) {
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind(key + " = ", 0) == 0) {
-      char* end = nullptr;
-      const double v = std::strtod(line.c_str() + key.size() + 3, &end);
-      return end != line.c_str() + key.size() + 3 && std::isfinite(v) && v > 0 ? v : 0;
-    }
-  return 0;
+// A positive number under `key` in a summary's keys; 0 when absent or not
+// one (another code's summary has its own keys).
+double summary_value(const std::map<std::string, std::string>& keys, const std::string& key) {
+  const auto it = keys.find(key);
+  if (it == keys.end()) return 0;
+  char* end = nullptr;
+  const double v = std::strtod(it->second.c_str(), &end);
+  return end != it->second.c_str() && std::isfinite(v) && v > 0 ? v : 0;
 }
 
 // The test's target normal stress (Pa) and bead diameter (m), for its
@@ -52,9 +49,9 @@ double summary_value(const std::string& text, const std::string& key) {
 ShearSummary apparatus_of(const fs::path& dir, const std::vector<ShearRow>& rows) {
   ShearSummary s;
   if (fs::exists(dir / "summary.txt")) {
-    const std::string text = read_text((dir / "summary.txt").string());
-    s.normal_stress_target = 1e3 * summary_value(text, "normal_stress_kPa");
-    s.bead_diameter = 1e-3 * summary_value(text, "bead_diameter_mm");
+    const auto keys = summary_keys(read_text((dir / "summary.txt").string()));
+    s.normal_stress_target = 1e3 * summary_value(keys, "normal_stress_kPa");
+    s.bead_diameter = 1e-3 * summary_value(keys, "bead_diameter_mm");
   }
   if (s.normal_stress_target > 0) return s;
   if (rows.front().sigma_target > 0) {

@@ -390,33 +390,23 @@ namespace {
 
 std::string num(double v, const char* f = "%.6g") { return format_number(f, v); }
 
-std::string quoted(std::string s) {
-  for (char& c : s)
-    if (c == '"') c = '\'';
-  return "\"" + s + "\"";
-}
-
 }  // namespace
 
 std::string study_csv(const std::vector<StudyCase>& cases) {
-  std::string o =
-      "knob,label,dt_fraction,precision,stiffness_scale,inertial_number,skin_over_d,rolling,"
-      "damping,contact_status,overlap_err_pct,force_err_pct,contact_time_err_pct,"
+  std::string o = std::string(kSettingsCsvHeader) +
+      ",contact_status,overlap_err_pct,force_err_pct,contact_time_err_pct,"
       "restitution_err_pct,rolling_time_err_pct,shear_status,peak_deg,residual_deg,"
       "dilatancy_deg,peak_err_pct,residual_err_pct,dilatancy_err_pct,wall_s,"
       "particle_steps_per_s,steps,list_builds,seed,perturbation_d\n";
   for (const StudyCase& c : cases) {
     const StudySettings& s = c.settings;
-    o += quoted(s.knob) + "," + quoted(s.label) + "," + num(s.dt_fraction) + "," +
-         (s.precision == Precision::Float ? "float" : "double") + "," + num(s.stiffness_scale) +
-         "," + num(s.inertial_number) + "," + num(s.skin_factor) + "," + (s.rolling ? "1" : "0") +
-         "," + (s.damping ? "1" : "0") + ",";
+    o += settings_csv_cells(s) + ",";
     if (c.contact.ok)
       o += "ok," + num(c.contact.overlap) + "," + num(c.contact.force) + "," +
            num(c.contact.duration) + "," + num(c.contact.restitution) + "," +
            num(c.contact.rolling) + ",";
     else
-      o += quoted("failed: " + c.contact.failure) + ",,,,,,";
+      o += csv_quoted("failed: " + c.contact.failure) + ",,,,,,";
     if (c.shear.ok) {
       auto opt = [](const std::optional<double>& v) { return v ? num(*v) : std::string(); };
       o += "ok," + num(c.shear.peak_angle) + "," + num(c.shear.residual_angle) + "," +
@@ -425,7 +415,7 @@ std::string study_csv(const std::vector<StudyCase>& cases) {
            num(c.shear.particle_steps_per_second, "%.4g") + "," + std::to_string(c.shear.steps) +
            "," + std::to_string(c.shear.list_builds);
     } else {
-      o += quoted(c.shear.failure.empty() ? "not run" : "failed: " + c.shear.failure) +
+      o += csv_quoted(c.shear.failure.empty() ? "not run" : "failed: " + c.shear.failure) +
            ",,,,,,,,,,";
     }
     o += "," + std::to_string(s.seed) + "," + num(s.perturbation) + "\n";

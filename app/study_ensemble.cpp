@@ -100,12 +100,6 @@ Chaos measure_chaos(const std::vector<StudyCase>& runs) {
 
 namespace {
 
-std::string quoted(std::string s) {
-  for (char& ch : s)
-    if (ch == '"') ch = '\'';
-  return "\"" + s + "\"";
-}
-
 // "mean,half_width" ("mean," when the interval is unknown)
 std::string pair(const Interval& i) {
   return format_number("%.6g", i.mean) + "," +
@@ -196,27 +190,36 @@ std::vector<SettingSummary> parse_ensemble_csv(const std::string& text) {
   return out;
 }
 
+std::string csv_quoted(std::string s) {
+  for (char& ch : s)
+    if (ch == '"') ch = '\'';
+  return "\"" + s + "\"";
+}
+
+std::string settings_csv_cells(const StudySettings& k) {
+  const auto num = [](double v) { return format_number("%.6g", v); };
+  return csv_quoted(k.knob) + "," + csv_quoted(k.label) + "," + num(k.dt_fraction) + "," +
+         (k.precision == Precision::Float ? "float" : "double") + "," + num(k.stiffness_scale) +
+         "," + num(k.inertial_number) + "," + num(k.skin_factor) + "," + (k.rolling ? "1" : "0") +
+         "," + (k.damping ? "1" : "0");
+}
+
 std::string ensemble_csv(const std::vector<SettingSummary>& settings) {
-  std::string o =
-      "knob,label,dt_fraction,precision,stiffness_scale,inertial_number,skin_over_d,rolling,"
-      "damping,runs,failed,peak_deg,peak_ci95_deg,residual_deg,residual_ci95_deg,dilatancy_deg,"
+  std::string o = std::string(kSettingsCsvHeader) +
+      ",runs,failed,peak_deg,peak_ci95_deg,residual_deg,residual_ci95_deg,dilatancy_deg,"
       "dilatancy_ci95_deg,peak_err_deg,peak_err_ci95_deg,peak_err_significant,residual_err_deg,"
       "residual_err_ci95_deg,residual_err_significant,dilatancy_err_deg,dilatancy_err_ci95_deg,"
       "dilatancy_err_significant,wall_s_per_run,failure\n";
   for (const SettingSummary& s : settings) {
-    const StudySettings& k = s.settings;
-    o += quoted(k.knob) + "," + quoted(k.label) + "," + format_number("%.6g", k.dt_fraction) + "," +
-         (k.precision == Precision::Float ? "float" : "double") + "," +
-         format_number("%.6g", k.stiffness_scale) + "," + format_number("%.6g", k.inertial_number) +
-         "," + format_number("%.6g", k.skin_factor) + "," + (k.rolling ? "1" : "0") + "," +
-         (k.damping ? "1" : "0") + "," + std::to_string(s.runs) + "," + std::to_string(s.failed);
+    o += settings_csv_cells(s.settings) + "," + std::to_string(s.runs) + "," +
+         std::to_string(s.failed);
     if (s.peak.n > 0)
       o += "," + pair(s.peak) + "," + pair(s.residual) + "," + pair(s.dilatancy) + "," +
            error_cells(s.peak_error) + "," + error_cells(s.residual_error) + "," +
            error_cells(s.dilatancy_error) + "," + format_number("%.2f", s.wall_seconds);
     else
       o += ",,,,,,,,,,,,,,,,";
-    o += "," + quoted(s.failure) + "\n";
+    o += "," + csv_quoted(s.failure) + "\n";
   }
   return o;
 }

@@ -52,6 +52,14 @@ struct Chaos {
 };
 Chaos measure_chaos(const std::vector<StudyCase>& runs);
 
+// The columns both study CSVs (cases.csv, ensemble.csv) start with: a
+// setting's knob, label and numerical choices; and the cells of one.
+constexpr const char* kSettingsCsvHeader =
+    "knob,label,dt_fraction,precision,stiffness_scale,inertial_number,skin_over_d,rolling,damping";
+std::string settings_csv_cells(const StudySettings& s);
+// A CSV cell in double quotes (its own double quotes become single ones).
+std::string csv_quoted(std::string s);
+
 // ensemble.csv: one row per setting, every interval as mean and half width,
 // and back (the columns found by their names; throws std::runtime_error
 // naming a missing column or a malformed row). What comes back is what the

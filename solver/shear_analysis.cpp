@@ -315,13 +315,18 @@ void read_band(const std::map<std::string, std::string>& kv, ShearSummary& s) {
 
 }  // namespace
 
-ShearSummary parse_shear_summary(const std::string& text) {
+std::map<std::string, std::string> summary_keys(const std::string& text) {
   std::map<std::string, std::string> kv;
   std::istringstream in(text);
   for (std::string line; std::getline(in, line);) {
     const size_t eq = line.find(" = ");
     if (eq != std::string::npos) kv[line.substr(0, eq)] = line.substr(eq + 3);
   }
+  return kv;
+}
+
+ShearSummary parse_shear_summary(const std::string& text) {
+  std::map<std::string, std::string> kv = summary_keys(text);
   rename_older_keys(kv);
   ShearSummary s;
   const struct {

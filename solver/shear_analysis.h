@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -119,6 +120,9 @@ std::string shear_rows_csv(const std::vector<ShearRow>& rows);
 std::vector<ShearRow> parse_shear_rows_csv(const std::string& text);
 std::string shear_summary_text(const ShearSummary& s);
 ShearSummary parse_shear_summary(const std::string& text);
+// The "key = value" lines of a summary.txt (SimSols' or another code's), as
+// they stand: what parse_shear_summary reads its fields from.
+std::map<std::string, std::string> summary_keys(const std::string& text);
 
 // Mohr-Coulomb envelope tau = c + sigma tan(phi) by least squares over
 // (sigma, tau) points (Pa), with the coefficient of determination R^2 and,
