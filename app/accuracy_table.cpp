@@ -13,13 +13,32 @@ const std::vector<SettingSummary>& accuracy_table() {
   return table;
 }
 
-const SettingSummary* expected_accuracy(double dt, Precision p) {
+namespace {
+
+// The setting of `specimen` with the knob `knob`, or null.
+const SettingSummary* find_setting(StudySpecimen specimen, const char* knob) {
+  for (const SettingSummary& e : accuracy_table())
+    if (e.settings.specimen == specimen && e.settings.knob == knob) return &e;
+  return nullptr;
+}
+
+std::string error_text(const char* name, const Interval& e) {
+  std::string text = std::string(name) + " " + format_number("%+.2f", e.mean);
+  if (std::isfinite(e.half_width)) text += " +- " + format_number("%.2f", e.half_width);
+  return text + (e.significant() ? " deg (significant)" : " deg");
+}
+
+}  // namespace
+
+const SettingSummary* expected_accuracy(double dt, Precision p, StudySpecimen specimen) {
   const std::vector<SettingSummary>& t = accuracy_table();
-  const double baseline_i = t.size() > 1 ? t[1].settings.inertial_number : 8e-4;
+  const SettingSummary* baseline = find_setting(specimen, "baseline");
+  const double baseline_i = baseline ? baseline->settings.inertial_number : 8e-4;
   const SettingSummary* best = nullptr;
   double best_d = 1e300;
   for (const SettingSummary& e : t) {
-    if (e.settings.precision != p || e.settings.stiffness_scale != 1 ||
+    if (e.settings.specimen != specimen || e.settings.precision != p ||
+        e.settings.stiffness_scale != 1 ||
         e.settings.inertial_number != baseline_i)
       continue;
     const double d = std::fabs(std::log(e.settings.dt_fraction / dt));
@@ -32,17 +51,17 @@ const SettingSummary* expected_accuracy(double dt, Precision p) {
 }
 
 std::string expected_accuracy_text(const SettingSummary& s) {
-  const std::vector<SettingSummary>& t = accuracy_table();
-  const std::string where = " (setting '" + s.settings.label + "', docs/accuracy.md)";
+  const std::string where = " (" + std::string(specimen_name(s.settings.specimen)) +
+                            " specimen, setting '" + s.settings.label + "', docs/accuracy.md)";
   if (!s.peak_error) return "accuracy study: " + (s.failure.empty() ? "no result" : s.failure) + where;
-  const Interval& e = *s.peak_error;
   std::string text = "expected (accuracy study, " + std::to_string(s.peak.n) +
-                     " specimens): phi_peak " + format_number("%+.2f", e.mean);
-  if (std::isfinite(e.half_width)) text += " +- " + format_number("%.2f", e.half_width);
-  text += " deg from the most accurate settings";
-  text += e.significant() ? " (a significant difference)" : " (within the specimens' scatter)";
-  if (!t.empty() && t[0].wall_seconds > 0)
-    text += ", " + format_number("%.2f", s.wall_seconds / t[0].wall_seconds) + "x their time";
+                     " specimens) against the most accurate settings: " +
+                     error_text("phi_peak", *s.peak_error);
+  if (s.settings.specimen == StudySpecimen::Poured && s.residual_error)
+    text += ", " + error_text("phi_res", *s.residual_error);
+  const SettingSummary* ref = find_setting(s.settings.specimen, "reference");
+  if (ref && ref->wall_seconds > 0)
+    text += ", " + format_number("%.2f", s.wall_seconds / ref->wall_seconds) + "x their time";
   return text + where;
 }
 

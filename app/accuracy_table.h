@@ -14,11 +14,13 @@ namespace simsols {
 
 // The embedded study's settings (parsed once).
 const std::vector<SettingSummary>& accuracy_table();
-// The time-step / precision setting nearest to these (stiffness 1,
-// inertial number of the baseline), or null.
-const SettingSummary* expected_accuracy(double dt_fraction, Precision precision);
-// The panel's line for it: "phi_peak +0.05 +- 0.08 deg from the most
-// accurate settings (within the specimens' scatter), 0.07x their time".
+// The time-step / precision setting of `specimen` nearest to these
+// (stiffness 1, inertial number of the baseline), or null.
+const SettingSummary* expected_accuracy(double dt_fraction, Precision precision,
+                                        StudySpecimen specimen);
+// The panel's line for it: "... against the most accurate settings:
+// phi_peak +0.05 +- 0.08 deg, 0.07x their time (layered specimen, ...)";
+// the poured specimen's adds phi_res.
 std::string expected_accuracy_text(const SettingSummary& s);
 
 }  // namespace simsols

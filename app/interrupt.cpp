@@ -2,10 +2,15 @@
 
 #include <unistd.h>
 
+#include <atomic>
+
 namespace simsols {
 namespace {
 
-volatile std::sig_atomic_t g_signal = 0;  // see interrupt.h: the one process-wide flag
+// See interrupt.h: the one process-wide flag. Lock-free atomic, so that
+// both the signal handler and the study's worker threads may touch it.
+std::atomic<int> g_signal = 0;
+static_assert(std::atomic<int>::is_always_lock_free);
 
 void on_signal(int sig) {
   if (g_signal != 0) {  // the second one: leave now

@@ -101,8 +101,14 @@ void LabApp::draw_controls() {
     ImGui::SetNextItemWidth(200);
     if (ImGui::SliderFloat("time step (x Rayleigh)", &dt_fraction, 0.05f, 0.5f, "%.2f"))
       exp_->set_dt_fraction(dt_fraction);
-    // what the accuracy study measured for these settings (docs/accuracy.md)
-    if (const SettingSummary* a = expected_accuracy(dt_fraction, exp_->scene().numerics.precision)) {
+    // what the accuracy study measured for these settings on the specimen
+    // most like this one (docs/accuracy.md)
+    const auto& box = exp_->scene().shear_box;
+    const StudySpecimen kind = box && box->specimen.method == ShearSpecimen::Method::Layers
+                                   ? StudySpecimen::Layered
+                                   : StudySpecimen::Poured;
+    if (const SettingSummary* a =
+            expected_accuracy(dt_fraction, exp_->scene().numerics.precision, kind)) {
       ImGui::PushTextWrapPos(0);
       const ImVec4 grey = ImGui::GetStyle().Colors[ImGuiCol_TextDisabled];
       ImGui::TextColored(grey, "%s", expected_accuracy_text(*a).c_str());

@@ -87,17 +87,39 @@ Scene contact_scene(const StudySettings& s, const Material& m) {
 
 double pct(double measured, double theory) { return 100 * std::fabs(measured / theory - 1); }
 
+// The settings of `labels`, in that order, from the sweep.
+std::vector<StudySettings> pick(std::initializer_list<const char*> labels) {
+  std::vector<StudySettings> all = sweep(), out;
+  for (const char* label : labels)
+    for (const StudySettings& s : all)
+      if (s.label == label) out.push_back(s);
+  return out;
+}
+
 // The quick preset's settings: one step each way on the knobs that matter
 // most, so that its ensembles cost about what one run per setting of the
 // whole sweep did.
 std::vector<StudySettings> quick_sweep() {
-  std::vector<StudySettings> all = sweep(), quick;
-  for (const char* label : {"reference: dt 0.10 double I 2e-4", "baseline: dt 0.25 float I 8e-4",
-                            "dt 0.10", "dt 0.50", "double", "E x 0.1", "I 2e-3",
-                            "no rolling friction"})
-    for (const StudySettings& s : all)
-      if (s.label == label) quick.push_back(s);
-  return quick;
+  return pick({"reference: dt 0.10 double I 2e-4", "baseline: dt 0.25 float I 8e-4", "dt 0.10",
+               "dt 0.50", "double", "E x 0.1", "I 2e-3", "no rolling friction"});
+}
+
+std::vector<StudySettings> joined(std::vector<StudySettings> a, const std::vector<StudySettings>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+// The poured specimen's (quick): a reference at the baseline's shear speed
+// (its runs cost ~2.5x the layered ones', and the reference's slower shear
+// 4x more again), and the cheaper settings a user would pick for a random
+// specimen. The full preset sweeps all of them against the full reference.
+std::vector<StudySettings> poured_sweep(bool full) {
+  std::vector<StudySettings> out =
+      full ? sweep()
+           : joined({make("reference", "reference: dt 0.10 double I 8e-4", 0.10, Precision::Double)},
+                    pick({"baseline: dt 0.25 float I 8e-4", "dt 0.50", "E x 0.1", "I 2e-3"}));
+  for (StudySettings& s : out) s.specimen = StudySpecimen::Poured;
+  return out;
 }
 
 }  // namespace
@@ -110,12 +132,12 @@ std::optional<StudyPreset> study_preset(const std::string& name, int ensemble) {
   StudyPreset p;
   p.name = name;
   if (name == "quick") {
-    p.cases = quick_sweep();
+    p.cases = joined(quick_sweep(), poured_sweep(false));
     p.ensemble = 3;
   } else if (name == "full") {
     p.displacement_mm = 6;
     p.rows = 300;
-    p.cases = sweep();
+    p.cases = joined(sweep(), poured_sweep(true));
     p.ensemble = 5;
   } else if (name == "ci") {
     // reduced: two layers, 0.6 mm of shear, few cases
@@ -129,6 +151,14 @@ std::optional<StudyPreset> study_preset(const std::string& name, int ensemble) {
                make("time step", "dt 0.4", 0.4),
                make("precision", "double dt 0.2", 0.2, D),
                make("time step", "dt 3.0 (forced)", 3.0)};
+    // the poured specimen in the paper's box, its rain not quite settled
+    p.poured_box_scale = 1;
+    p.poured_settle_time = 0.1;
+    for (StudySettings s : {make("reference", "reference: dt 0.2 double", 0.2, D),
+                            make("time step", "dt 0.4", 0.4)}) {
+      s.specimen = StudySpecimen::Poured;
+      p.cases.push_back(s);
+    }
     p.ensemble = 2;
   } else {
     return std::nullopt;
@@ -140,24 +170,38 @@ std::optional<StudyPreset> study_preset(const std::string& name, int ensemble) {
 std::vector<StudySettings> study_runs(const StudyPreset& preset,
                                       const std::vector<StudySettings>& settings) {
   std::vector<StudySettings> runs;
+  std::optional<StudySettings> shear_twin;  // the specimen's last run
   for (size_t i = 0; i < settings.size(); ++i) {
     for (int seed = 1; seed <= preset.ensemble; ++seed) {
       StudySettings m = settings[i];
       m.seed = seed;
       runs.push_back(m);
     }
-    if (i == 0 && preset.shear) {
-      StudySettings twin = settings[0];
-      twin.knob = "round-off";
-      twin.label = settings[0].label + " (round-off twin)";
+    if (settings[i].knob == "reference" && preset.shear) {
+      StudySettings twin = settings[i];
+      twin.knob = kTwinKnob;
+      twin.label = settings[i].label + " (round-off twin)";
       twin.perturbation = kRoundOffPerturbation;
       runs.push_back(twin);
+      if (settings[i].specimen == StudySpecimen::Poured) {
+        twin.knob = kShearTwinKnob;
+        twin.label = settings[i].label + " (round-off twin at shear)";
+        twin.perturb_at_shear = true;
+        shear_twin = twin;
+      }
+    }
+    const bool last_of_specimen =
+        i + 1 == settings.size() || settings[i + 1].specimen != settings[i].specimen;
+    if (last_of_specimen && shear_twin) {
+      runs.push_back(*shear_twin);
+      shear_twin.reset();
     }
   }
   return runs;
 }
 
-ContactErrors run_contact_checks(const StudySettings& s) {
+ContactErrors run_contact_checks(const StudySettings& s, std::shared_ptr<Device> device) {
+  if (!device) device = default_device();
   ContactErrors e;
   const double R = 6.35e-3 / 2;
   try {
@@ -179,7 +223,7 @@ ContactErrors run_contact_checks(const StudySettings& s) {
       const double dmax = std::pow(15 * mass * v * v / (16 * es * std::sqrt(R)), 0.4);
       const double fmax = 4.0 / 3 * es * std::sqrt(R) * std::pow(dmax, 1.5);
       const double tc = 2 * std::sqrt(std::numbers::pi) * std::tgamma(1.4) / std::tgamma(0.9) * dmax / v;
-      Simulation sim(default_device(), sc);
+      Simulation sim(device, sc);
       // contact time: the zero crossings of the overlap, interpolated
       // linearly between steps (not a count of whole steps)
       double overlap = 0, force = 0, t_in = -1, t_out = -1, prev = R - sc.particles[0].position[2];
@@ -214,7 +258,7 @@ ContactErrors run_contact_checks(const StudySettings& s) {
       p.position = {0, 0, R + 1e-7};
       p.velocity = {0, 0, -0.1};
       sc.particles = {p};
-      Simulation sim(default_device(), sc);
+      Simulation sim(device, sc);
       if (!advance_through_contact(sim, 0, 200000))
         throw std::runtime_error("the damped impact never ended");
       const double out = sim.snapshot().velocity[0][2] / 0.1;
@@ -237,7 +281,7 @@ ContactErrors run_contact_checks(const StudySettings& s) {
       p.position = {0, 0, R - std::pow(mass * g / (4.0 / 3 * es * std::sqrt(R)), 2.0 / 3)};
       p.velocity = {v0, 0, 0};
       sc.particles = {p};
-      Simulation sim(default_device(), sc);
+      Simulation sim(device, sc);
       const double t_theory = 2 * v0 / (7 * mu * g);
       double t_roll = -1, prev_slip = v0, prev_t = 0;
       while (sim.time() < 3 * t_theory) {
@@ -285,8 +329,15 @@ Scene shear_case_scene(const StudyPreset& preset, const StudySettings& s) {
         x.shear_box->shear_displacement = preset.displacement_mm * 1e-3;
         x.shear_box->rows = preset.rows;
         x.shear_box->specimen.seed = s.seed;
+        if (s.specimen == StudySpecimen::Poured) {
+          x.shear_box->specimen.method = ShearSpecimen::Method::Pour;
+          x.shear_box->length *= preset.poured_box_scale;
+          x.shear_box->width *= preset.poured_box_scale;
+          x.shear_box->settle_time = preset.poured_settle_time;
+        }
       });
-  if (s.perturbation != 0 && !sc.particles.empty()) sc.particles[0].position[0] += s.perturbation * d;
+  if (s.perturbation != 0 && !s.perturb_at_shear && !sc.particles.empty())
+    sc.particles[0].position[0] += s.perturbation * d;
   return sc;
 }
 
@@ -307,21 +358,24 @@ void check_case(Simulation& sim, const ShearTest& test) {
 
 ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s,
                            const ShearCaseControl& control) {
+  const std::shared_ptr<Device> device = control.device ? control.device : default_device();
   ShearResult r;
   try {
     std::unique_ptr<Simulation> sim;
     std::string state;
     double wall_before = 0;
     if (!control.checkpoint.empty() && std::filesystem::exists(control.checkpoint)) {
-      sim = load_checkpoint(default_device(), control.checkpoint, &state);
+      sim = load_checkpoint(device, control.checkpoint, &state);
       wall_before = driver_wall_seconds(state);
     } else {
-      sim = std::make_unique<Simulation>(default_device(), shear_case_scene(preset, s));
+      sim = std::make_unique<Simulation>(device, shear_case_scene(preset, s));
     }
     ShearTest test(*sim);
     if (!state.empty()) {
       test.restore_state(state);
       std::fprintf(stderr, "[study] case resumed at %s\n", where_test_is(*sim, test).c_str());
+    } else if (s.perturb_at_shear) {
+      test.hold_before_shear(true);  // until the bead is moved, below
     }
     const auto t0 = Clock::now();
     while (!test.done()) {
@@ -331,7 +385,11 @@ ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s,
         r.interrupted = true;
         return r;
       }
-      test.advance(5000);
+      test.advance(5000);  // returns at each check: a held test is ready at the member's step
+      if (s.perturb_at_shear && test.ready_to_shear()) {
+        sim->nudge_particle(0, {s.perturbation * test.bead_diameter(), 0, 0});
+        test.start_shear();
+      }
       check_case(*sim, test);
       const Observables o = sim->steps() % 50000 < 5000 ? sim->observe() : Observables{};
       if (!std::isfinite(o.kinetic())) throw std::runtime_error("NaN in the kinetic energy");
@@ -363,26 +421,24 @@ ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s,
 }
 
 void compare_to_reference(std::vector<StudyCase>& cases) {
-  if (cases.empty()) return;
-  ShearResult ref;  // the mean of the reference's members
-  int n = 0;
-  for (const StudyCase& c : cases)
-    if (c.settings.same_setting(cases[0].settings) && c.shear.ok) {
-      ref.peak_angle += c.shear.peak_angle;
-      ref.residual_angle += c.shear.residual_angle;
-      ref.dilatancy_angle += c.shear.dilatancy_angle;
-      ++n;
-    }
-  if (n == 0) return;
-  ref.peak_angle /= n;
-  ref.residual_angle /= n;
-  ref.dilatancy_angle /= n;
   auto rel = [](double a, double b) { return b != 0 ? 100 * std::fabs(a - b) / std::fabs(b) : 0.0; };
-  for (StudyCase& c : cases) {
-    if (!c.shear.ok) continue;
-    c.peak_error = rel(c.shear.peak_angle, ref.peak_angle);
-    c.residual_error = rel(c.shear.residual_angle, ref.residual_angle);
-    c.dilatancy_error = rel(c.shear.dilatancy_angle, ref.dilatancy_angle);
+  for (StudySpecimen specimen : {StudySpecimen::Layered, StudySpecimen::Poured}) {
+    ShearResult ref;  // the mean of the specimen's reference's members
+    int n = 0;
+    for (const StudyCase& c : cases)
+      if (c.settings.specimen == specimen && c.settings.knob == "reference" && c.shear.ok) {
+        ref.peak_angle += c.shear.peak_angle;
+        ref.residual_angle += c.shear.residual_angle;
+        ref.dilatancy_angle += c.shear.dilatancy_angle;
+        ++n;
+      }
+    if (n == 0) continue;
+    for (StudyCase& c : cases) {
+      if (!c.shear.ok || c.settings.specimen != specimen) continue;
+      c.peak_error = rel(c.shear.peak_angle, ref.peak_angle / n);
+      c.residual_error = rel(c.shear.residual_angle, ref.residual_angle / n);
+      c.dilatancy_error = rel(c.shear.dilatancy_angle, ref.dilatancy_angle / n);
+    }
   }
 }
 
@@ -425,11 +481,15 @@ std::string study_csv(const std::vector<StudyCase>& cases) {
 
 namespace {
 
-// The 95 % upper bound of a setting's |error| on phi_peak (deg); NaN when
-// unknown.
+// The 95 % upper bound of a setting's |error| (deg): on phi_peak, and for
+// the poured specimen the larger of phi_peak's and phi_res's (its residual
+// is a result of its own); NaN when unknown.
+double bound_of(const std::optional<Interval>& e) {
+  return e ? std::fabs(e->mean) + e->half_width : std::numeric_limits<double>::quiet_NaN();
+}
 double error_bound(const SettingSummary& s) {
-  if (!s.peak_error) return std::numeric_limits<double>::quiet_NaN();
-  return std::fabs(s.peak_error->mean) + s.peak_error->half_width;
+  if (s.settings.specimen == StudySpecimen::Layered) return bound_of(s.peak_error);
+  return std::max(bound_of(s.peak_error), bound_of(s.residual_error));
 }
 
 std::string file_part(std::string k) {
@@ -438,10 +498,34 @@ std::string file_part(std::string k) {
   return k;
 }
 
-// Error of phi_peak (the ensemble mean's difference from the reference's,
-// with its 95 % interval as a bar) against the wall time per run: one chart
-// per knob, with the reference and the baseline.
-void write_knob_charts(const std::filesystem::path& dir, const std::vector<SettingSummary>& set) {
+// "" for the layered specimen's files, "poured_" for the poured one's.
+std::string file_prefix(StudySpecimen s) {
+  return s == StudySpecimen::Layered ? "" : std::string(specimen_name(s)) + "_";
+}
+
+// One series of errors (with their 95 % intervals as bars) against the
+// wall time per run, of the settings of knob `k` and the reference and
+// baseline.
+plot::Series error_series(const std::vector<SettingSummary>& set, const std::string& k,
+                          const char* name, std::optional<Interval> SettingSummary::*which,
+                          bool line, std::vector<plot::Marker>* markers) {
+  plot::Series sr{name, {}, {}, std::nullopt, line, true, false, {}};
+  for (const SettingSummary& s : set) {
+    const std::optional<Interval>& e = s.*which;
+    if (!e || (s.settings.knob != k && s.settings.knob != "baseline" && s.settings.knob != "reference"))
+      continue;
+    sr.x.push_back(s.wall_seconds);
+    sr.y.push_back(e->mean);
+    sr.y_err.push_back(e->half_width);
+    if (markers) markers->push_back({s.wall_seconds, e->mean, s.settings.label});
+  }
+  return sr;
+}
+
+// Errors of phi_peak and phi_res (the ensemble means' differences from the
+// reference's) against the wall time per run: one chart per knob.
+void write_knob_charts(const std::filesystem::path& dir, const std::vector<SettingSummary>& set,
+                       StudySpecimen specimen) {
   std::vector<std::string> knobs;
   for (const SettingSummary& s : set)
     if (s.peak_error && s.settings.knob != "reference" && s.settings.knob != "baseline" &&
@@ -449,35 +533,32 @@ void write_knob_charts(const std::filesystem::path& dir, const std::vector<Setti
       knobs.push_back(s.settings.knob);
   for (const std::string& k : knobs) {
     plot::Chart ch;
-    ch.title = "Accuracy against cost: " + k;
+    ch.title = "Accuracy against cost, " + std::string(specimen_name(specimen)) + " specimen: " + k;
     ch.x_label = "wall time per run of the shear test (s)";
-    ch.y_label = "error of φ_peak vs reference (°, 95 % interval)";
-    plot::Series sr{k, {}, {}, std::nullopt, false, true, false, {}};
-    for (const SettingSummary& s : set) {
-      if (!s.peak_error || (s.settings.knob != k && s.settings.knob != "baseline" &&
-                            s.settings.knob != "reference"))
-        continue;
-      sr.x.push_back(s.wall_seconds);
-      sr.y.push_back(s.peak_error->mean);
-      sr.y_err.push_back(s.peak_error->half_width);
-      ch.markers.push_back({s.wall_seconds, s.peak_error->mean, s.settings.label});
-    }
-    ch.series.push_back(sr);
-    plot::write_chart_png(ch, (dir / ("error_vs_time_" + file_part(k) + ".png")).string());
+    ch.y_label = "error vs reference (°, 95 % interval)";
+    ch.series.push_back(error_series(set, k, "φ_peak", &SettingSummary::peak_error, false, &ch.markers));
+    ch.series.push_back(error_series(set, k, "φ_res", &SettingSummary::residual_error, false, nullptr));
+    plot::write_chart_png(
+        ch, (dir / (file_prefix(specimen) + "error_vs_time_" + file_part(k) + ".png")).string());
   }
 }
 
 // The Pareto front: the settings no other beats on both cost and the 95 %
-// bound of |error| on phi_peak.
-void write_pareto_chart(const std::filesystem::path& dir, const std::vector<SettingSummary>& set) {
+// bound of |error| (error_bound).
+void write_pareto_chart(const std::filesystem::path& dir, const std::vector<SettingSummary>& set,
+                        StudySpecimen specimen) {
   std::vector<const SettingSummary*> ok;
   for (const SettingSummary& s : set)
     if (std::isfinite(error_bound(s))) ok.push_back(&s);
+  if (ok.empty()) return;
   std::sort(ok.begin(), ok.end(), [](auto* a, auto* b) { return a->wall_seconds < b->wall_seconds; });
   plot::Chart pc;
-  pc.title = "Pareto front: the cheapest setting for a given error";
+  pc.title = "Pareto front, " + std::string(specimen_name(specimen)) +
+             " specimen: the cheapest setting for a given error";
   pc.x_label = "wall time per run of the shear test (s)";
-  pc.y_label = "|error| of φ_peak, 95 % upper bound (°)";
+  pc.y_label = specimen == StudySpecimen::Layered
+                   ? "|error| of φ_peak, 95 % upper bound (°)"
+                   : "|error| of φ_peak and φ_res, the larger 95 % bound (°)";
   plot::Series all{"all settings", {}, {}, std::nullopt, false, true, false, {}};
   plot::Series fr{"Pareto front", {}, {}, std::nullopt, true, true, false, {}};
   double best = 1e300;
@@ -493,7 +574,7 @@ void write_pareto_chart(const std::filesystem::path& dir, const std::vector<Sett
   }
   pc.series = {all, fr};
   pc.y_min = 0;
-  plot::write_chart_png(pc, (dir / "pareto.png").string());
+  plot::write_chart_png(pc, (dir / (file_prefix(specimen) + "pareto.png")).string());
 }
 
 }  // namespace
@@ -507,9 +588,14 @@ void write_study_outputs(const std::string& dir, const StudyPreset& preset,
   const std::vector<SettingSummary> settings = summarise_settings(cases);
   write_file_atomic((fs::path(dir) / "ensemble.csv").string(), ensemble_csv(settings));
   write_file_atomic((fs::path(dir) / "summary.md").string(),
-                    ensemble_summary_md(preset, settings, measure_chaos(cases)));
-  write_knob_charts(dir, settings);
-  write_pareto_chart(dir, settings);
+                    ensemble_summary_md(preset, settings, cases));
+  for (StudySpecimen specimen : {StudySpecimen::Layered, StudySpecimen::Poured}) {
+    std::vector<SettingSummary> of;
+    for (const SettingSummary& s : settings)
+      if (s.settings.specimen == specimen) of.push_back(s);
+    write_knob_charts(dir, of, specimen);
+    write_pareto_chart(dir, of, specimen);
+  }
 }
 
 }  // namespace simsols

@@ -13,8 +13,6 @@
 namespace simsols {
 namespace {
 
-constexpr const char* kTwinKnob = "round-off";
-
 struct Samples {
   std::vector<double> peak, residual, dilatancy;
   double wall = 0;
@@ -33,10 +31,24 @@ Samples samples_of(const std::vector<StudyCase>& runs, const StudySettings& s) {
   return x;
 }
 
-const StudyCase* find_run(const std::vector<StudyCase>& runs, const char* knob, int seed) {
+const StudyCase* find_run(const std::vector<StudyCase>& runs, StudySpecimen specimen,
+                          const char* knob, int seed) {
   for (const StudyCase& c : runs)
-    if (c.settings.knob == knob && c.settings.seed == seed) return &c;
+    if (c.settings.specimen == specimen && c.settings.knob == knob && c.settings.seed == seed)
+      return &c;
   return nullptr;
+}
+
+// The reference of `s`'s specimen: its setting with the knob "reference",
+// else its first.
+const SettingSummary* reference_of(const std::vector<SettingSummary>& all, const StudySettings& s) {
+  const SettingSummary* first = nullptr;
+  for (const SettingSummary& x : all) {
+    if (x.settings.specimen != s.specimen) continue;
+    if (x.settings.knob == "reference") return &x;
+    if (!first) first = &x;
+  }
+  return first;
 }
 
 }  // namespace
@@ -44,7 +56,7 @@ const StudyCase* find_run(const std::vector<StudyCase>& runs, const char* knob, 
 std::vector<SettingSummary> summarise_settings(const std::vector<StudyCase>& runs) {
   std::vector<SettingSummary> out;
   for (const StudyCase& c : runs) {
-    if (c.settings.knob == kTwinKnob) continue;
+    if (c.settings.knob == kTwinKnob || c.settings.knob == kShearTwinKnob) continue;
     auto it = std::find_if(out.begin(), out.end(),
                            [&](const SettingSummary& s) { return s.settings.same_setting(c.settings); });
     if (it == out.end()) {
@@ -56,9 +68,8 @@ std::vector<SettingSummary> summarise_settings(const std::vector<StudyCase>& run
     ++it->runs;
     if (!c.shear.ok && it->failed++ == 0) it->failure = c.shear.failure;
   }
-  if (out.empty()) return out;
-  const Samples ref = samples_of(runs, out[0].settings);
   for (SettingSummary& s : out) {
+    const Samples ref = samples_of(runs, reference_of(out, s.settings)->settings);
     const Samples x = samples_of(runs, s.settings);
     if (x.peak.empty()) continue;
     s.peak = mean_ci95(x.peak);
@@ -80,11 +91,11 @@ std::optional<double> separation_mm(const ShearResult& a, const ShearResult& b, 
   return std::nullopt;
 }
 
-Chaos measure_chaos(const std::vector<StudyCase>& runs) {
+Chaos measure_chaos(const std::vector<StudyCase>& runs, StudySpecimen specimen,
+                    const char* twin_knob) {
   Chaos c;
-  if (runs.empty()) return c;
-  const StudyCase* member = find_run(runs, runs[0].settings.knob.c_str(), 1);
-  const StudyCase* twin = find_run(runs, kTwinKnob, 1);
+  const StudyCase* member = find_run(runs, specimen, "reference", 1);
+  const StudyCase* twin = find_run(runs, specimen, twin_knob, 1);
   if (!member || !twin || !member->shear.ok || !twin->shear.ok) return c;
   const ShearResult &a = member->shear, &b = twin->shear;
   c.measured = true;
@@ -153,7 +164,7 @@ std::vector<SettingSummary> parse_ensemble_csv(const std::string& text) {
   std::string line;
   if (!std::getline(in, line)) throw std::runtime_error("ensemble.csv is empty");
   const Columns c(line);
-  const size_t knob = c.at("knob"), label = c.at("label"), dt = c.at("dt_fraction"),
+  const size_t specimen = c.at("specimen"), knob = c.at("knob"), label = c.at("label"), dt = c.at("dt_fraction"),
                precision = c.at("precision"), stiffness = c.at("stiffness_scale"),
                inertial = c.at("inertial_number"), runs = c.at("runs"), failed = c.at("failed"),
                wall = c.at("wall_s_per_run"), failure = c.at("failure");
@@ -164,6 +175,11 @@ std::vector<SettingSummary> parse_ensemble_csv(const std::string& text) {
     const std::vector<std::string> f = split_csv_line(line);
     if (f.size() <= failure) throw std::runtime_error("ensemble.csv: a short row: " + line);
     SettingSummary s;
+    const std::optional<StudySpecimen> kind = parse_specimen(f[specimen]);
+    if (!kind)
+      throw std::runtime_error("ensemble.csv: specimen '" + f[specimen] +
+                               "' is not one of: layered, poured");
+    s.settings.specimen = *kind;
     s.settings.knob = f[knob];
     s.settings.label = f[label];
     s.settings.dt_fraction = number(f[dt], "dt_fraction");
@@ -198,7 +214,8 @@ std::string csv_quoted(std::string s) {
 
 std::string settings_csv_cells(const StudySettings& k) {
   const auto num = [](double v) { return format_number("%.6g", v); };
-  return csv_quoted(k.knob) + "," + csv_quoted(k.label) + "," + num(k.dt_fraction) + "," +
+  return std::string(specimen_name(k.specimen)) + "," + csv_quoted(k.knob) + "," +
+         csv_quoted(k.label) + "," + num(k.dt_fraction) + "," +
          (k.precision == Precision::Float ? "float" : "double") + "," + num(k.stiffness_scale) +
          "," + num(k.inertial_number) + "," + num(k.skin_factor) + "," + (k.rolling ? "1" : "0") +
          "," + (k.damping ? "1" : "0");
@@ -241,9 +258,12 @@ std::string err(const std::optional<Interval>& e) {
 
 }  // namespace
 
-std::string ensemble_table_md(const std::vector<SettingSummary>& settings) {
+std::string ensemble_table_md(const std::vector<SettingSummary>& all, StudySpecimen specimen) {
+  std::vector<SettingSummary> settings;
+  for (const SettingSummary& s : all)
+    if (s.settings.specimen == specimen) settings.push_back(s);
   std::string md;
-  const double ref_wall = settings.empty() ? 0 : settings[0].wall_seconds;
+  const double ref_wall = settings.empty() ? 0 : reference_of(all, settings[0].settings)->wall_seconds;
   md += "| setting | runs | φ_peak (°) | error (°) | φ_res (°) | error (°) | ψ_max (°) | "
         "error (°) | wall per run (s) | × ref |\n"
         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
@@ -265,14 +285,15 @@ std::string ensemble_table_md(const std::vector<SettingSummary>& settings) {
 
 namespace {
 
-void chaos_text(std::string& md, const Chaos& c) {
-  md += "\n## Chaos\n\n";
+// One twin's line: `when` says when its bead was moved.
+void chaos_line(std::string& md, const Chaos& c, const char* when) {
   if (!c.measured) {
-    md += "Not measured (the reference's first member and its round-off twin did not both run).\n";
+    md += std::string("- Moved ") + when +
+          ": not measured (the reference's first member and this round-off twin did not both "
+          "run).\n";
     return;
   }
-  md += "The reference's first member and its round-off twin, one bead moved by " +
-        format_number("%g", kRoundOffPerturbation) + " d: τ/σ ";
+  md += std::string("- Moved ") + when + ": τ/σ ";
   md += c.separation ? "first differs by more than " + format_number("%g", kSeparationThreshold) +
                            " at " + format_number("%.2f", *c.separation) + " mm of shear"
                      : "never differs by more than " + format_number("%g", kSeparationThreshold);
@@ -282,25 +303,26 @@ void chaos_text(std::string& md, const Chaos& c) {
         format_number("%+.2f", c.dilatancy_difference) + "° apart.\n";
 }
 
+void chaos_text(std::string& md, const std::vector<StudyCase>& runs, StudySpecimen specimen) {
+  md += "\n### Chaos\n\nThe reference's first member against its round-off twin, one bead moved by " +
+        format_number("%g", kRoundOffPerturbation) + " d:\n\n";
+  chaos_line(md, measure_chaos(runs, specimen, kTwinKnob), "before the preparation");
+  if (specimen == StudySpecimen::Poured)
+    chaos_line(md, measure_chaos(runs, specimen, kShearTwinKnob), "as shearing starts");
+}
+
 }  // namespace
 
-std::string ensemble_summary_md(const StudyPreset& preset,
-                                const std::vector<SettingSummary>& settings, const Chaos& chaos) {
-  std::string md = "# Accuracy study `" + preset.name + "`\n\nShear test: " +
-                   format_number("%g", preset.diameter_mm) + " mm beads, " +
-                   format_number("%g", preset.stress_kpa) + " kPa, " +
-                   format_number("%g", preset.displacement_mm) + " mm of shear, " +
-                   std::to_string(preset.rows) + " rows; " + std::to_string(preset.ensemble) +
-                   " specimens per setting (preparation seeds 1.." +
-                   std::to_string(preset.ensemble) +
-                   "). Each result is the ensemble mean ± its 95 % confidence interval; "
-                   "an error is the difference from the reference's mean (first row) ± "
-                   "Welch's 95 % interval, **bold** when significant (the interval excludes "
-                   "zero).\n\n";
-  md += ensemble_table_md(settings);
-  md += "\nContact checks against theory (%; the same for every member): overlap / force / "
-        "contact time / restitution / time to roll\n\n| setting | errors (%) |\n| --- | --- |\n";
+namespace {
+
+void contact_table(std::string& md, const std::vector<SettingSummary>& settings) {
+  md += "\nContact checks against theory (%; no specimen, so the same for every member and both "
+        "specimens): overlap / force / contact time / restitution / time to roll\n\n"
+        "| setting | errors (%) |\n| --- | --- |\n";
+  std::vector<std::string> listed;
   for (const SettingSummary& s : settings) {
+    if (std::find(listed.begin(), listed.end(), s.settings.label) != listed.end()) continue;
+    listed.push_back(s.settings.label);
     const ContactErrors& c = s.contact;
     md += "| " + s.settings.label + " | " +
           (c.ok ? format_number("%.2g", c.overlap) + " / " + format_number("%.2g", c.force) +
@@ -309,21 +331,82 @@ std::string ensemble_summary_md(const StudyPreset& preset,
                 : "failed: " + c.failure) +
           " |\n";
   }
-  chaos_text(md, chaos);
-  md += "\n## Recommendation\n\n";
-  for (double tol : {0.1, 0.5}) {
-    const SettingSummary* cheapest = nullptr;
-    for (size_t i = 1; i < settings.size(); ++i) {
-      const SettingSummary& s = settings[i];
-      if (!s.peak_error || !std::isfinite(s.peak_error->half_width) || s.failed > 0) continue;
-      if (std::fabs(s.peak_error->mean) + s.peak_error->half_width > tol) continue;
-      if (!cheapest || s.wall_seconds < cheapest->wall_seconds) cheapest = &s;
-    }
-    md += "- φ_peak within " + format_number("%g", tol) + "° of the reference (95 %): ";
-    md += cheapest ? "**" + cheapest->settings.label + "**, " +
-                         format_number("%.1f", cheapest->wall_seconds) + " s per run\n"
-                   : "no setting of this study\n";
+}
+
+// The cheapest setting of `specimen` whose error on `which` (peak,
+// residual or dilatancy) is within `tol` degrees at 95 %, or null.
+const SettingSummary* cheapest_within(const std::vector<SettingSummary>& settings,
+                                      StudySpecimen specimen,
+                                      std::optional<Interval> SettingSummary::*which, double tol) {
+  const SettingSummary* best = nullptr;
+  for (const SettingSummary& s : settings) {
+    const std::optional<Interval>& e = s.*which;
+    if (s.settings.specimen != specimen || s.settings.knob == "reference" || !e ||
+        !std::isfinite(e->half_width) || s.failed > 0)
+      continue;
+    if (std::fabs(e->mean) + e->half_width > tol) continue;
+    if (!best || s.wall_seconds < best->wall_seconds) best = &s;
   }
+  return best;
+}
+
+void recommendation(std::string& md, const std::vector<SettingSummary>& settings,
+                    StudySpecimen specimen) {
+  md += "\n### Recommendation\n\n";
+  const struct {
+    const char* name;
+    std::optional<Interval> SettingSummary::*which;
+  } results[] = {{"φ_peak", &SettingSummary::peak_error},
+                 {"φ_res", &SettingSummary::residual_error},
+                 {"ψ_max", &SettingSummary::dilatancy_error}};
+  for (const auto& r : results)
+    for (double tol : {0.5, 2.0}) {
+      const SettingSummary* s = cheapest_within(settings, specimen, r.which, tol);
+      md += std::string("- ") + r.name + " within " + format_number("%g", tol) +
+            "° of the reference (95 %): ";
+      md += s ? "**" + s->settings.label + "**, " + format_number("%.1f", s->wall_seconds) +
+                    " s per run\n"
+              : "no setting of this study\n";
+    }
+}
+
+}  // namespace
+
+std::string specimen_description(const StudyPreset& preset, StudySpecimen specimen) {
+  if (specimen == StudySpecimen::Layered)
+    return "the paper's layered specimen (" +
+           (preset.layers > 0 ? std::to_string(preset.layers) : std::string("Table 1's")) +
+           " layers, each shifted by its seed) in the paper's 60.23 × 60.07 mm box";
+  return "a poured (random) specimen in a box " + format_number("%g", preset.poured_box_scale) +
+         " × the paper's, length and width (" + format_number("%.1f", 60.23 * preset.poured_box_scale) +
+         " × " + format_number("%.1f", 60.07 * preset.poured_box_scale) +
+         " mm), the beads of " + (preset.layers > 0 ? std::to_string(preset.layers) : std::string("4")) +
+         " layers rained in and settled for up to " + format_number("%g", preset.poured_settle_time) + " s";
+}
+
+std::string ensemble_summary_md(const StudyPreset& preset,
+                                const std::vector<SettingSummary>& settings,
+                                const std::vector<StudyCase>& runs) {
+  std::string md = "# Accuracy study `" + preset.name + "`\n\nShear test: " +
+                   format_number("%g", preset.diameter_mm) + " mm beads, " +
+                   format_number("%g", preset.stress_kpa) + " kPa, " +
+                   format_number("%g", preset.displacement_mm) + " mm of shear, " +
+                   std::to_string(preset.rows) + " rows; " + std::to_string(preset.ensemble) +
+                   " specimens per setting (preparation seeds 1.." +
+                   std::to_string(preset.ensemble) +
+                   "). Each result is the ensemble mean ± its 95 % confidence interval; "
+                   "an error is the difference from the specimen's reference's mean (its first "
+                   "row) ± Welch's 95 % interval, **bold** when significant (the interval "
+                   "excludes zero).\n";
+  for (StudySpecimen specimen : {StudySpecimen::Layered, StudySpecimen::Poured}) {
+    const std::string table = ensemble_table_md(settings, specimen);
+    if (table.find("\n|", table.find("---")) == std::string::npos) continue;  // no rows
+    md += "\n## The " + std::string(specimen_name(specimen)) + " specimen\n\nSpecimen: " +
+          specimen_description(preset, specimen) + ".\n\n" + table;
+    chaos_text(md, runs, specimen);
+    recommendation(md, settings, specimen);
+  }
+  contact_table(md, settings);
   return md;
 }
 

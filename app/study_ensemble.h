@@ -7,8 +7,12 @@
 // difference of its mean from the reference's mean, with Welch's interval
 // (study_stats.h): significant only when that interval excludes zero.
 //
-// Chaos: the reference's seed-1 member and its round-off twin (one bead
-// moved by 1e-9 d) differ only at round-off. The displacement at which
+// Each specimen (StudySpecimen) has its own reference, and its settings are
+// compared with that one only.
+//
+// Chaos: a specimen's reference's seed-1 member and its round-off twin (one bead
+// moved by 1e-9 d, before the preparation or, for the poured specimen,
+// also as shearing starts) differ only at round-off. The displacement at which
 // their tau/sigma curves first differ by more than kSeparationThreshold
 // is where the test stops being predictable run by run; past it only the
 // ensemble statistics are.
@@ -35,8 +39,9 @@ struct SettingSummary {
   double wall_seconds = 0;  // mean per member
 };
 
-// One summary per setting, in the order of first appearance; runs[0] is a
-// reference member. Round-off twins are not a setting of their own.
+// One summary per setting and specimen, in the order of first appearance;
+// errors against the specimen's reference (its knob "reference", else its
+// first setting). Round-off twins are not a setting of their own.
 std::vector<SettingSummary> summarise_settings(const std::vector<StudyCase>& runs);
 
 // Where two runs' tau/sigma curves first differ by more than `threshold`
@@ -50,12 +55,15 @@ struct Chaos {
   double largest_difference = 0;       // of tau/sigma over the test
   double peak_difference = 0, residual_difference = 0, dilatancy_difference = 0;  // deg
 };
-Chaos measure_chaos(const std::vector<StudyCase>& runs);
+// The reference's seed-1 member of `specimen` against its twin `twin_knob`
+// (kTwinKnob or kShearTwinKnob, study.h).
+Chaos measure_chaos(const std::vector<StudyCase>& runs, StudySpecimen specimen,
+                    const char* twin_knob = kTwinKnob);
 
 // The columns both study CSVs (cases.csv, ensemble.csv) start with: a
 // setting's knob, label and numerical choices; and the cells of one.
 constexpr const char* kSettingsCsvHeader =
-    "knob,label,dt_fraction,precision,stiffness_scale,inertial_number,skin_over_d,rolling,damping";
+    "specimen,knob,label,dt_fraction,precision,stiffness_scale,inertial_number,skin_over_d,rolling,damping";
 std::string settings_csv_cells(const StudySettings& s);
 // A CSV cell in double quotes (its own double quotes become single ones).
 std::string csv_quoted(std::string s);
@@ -66,12 +74,17 @@ std::string csv_quoted(std::string s);
 // tables need: the settings, runs, intervals, errors, cost and failure.
 std::string ensemble_csv(const std::vector<SettingSummary>& settings);
 std::vector<SettingSummary> parse_ensemble_csv(const std::string& text);
-// The settings' table of summary.md (and of docs/accuracy.md, generated
-// from the shipped ensemble.csv by `simsols study table`).
-std::string ensemble_table_md(const std::vector<SettingSummary>& settings);
-// summary.md: the settings' table (means, intervals, errors and their
-// significance, cost), the chaos measured, the recommendation.
+// One specimen's settings' table of summary.md (and of docs/accuracy.md,
+// generated from the shipped ensemble.csv by `simsols study table`); the
+// "x ref" column is the cost against that specimen's reference.
+std::string ensemble_table_md(const std::vector<SettingSummary>& settings, StudySpecimen specimen);
+// "the paper's layered specimen (...) in ...": what the study built.
+std::string specimen_description(const StudyPreset& preset, StudySpecimen specimen);
+// summary.md: per specimen, the settings' table (means, intervals, errors
+// and their significance, cost), the chaos measured, the recommendation;
+// then the contact checks.
 std::string ensemble_summary_md(const StudyPreset& preset,
-                                const std::vector<SettingSummary>& settings, const Chaos& chaos);
+                                const std::vector<SettingSummary>& settings,
+                                const std::vector<StudyCase>& runs);
 
 }  // namespace simsols

@@ -8,7 +8,7 @@
 namespace simsols {
 namespace {
 
-constexpr const char* kTag = "simsols-study-state 2";
+constexpr const char* kTag = "simsols-study-state 3";
 
 std::string one_line(std::string s) {
   for (char& c : s)
@@ -54,11 +54,13 @@ class LineReader {
   int line_ = 0;
 };
 
-// "knob | label | seed S perturbation P": a run's identity.
+// "specimen | knob | label | seed S perturbation P": a run's identity.
 std::string identity(const StudySettings& s) {
   char buf[64];
-  std::snprintf(buf, sizeof buf, " | seed %d perturbation %.17g", s.seed, s.perturbation);
-  return one_line(s.knob) + " | " + one_line(s.label) + buf;
+  std::snprintf(buf, sizeof buf, " | seed %d perturbation %.17g%s", s.seed, s.perturbation,
+                s.perturb_at_shear ? " at shear" : "");
+  return std::string(specimen_name(s.specimen)) + " | " + one_line(s.knob) + " | " +
+         one_line(s.label) + buf;
 }
 
 std::string curve_text(const ShearResult& s) {
@@ -76,7 +78,8 @@ std::string curve_text(const ShearResult& s) {
 std::string study_state_text(const StudyPreset& preset, const std::vector<StudySettings>& cases,
                              const std::vector<StudyCase>& done) {
   std::ostringstream o;
-  o << kTag << "\npreset " << preset.name << "\ncases " << cases.size() << "\nfinished "
+  o << kTag << "\npreset " << preset.name << "\npoured_box_scale"
+    << nums({preset.poured_box_scale}) << "\ncases " << cases.size() << "\nfinished "
     << done.size() << '\n';
   for (const StudyCase& c : done) {
     const ContactErrors& k = c.contact;
@@ -102,9 +105,15 @@ std::vector<StudyCase> parse_study_state(const std::string& text, const std::str
   LineReader r(text, path);
   r.expect(kTag);
   if (r.rest("preset") != preset.name) r.fail("written by another --preset");
+  double scale = 0;
+  if (!(r.expect("poured_box_scale") >> scale) || scale != preset.poured_box_scale)
+    r.fail("written with another --box-scale");
   size_t n = 0, finished = 0;
-  if (!(r.expect("cases") >> n) || n != cases.size()) r.fail("another number of cases (--knob?)");
-  if (!(r.expect("finished") >> finished) || finished > n) r.fail("a bad count of finished cases");
+  // the finished cases must be the first of `cases` (each checked below); a
+  // study whose case list grew at its end continues
+  if (!(r.expect("cases") >> n)) r.fail("a bad count of cases");
+  if (!(r.expect("finished") >> finished) || finished > n || finished > cases.size())
+    r.fail("more finished cases than this study has (--knob, --specimen?)");
   std::vector<StudyCase> done(finished);
   for (size_t i = 0; i < finished; ++i) {
     StudyCase& c = done[i];

@@ -92,6 +92,23 @@ Vec3 Simulation::wall_velocity(int wall) {
   return {v[0], v[1], v[2]};
 }
 
+void Simulation::nudge_particle(size_t slot, const Vec3& dx) {
+  if (slot >= static_cast<size_t>(model_->particles()))
+    throw std::out_of_range("nudge_particle: slot " + std::to_string(slot) + " does not exist");
+  const auto p = read_real4(*model_, state_->pos, slot);
+  double at[3] = {p[0] + dx[0], p[1] + dx[1], p[2] + dx[2]};
+  if (!model_->config().double_precision) {
+    // the float run's position is pos + pos_lo: move their sum
+    float lo[4];
+    model_->device().read(state_->pos_lo.get(), sizeof lo, lo, slot * sizeof lo);
+    for (int a = 0; a < 3; ++a) at[a] += lo[a];
+    const float fresh[4] = {float_remainder(at[0]), float_remainder(at[1]),
+                            float_remainder(at[2]), lo[3]};
+    guard_->write(&State::pos_lo, slot * sizeof fresh, fresh, sizeof fresh);
+  }
+  write_real4(&State::pos, slot, at[0], at[1], at[2], p[3]);
+}
+
 void Simulation::set_wall_point(int wall, const Vec3& p) {
   check_wall(*model_, wall, "set_wall_point");
   const Vec3& o = model_->origin();

@@ -46,6 +46,9 @@ class Simulation {
   // Moves a wall at once (no sweep: the caller makes sure it lands clear of
   // the particles, e.g. a platen lowered onto a specimen).
   void set_wall_point(int wall, const Vec3& point);
+  // Moves the particle in state slot `slot` by dx at once (the accuracy
+  // study's round-off twin at the start of shearing).
+  void nudge_particle(size_t slot, const Vec3& dx);
   // Mean force the particles exerted on each wall over the steps since the
   // previous call (which restarts the means); needs a servo wall in the
   // scene (the servo stage keeps the sums). Empty when there is none.

@@ -405,40 +405,68 @@ TEST(Cli, AccuracyStudyReducedForm) {
   const Result r = run("study accuracy --preset ci --out " + out.string() + " -q");
   ASSERT_EQ(r.status, 0) << r.out;
   const auto rows = read_csv(out / "cases.csv");
-  ASSERT_EQ(rows.size(), 14u) << "header + 6 settings x 2 members + the reference's round-off twin";
-  std::map<std::string, std::vector<std::string>> by;
-  for (size_t i = 1; i < rows.size(); ++i) by.emplace(rows[i][1], rows[i]);  // seed 1's
-  auto val = [&](const std::string& label, int col) { return std::stod(by.at(label)[col]); };
-  // columns: 10 overlap, 12 contact time, 13 restitution (errors, %), 16 peak, 19 peak error
-  for (int col : {10, 12, 13}) {
-    EXPECT_LT(val("dt 0.1", col), val("dt 0.2", col)) << rows[0][col];
-    EXPECT_LT(val("dt 0.2", col), val("dt 0.4", col)) << rows[0][col];
+  ASSERT_EQ(rows.size(), 19u) << "header + layered 6 settings x 2 members + the reference's "
+                                 "round-off twin + poured 2 x 2 + its twin";
+  const auto col = [&](const std::string& name) {
+    const auto it = std::find(rows[0].begin(), rows[0].end(), name);
+    EXPECT_NE(it, rows[0].end()) << name;
+    return static_cast<size_t>(it - rows[0].begin());
+  };
+  std::map<std::string, std::vector<std::string>> by;  // seed 1's, by specimen and label
+  for (size_t i = 1; i < rows.size(); ++i) by.emplace(rows[i][0] + " " + rows[i][2], rows[i]);
+  auto val = [&](const std::string& label, const std::string& column) {
+    return std::stod(by.at(label)[col(column)]);
+  };
+  for (const char* c : {"overlap_err_pct", "contact_time_err_pct", "restitution_err_pct"}) {
+    EXPECT_LT(val("layered dt 0.1", c), val("layered dt 0.2", c)) << c;
+    EXPECT_LT(val("layered dt 0.2", c), val("layered dt 0.4", c)) << c;
   }
   // float and double agree: peak angle within 0.5 %, contact errors both small
-  EXPECT_NEAR(val("dt 0.2", 16) / val("double dt 0.2", 16), 1.0, 0.005);
-  EXPECT_LT(val("dt 0.2", 10), 0.1);
-  EXPECT_LT(val("double dt 0.2", 10), 0.1);
+  EXPECT_NEAR(val("layered dt 0.2", "peak_deg") / val("layered double dt 0.2", "peak_deg"), 1.0, 0.005);
+  EXPECT_LT(val("layered dt 0.2", "overlap_err_pct"), 0.1);
+  EXPECT_LT(val("layered double dt 0.2", "overlap_err_pct"), 0.1);
   // beyond the stability limit: failed, no numbers
-  const auto& bad = by.at("dt 3.0 (forced)");
-  EXPECT_EQ(bad[15].rfind("failed", 0), 0u) << bad[15];
-  EXPECT_TRUE(bad[16].empty());
-  EXPECT_TRUE(bad[19].empty());
-  EXPECT_TRUE(fs::exists(out / "pareto.png"));
-  EXPECT_TRUE(fs::exists(out / "summary.md"));
-  EXPECT_TRUE(fs::exists(out / "error_vs_time_time_step.png"));
+  const auto& bad = by.at("layered dt 3.0 (forced)");
+  EXPECT_EQ(bad[col("shear_status")].rfind("failed", 0), 0u) << bad[col("shear_status")];
+  EXPECT_TRUE(bad[col("peak_deg")].empty());
+  EXPECT_TRUE(bad[col("peak_err_pct")].empty());
+  // the poured specimen: its own reference, random beads that shear
+  EXPECT_GT(val("poured dt 0.4", "peak_deg"), 5);
+  EXPECT_EQ(by.at("poured dt 0.4")[col("shear_status")], "ok");
+  for (const char* f : {"pareto.png", "summary.md", "error_vs_time_time_step.png",
+                        "poured_pareto.png", "poured_error_vs_time_time_step.png"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
   // the ensembles: one row per setting, each member's seed in cases.csv
   const auto ens = read_csv(out / "ensemble.csv");
-  ASSERT_EQ(ens.size(), 7u) << "header + 6 settings";
-  EXPECT_EQ(ens[1][9], "2");  // runs of the reference
-  EXPECT_EQ(rows[2][rows[0].size() - 2], "2");  // the reference's second member: seed 2
+  ASSERT_EQ(ens.size(), 9u) << "header + 6 layered settings + 2 poured";
+  const size_t runs = static_cast<size_t>(
+      std::find(ens[0].begin(), ens[0].end(), "runs") - ens[0].begin());
+  ASSERT_LT(runs, ens[0].size());
+  EXPECT_EQ(ens[1][runs], "2");  // runs of the reference
+  EXPECT_EQ(ens[7][0], "poured");
+  EXPECT_EQ(rows[2][col("seed")], "2");  // the reference's second member: seed 2
   std::ifstream md(out / "summary.md");
   const std::string summary((std::istreambuf_iterator<char>(md)), {});
-  EXPECT_NE(summary.find("## Chaos"), std::string::npos) << summary;
-  EXPECT_NE(summary.find("round-off twin"), std::string::npos) << summary;
+  for (const char* h : {"## The layered specimen", "## The poured specimen", "### Chaos",
+                        "round-off twin", "### Recommendation"})
+    EXPECT_NE(summary.find(h), std::string::npos) << h << "\n" << summary;
   const Result bad_ensemble = run("study accuracy --preset ci --ensemble 99 --out " + out.string());
   EXPECT_EQ(bad_ensemble.status, 2) << bad_ensemble.out;
   EXPECT_NE(bad_ensemble.out.find("--ensemble"), std::string::npos) << bad_ensemble.out;
   const Result bad_preset = run("study accuracy --preset huge --out " + out.string());
   EXPECT_EQ(bad_preset.status, 2) << bad_preset.out;
   EXPECT_NE(bad_preset.out.find("--preset"), std::string::npos);
+  const Result bad_scale = run("study accuracy --preset ci --box-scale 9 --out " + out.string());
+  EXPECT_EQ(bad_scale.status, 2) << bad_scale.out;
+  EXPECT_NE(bad_scale.out.find("[1, 4]"), std::string::npos) << bad_scale.out;
+  const Result bad_jobs = run("study accuracy --preset ci --jobs 0 --out " + out.string());
+  EXPECT_EQ(bad_jobs.status, 2) << bad_jobs.out;
+  EXPECT_NE(bad_jobs.out.find("[1, 16]"), std::string::npos) << bad_jobs.out;
+  const Result bad_specimen = run("study accuracy --preset ci --specimen sand --out " + out.string());
+  EXPECT_EQ(bad_specimen.status, 2) << bad_specimen.out;
+  EXPECT_NE(bad_specimen.out.find("layered, poured"), std::string::npos) << bad_specimen.out;
+  // the tables of a finished study, one per specimen
+  const Result table = run("study table --from " + (out / "ensemble.csv").string());
+  EXPECT_EQ(table.status, 0) << table.out;
+  EXPECT_NE(table.out.find("poured specimen:"), std::string::npos) << table.out;
 }

@@ -18,8 +18,9 @@ using namespace simsols;
 namespace {
 
 StudyCase run(const char* knob, const char* label, int seed, double peak, double residual = 10,
-              double dilatancy = 30) {
+              double dilatancy = 30, StudySpecimen specimen = StudySpecimen::Layered) {
   StudyCase c;
+  c.settings.specimen = specimen;
   c.settings.knob = knob;
   c.settings.label = label;
   c.settings.seed = seed;
@@ -93,7 +94,8 @@ TEST(StudyEnsemble, TwinsSeparateWhereTheCurvesFirstDifferBeyondTheThreshold) {
   runs[0].shear.curve_ratio = a.curve_ratio;
   runs[1].shear.curve_mm = b.curve_mm;
   runs[1].shear.curve_ratio = b.curve_ratio;
-  const Chaos c = measure_chaos(runs);
+  EXPECT_FALSE(measure_chaos(runs, StudySpecimen::Poured).measured);
+  const Chaos c = measure_chaos(runs, StudySpecimen::Layered);
   EXPECT_TRUE(c.measured);
   ASSERT_TRUE(c.separation);
   EXPECT_NEAR(*c.separation, 0.6, 1e-12);
@@ -108,11 +110,18 @@ TEST(StudyEnsemble, EnsembleCsvRoundTripsToTheSameTable) {
   runs.push_back(run("time step", "dt 2", 1, 0));
   runs.back().shear.ok = false;
   runs.back().shear.failure = "runaway, at step 12";
+  runs.push_back(run("reference", "ref", 1, 20.0, 16, 10, StudySpecimen::Poured));
+  runs.push_back(run("reference", "ref", 2, 21.0, 17, 11, StudySpecimen::Poured));
   const std::vector<SettingSummary> s = summarise_settings(runs);
   const std::vector<SettingSummary> back = parse_ensemble_csv(ensemble_csv(s));
   ASSERT_EQ(back.size(), s.size());
-  EXPECT_EQ(ensemble_table_md(back), ensemble_table_md(s));
+  for (StudySpecimen k : {StudySpecimen::Layered, StudySpecimen::Poured})
+    EXPECT_EQ(ensemble_table_md(back, k), ensemble_table_md(s, k));
   EXPECT_EQ(back[2].failure, "runaway, at step 12");
+  EXPECT_EQ(back[3].settings.specimen, StudySpecimen::Poured);
+  // the poured table holds its own rows only, the layered one its own
+  EXPECT_EQ(ensemble_table_md(s, StudySpecimen::Poured).find("dt 0.5"), std::string::npos);
+  EXPECT_NE(ensemble_table_md(s, StudySpecimen::Layered).find("dt 0.5"), std::string::npos);
   EXPECT_THROW(parse_ensemble_csv("knob,label\n"), std::runtime_error);  // columns missing
 }
 
@@ -124,14 +133,18 @@ TEST(StudyEnsemble, DocsAndLabTablesAreTheShippedCsv) {
   const std::string docs = read_text(SIMSOLS_SOURCE_DIR "/docs/accuracy.md");
   ASSERT_FALSE(csv.empty());
   const std::vector<SettingSummary> shipped = parse_ensemble_csv(csv);
-  EXPECT_NE(docs.find(ensemble_table_md(shipped)), std::string::npos)
-      << "docs/accuracy.md does not hold the table of assets/accuracy/ensemble.csv; regenerate it "
-         "with: simsols study table --from assets/accuracy/ensemble.csv";
   const std::vector<SettingSummary>& lab = accuracy_table();
-  EXPECT_EQ(ensemble_table_md(lab), ensemble_table_md(shipped))
-      << "the lab's embedded table is not the shipped CSV (reconfigure the build)";
-  const SettingSummary* base = expected_accuracy(0.25, Precision::Float);
-  ASSERT_NE(base, nullptr);
-  EXPECT_EQ(base->settings.dt_fraction, 0.25);
-  EXPECT_NE(expected_accuracy_text(*base).find("phi_peak"), std::string::npos);
+  for (StudySpecimen k : {StudySpecimen::Layered, StudySpecimen::Poured}) {
+    EXPECT_NE(docs.find(ensemble_table_md(shipped, k)), std::string::npos)
+        << "docs/accuracy.md does not hold the " << specimen_name(k)
+        << " table of assets/accuracy/ensemble.csv; regenerate it with: simsols study table "
+           "--from assets/accuracy/ensemble.csv";
+    EXPECT_EQ(ensemble_table_md(lab, k), ensemble_table_md(shipped, k))
+        << "the lab's embedded table is not the shipped CSV (reconfigure the build)";
+    const SettingSummary* base = expected_accuracy(0.25, Precision::Float, k);
+    ASSERT_NE(base, nullptr) << specimen_name(k);
+    EXPECT_EQ(base->settings.dt_fraction, 0.25);
+    EXPECT_EQ(base->settings.specimen, k);
+    EXPECT_NE(expected_accuracy_text(*base).find("phi_peak"), std::string::npos);
+  }
 }
