@@ -140,11 +140,8 @@ int print_table(const StudyOptions& opt) {
   try {
     const std::vector<SettingSummary> settings = parse_ensemble_csv(read_text(opt.from));
     bool first = true;
-    for (StudySpecimen s : {StudySpecimen::Layered, StudySpecimen::Poured}) {
-      if (only && s != *only) continue;
-      if (std::none_of(settings.begin(), settings.end(),
-                       [&](const SettingSummary& x) { return x.settings.specimen == s; }))
-        continue;
+    for (StudySpecimen s : kStudySpecimens) {
+      if ((only && s != *only) || settings_of(settings, s).empty()) continue;
       if (!only) std::printf("%s%s specimen:\n\n", first ? "" : "\n", specimen_name(s));
       std::fputs(ensemble_table_md(settings, s).c_str(), stdout);
       first = false;

@@ -422,7 +422,7 @@ ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s,
 
 void compare_to_reference(std::vector<StudyCase>& cases) {
   auto rel = [](double a, double b) { return b != 0 ? 100 * std::fabs(a - b) / std::fabs(b) : 0.0; };
-  for (StudySpecimen specimen : {StudySpecimen::Layered, StudySpecimen::Poured}) {
+  for (StudySpecimen specimen : kStudySpecimens) {
     ShearResult ref;  // the mean of the specimen's reference's members
     int n = 0;
     for (const StudyCase& c : cases)
@@ -589,10 +589,8 @@ void write_study_outputs(const std::string& dir, const StudyPreset& preset,
   write_file_atomic((fs::path(dir) / "ensemble.csv").string(), ensemble_csv(settings));
   write_file_atomic((fs::path(dir) / "summary.md").string(),
                     ensemble_summary_md(preset, settings, cases));
-  for (StudySpecimen specimen : {StudySpecimen::Layered, StudySpecimen::Poured}) {
-    std::vector<SettingSummary> of;
-    for (const SettingSummary& s : settings)
-      if (s.settings.specimen == specimen) of.push_back(s);
+  for (StudySpecimen specimen : kStudySpecimens) {
+    const std::vector<SettingSummary> of = settings_of(settings, specimen);
     write_knob_charts(dir, of, specimen);
     write_pareto_chart(dir, of, specimen);
   }

@@ -45,6 +45,7 @@ namespace simsols {
 //            4 layers' worth of beads: a random packing whose post-peak
 //            response averages over the many contacts of its shear plane.
 enum class StudySpecimen : std::uint8_t { Layered, Poured };
+inline constexpr StudySpecimen kStudySpecimens[] = {StudySpecimen::Layered, StudySpecimen::Poured};
 inline const char* specimen_name(StudySpecimen s) {
   return s == StudySpecimen::Poured ? "poured" : "layered";
 }

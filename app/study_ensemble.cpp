@@ -84,6 +84,14 @@ std::vector<SettingSummary> summarise_settings(const std::vector<StudyCase>& run
   return out;
 }
 
+std::vector<SettingSummary> settings_of(const std::vector<SettingSummary>& all,
+                                        StudySpecimen specimen) {
+  std::vector<SettingSummary> out;
+  for (const SettingSummary& s : all)
+    if (s.settings.specimen == specimen) out.push_back(s);
+  return out;
+}
+
 std::optional<double> separation_mm(const ShearResult& a, const ShearResult& b, double threshold) {
   const size_t n = std::min(a.curve_ratio.size(), b.curve_ratio.size());
   for (size_t i = 0; i < n; ++i)
@@ -259,9 +267,7 @@ std::string err(const std::optional<Interval>& e) {
 }  // namespace
 
 std::string ensemble_table_md(const std::vector<SettingSummary>& all, StudySpecimen specimen) {
-  std::vector<SettingSummary> settings;
-  for (const SettingSummary& s : all)
-    if (s.settings.specimen == specimen) settings.push_back(s);
+  const std::vector<SettingSummary> settings = settings_of(all, specimen);
   std::string md;
   const double ref_wall = settings.empty() ? 0 : reference_of(all, settings[0].settings)->wall_seconds;
   md += "| setting | runs | φ_peak (°) | error (°) | φ_res (°) | error (°) | ψ_max (°) | "
@@ -398,11 +404,10 @@ std::string ensemble_summary_md(const StudyPreset& preset,
                    "an error is the difference from the specimen's reference's mean (its first "
                    "row) ± Welch's 95 % interval, **bold** when significant (the interval "
                    "excludes zero).\n";
-  for (StudySpecimen specimen : {StudySpecimen::Layered, StudySpecimen::Poured}) {
-    const std::string table = ensemble_table_md(settings, specimen);
-    if (table.find("\n|", table.find("---")) == std::string::npos) continue;  // no rows
+  for (StudySpecimen specimen : kStudySpecimens) {
+    if (settings_of(settings, specimen).empty()) continue;
     md += "\n## The " + std::string(specimen_name(specimen)) + " specimen\n\nSpecimen: " +
-          specimen_description(preset, specimen) + ".\n\n" + table;
+          specimen_description(preset, specimen) + ".\n\n" + ensemble_table_md(settings, specimen);
     chaos_text(md, runs, specimen);
     recommendation(md, settings, specimen);
   }

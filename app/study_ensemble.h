@@ -44,6 +44,10 @@ struct SettingSummary {
 // first setting). Round-off twins are not a setting of their own.
 std::vector<SettingSummary> summarise_settings(const std::vector<StudyCase>& runs);
 
+// The summaries of `specimen`'s settings, in their order.
+std::vector<SettingSummary> settings_of(const std::vector<SettingSummary>& all,
+                                        StudySpecimen specimen);
+
 // Where two runs' tau/sigma curves first differ by more than `threshold`
 // (mm of shear), or nullopt when they never do over their common rows.
 std::optional<double> separation_mm(const ShearResult& a, const ShearResult& b,

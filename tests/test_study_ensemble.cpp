@@ -115,7 +115,7 @@ TEST(StudyEnsemble, EnsembleCsvRoundTripsToTheSameTable) {
   const std::vector<SettingSummary> s = summarise_settings(runs);
   const std::vector<SettingSummary> back = parse_ensemble_csv(ensemble_csv(s));
   ASSERT_EQ(back.size(), s.size());
-  for (StudySpecimen k : {StudySpecimen::Layered, StudySpecimen::Poured})
+  for (StudySpecimen k : kStudySpecimens)
     EXPECT_EQ(ensemble_table_md(back, k), ensemble_table_md(s, k));
   EXPECT_EQ(back[2].failure, "runaway, at step 12");
   EXPECT_EQ(back[3].settings.specimen, StudySpecimen::Poured);
@@ -134,7 +134,7 @@ TEST(StudyEnsemble, DocsAndLabTablesAreTheShippedCsv) {
   ASSERT_FALSE(csv.empty());
   const std::vector<SettingSummary> shipped = parse_ensemble_csv(csv);
   const std::vector<SettingSummary>& lab = accuracy_table();
-  for (StudySpecimen k : {StudySpecimen::Layered, StudySpecimen::Poured}) {
+  for (StudySpecimen k : kStudySpecimens) {
     EXPECT_NE(docs.find(ensemble_table_md(shipped, k)), std::string::npos)
         << "docs/accuracy.md does not hold the " << specimen_name(k)
         << " table of assets/accuracy/ensemble.csv; regenerate it with: simsols study table "
