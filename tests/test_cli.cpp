@@ -405,8 +405,8 @@ TEST(Cli, AccuracyStudyReducedForm) {
   const Result r = run("study accuracy --preset ci --out " + out.string() + " -q");
   ASSERT_EQ(r.status, 0) << r.out;
   const auto rows = read_csv(out / "cases.csv");
-  ASSERT_EQ(rows.size(), 19u) << "header + layered 6 settings x 2 members + the reference's "
-                                 "round-off twin + poured 2 x 2 + its twin";
+  ASSERT_EQ(rows.size(), 20u) << "header + layered 6 settings x 2 members + the reference's "
+                                 "round-off twin + poured 2 x 2 + its two twins";
   const auto col = [&](const std::string& name) {
     const auto it = std::find(rows[0].begin(), rows[0].end(), name);
     EXPECT_NE(it, rows[0].end()) << name;
@@ -430,9 +430,13 @@ TEST(Cli, AccuracyStudyReducedForm) {
   EXPECT_EQ(bad[col("shear_status")].rfind("failed", 0), 0u) << bad[col("shear_status")];
   EXPECT_TRUE(bad[col("peak_deg")].empty());
   EXPECT_TRUE(bad[col("peak_err_pct")].empty());
-  // the poured specimen: its own reference, random beads that shear
-  EXPECT_GT(val("poured dt 0.4", "peak_deg"), 5);
-  EXPECT_EQ(by.at("poured dt 0.4")[col("shear_status")], "ok");
+  // the poured specimen runs through, compared with its own reference (in
+  // this reduced form its rain has not settled: its angles mean nothing)
+  for (const char* label : {"poured dt 0.4", "poured reference: dt 0.2 double",
+                            "poured reference: dt 0.2 double (round-off twin at shear)"}) {
+    EXPECT_EQ(by.at(label)[col("shear_status")], "ok") << label;
+    EXPECT_FALSE(by.at(label)[col("peak_err_pct")].empty()) << label;
+  }
   for (const char* f : {"pareto.png", "summary.md", "error_vs_time_time_step.png",
                         "poured_pareto.png", "poured_error_vs_time_time_step.png"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
