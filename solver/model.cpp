@@ -30,6 +30,8 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
   if (config().walls) {
     kernels_.wall_forces = p.kernel("wall_forces");
     kernels_.advance_walls = p.kernel("advance_walls");
+    kernels_.build_wall_near = p.kernel("build_wall_near");
+    kernels_.reset_wall_travel = p.kernel("reset_wall_travel");
     kernels_.reduce_walls = p.kernel("reduce_walls");
   }
   if (config().servo) kernels_.servo_walls = p.kernel("servo_walls");

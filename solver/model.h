@@ -19,7 +19,7 @@ namespace simsols {
 struct Kernels {
   ClKernel grid_clear, grid_count, scan_chunks, scan_totals, scan_apply, grid_scatter;
   ClKernel build_neighbors, build_mirrors, pair_forces, collect_pairs, wall_forces, advance_walls,
-      integrate;
+      integrate, build_wall_near, reset_wall_travel;
   ClKernel reduce_observables, reduce_walls, servo_walls;
 };
 

@@ -52,6 +52,18 @@ int build_lists(const Model& m, State& s) {
   return flags[1];
 }
 
+// The walls near each particle (walls.cl, broad phase), and the walls'
+// travel restarted with the lists.
+void build_wall_near(const Model& m, State& s) {
+  if (!m.config().walls) return;
+  const Kernels& k = m.kernels();
+  set_args(m, k.build_wall_near, s.pos, m.wall_buffer(), s.wall_point, s.wall_near,
+           Real{m.skin()}, s.n, m.walls());
+  launch(m, k.build_wall_near, s.n);
+  set_args(m, k.reset_wall_travel, s.wall_point, m.walls());
+  launch_exact(m, k.reset_wall_travel, m.walls());
+}
+
 // Steps until the next look at the flags: the fastest particle, at twice
 // its speed, must not cover the skin/4 that separates the rebuild trigger
 // (skin/4) from the validity limit (skin/2).
@@ -95,6 +107,7 @@ void detect_contacts(const Model& m, State& s, bool force_rebuild) {
     m.device().write(s.flags.get(), sizeof zero, zero);
     wanted = build_lists(m, s);
   }
+  build_wall_near(m, s);
   ++s.list_builds;
 }
 
@@ -116,12 +129,12 @@ void wall_forces(const Model& m, State& s) {
   if (m.config().double_precision) {
     set_args(m, k.wall_forces, s.pos, s.pos_lo, s.vel, s.omega, m.wall_buffer(), s.wall_point,
              s.wall_vel, s.wall_spring, s.wall_force, m.pair_buffer(), s.force, s.torque,
-             s.wall_touch, s.touching, Real{m.dt()}, Real{m.scene().effects.rolling_damping},
-             s.n, m.walls(), m.pairs().n);
+             s.wall_touch, s.wall_near, s.touching, Real{m.dt()},
+             Real{m.scene().effects.rolling_damping}, s.n, m.walls(), m.pairs().n);
   } else {
     set_args(m, k.wall_forces, s.pos, s.pos_lo, s.vel, s.omega, m.wall_buffer(), s.wall_point,
              s.wall_point_lo, s.wall_vel, s.wall_spring, s.wall_force, m.pair_buffer(), s.force,
-             s.torque, s.wall_touch, s.touching, Real{m.dt()},
+             s.torque, s.wall_touch, s.wall_near, s.touching, Real{m.dt()},
              Real{m.scene().effects.rolling_damping}, s.n, m.walls(), m.pairs().n);
   }
   launch(m, k.wall_forces, lane_groups(m, s.n));
@@ -141,10 +154,11 @@ void integrate(const Model& m, State& s) {
   }
   if (m.config().walls) {
     if (m.config().double_precision)
-      set_args(m, k.advance_walls, s.wall_point, s.wall_vel, Real{m.dt()}, m.walls());
+      set_args(m, k.advance_walls, s.wall_point, s.wall_vel, s.flags, Real{m.dt()},
+               Real{m.skin()}, m.walls());
     else
-      set_args(m, k.advance_walls, s.wall_point, s.wall_point_lo, s.wall_vel, Real{m.dt()},
-               m.walls());
+      set_args(m, k.advance_walls, s.wall_point, s.wall_point_lo, s.wall_vel, s.flags,
+               Real{m.dt()}, Real{m.skin()}, m.walls());
     launch_exact(m, k.advance_walls, m.walls());
   }
   ++s.step;
@@ -161,6 +175,7 @@ size_t reduce_wall_forces(const Model& m, State& s) {
 }
 
 void derive_state(const Model& m, State& s) {
+  s.all_walls_near(m);  // valid until the next list build (walls.cl)
   if (!m.config().rolling || m.config().rolling_spring) return;  // `touching` unused
   const std::vector<double> f = read_reals(m, s.force, size_t(s.n) * 4);
   std::vector<int> count(s.n);

@@ -111,6 +111,8 @@ State::State(const Model& model) {
   wall_spring = make(d, std::max<size_t>(16, size_t(nw) * n * model.config().history_bytes_per_contact()));
   wall_force = make(d, size_t(nw) * n * r4);
   wall_touch = make(d, n * sizeof(int));
+  wall_near = make(d, nw ? n * sizeof(int) : 16);
+  all_walls_near(model);
   wall_reaction = make(d, std::max(1, nw) * r4);
   wall_mean = make(d, std::max(1, nw) * r4);
   RealPacker sv(dbl);
@@ -143,7 +145,7 @@ size_t State::device_bytes() const {
                           &nbr, &spring, &old_count, &old_nbr, &old_spring, &nbr_upper, &old_upper, &mirror,
                           &pair_force, &pair_torque, &bucket, &slot,
                           &cell_count, &cell_start, &sorted, &chunk_sum, &wall_point,
-                          &wall_point_lo, &wall_vel, &wall_spring, &wall_force, &wall_touch, &wall_reaction, &wall_mean, &servo, &flags,
+                          &wall_point_lo, &wall_vel, &wall_spring, &wall_force, &wall_touch, &wall_near, &wall_reaction, &wall_mean, &servo, &flags,
                           &obs_partial, &wall_partial, &touching})
     total += b->bytes;
   return total;
@@ -158,6 +160,12 @@ std::vector<std::pair<std::string, Buffer*>> State::dynamic_buffers() {
           {"wall_vel", &wall_vel}, {"wall_spring", &wall_spring}, {"wall_force", &wall_force},
           {"wall_touch", &wall_touch}, {"wall_reaction", &wall_reaction}, {"wall_mean", &wall_mean}, {"servo", &servo},
           {"flags", &flags}};
+}
+
+void State::all_walls_near(const Model& model) {
+  if (model.walls() == 0) return;
+  const std::vector<int> all(n, -1);
+  model.device().write(wall_near.get(), all.size() * sizeof(int), all.data());
 }
 
 void State::grow_lists(const Model& model, int new_cap) {

@@ -45,8 +45,13 @@ class State {
   Buffer nbr_upper, old_upper, mirror, pair_force, pair_torque;
   // grid
   Buffer bucket, slot, cell_count, cell_start, sorted, chunk_sum;
-  // walls: current reference point (+ float compensation), velocity, slots
+  // walls: current reference point (+ float compensation; point.w: travel
+  // since the last list build), velocity, slots
   Buffer wall_point, wall_point_lo, wall_vel, wall_spring, wall_force, wall_touch;
+  // per particle, bit w: wall w within radius + skin at the last list build
+  // (the wall broad phase, walls.cl). Not saved: all ones after a load or a
+  // restore (always valid) until the next build.
+  Buffer wall_near;
   // servo walls: per wall servo_record() (below), set by the scene and changed at run time (set_servo); and what the servo saw:
   // (F last step, sum of F since the last read, integral velocity, steps)
   // wall_mean: per wall the force summed over steps (xyz) and the steps (w),
@@ -85,6 +90,9 @@ class State {
   // Reallocates all neighbour-list buffers, zeroed, with `new_cap` slots.
   void resize_lists(const Model& model, int new_cap);
   size_t spring_bytes(const Model& model) const;
+  // Marks every wall near every particle (wall_near all ones): valid whatever
+  // moved, until the next list build narrows it.
+  void all_walls_near(const Model& model);
 
  private:
   void make_pair_buffers(const Model& model);  // mirror, pair_force, pair_torque for `cap`

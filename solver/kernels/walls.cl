@@ -10,7 +10,18 @@
 // Wall records (4 x real4 per wall, see common.cl): [0] reference point and
 // shape, [1] normal and material, [2] axis_u and half_u, [3] axis_v and half_v.
 // Wall state: point/point_lo = current position of the reference point
-// (moved by advance_walls), vel = its velocity.
+// (moved by advance_walls), vel = its velocity; point.w = the path the wall
+// has travelled since the last list build.
+//
+// Broad phase: at every list build, build_wall_near keeps for each particle
+// the walls within its radius + skin (bit w of wall_near), and wall_forces
+// tests only those. The mask stays valid while neither the particle nor the
+// wall has moved skin/2 since the build (the distance to a wall changes by
+// at most their two displacements): particles are watched by integrate.cl,
+// walls by advance_walls, which raises the same flags (rebuild beyond
+// skin/4, late beyond skin/2) and reports its speed for the host's check
+// interval. A mask of all ones (after a load, a restore, a wall moved by
+// the host) is always valid.
 #ifdef HAS_WALLS
 
 #ifdef POS_COMPENSATED
@@ -61,6 +72,43 @@ INLINE void lane_flags(lmask m, int* out) {
   for (int l = 0; l < LANES; ++l) out[l] = t[l] != 0;
 }
 
+// Bit w of wall_near[i]: wall w lies within r_i + skin of particle i (a
+// plane: the centre's signed distance within +-(r_i + skin); a rectangle: the
+// distance to its closest point below r_i + skin). The float compensation
+// terms (below 1 ulp of a coordinate) are far below the skin and ignored.
+__kernel void build_wall_near(__global const real4* restrict pos,
+                              __global const real4* restrict walls,
+                              __global const real4* restrict wall_point,
+                              __global int* restrict wall_near, real skin, int n, int nwalls) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  const real4 pi = pos[i];
+  const real reach = pi.w + skin;
+  int mask = 0;
+  for (int w = 0; w < nwalls; ++w) {
+    const real3 d = wall_point[w].xyz - pi.xyz;  // centre -> wall reference point
+    const real4 shape = walls[WALL_RECORD * w];
+    const real3 nrm = walls[WALL_RECORD * w + 1].xyz;
+    real dist;
+    if (shape.w == (real)0) {
+      dist = fabs(dot(d, nrm));
+    } else {
+      const real4 au = walls[WALL_RECORD * w + 2], av = walls[WALL_RECORD * w + 3];
+      const real u = clamp(-dot(d, au.xyz), -au.w, au.w);
+      const real v = clamp(-dot(d, av.xyz), -av.w, av.w);
+      dist = length(d + u * au.xyz + v * av.xyz);
+    }
+    if (dist < reach) mask |= 1 << w;
+  }
+  wall_near[i] = mask;
+}
+
+// The walls' travel restarts with the lists (point.w, see above).
+__kernel void reset_wall_travel(__global real4* wall_point, int nwalls) {
+  const int w = get_global_id(0);
+  if (w < nwalls) wall_point[w].w = 0;
+}
+
 __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
                           __global const real* restrict vel, __global const real* restrict omega,
                           __global const real* restrict walls,
@@ -69,24 +117,30 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
                           __global real* restrict wall_spring, __global real* restrict wall_force,
                           __global const real* restrict pairs, __global real* restrict force,
                           __global real* restrict torque, __global int* restrict wall_touch,
+                          __global const int* restrict wall_near,
                           __global const int* restrict contacts_last, real dt,
                           real rolling_damping, int n, int nwalls, int nmat) {
   const int base = get_global_id(0) * LANES;
   if (base >= n) return;
   int ii[LANES], valid[LANES], pair[LANES], was[LANES], now[LANES];
+  int near = 0;  // walls near any lane (broad phase), or touched by one last step
 #pragma unroll
   for (int l = 0; l < LANES; ++l) {
     valid[l] = base + l < n;
     ii[l] = valid[l] ? base + l : n - 1;
     was[l] = valid[l] ? wall_touch[ii[l]] : 0;  // walls touched last step (bit w)
+    near |= valid[l] ? wall_near[ii[l]] | was[l] : 0;
     now[l] = 0;
   }
+  // Most particles are near no wall and leave at once.
+  if (!near) return;
   const LanePos pi = gather_pos(pos POS_LO_PASS, ii);
   const lane ri = gather(pos, ii, 3);
 
-  // Geometry first: most particles touch no wall and leave at once.
+  // Geometry of the near walls first.
   int busy = 0;
   for (int w = 0; w < nwalls; ++w) {
+    if (!((near >> w) & 1)) continue;
     v3 to_wall;
     const lane dist2 = wall_gap(walls, wall_point WALL_LO_PASS, w, pi, ri, &to_wall);
     int on[LANES];
@@ -183,23 +237,32 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
     if (valid[l]) wall_touch[ii[l]] = now[l];
 }
 
-// Walls move with their prescribed velocity (compensated in float runs).
+// Walls move with their prescribed velocity (compensated in float runs),
+// keep their travel since the last list build in point.w and raise the list
+// flags as integrate.cl does for particles (the broad phase above).
 __kernel void advance_walls(__global real4* wall_point
 #ifdef POS_COMPENSATED
                             , __global float4* wall_point_lo
 #endif
-                            , __global const real4* wall_vel, real dt, int nwalls) {
+                            , __global const real4* wall_vel,
+                            __global volatile int* flags, real dt, real skin, int nwalls) {
   const int w = get_global_id(0);
   if (w >= nwalls) return;
-#ifdef POS_COMPENSATED
+  const real3 v = wall_vel[w].xyz;
   real4 p = wall_point[w];
+#ifdef POS_COMPENSATED
   float4 lo = wall_point_lo[w];
-  add_compensated(&p, &lo, wall_vel[w].xyz * dt);
-  wall_point[w] = p;
+  add_compensated(&p, &lo, v * dt);
   wall_point_lo[w] = lo;
 #else
-  wall_point[w].xyz += wall_vel[w].xyz * dt;
+  p.xyz += v * dt;
 #endif
+  p.w += length(v) * dt;
+  wall_point[w] = p;
+  if (p.w > (real)0.25 * skin) flags[0] = 1;
+  if (p.w > (real)0.5 * skin) flags[3] = 1;
+  const int v2 = as_int((float)dot(v, v));
+  if (v2 > flags[2]) atomic_max(&flags[2], v2);
 }
 
 #endif  // HAS_WALLS (servo_walls below needs it too)
