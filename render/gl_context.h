@@ -6,15 +6,27 @@
 // from. Two headless platforms live here; the desktop window (GLFW) is
 // another implementation of the same interface.
 //
-//   EGL     Mesa's surfaceless platform (EGL_MESA_platform_surfaceless),
-//           else an EGL device (EGL_EXT_platform_device, headless NVIDIA),
-//           else the default display; a config with EGL_PBUFFER_BIT, made
-//           current without a surface (or on a 16x16 pbuffer).
+//   EGL     the displays below, in this order (EglPreference::Hardware,
+//           the default); the first that gives a 3.3 core context wins.
+//           A config with EGL_PBUFFER_BIT, made current without a surface
+//           (or on a 16x16 pbuffer).
+//             1. a hardware EGL device (eglQueryDevicesEXT,
+//                EGL_EXT_platform_device: headless NVIDIA)
+//             2. Mesa's surfaceless platform (EGL_MESA_platform_surfaceless,
+//                llvmpipe on a machine without a GPU)
+//             3. a software EGL device (EGL_MESA_device_software)
+//             4. the default display
+//           Hardware comes first because cl_khr_gl_sharing needs the GL
+//           context on the OpenCL device: llvmpipe beside a GPU means a host
+//           copy per frame. EglPreference::Surfaceless keeps the older order
+//           (surfaceless, every device, default).
 //   OSMesa  Mesa's off-screen library, loaded with dlopen when chosen, so a
 //           machine without it still runs the EGL path.
 //
 // Auto tries EGL, then OSMesa; SIMSOLS_GL=egl|osmesa (or the --gl flag)
-// forces one. When none works the error lists why each attempt failed.
+// forces one. When none works the error lists why each attempt failed, and
+// description() names the display that was used ("EGL device 0 (...)",
+// "EGL surfaceless", "EGL default display").
 #pragma once
 
 #include <cstdint>
@@ -22,6 +34,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "gl_api.h"
 
@@ -56,8 +69,46 @@ class GlContext {
   Gl gl_;
 };
 
+// Which EGL display is tried first (see the order above).
+enum class EglPreference { Hardware, Surfaceless };
+
+struct HeadlessOptions {
+  GlBackend backend = GlBackend::Auto;  // Auto: SIMSOLS_GL, else EGL then OSMesa
+  EglPreference egl = EglPreference::Hardware;
+};
+
 // A headless context (no window, no display). Throws RenderError.
-std::unique_ptr<GlContext> create_headless_context(GlBackend backend = GlBackend::Auto);
+std::unique_ptr<GlContext> create_headless_context(const HeadlessOptions& options = {});
+std::unique_ptr<GlContext> create_headless_context(GlBackend backend);
+
+// ------------------------------------------------ the EGL display order
+// What EGL offers on this machine, as the order below needs it.
+struct EglDeviceInfo {
+  bool software = false;  // EGL_MESA_device_software (llvmpipe, swrast)
+  std::string name;       // vendor and renderer, or the DRM node; may be empty
+};
+struct EglInventory {
+  bool surfaceless = false;  // EGL_MESA_platform_surfaceless
+  std::vector<EglDeviceInfo> devices;  // eglQueryDevicesEXT order
+};
+// Lists the EGL devices and platforms (no display is initialised).
+EglInventory egl_inventory();
+
+// One display to try.
+struct EglDisplayChoice {
+  enum class Kind { Device, Surfaceless, Default };
+  Kind kind = Kind::Default;
+  int device = -1;  // index into EglInventory::devices, for Kind::Device
+  bool operator==(const EglDisplayChoice&) const = default;
+};
+
+// The displays to try, first to last: a pure function of the inventory,
+// ending with the default display.
+std::vector<EglDisplayChoice> egl_display_order(const EglInventory& inventory,
+                                                EglPreference preference);
+// "EGL device 0 (NVIDIA Corporation, /dev/dri/card1)", "EGL surfaceless",
+// "EGL default display": the start of GlContext::description().
+std::string egl_display_label(const EglDisplayChoice& choice, const EglInventory& inventory);
 
 // The backend `Auto` resolves to from the environment (SIMSOLS_GL), or Auto.
 // Throws RenderError for an unknown value, naming the variable.

@@ -55,7 +55,7 @@ ParticleBridge::ParticleBridge(const Gl& gl, GeometryBuffers& buffers, ViewPacke
 ParticleBridge::~ParticleBridge() = default;
 
 std::string ParticleBridge::path() const {
-  if (shared_) return "shared (cl_khr_gl_sharing)";
+  if (shared_) return "shared (" + device_.sharing_note() + ")";
   return "host copy (" + device_.sharing_note() + ")";
 }
 

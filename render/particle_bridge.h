@@ -39,7 +39,7 @@ class ParticleBridge {
   ParticleBridge& operator=(const ParticleBridge&) = delete;
 
   bool shared() const { return shared_; }
-  // "shared (cl_khr_gl_sharing)" or "host copy (<why not shared>)"
+  // "shared (cl_khr_gl_sharing; device: ...)" or "host copy (<why not shared>)"
   std::string path() const;
 
   // Packs the beads and their field into the GL buffers; returns the

@@ -2,7 +2,13 @@
 //
 // The device is chosen once per process: the environment variable
 // SIMSOLS_CL_DEVICE ("gpu", "cpu", or a substring of the device name) picks
-// one, otherwise the first GPU, otherwise the first device found. Small RAII
+// one, otherwise the first GPU, otherwise the first device found. Given an
+// OpenGL context to share with, the device that runs that context comes
+// first: clGetGLContextInfoKHR (CL_CURRENT_DEVICE_FOR_GL_CONTEXT_KHR, looked
+// up with clGetExtensionFunctionAddressForPlatform) names it, asked only of
+// platforms that offer cl_khr_gl_sharing (on PoCL a sharing call ends the
+// process); SIMSOLS_CL_DEVICE still overrides it when the two disagree, and
+// sharing_note() says which rule chose. Small RAII
 // handles (ClMem, ClKernel, ClProgram) release OpenCL objects; check() turns
 // every OpenCL error code into a DeviceError naming the call.
 #pragma once
@@ -52,7 +58,8 @@ class Device {
  public:
   // Opens the device selected as described above. Throws DeviceError.
   static std::shared_ptr<Device> open();
-  // The same device, its context shared with an OpenGL context when the
+  // The GL context's device where a platform names it (else the same
+  // choice as open()), its context shared with the OpenGL context when the
   // device offers cl_khr_gl_sharing: `gl_properties` are the property pairs
   // naming the GL context (CL_GL_CONTEXT_KHR, CL_EGL_DISPLAY_KHR or
   // CL_GLX_DISPLAY_KHR, without the terminating 0; the platform is added).
@@ -60,6 +67,10 @@ class Device {
   // says which, sharing_note() why.
   static std::shared_ptr<Device> open(const std::vector<cl_context_properties>& gl_properties);
   bool gl_sharing() const { return gl_sharing_; }
+  // "cl_khr_gl_sharing; device: the GL context's device (clGetGLContextInfoKHR)",
+  // "the OpenCL device has no cl_khr_gl_sharing", "clCreateContext with the
+  // OpenGL context failed (error N); device: the first GPU ('NVIDIA CUDA':
+  // clGetGLContextInfoKHR failed (error M))", ...
   const std::string& sharing_note() const { return sharing_note_; }
 
   cl_context context() const { return context_.get(); }
@@ -81,6 +92,8 @@ class Device {
 
  private:
   Device() = default;
+  // The context: shared with the GL context when the device can, else plain.
+  void open_context(const std::vector<cl_context_properties>& gl_properties);
   cl_platform_id platform_ = nullptr;
   cl_device_id device_ = nullptr;
   ClContext context_;
