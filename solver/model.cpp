@@ -24,11 +24,9 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
   kernels_.build_neighbors = p.kernel("build_neighbors");
   kernels_.build_mirrors = p.kernel("build_mirrors");
   kernels_.pair_forces = p.kernel("pair_forces");
-  kernels_.collect_pairs = p.kernel("collect_pairs");
-  kernels_.integrate = p.kernel("integrate");
+  kernels_.finish_particles = p.kernel("finish_particles");
   kernels_.reduce_observables = p.kernel("reduce_observables");
   if (config().walls) {
-    kernels_.wall_forces = p.kernel("wall_forces");
     kernels_.advance_walls = p.kernel("advance_walls");
     kernels_.build_wall_near = p.kernel("build_wall_near");
     kernels_.reset_wall_travel = p.kernel("reset_wall_travel");

@@ -118,51 +118,34 @@ void contact_forces(const Model& m, State& s) {
            s.touching, Real{m.dt()}, Real{m.scene().effects.rolling_damping}, s.cap, s.n,
            m.pairs().n);
   launch(m, k.pair_forces, lane_groups(m, s.n));
-  set_args(m, k.collect_pairs, s.nbr_count, s.nbr_upper, s.mirror, s.pair_force,
-           s.pair_torque, s.force, s.torque, s.cap, s.n);
-  launch(m, k.collect_pairs, s.n);
 }
 
-void wall_forces(const Model& m, State& s) {
+void finish_particles(const Model& m, State& s) {
+  const Kernels& k = m.kernels();
+  const Effects& e = m.scene().effects;
+  set_args(m, k.finish_particles, s.pos, s.pos_lo, s.vel, s.omega, s.force, s.torque,
+           s.pos_build, s.flags, s.touching, s.nbr_count, s.nbr_upper, s.mirror, s.pair_force,
+           s.pair_torque, m.wall_buffer(), s.wall_point, s.wall_point_lo, s.wall_vel,
+           s.wall_spring, s.wall_force, m.pair_buffer(), s.wall_touch, s.wall_near,
+           gravity_arg(m), fluid_arg(m), Real{e.fluid_params.viscosity}, Real{m.dt()},
+           Real{e.rolling_damping}, Real{m.skin()}, s.cap, s.n, m.walls(), m.pairs().n);
+  launch(m, k.finish_particles, lane_groups(m, s.n));
+}
+
+void move_walls(const Model& m, State& s) {
   if (!m.config().walls) return;
   const Kernels& k = m.kernels();
-  if (m.config().double_precision) {
-    set_args(m, k.wall_forces, s.pos, s.pos_lo, s.vel, s.omega, m.wall_buffer(), s.wall_point,
-             s.wall_vel, s.wall_spring, s.wall_force, m.pair_buffer(), s.force, s.torque,
-             s.wall_touch, s.wall_near, s.touching, Real{m.dt()},
-             Real{m.scene().effects.rolling_damping}, s.n, m.walls(), m.pairs().n);
-  } else {
-    set_args(m, k.wall_forces, s.pos, s.pos_lo, s.vel, s.omega, m.wall_buffer(), s.wall_point,
-             s.wall_point_lo, s.wall_vel, s.wall_spring, s.wall_force, m.pair_buffer(), s.force,
-             s.torque, s.wall_touch, s.wall_near, s.touching, Real{m.dt()},
-             Real{m.scene().effects.rolling_damping}, s.n, m.walls(), m.pairs().n);
-  }
-  launch(m, k.wall_forces, lane_groups(m, s.n));
-}
-
-void integrate(const Model& m, State& s) {
-  const Kernels& k = m.kernels();
-  set_args(m, k.integrate, s.pos, s.pos_lo, s.vel, s.omega, s.force, s.torque, s.pos_build,
-           s.flags, s.touching, gravity_arg(m), fluid_arg(m),
-           Real{m.scene().effects.fluid_params.viscosity}, Real{m.dt()}, Real{m.skin()}, s.n);
-  launch(m, k.integrate, s.n);
   if (m.config().servo) {
     const size_t groups = reduce_wall_forces(m, s);
     set_args(m, k.servo_walls, m.wall_buffer(), s.servo, s.wall_partial, s.wall_vel,
-             s.wall_reaction, s.wall_mean, Real{m.dt()}, static_cast<int>(groups), m.walls());
+             s.wall_reaction, s.wall_mean, s.wall_point, s.wall_point_lo, s.flags,
+             Real{m.dt()}, Real{m.skin()}, static_cast<int>(groups), m.walls());
     launch_exact(m, k.servo_walls, 1);
-  }
-  if (m.config().walls) {
-    if (m.config().double_precision)
-      set_args(m, k.advance_walls, s.wall_point, s.wall_vel, s.flags, Real{m.dt()},
-               Real{m.skin()}, m.walls());
-    else
-      set_args(m, k.advance_walls, s.wall_point, s.wall_point_lo, s.wall_vel, s.flags,
-               Real{m.dt()}, Real{m.skin()}, m.walls());
+  } else {
+    set_args(m, k.advance_walls, s.wall_point, s.wall_point_lo, s.wall_vel, s.flags,
+             Real{m.dt()}, Real{m.skin()}, m.walls());
     launch_exact(m, k.advance_walls, m.walls());
   }
-  ++s.step;
-  s.time = s.step * m.dt();
 }
 
 size_t reduce_wall_forces(const Model& m, State& s) {
@@ -186,8 +169,10 @@ void derive_state(const Model& m, State& s) {
 void step(const Model& m, State& s) {
   detect_contacts(m, s);
   contact_forces(m, s);
-  wall_forces(m, s);
-  integrate(m, s);
+  finish_particles(m, s);
+  move_walls(m, s);
+  ++s.step;
+  s.time = s.step * m.dt();
 }
 
 }  // namespace simsols

@@ -1,15 +1,22 @@
 // Pipeline: one DEM step as named stages over (Model, State), in order.
 //
-//   detect_contacts  rebuild grid + neighbour lists when a particle has moved
-//                    more than skin/2 (springs carried over)   grid.cl, neighbors.cl
-//   contact_forces   particle-particle forces and torques      forces.cl
-//   wall_forces      particle-wall forces; returns early when
-//                    the scene has no walls                     walls.cl
-//   integrate        leapfrog kick-drift; servo walls set their
-//                    velocity from the wall reaction; walls advanced  integrate.cl, walls.cl
+//   detect_contacts   rebuild grid + neighbour lists when a particle or a
+//                     wall has moved more than skin/4 (springs carried
+//                     over; the walls near each particle kept with them)
+//                                               grid.cl, neighbors.cl, walls.cl
+//   contact_forces    particle-particle forces and torques, each pair once
+//                                                                  forces.cl
+//   finish_particles  per particle, one launch: the partners' shares
+//                     collected, wall contacts (near walls only), leapfrog
+//                     kick-drift                forces.cl, walls.cl, integrate.cl
+//   move_walls        servo walls set their velocity from the summed wall
+//                     reaction, every wall advances; returns early when the
+//                     scene has no walls                    reduce.cl, walls.cl
 //
-// step() runs the four in this order. Stages only enqueue kernels on the
-// device's in-order queue; detect_contacts reads one flag back per step.
+// step() runs the four in this order: three kernel launches per step
+// without servo walls, four with them (plus a list build now and then).
+// Stages only enqueue kernels on the device's in-order queue;
+// detect_contacts reads the flags back every few steps (check_interval).
 // Reductions for observables are in observe.h.
 #pragma once
 
@@ -20,8 +27,8 @@ namespace simsols {
 
 void detect_contacts(const Model& model, State& state, bool force_rebuild = false);
 void contact_forces(const Model& model, State& state);
-void wall_forces(const Model& model, State& state);
-void integrate(const Model& model, State& state);
+void finish_particles(const Model& model, State& state);
+void move_walls(const Model& model, State& state);
 
 void step(const Model& model, State& state);
 

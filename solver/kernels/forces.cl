@@ -5,8 +5,9 @@
 //   keeps its own share in registers and leaves the partner's share (the
 //   opposite force, its torque, half the elastic energy, a contact flag) in
 //   the pair's list slot.
-// collect_pairs: every particle adds the shares waiting for it in the slots
-//   of its lower partners (found through `mirror`, built with the lists).
+// collect_one: every particle adds the shares waiting for it in the slots
+//   of its lower partners (found through `mirror`, built with the lists); it
+//   runs at the start of finish_particles (integrate.cl), the next launch.
 // No atomics: the sums have a fixed order and runs are reproducible bit for
 // bit. Output per particle: force.xyz and force.w = number of touching
 // neighbours; torque.xyz and torque.w = half the elastic energy of its
@@ -156,15 +157,13 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
   scatter4(torque, ii, valid, t, e);
 }
 
-__kernel void collect_pairs(__global const int* restrict nbr_count,
-                            __global const int* restrict nbr_upper,
-                            __global const int* restrict mirror,
-                            __global const real4* restrict pair_force,
-                            __global const real4* restrict pair_torque,
-                            __global real4* restrict force, __global real4* restrict torque,
-                            int cap, int n) {
-  const int i = get_global_id(0);
-  if (i >= n) return;
+INLINE void collect_one(int i, __global const int* restrict nbr_count,
+                        __global const int* restrict nbr_upper,
+                        __global const int* restrict mirror,
+                        __global const real4* restrict pair_force,
+                        __global const real4* restrict pair_torque,
+                        __global real4* restrict force, __global real4* restrict torque,
+                        int cap, int n) {
   real4 f = force[i];
   real4 t = torque[i];
   const int len = nbr_count[i];

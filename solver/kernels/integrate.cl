@@ -1,4 +1,6 @@
-// integrate.cl — stage: integrate (leapfrog / kick-drift, second order).
+// integrate.cl — stage: finish particles (finish_particles, at the end), whose
+// last part integrates each particle (integrate_one: leapfrog / kick-drift,
+// second order):
 //
 //   v_{n+1/2} = v_{n-1/2} + (F_n / m + g) dt,   w likewise with T_n / I
 //   x_{n+1}   = x_n + v_{n+1/2} dt              (compensated in float runs)
@@ -25,14 +27,12 @@
 //   flags[5]      what: bit 0 not finite, bit 1 too fast
 //   flags[6]      how many were marked
 
-__kernel void integrate(__global real4* pos POS_LO_ARG, __global real4* vel,
-                        __global real4* omega, __global const real4* force,
-                        __global const real4* torque, __global const real4* pos_build,
-                        __global volatile int* flags, __global int* contacts_last,
-                        real4 gravity, real4 fluid, real fluid_viscosity, real dt, real skin,
-                        int n) {
-  const int i = get_global_id(0);
-  if (i >= n) return;
+INLINE void integrate_one(int i, __global real4* pos, __global float4* pos_lo,
+                          __global real4* vel, __global real4* omega,
+                          __global const real4* force, __global const real4* torque,
+                          __global const real4* pos_build, __global volatile int* flags,
+                          __global int* contacts_last, real4 gravity, real4 fluid,
+                          real fluid_viscosity, real dt, real skin) {
   real4 v = vel[i];
   real4 w = omega[i];
   real4 x = pos[i];
@@ -92,4 +92,43 @@ __kernel void integrate(__global real4* pos POS_LO_ARG, __global real4* vel,
   // for the atomic (one shared word: contended if every particle wrote it)
   const int v2 = as_int((float)dot(v.xyz, v.xyz));
   if (v2 > flags[2]) atomic_max(&flags[2], v2);
+}
+
+// Stage: finish the particles, one launch per step for everything that is
+// per particle once the pair forces are known. A work item takes the LANES
+// particles of the pair stage (forces.cl) and, in this order, collects the
+// shares their partners left (collect_one, forces.cl), adds their wall
+// contacts (wall_contacts, walls.cl) and integrates them (integrate_one,
+// above). Each particle is read and written by its own work item only, so
+// the three parts see each other's writes in program order, and the sums
+// are those of three separate kernels, bit for bit. pos_lo and
+// wall_point_lo are unused in double runs; the wall arguments without walls.
+__kernel void finish_particles(
+    __global real* pos, __global float* pos_lo, __global real* vel, __global real* omega,
+    __global real* force, __global real* torque, __global const real4* pos_build,
+    __global volatile int* flags, __global int* contacts_last, __global const int* nbr_count,
+    __global const int* nbr_upper, __global const int* mirror,
+    __global const real4* pair_force, __global const real4* pair_torque,
+    __global const real* walls, __global const real* wall_point,
+    __global const float* wall_point_lo, __global const real* wall_vel,
+    __global real* wall_spring, __global real* wall_force, __global const real* pairs,
+    __global int* wall_touch, __global const int* wall_near, real4 gravity, real4 fluid,
+    real fluid_viscosity, real dt, real rolling_damping, real skin, int cap, int n, int nwalls,
+    int nmat) {
+  const int base = get_global_id(0) * LANES;
+  if (base >= n) return;
+  const int count = min(LANES, n - base);
+  for (int l = 0; l < count; ++l)
+    collect_one(base + l, nbr_count, nbr_upper, mirror, pair_force, pair_torque,
+                (__global real4*)force, (__global real4*)torque, cap, n);
+#ifdef HAS_WALLS
+  wall_contacts(base, pos POS_LO_PASS, vel, omega, walls, wall_point WALL_LO_PASS, wall_vel,
+                wall_spring, wall_force, pairs, force, torque, wall_touch, wall_near,
+                contacts_last, dt, rolling_damping, n, nwalls, nmat);
+#endif
+  for (int l = 0; l < count; ++l)
+    integrate_one(base + l, (__global real4*)pos, (__global float4*)pos_lo,
+                  (__global real4*)vel, (__global real4*)omega, (__global const real4*)force,
+                  (__global const real4*)torque, pos_build, flags, contacts_last, gravity,
+                  fluid, fluid_viscosity, dt, skin);
 }

@@ -2,7 +2,8 @@
 //
 // Same contact law as between spheres, with the wall as a body of infinite
 // mass and radius (R* = r_i, m* = m_i, I* = I_i); no capillary bridges with
-// walls (walls are dry). Adds to the force/torque written by contact_forces.
+// walls (walls are dry). wall_contacts adds to the force/torque the pair
+// stage wrote; it runs inside finish_particles (integrate.cl).
 // Each (wall, particle) slot w*n+i keeps its history (HIST_PLANES records,
 // plane p at p*nwalls*n) and the force the particle exerts ON the wall, which
 // reduce_walls sums into the wall's reaction.
@@ -109,7 +110,8 @@ __kernel void reset_wall_travel(__global real4* wall_point, int nwalls) {
   if (w < nwalls) wall_point[w].w = 0;
 }
 
-__kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
+// The wall contacts of the LANES particles from `base` on.
+INLINE void wall_contacts(int base, __global const real* restrict pos POS_LO_SARG_FN,
                           __global const real* restrict vel, __global const real* restrict omega,
                           __global const real* restrict walls,
                           __global const real* restrict wall_point WALL_LO_ARG,
@@ -120,8 +122,6 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
                           __global const int* restrict wall_near,
                           __global const int* restrict contacts_last, real dt,
                           real rolling_damping, int n, int nwalls, int nmat) {
-  const int base = get_global_id(0) * LANES;
-  if (base >= n) return;
   int ii[LANES], valid[LANES], pair[LANES], was[LANES], now[LANES];
   int near = 0;  // walls near any lane (broad phase), or touched by one last step
 #pragma unroll
@@ -237,17 +237,13 @@ __kernel void wall_forces(__global const real* restrict pos POS_LO_SARG,
     if (valid[l]) wall_touch[ii[l]] = now[l];
 }
 
-// Walls move with their prescribed velocity (compensated in float runs),
-// keep their travel since the last list build in point.w and raise the list
-// flags as integrate.cl does for particles (the broad phase above).
-__kernel void advance_walls(__global real4* wall_point
-#ifdef POS_COMPENSATED
-                            , __global float4* wall_point_lo
-#endif
-                            , __global const real4* wall_vel,
-                            __global volatile int* flags, real dt, real skin, int nwalls) {
-  const int w = get_global_id(0);
-  if (w >= nwalls) return;
+// Wall w moves with its velocity (compensated in float runs), keeps its
+// travel since the last list build in point.w and raises the list flags as
+// integrate.cl does for particles (the broad phase above). wall_point_lo is
+// unused in double runs.
+INLINE void advance_wall(int w, __global real4* wall_point, __global float4* wall_point_lo,
+                         __global const real4* wall_vel, __global volatile int* flags, real dt,
+                         real skin) {
   const real3 v = wall_vel[w].xyz;
   real4 p = wall_point[w];
 #ifdef POS_COMPENSATED
@@ -263,6 +259,15 @@ __kernel void advance_walls(__global real4* wall_point
   if (p.w > (real)0.5 * skin) flags[3] = 1;
   const int v2 = as_int((float)dot(v, v));
   if (v2 > flags[2]) atomic_max(&flags[2], v2);
+}
+
+// All walls, one work item each (scenes without servo walls; servo_walls
+// below advances the walls itself).
+__kernel void advance_walls(__global real4* wall_point, __global float4* wall_point_lo,
+                            __global const real4* wall_vel, __global volatile int* flags, real dt,
+                            real skin, int nwalls) {
+  const int w = get_global_id(0);
+  if (w < nwalls) advance_wall(w, wall_point, wall_point_lo, wall_vel, flags, dt, skin);
 }
 
 #endif  // HAS_WALLS (servo_walls below needs it too)
@@ -285,36 +290,47 @@ __kernel void advance_walls(__global real4* wall_point
 // 1/M > 0 selects the dead weight (gain, max_speed, T_i unused).
 // reading: 1 real4 per wall, (F this step, sum of F since the host last
 // reset it, v_i or u, steps in the sum).
+INLINE void servo_wall(int w, __global const real4* walls, __global const real4* servo,
+                       __global const real4* partial, __global real4* wall_vel,
+                       __global real4* reading, __global real4* mean, real dt, int groups) {
+  real4 sum = (real4)(0);
+  for (int g = 0; g < groups; ++g) sum += partial[w * groups + g];
+  mean[w] += (real4)(sum.xyz, 1);
+  const real4 c = servo[2 * w];
+  if (c.w == (real)0) return;
+  const real inv_ti = servo[2 * w + 1].x;
+  const real inv_mass = servo[2 * w + 1].y;
+  const real3 n = walls[WALL_RECORD * w + 1].xyz;
+  const real f = -dot(sum.xyz, n);
+  real4 r = reading[w];
+  const real e = c.x - f;
+  real v;
+  if (inv_mass > (real)0) {
+    v = dot(wall_vel[w].xyz, n) + dt * e * inv_mass;
+    r.z = v;
+  } else {
+    const real vp = c.y * e;
+    real vi = r.z;
+    if (fabs(vp) < c.z) vi = clamp(vi + vp * dt * inv_ti, -c.z, c.z);
+    v = clamp(vp + vi, -c.z, c.z);
+    r.z = vi;
+  }
+  reading[w] = (real4)(f, r.y + f, r.z, r.w + 1);
+  wall_vel[w] = (real4)(v * n, 0);
+}
+
+// One work item: every wall's servo step, then every wall advances
+// (advance_wall), controlled or not: one launch for the walls' whole step.
 __kernel void servo_walls(__global const real4* walls, __global const real4* servo,
                           __global const real4* partial, __global real4* wall_vel,
-                          __global real4* reading, __global real4* mean, real dt, int groups,
+                          __global real4* reading, __global real4* mean,
+                          __global real4* wall_point, __global float4* wall_point_lo,
+                          __global volatile int* flags, real dt, real skin, int groups,
                           int nwalls) {
   if (get_global_id(0) != 0) return;
   for (int w = 0; w < nwalls; ++w) {
-    real4 sum = (real4)(0);
-    for (int g = 0; g < groups; ++g) sum += partial[w * groups + g];
-    mean[w] += (real4)(sum.xyz, 1);
-    const real4 c = servo[2 * w];
-    if (c.w == (real)0) continue;
-    const real inv_ti = servo[2 * w + 1].x;
-    const real inv_mass = servo[2 * w + 1].y;
-    const real3 n = walls[WALL_RECORD * w + 1].xyz;
-    const real f = -dot(sum.xyz, n);
-    real4 r = reading[w];
-    const real e = c.x - f;
-    real v;
-    if (inv_mass > (real)0) {
-      v = dot(wall_vel[w].xyz, n) + dt * e * inv_mass;
-      r.z = v;
-    } else {
-      const real vp = c.y * e;
-      real vi = r.z;
-      if (fabs(vp) < c.z) vi = clamp(vi + vp * dt * inv_ti, -c.z, c.z);
-      v = clamp(vp + vi, -c.z, c.z);
-      r.z = vi;
-    }
-    reading[w] = (real4)(f, r.y + f, r.z, r.w + 1);
-    wall_vel[w] = (real4)(v * n, 0);
+    servo_wall(w, walls, servo, partial, wall_vel, reading, mean, dt, groups);
+    advance_wall(w, wall_point, wall_point_lo, wall_vel, flags, dt, skin);
   }
 }
 #endif  // HAS_SERVO
