@@ -357,7 +357,7 @@ CommandRunner add_study_command(CLI::App& app) {
                   "(with table: print only its table)");
   cmd->add_option("--box-scale", opt->box_scale,
                   "The poured specimen's box against the paper's, length and width, [1, 4] "
-                  "(default: quick and full 1.5, ci 1)");
+                  "(default: quick and full 2, ci 1)");
   cmd->add_option("--jobs,-j", opt->jobs,
                   "Cases at once, each on its own OpenCL context and queue (default 1; see "
                   "docs/accuracy.md for when more is faster)");

@@ -119,7 +119,7 @@ struct StudyPreset {
   // (docs/accuracy.md says why); its settling time under gravity: the
   // rain falls three specimen heights (0.12 s), then the platen brings the
   // load on what still rolls.
-  double poured_box_scale = 1.5;
+  double poured_box_scale = 2;
   double poured_settle_time = 0.15;  // s
   // Each specimen's settings, its reference first (knob "reference").
   std::vector<StudySettings> cases;
