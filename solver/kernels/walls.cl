@@ -15,7 +15,7 @@
 // has travelled since the last list build.
 //
 // Broad phase: at every list build, build_wall_near keeps for each particle
-// the walls within its radius + skin (bit w of wall_near), and wall_forces
+// the walls within its radius + skin (bit w of wall_near), and wall_contacts
 // tests only those. The mask stays valid while neither the particle nor the
 // wall has moved skin/2 since the build (the distance to a wall changes by
 // at most their two displacements): particles are watched by integrate.cl,

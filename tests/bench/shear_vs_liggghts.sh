@@ -47,9 +47,7 @@ lig=$root/assets/crosscheck/liggghts
 now() { date +%s.%N; }
 
 # The specimen: SimSols builds it, both codes start from its beads.
-sed -e 's/^diameter = 6.35e-3 .*/diameter = 2.38125e-3/' -e 's/^layers = 4$/layers = 8/' \
-  "$root/assets/scenes/shear_box.toml" > "$out/scene.toml"
-grep -q '^layers = 8' "$out/scene.toml" || { echo "could not set the 2.38 mm specimen" >&2; exit 1; }
+"$lig/scene_2.38mm.sh" "$out/scene.toml"
 rm -rf "$out/start"
 "$simsols" run "$out/scene.toml" --out "$out/start" --stop-after 1 -q > /dev/null
 scene=$out/start/scene.resolved.toml

@@ -87,9 +87,7 @@ physics() {
 }
 shear() {
   local scene=$out/shear_2.38mm.toml
-  sed -e 's/^diameter = 6.35e-3 .*/diameter = 2.38125e-3/' -e 's/^layers = 4$/layers = 8/' \
-    assets/scenes/shear_box.toml > "$scene"
-  grep -q '^layers = 8' "$scene" || { echo "could not set the 2.38 mm specimen"; return 1; }
+  assets/crosscheck/liggghts/scene_2.38mm.sh "$scene" || return 1
   local t0
   t0=$(date +%s.%N)
   "$bin/simsols" run "$scene" --out "$out/shear" --stop-after "$shear_steps" -q || return 1

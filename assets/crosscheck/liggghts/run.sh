@@ -41,10 +41,7 @@ mkdir -p "$out"
 out=$(cd "$out" && pwd)
 
 if [[ -z "$scene" ]]; then
-  sed -e 's/^diameter = 6.35e-3 .*/diameter = 2.38125e-3/' -e 's/^layers = 4$/layers = 8/' \
-    "$root/assets/scenes/shear_box.toml" > "$out/scene.toml"
-  grep -q '^diameter = 2.38125e-3' "$out/scene.toml" && grep -q '^layers = 8' "$out/scene.toml" ||
-    { echo "run.sh: could not set the specimen in shear_box.toml" >&2; exit 1; }
+  "$here/scene_2.38mm.sh" "$out/scene.toml"
   rm -rf "$out/simsols_start"
   "$simsols" run "$out/scene.toml" --out "$out/simsols_start" --stop-after 1 -q > /dev/null
   scene=$out/simsols_start/scene.resolved.toml
