@@ -80,9 +80,9 @@ int bench_effects(const EffectsBenchOptions& opt) {
         std::sort(sec.begin(), sec.end());
         const double t = sec[sec.size() / 2];
         const KernelConfig& k = sim.model().config();
-        // bytes of one neighbour-list slot: id, mirror, the partner's force
-        // and torque shares, and the history twice (current and previous lists)
-        const size_t slot = 2 * sizeof(int) + 2 * 4 * k.real_size() + 2 * k.history_bytes_per_contact();
+        // bytes of one listed pair: ids and the previous id (upper slot),
+        // id and mirror (lower slot), the shares, the history
+        const size_t slot = 4 * sizeof(int) + 2 * 4 * k.real_size() + k.history_bytes_per_contact();
         std::printf("%-26s %9d %9s %12.2f %16.4g %10zu %12zu %11.0f\n", c.name, n, prec.c_str(),
                     t * 1e6, n / t, k.history_bytes_per_contact(), slot,
                     double(sim.state().device_bytes() + sim.model().device_bytes()) / n);

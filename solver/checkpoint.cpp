@@ -17,7 +17,6 @@
 namespace simsols {
 namespace {
 
-constexpr std::uint32_t kUnverifiedVersion = 3;  // same payload, no size or checksum
 
 [[noreturn]] void refuse(const std::string& path, const std::string& what) {
   throw SceneError("bad_checkpoint", path, 0, "", "not a usable SimSols checkpoint: " + what);
@@ -95,10 +94,12 @@ Header read_header(std::ifstream& in, const std::string& path) {
   Reader r(in, path);
   Header h;
   h.version = r.pod<std::uint32_t>();
-  if (h.version == kUnverifiedVersion) return h;
+  if (h.version == 3 || h.version == 4)
+    refuse(path, "format version " + std::to_string(h.version) +
+                     ", written before the sliced neighbour lists; this build reads version " +
+                     std::to_string(kCheckpointVersion) + ": rerun the run from its scene");
   if (h.version != kCheckpointVersion)
-    refuse(path, "format version " + std::to_string(h.version) + ", this build reads versions " +
-                     std::to_string(kUnverifiedVersion) + " and " +
+    refuse(path, "format version " + std::to_string(h.version) + ", this build reads version " +
                      std::to_string(kCheckpointVersion));
   h.payload = r.pod<std::uint64_t>();
   h.crc = r.pod<std::uint32_t>();
@@ -112,7 +113,8 @@ void write_payload(Writer& w, Simulation& sim, const std::string& extra) {
   w.pod<std::int64_t>(s.list_builds);
   w.pod<std::int64_t>(s.next_check);
   w.pod<std::int64_t>(s.late_builds);
-  w.pod<std::int32_t>(s.cap);
+  w.pod<std::int32_t>(s.up_slots);
+  w.pod<std::int32_t>(s.lo_slots);
   std::vector<char> data;
   for (auto& [name, buf] : s.dynamic_buffers()) {
     data.resize(buf->bytes);
@@ -127,18 +129,7 @@ void read_buffers(Reader& r, Simulation& sim) {
   for (auto& [name, buf] : sim.state().dynamic_buffers()) {
     if (r.str() != name) r.fail("buffer '" + name + "' missing");
     const std::vector<char> data = r.bytes();
-    // flags grew from 4 to 8 ints (the runaway mark, guard.h): an older
-    // file's 4 keep the new ones at their initial values
-    const bool older_flags = name == "flags" && data.size() == 16 && buf->bytes == 32;
-    // before the effect slots, every scene kept a tangential spring per list
-    // and wall slot; a scene whose slots need no history now has a 16-byte
-    // stand-in, and the older file's (zero, unused) springs are dropped
-    const bool unused_history =
-        (name == "spring" || name == "wall_spring") && buf->bytes == 16 && data.size() > 16 &&
-        sim.model().config().history_planes() == 0;
-    if (unused_history) continue;
-    if (data.size() != buf->bytes && !older_flags)
-      r.fail("buffer '" + name + "' has the wrong size");
+    if (data.size() != buf->bytes) r.fail("buffer '" + name + "' has the wrong size");
     sim.model().device().write(buf->get(), data.size(), data.data());
   }
 }
@@ -176,7 +167,6 @@ std::uint32_t verify_checkpoint(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError("io", path, 0, "", "cannot open checkpoint");
   const Header h = read_header(in, path);
-  if (h.version == kUnverifiedVersion) return h.version;
   std::uint32_t crc = 0;
   std::uint64_t seen = 0;
   std::vector<char> chunk(1 << 20);
@@ -200,9 +190,7 @@ std::uint32_t verify_checkpoint(const std::string& path) {
 
 std::unique_ptr<Simulation> load_checkpoint(std::shared_ptr<Device> device, const std::string& path,
                                             std::string* extra) {
-  if (verify_checkpoint(path) == kUnverifiedVersion)
-    std::fprintf(stderr, "warning: %s is a version 3 checkpoint, without a checksum: loaded unverified\n",
-                 path.c_str());
+  verify_checkpoint(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError("io", path, 0, "", "cannot open checkpoint");
   read_header(in, path);
@@ -216,8 +204,13 @@ std::unique_ptr<Simulation> load_checkpoint(std::shared_ptr<Device> device, cons
   s.list_builds = r.pod<std::int64_t>();
   s.next_check = r.pod<std::int64_t>();
   s.late_builds = r.pod<std::int64_t>();
-  const int cap = r.pod<std::int32_t>();
-  if (cap != s.cap) s.resize_lists(sim->model(), cap);
+  const int up = r.pod<std::int32_t>();
+  const int lo = r.pod<std::int32_t>();
+  const std::int64_t most = std::int64_t(s.n) * 256;  // MAX_CAP in neighbors.cl
+  if (up < 0 || lo < 0 || up > most || lo > most)
+    r.fail("neighbour-list capacity " + std::to_string(up) + ", " + std::to_string(lo) +
+           " out of range (0 to 256 per particle)");
+  if (up != s.up_slots || lo != s.lo_slots) s.resize_lists(sim->model(), up, lo);
   read_buffers(r, *sim);
   derive_state(sim->model(), sim->state());
   sim->state_replaced();

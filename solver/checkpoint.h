@@ -2,19 +2,20 @@
 // continues bit for bit as if it had never stopped (same device, same
 // precision).
 //
-// File layout (format version 4, little endian):
+// File layout (format version 5, little endian):
 //   "SIMSOLS-CKPT"   12 bytes of magic
-//   version          u32 (4)
+//   version          u32 (5)
 //   payload bytes    u64
 //   payload CRC-32   u32 (zlib's crc32 of the payload)
 //   payload          the scene as exact TOML (to_toml), step, list builds,
-//                    next list check, late builds, neighbour capacity, every
+//                    next list check, late builds, the allocated upper and
+//                    lower neighbour-list slots (two i32), every
 //                    dynamic buffer as (name, byte count, bytes), then the
 //                    driver's `extra` (e.g. the shear test's loading program)
 // The whole file is verified (size and checksum) before anything is built
 // from it, so a damaged file is refused with the reason instead of
-// resuming from garbage. Version 3 files (the same payload without size and
-// checksum) are still read, unverified, with a warning.
+// resuming from garbage. Files of versions 3 and 4 (fixed-capacity
+// neighbour lists) are refused with that reason: rerun them from their scene.
 //
 // Files are written to a temporary name in the same folder and renamed, so
 // a crash or a kill -9 never leaves half a checkpoint: the previous one
@@ -29,7 +30,7 @@
 
 namespace simsols {
 
-inline constexpr std::uint32_t kCheckpointVersion = 4;
+inline constexpr std::uint32_t kCheckpointVersion = 5;
 
 // `extra`: the state of whatever drives the run (e.g. the shear test's
 // loading program), stored verbatim and handed back by load_checkpoint.

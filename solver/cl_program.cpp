@@ -23,7 +23,7 @@ std::string KernelConfig::build_options() const {
   o += " -DPAIR_RECORD=" + std::to_string(pair_record());
   if (walls) o += " -DHAS_WALLS";
   if (servo) o += " -DHAS_SERVO";
-  if (interleaved_lists) o += " -DNBR_INTERLEAVED";
+  o += " -DSLICE=" + std::to_string(slice);
   o += " -DLANES=" + std::to_string(lanes);
   if (!extra_options.empty()) o += " " + extra_options;
   return o;
@@ -56,10 +56,6 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
   c.fluid = e.fluid == FluidModel::Drag;
   c.walls = !scene.walls.empty();
   for (const Wall& w : scene.walls) c.servo = c.servo || w.servo.enabled;
-  // Slot k of particle i at k*n + i: consecutive particles (GPU threads or
-  // CPU SIMD lanes) touch consecutive slots. 2x faster than i*cap + k on PoCL.
-  c.interleaved_lists = true;
-  if (const char* v = std::getenv("SIMSOLS_INTERLEAVED")) c.interleaved_lists = std::atoi(v) != 0;
   // CPUs: SIMD lanes, 8 floats or 4 doubles per work item (256-bit
   // registers; measured fastest with PoCL 3.1 on AVX-512, docs/performance.md).
   // GPUs already run one particle per SIMD lane.
@@ -67,6 +63,10 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
   if (const char* l = std::getenv("SIMSOLS_LANES")) c.lanes = std::atoi(l);
   if (c.lanes != 1 && c.lanes != 2 && c.lanes != 4 && c.lanes != 8 && c.lanes != 16)
     throw DeviceError("SIMSOLS_LANES must be 1, 2, 4, 8 or 16");
+  // List slices (neighbors.cl): a work item's lanes are one slice, so they
+  // read consecutive slots; one particle per work item (GPUs) slices by 32,
+  // a warp, so neighbouring threads do. SLICE must be a multiple of LANES.
+  c.slice = c.lanes > 1 ? c.lanes : 32;
   // extra OpenCL build options for experiments, e.g. "-cl-fast-relaxed-math"
   if (const char* x = std::getenv("SIMSOLS_CL_OPTIONS")) c.extra_options = x;
   return c;

@@ -32,8 +32,8 @@ struct KernelConfig {
   bool fluid = false;         // slot fluid = drag
   bool walls = true;
   bool servo = false;  // some wall is servo-controlled
-  bool interleaved_lists = true;   // neighbour slot layout k*n+i (else i*cap+k)
   int lanes = 1;                   // particles per work item in the contact kernels
+  int slice = 32;                  // particles per slice of the neighbour lists (neighbors.cl)
   std::string extra_options;       // appended verbatim (diagnostics, tests)
 
   std::string build_options() const;

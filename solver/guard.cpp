@@ -75,13 +75,15 @@ void Guard::take_copy() {
   copy_list_builds_ = state_.list_builds;
   copy_next_check_ = state_.next_check;
   copy_late_builds_ = state_.late_builds;
-  copy_cap_ = state_.cap;
+  copy_up_ = state_.up_slots;
+  copy_lo_ = state_.lo_slots;
   have_copy_ = true;
   log_.clear();
 }
 
 void Guard::restore_copy() {
-  if (state_.cap != copy_cap_) state_.resize_lists(model_, copy_cap_);
+  if (state_.up_slots != copy_up_ || state_.lo_slots != copy_lo_)
+    state_.resize_lists(model_, copy_up_, copy_lo_);
   auto buffers = state_.dynamic_buffers();
   for (size_t k = 0; k < buffers.size(); ++k)
     model_.device().copy(copy_[k].get(), buffers[k].second->get(), copy_[k].bytes);

@@ -119,7 +119,7 @@ class Guard {
   std::int64_t copy_step_ = 0;
   double copy_time_ = 0;
   std::int64_t copy_list_builds_ = 0, copy_next_check_ = 0, copy_late_builds_ = 0;
-  int copy_cap_ = 0;
+  int copy_up_ = 0, copy_lo_ = 0;  // list capacities of the copy
   std::vector<Buffer> copy_;
   std::vector<Logged> log_;
 };

@@ -21,6 +21,8 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
   kernels_.scan_totals = p.kernel("scan_totals");
   kernels_.scan_apply = p.kernel("scan_apply");
   kernels_.grid_scatter = p.kernel("grid_scatter");
+  kernels_.count_neighbors = p.kernel("count_neighbors");
+  kernels_.slice_widths = p.kernel("slice_widths");
   kernels_.build_neighbors = p.kernel("build_neighbors");
   kernels_.build_mirrors = p.kernel("build_mirrors");
   kernels_.pair_forces = p.kernel("pair_forces");

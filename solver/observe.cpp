@@ -113,18 +113,29 @@ ParticleSnapshot download(const Model& m, State& s) {
   return p;
 }
 
+UpperLists read_upper_lists(const Model& m, State& s) {
+  UpperLists l;
+  l.slice = m.config().slice;
+  l.upper.resize(s.n);
+  l.off.resize(s.slices + 1);
+  l.nbr.resize(s.up_slots);
+  m.device().read(s.nbr_upper.get(), l.upper.size() * sizeof(int), l.upper.data());
+  m.device().read(s.up_off.get(), l.off.size() * sizeof(std::uint32_t), l.off.data());
+  m.device().read(s.nbr.get(), l.nbr.size() * sizeof(int), l.nbr.data());
+  return l;
+}
+
 std::vector<ContactForce> contact_list(const Model& m, State& s) {
-  const int n = s.n, cap = s.cap;
+  const int n = s.n;
   std::vector<ContactForce> out;
   if (n == 0) return out;
-  std::vector<int> upper(n), nbr(size_t(n) * cap);
-  m.device().read(s.nbr_upper.get(), n * sizeof(int), upper.data());
-  m.device().read(s.nbr.get(), nbr.size() * sizeof(int), nbr.data());
-  const std::vector<double> pf = read_reals(m, s.pair_force, size_t(n) * cap * 4);
-  const bool inter = m.config().interleaved_lists;
+  const UpperLists l = read_upper_lists(m, s);
+  const std::vector<int>& upper = l.upper;
+  const std::vector<int>& nbr = l.nbr;
+  const std::vector<double> pf = read_reals(m, s.share, size_t(s.up_slots) * 4);
   for (int i = 0; i < n; ++i)
     for (int k = 0; k < upper[i]; ++k) {
-      const size_t slot = inter ? size_t(k) * n + i : size_t(i) * cap + k;
+      const size_t slot = l.slot(i, k);
       if (pf[slot * 4 + 3] == 0) continue;  // listed, not touching
       out.push_back({i, nbr[slot], {-pf[slot * 4], -pf[slot * 4 + 1], -pf[slot * 4 + 2]}});
     }

@@ -65,6 +65,17 @@ struct ContactForce {
 };
 std::vector<ContactForce> contact_list(const Model& model, State& state);
 
+// The upper parts of the neighbour lists (the pairs each particle owns,
+// neighbors.cl), read back: lengths, slice offsets, partners.
+struct UpperLists {
+  int slice = 1;
+  std::vector<int> upper;               // per particle
+  std::vector<std::uint32_t> off;       // per slice, + the total
+  std::vector<int> nbr;                 // per upper slot
+  size_t slot(int i, int k) const { return list_slot(off, slice, i, k); }
+};
+UpperLists read_upper_lists(const Model& model, State& state);
+
 // FNV-1a over the dynamic buffers (positions, velocities, springs, lists...).
 std::uint64_t state_hash(const Model& model, State& state);
 

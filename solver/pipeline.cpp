@@ -1,6 +1,7 @@
 #include "pipeline.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -35,21 +36,63 @@ void build_grid(const Model& m, State& s) {
   launch(m, k.grid_scatter, s.n);
 }
 
-// Returns the longest list asked for (> cap on overflow).
-int build_lists(const Model& m, State& s) {
+// In-place exclusive prefix sum of `values` (entries 0..len-1), with the
+// grid's scan kernels (grid.cl) and its chunk sums as scratch.
+void prefix_sum(const Model& m, State& s, const Buffer& values, std::uint32_t len) {
   const Kernels& k = m.kernels();
-  set_args(m, k.build_neighbors, s.pos, s.pos_lo, s.cell_count, s.cell_start, s.sorted,
-           s.old_count, s.old_upper, s.old_nbr, s.old_spring, s.nbr_count, s.nbr, s.spring,
-           s.nbr_upper, s.pos_build, s.flags, Real{1.0 / m.cell_size()}, Real{m.skin()},
-           s.table, s.cap, s.n);
-  launch(m, k.build_neighbors, s.n);
+  const std::uint32_t chunk_len = (len + s.chunks - 1) / s.chunks;
+  set_args(m, k.scan_chunks, values, s.chunk_sum, len, chunk_len);
+  launch_exact(m, k.scan_chunks, s.chunks);
+  set_args(m, k.scan_totals, s.chunk_sum, s.chunks);
+  launch_exact(m, k.scan_totals, 1);
+  set_args(m, k.scan_apply, values, s.chunk_sum, values, len, chunk_len);
+  launch_exact(m, k.scan_apply, s.chunks);
+}
+
+// Lengths, then the slices' offsets (neighbors.cl). Returns the upper and
+// lower slots the new lists need.
+std::array<std::uint32_t, 2> size_lists(const Model& m, State& s) {
+  const Kernels& k = m.kernels();
+  set_args(m, k.count_neighbors, s.pos, s.pos_lo, s.cell_count, s.cell_start, s.sorted,
+           s.nbr_count, s.nbr_upper, s.flags, Real{1.0 / m.cell_size()}, Real{m.skin()},
+           s.table, s.n);
+  launch(m, k.count_neighbors, s.n);
   int flags[2] = {0, 0};
   m.device().read(s.flags.get(), sizeof flags, flags);
-  if (flags[1] <= s.cap) {
-    set_args(m, k.build_mirrors, s.nbr_count, s.nbr, s.nbr_upper, s.mirror, s.cap, s.n);
-    launch(m, k.build_mirrors, s.n);
-  }
-  return flags[1];
+  if (flags[1] > kMaxNeighbors)
+    throw DeviceError("a particle has " + std::to_string(flags[1]) +
+                      " neighbours within the skin (limit 256): reduce numerics.skin or the "
+                      "size ratio");
+  set_args(m, k.slice_widths, s.nbr_count, s.nbr_upper, s.up_off, s.lo_off, s.n, s.slices);
+  launch(m, k.slice_widths, s.slices + 1);
+  prefix_sum(m, s, s.up_off, s.slices + 1);
+  prefix_sum(m, s, s.lo_off, s.slices + 1);
+  std::array<std::uint32_t, 2> total{};
+  m.device().read(s.up_off.get(), 4, &total[0], size_t(s.slices) * 4);
+  m.device().read(s.lo_off.get(), 4, &total[1], size_t(s.slices) * 4);
+  return total;
+}
+
+// The lists (neighbors.cl), after the ones in use became the old ones. The
+// old history waits in `share`, at the old capacity's stride.
+void build_lists(const Model& m, State& s) {
+  const Kernels& k = m.kernels();
+  // the previous history into share (dead between steps), at its stride
+  if (m.config().history_planes() > 0) m.device().copy(s.spring.get(), s.share.get(), s.spring.bytes);
+  const int old_stride = s.up_slots;
+  const std::array<std::uint32_t, 2> need = size_lists(m, s);
+  const bool grow_up = need[0] > std::uint32_t(s.up_slots);
+  if (grow_up) s.grow_upper(m, int(need[0] + need[0] / 8));
+  if (need[1] > std::uint32_t(s.lo_slots)) s.grow_lower(m, int(need[1] + need[1] / 8));
+  set_args(m, k.build_neighbors, s.pos, s.pos_lo, s.cell_count, s.cell_start, s.sorted,
+           s.old_up_off, s.old_upper, s.old_nbr, s.share, old_stride, s.up_off, s.lo_off,
+           s.nbr_upper, s.nbr, s.nbr_lo, s.spring, s.up_slots, s.pos_build,
+           Real{1.0 / m.cell_size()}, Real{m.skin()}, s.table, s.n);
+  launch(m, k.build_neighbors, s.n);
+  if (grow_up) s.upper_scratch(m);
+  set_args(m, k.build_mirrors, s.nbr_count, s.nbr_upper, s.up_off, s.nbr, s.lo_off, s.nbr_lo,
+           s.mirror, s.n);
+  launch(m, k.build_mirrors, s.n);
 }
 
 // The walls near each particle (walls.cl, broad phase), and the walls'
@@ -94,29 +137,18 @@ void detect_contacts(const Model& m, State& s, bool force_rebuild) {
   build_grid(m, s);
   // The lists in use become the "old" ones the springs are carried from.
   s.nbr.mem.swap(s.old_nbr.mem);
-  s.spring.mem.swap(s.old_spring.mem);
-  s.nbr_count.mem.swap(s.old_count.mem);
+  s.up_off.mem.swap(s.old_up_off.mem);
   s.nbr_upper.mem.swap(s.old_upper.mem);
-  int wanted = build_lists(m, s);
-  while (wanted > s.cap) {
-    if (wanted > kMaxNeighbors)
-      throw DeviceError("a particle has " + std::to_string(wanted) +
-                        " neighbours within the skin (limit 256): reduce numerics.skin or the "
-                        "size ratio");
-    s.grow_lists(m, std::min(kMaxNeighbors, std::max(wanted + wanted / 4, 2 * s.cap)));
-    m.device().write(s.flags.get(), sizeof zero, zero);
-    wanted = build_lists(m, s);
-  }
+  build_lists(m, s);
   build_wall_near(m, s);
   ++s.list_builds;
 }
 
 void contact_forces(const Model& m, State& s) {
   const Kernels& k = m.kernels();
-  set_args(m, k.pair_forces, s.pos, s.pos_lo, s.vel, s.omega, s.nbr, s.nbr_upper,
-           s.spring, m.pair_buffer(), s.pair_force, s.pair_torque, s.force, s.torque,
-           s.touching, Real{m.dt()}, Real{m.scene().effects.rolling_damping}, s.cap, s.n,
-           m.pairs().n);
+  set_args(m, k.pair_forces, s.pos, s.pos_lo, s.vel, s.omega, s.up_off, s.nbr, s.nbr_upper,
+           s.spring, m.pair_buffer(), s.share, s.force, s.torque, s.touching, Real{m.dt()},
+           Real{m.scene().effects.rolling_damping}, s.up_slots, s.n, m.pairs().n);
   launch(m, k.pair_forces, lane_groups(m, s.n));
 }
 
@@ -124,11 +156,11 @@ void finish_particles(const Model& m, State& s) {
   const Kernels& k = m.kernels();
   const Effects& e = m.scene().effects;
   set_args(m, k.finish_particles, s.pos, s.pos_lo, s.vel, s.omega, s.force, s.torque,
-           s.pos_build, s.flags, s.touching, s.nbr_count, s.nbr_upper, s.mirror, s.pair_force,
-           s.pair_torque, m.wall_buffer(), s.wall_point, s.wall_point_lo, s.wall_vel,
+           s.pos_build, s.flags, s.touching, s.nbr_count, s.nbr_upper, s.lo_off, s.mirror,
+           s.share, m.wall_buffer(), s.wall_point, s.wall_point_lo, s.wall_vel,
            s.wall_spring, s.wall_force, m.pair_buffer(), s.wall_touch, s.wall_near,
            gravity_arg(m), fluid_arg(m), Real{e.fluid_params.viscosity}, Real{m.dt()},
-           Real{e.rolling_damping}, Real{m.skin()}, s.cap, s.n, m.walls(), m.pairs().n);
+           Real{e.rolling_damping}, Real{m.skin()}, s.up_slots, s.n, m.walls(), m.pairs().n);
   launch(m, k.finish_particles, lane_groups(m, s.n));
 }
 

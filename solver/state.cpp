@@ -17,18 +17,11 @@ std::array<double, 8> servo_record(const WallServo& c) {
 
 namespace {
 
-int default_capacity(const Scene& scene) {
-  if (scene.numerics.neighbor_capacity > 0) return scene.numerics.neighbor_capacity;
-  double rmin = 1e300, rmax = 0;
-  for (const Particle& p : scene.particles) {
-    rmin = std::min(rmin, p.radius);
-    rmax = std::max(rmax, p.radius);
-  }
-  // 16 slots cover a dense monodisperse packing with a 0.1 d skin (12 in a
-  // close packing); size ratios raise it (roughly the surface ratio).
-  // Overflow grows it anyway (pipeline.cpp).
-  const double ratio = rmax / rmin;
-  return std::clamp(static_cast<int>(std::ceil(16 * std::min(ratio * ratio, 12.0))), 16, 192);
+// List slots reserved per part at the start: numerics.neighbor_capacity
+// (slots per particle, both parts) when set, else none; the first rebuild
+// allocates what the lists need (pipeline.cpp).
+int initial_slots(const Scene& scene, int n) {
+  return scene.numerics.neighbor_capacity > 0 ? n * scene.numerics.neighbor_capacity / 2 : 0;
 }
 
 std::uint32_t next_pow2(std::uint64_t v) {
@@ -52,7 +45,7 @@ State::State(const Model& model) {
   const bool dbl = model.config().double_precision;
   const size_t r4 = 4 * model.real_size();
   n = model.particles();
-  cap = default_capacity(s);
+  slices = (n + model.config().slice - 1) / model.config().slice;
   table = next_pow2(2ull * n);
   chunk_len = (table + chunks - 1) / chunks;
 
@@ -83,10 +76,12 @@ State::State(const Model& model) {
   pos_build = make(d, n * r4);
 
   nbr_count = make(d, n * sizeof(int));
-  old_count = make(d, n * sizeof(int));
   nbr_upper = make(d, n * sizeof(int));
   old_upper = make(d, n * sizeof(int));
-  resize_lists(model, cap);  // the buffers sized by the list capacity
+  up_off = make(d, (slices + 1) * sizeof(std::uint32_t));
+  lo_off = make(d, (slices + 1) * sizeof(std::uint32_t));
+  old_up_off = make(d, (slices + 1) * sizeof(std::uint32_t));
+  resize_lists(model, initial_slots(s, n), initial_slots(s, n));
 
   bucket = make(d, n * sizeof(std::uint32_t));
   slot = make(d, n * sizeof(std::uint32_t));
@@ -142,8 +137,8 @@ State::State(const Model& model) {
 size_t State::device_bytes() const {
   size_t total = 0;
   for (const Buffer* b : {&pos, &pos_lo, &vel, &omega, &force, &torque, &pos_build, &nbr_count,
-                          &nbr, &spring, &old_count, &old_nbr, &old_spring, &nbr_upper, &old_upper, &mirror,
-                          &pair_force, &pair_torque, &bucket, &slot,
+                          &nbr_upper, &up_off, &lo_off, &nbr, &spring, &share, &nbr_lo, &mirror,
+                          &old_upper, &old_up_off, &old_nbr, &bucket, &slot,
                           &cell_count, &cell_start, &sorted, &chunk_sum, &wall_point,
                           &wall_point_lo, &wall_vel, &wall_spring, &wall_force, &wall_touch, &wall_near, &wall_reaction, &wall_mean, &servo, &flags,
                           &obs_partial, &wall_partial, &touching})
@@ -155,8 +150,10 @@ std::vector<std::pair<std::string, Buffer*>> State::dynamic_buffers() {
   // Grid buffers are rebuilt from positions before use and are not state.
   return {{"pos", &pos},           {"pos_lo", &pos_lo},         {"vel", &vel},
           {"omega", &omega},       {"force", &force},           {"torque", &torque},
-          {"pos_build", &pos_build}, {"nbr_count", &nbr_count}, {"nbr", &nbr},
-          {"spring", &spring},     {"nbr_upper", &nbr_upper}, {"mirror", &mirror},     {"wall_point", &wall_point}, {"wall_point_lo", &wall_point_lo},
+          {"pos_build", &pos_build}, {"nbr_count", &nbr_count}, {"nbr_upper", &nbr_upper},
+          {"up_off", &up_off},     {"lo_off", &lo_off},       {"nbr", &nbr},
+          {"spring", &spring},     {"nbr_lo", &nbr_lo},       {"mirror", &mirror},
+          {"wall_point", &wall_point}, {"wall_point_lo", &wall_point_lo},
           {"wall_vel", &wall_vel}, {"wall_spring", &wall_spring}, {"wall_force", &wall_force},
           {"wall_touch", &wall_touch}, {"wall_reaction", &wall_reaction}, {"wall_mean", &wall_mean}, {"servo", &servo},
           {"flags", &flags}};
@@ -168,58 +165,36 @@ void State::all_walls_near(const Model& model) {
   model.device().write(wall_near.get(), all.size() * sizeof(int), all.data());
 }
 
-void State::grow_lists(const Model& model, int new_cap) {
+void State::grow_upper(const Model& model, int slots) {
   Device& d = model.device();
-  const size_t r4 = 4 * model.real_size();
-  const bool inter = model.config().interleaved_lists;
-  auto index = [&](int i, int k, int c) -> size_t {
-    return inter ? size_t(k) * n + i : size_t(i) * c + k;
-  };
-  // history planes: plane p of list slot s at p * n * cap + s (records of r4)
-  const int planes = model.config().history_planes();
-  std::vector<int> cnt(n), ids(size_t(n) * cap);
-  std::vector<unsigned char> spr(spring_bytes(model));
-  d.read(old_count.get(), cnt.size() * sizeof(int), cnt.data());
-  d.read(old_nbr.get(), ids.size() * sizeof(int), ids.data());
-  d.read(old_spring.get(), spr.size(), spr.data());
-  std::vector<int> ids2(size_t(n) * new_cap, 0);
-  std::vector<unsigned char> spr2(std::max<size_t>(16, size_t(n) * new_cap * planes * r4), 0);
-  for (int i = 0; i < n; ++i)
-    for (int k = 0; k < cnt[i]; ++k) {
-      ids2[index(i, k, new_cap)] = ids[index(i, k, cap)];
-      for (int p = 0; p < planes; ++p)
-        std::memcpy(&spr2[(size_t(p) * n * new_cap + index(i, k, new_cap)) * r4],
-                    &spr[(size_t(p) * n * cap + index(i, k, cap)) * r4], r4);
-    }
-  cap = new_cap;
-  old_nbr = make(d, ids2.size() * sizeof(int), ids2.data());
-  old_spring = make(d, spr2.size(), spr2.data());
-  nbr = make(d, ids2.size() * sizeof(int));
-  spring = make(d, spr2.size());
-  make_pair_buffers(model);
-}
-
-void State::make_pair_buffers(const Model& model) {
-  Device& d = model.device();
-  mirror = make(d, size_t(n) * cap * sizeof(int));
-  pair_force = make(d, size_t(n) * cap * 4 * model.real_size());
-  pair_torque = make(d, size_t(n) * cap * 4 * model.real_size());
-}
-
-void State::resize_lists(const Model& model, int new_cap) {
-  Device& d = model.device();
-  cap = new_cap;
-  nbr = make(d, size_t(n) * cap * sizeof(int));
+  up_slots = slots;
+  nbr = make(d, std::max<size_t>(16, size_t(up_slots) * sizeof(int)));
   spring = make(d, spring_bytes(model));
-  old_nbr = make(d, size_t(n) * cap * sizeof(int));
-  old_spring = make(d, spring_bytes(model));
-  make_pair_buffers(model);
+}
+
+void State::upper_scratch(const Model& model) {
+  Device& d = model.device();
+  old_nbr = make(d, std::max<size_t>(16, size_t(up_slots) * sizeof(int)));
+  share = make(d, std::max<size_t>(16, size_t(up_slots) * 2 * 4 * model.real_size()));
+}
+
+void State::grow_lower(const Model& model, int slots) {
+  Device& d = model.device();
+  lo_slots = slots;
+  nbr_lo = make(d, std::max<size_t>(16, size_t(lo_slots) * sizeof(int)));
+  mirror = make(d, std::max<size_t>(16, size_t(lo_slots) * sizeof(int)));
+}
+
+void State::resize_lists(const Model& model, int up, int lo) {
+  grow_upper(model, up);
+  upper_scratch(model);
+  grow_lower(model, lo);
 }
 
 // Per-contact history of the list slots (the planes the compiled slots
 // declare, cl_program.h); a 16-byte stand-in when there is none.
 size_t State::spring_bytes(const Model& model) const {
-  return std::max<size_t>(16, size_t(n) * cap * model.config().history_bytes_per_contact());
+  return std::max<size_t>(16, size_t(up_slots) * model.config().history_bytes_per_contact());
 }
 
 }  // namespace simsols

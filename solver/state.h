@@ -7,9 +7,10 @@
 // contact loop: pos = (x, radius), vel = (v, mass), omega = (w, material).
 // pos_lo is the float-run compensation term (see kernels/common.cl).
 //
-// Memory is linear in N: per particle a fixed number of records, `cap`
-// neighbour slots (grown on overflow) and one slot per wall; the grid hash
-// table has ~2N buckets.
+// Memory is linear in N: per particle a fixed number of records, per
+// listed pair one upper and one lower list slot (neighbors.cl, sliced
+// lists; grown when a rebuild needs more, with 1/8 to spare) and one slot
+// per wall; the grid hash table has ~2N buckets.
 #pragma once
 
 #include <array>
@@ -38,11 +39,18 @@ class State {
 
   // hot, per particle
   Buffer pos, pos_lo, vel, omega, force, torque;
-  // neighbour lists (current and previous, for carrying springs over);
-  // nbr_upper: partners above the particle's index (listed first); mirror:
-  // where the lower partner left this particle's share; pair_*: those shares
-  Buffer pos_build, nbr_count, nbr, spring, old_count, old_nbr, old_spring;
-  Buffer nbr_upper, old_upper, mirror, pair_force, pair_torque;
+  // neighbour lists, sliced (neighbors.cl). Per particle: the list length
+  // (nbr_count) and its upper part's (nbr_upper, partners above its index);
+  // per slice, where its upper and lower blocks start (up_off, lo_off, one
+  // more entry: the totals). Per upper slot (up_slots of them): the partner
+  // (nbr), the contact's history (spring, HIST planes of up_slots records)
+  // and the partner's share of the last step (share: a force plane and a
+  // torque plane; it holds the previous history during a rebuild). Per
+  // lower slot (lo_slots): the partner (nbr_lo) and the upper slot where
+  // its share waits (mirror). old_*: the previous upper lists, which a
+  // rebuild carries the history over from.
+  Buffer pos_build, nbr_count, nbr_upper, up_off, lo_off, nbr, spring, share, nbr_lo, mirror;
+  Buffer old_upper, old_up_off, old_nbr;
   // grid
   Buffer bucket, slot, cell_count, cell_start, sorted, chunk_sum;
   // walls: current reference point (+ float compensation; point.w: travel
@@ -68,7 +76,9 @@ class State {
   Buffer touching;
 
   int n = 0;             // particles
-  int cap = 0;           // neighbour slots per particle
+  int slices = 0;        // list slices of KernelConfig::slice particles
+  int up_slots = 0;      // allocated upper list slots (the history planes' stride)
+  int lo_slots = 0;      // allocated lower list slots
   std::uint32_t table = 0;   // grid hash buckets (power of two)
   std::uint32_t chunks = 256, chunk_len = 0;
 
@@ -84,23 +94,28 @@ class State {
   // Named dynamic buffers and their sizes, for checkpoints (fixed order).
   std::vector<std::pair<std::string, Buffer*>> dynamic_buffers();
 
-  // Reallocates the neighbour lists with `new_cap` slots per particle,
-  // keeping the contents of the previous lists (old_*).
-  void grow_lists(const Model& model, int new_cap);
-  // Reallocates all neighbour-list buffers, zeroed, with `new_cap` slots.
-  void resize_lists(const Model& model, int new_cap);
+  // Reallocates the current upper lists (nbr, spring) with `slots` slots;
+  // the previous lists and the history held in `share` are kept for the
+  // rebuild, which then calls upper_scratch().
+  void grow_upper(const Model& model, int slots);
+  // share and old_nbr sized for up_slots.
+  void upper_scratch(const Model& model);
+  // Reallocates the lower lists (nbr_lo, mirror) with `slots` slots.
+  void grow_lower(const Model& model, int slots);
+  // Reallocates all slot buffers, zeroed, with the given capacities.
+  void resize_lists(const Model& model, int up, int lo);
   size_t spring_bytes(const Model& model) const;
   // Marks every wall near every particle (wall_near all ones): valid whatever
   // moved, until the next list build narrows it.
   void all_walls_near(const Model& model);
 
  private:
-  void make_pair_buffers(const Model& model);  // mirror, pair_force, pair_torque for `cap`
-
- public:
-
- private:
   Buffer make(Device& d, size_t bytes, const void* init = nullptr);
 };
+
+// Slot k of particle i's list given its slice offsets: SLOT in common.cl.
+inline size_t list_slot(const std::vector<std::uint32_t>& off, int slice, int i, int k) {
+  return off[i / slice] + size_t(k) * slice + i % slice;
+}
 
 }  // namespace simsols

@@ -225,9 +225,9 @@ ViewPacker::ContactStats ViewPacker::pack_contacts(cl_mem segments, size_t capac
   const int nwalls = walls && m.config().walls ? m.walls() : 0;
   const Split o = split(m, origin_);
   m.device().fill_zero(counter_.get(), sizeof(int));
-  set_args(m, pack_contacts_, s.pos, s.pos_lo, s.nbr, s.nbr_upper, s.pair_force, m.wall_buffer(),
-           s.wall_point, s.wall_point_lo, s.wall_force, o.hi, o.lo, segments, counter_,
-           static_cast<int>(capacity), contact_partial_, n_, s.cap, nwalls,
+  set_args(m, pack_contacts_, s.pos, s.pos_lo, s.up_off, s.nbr, s.nbr_upper, s.share,
+           m.wall_buffer(), s.wall_point, s.wall_point_lo, s.wall_force, o.hi, o.lo, segments,
+           counter_, static_cast<int>(capacity), contact_partial_, n_, nwalls,
            Local{m.local_size() * 3 * m.real_size()});
   launch(m, pack_contacts_, n_);
   const size_t groups = m.global_size(n_) / m.local_size();

@@ -3,6 +3,7 @@
 // damaged; a truncated one too; files that are neither a scene nor a
 // checkpoint are named as such; an intact file loads to the same state.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -43,7 +44,9 @@ Scene two_beads() {
 class CheckpointFile : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) / "simsols_checkpoint_file";
+    // one folder per process: suites running side by side do not collide
+    dir_ = fs::path(::testing::TempDir()) /
+           ("simsols_checkpoint_file_" + std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     path_ = dir_ / "checkpoint.bin";
@@ -52,6 +55,7 @@ class CheckpointFile : public ::testing::Test {
     hash_ = sim.hash();
     save_checkpoint(sim, path_.string(), "driver state");
   }
+  void TearDown() override { fs::remove_all(dir_); }
   fs::path dir_, path_;
   std::uint64_t hash_ = 0;
 };

@@ -92,21 +92,18 @@ double spring_energy(Simulation& sim, const ParticleSnapshot& q) {
   const Model& m = sim.model();
   State& s = sim.state();
   if (!m.config().friction) return 0;
-  const int n = s.n, cap = s.cap;
+  const int n = s.n;
   const double dt = m.dt();
   std::vector<Vec3> x(n);  // x_n, where the springs were evaluated
   for (int i = 0; i < n; ++i) x[i] = sub(q.position[i], scale(dt, q.velocity[i]));
   const Scene& sc = m.scene();
   double e = 0;
-  std::vector<int> upper(n), nbr(size_t(n) * cap);
-  m.device().read(s.nbr_upper.get(), n * sizeof(int), upper.data());
-  m.device().read(s.nbr.get(), nbr.size() * sizeof(int), nbr.data());
-  const std::vector<double> sp = read_reals(m, s.spring, size_t(n) * cap * 4);
-  const bool inter = m.config().interleaved_lists;
+  const UpperLists l = read_upper_lists(m, s);
+  const std::vector<double> sp = read_reals(m, s.spring, size_t(s.up_slots) * 4);
   for (int i = 0; i < n; ++i)
-    for (int k = 0; k < upper[i]; ++k) {
-      const size_t slot = inter ? size_t(k) * n + i : size_t(i) * cap + k;
-      const int j = nbr[slot];
+    for (int k = 0; k < l.upper[i]; ++k) {
+      const size_t slot = l.slot(i, k);
+      const int j = l.nbr[slot];
       const Vec3 xi{sp[4 * slot], sp[4 * slot + 1], sp[4 * slot + 2]};
       const double d = q.radius[i] + q.radius[j] - norm(sub(x[j], x[i]));
       if (d <= 0) continue;

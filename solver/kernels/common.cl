@@ -43,11 +43,14 @@ typedef float4 real4;
 #define POS_COMPENSATED 1
 #endif
 
-#ifdef NBR_INTERLEAVED
-#define NBR(i, k, n, cap) ((k) * (n) + (i))
-#else
-#define NBR(i, k, n, cap) ((i) * (cap) + (k))
+// Neighbour-list slot k of particle i in the sliced layout (neighbors.cl):
+// particles in slices of SLICE consecutive indices, slice g's block of
+// width x SLICE slots at off[g], slot k of its particles side by side.
+// state.h's list_slot() is the host's copy of this formula.
+#ifndef SLICE
+#define SLICE 8
 #endif
+#define SLOT(off, i, k) ((int)(off)[(i) / SLICE] + (k) * SLICE + (i) % SLICE)
 
 // Per-pair coefficient record: PAIR_RECORD reals, see contact_law.cl.
 #ifndef PAIR_RECORD
@@ -95,6 +98,7 @@ INLINE void add_compensated(real4* hi, float4* lo, real3 d) {
 #define POS_LO_CARG , __global const float4* pos_lo
 #define POS_LO_SARG , __global const float* restrict pos_lo
 #define POS_LO_SARG_FN , __global const float* pos_lo
+#define POS_LO_CARG_FN , __global const float4* pos_lo
 #define POS_LO_PASS , pos_lo
 #define LO(i) , pos_lo[i]
 #else
@@ -102,6 +106,7 @@ INLINE void add_compensated(real4* hi, float4* lo, real3 d) {
 #define POS_LO_CARG , __global const real4* pos_lo_unused
 #define POS_LO_SARG , __global const real* pos_lo_unused
 #define POS_LO_SARG_FN
+#define POS_LO_CARG_FN
 #define POS_LO_PASS
 #define LO(i)
 #endif

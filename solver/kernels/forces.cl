@@ -1,10 +1,10 @@
 // forces.cl — stage: contact forces between particles, in two passes.
 //
 // pair_forces: every pair is computed once, by its lower-index particle,
-//   from the upper part of its list (partners j > i, slots 0..upper-1). The particle
-//   keeps its own share in registers and leaves the partner's share (the
-//   opposite force, its torque, half the elastic energy, a contact flag) in
-//   the pair's list slot.
+//   from the upper part of its list (partners j > i, neighbors.cl). The
+//   particle keeps its own share in registers and leaves the partner's
+//   share (the opposite force, a contact flag; its torque, half the elastic
+//   energy) in the pair's slot of the share buffer's two planes.
 // collect_one: every particle adds the shares waiting for it in the slots
 //   of its lower partners (found through `mirror`, built with the lists); it
 //   runs at the start of finish_particles (integrate.cl), the next launch.
@@ -28,11 +28,13 @@
 
 __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
                           __global const real* restrict vel, __global const real* restrict omega,
-                          __global const int* restrict nbr, __global const int* restrict nbr_upper, __global real* restrict spring,
-                          __global const real* restrict pairs, __global real* restrict pair_force,
-                          __global real* restrict pair_torque, __global real* restrict force,
-                          __global real* restrict torque, __global const int* restrict contacts_last,
-                          real dt, real rolling_damping, int cap, int n, int nmat) {
+                          __global const uint* restrict up_off, __global const int* restrict nbr,
+                          __global const int* restrict nbr_upper, __global real* restrict spring,
+                          __global const real* restrict pairs, __global real* restrict share,
+                          __global real* restrict force, __global real* restrict torque,
+                          __global const int* restrict contacts_last, real dt,
+                          real rolling_damping, int stride, int n, int nmat) {
+  __global real* restrict pair_torque = share + 4 * (size_t)stride;
   const int base = get_global_id(0) * LANES;
   if (base >= n) return;
   int ii[LANES], valid[LANES], len[LANES];
@@ -44,6 +46,9 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
     len[l] = valid[l] ? nbr_upper[ii[l]] : 0;  // the pairs this particle owns
     longest = max(longest, len[l]);
   }
+  // the lanes lie in one slice (SLICE % LANES == 0), side by side; lanes
+  // past n read slots of that slice too, and keep nothing
+  const int first = SLOT(up_off, base, 0);
   const LanePos pi = gather_pos(pos POS_LO_PASS, ii);
   const lane ri = gather(pos, ii, 3);
   const Lane4 vmi = gather4(vel, ii), wmi = gather4(omega, ii);
@@ -63,7 +68,7 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
     for (int l = 0; l < LANES; ++l) {
       listed[l] = q < len[l];
       keep[l] = listed[l] && valid[l];
-      slot[l] = NBR(ii[l], q, n, cap);
+      slot[l] = first + q * SLICE + l;  // SLOT(up_off, base + l, q)
       jj[l] = listed[l] ? nbr[slot[l]] : ii[l];
     }
     const Lane4 pr = gather4(pos, jj);
@@ -96,7 +101,7 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
     const v3 vrel = v_sub(v_add(vi, v_cross(wi, v_mul(ai, nv))),
                           v_add(vj, v_cross(wj, v_neg(v_mul(aj, nv)))));
     // per-contact history: the planes the compiled slots declare (common.cl)
-    const size_t plane = (size_t)n * cap;
+    const size_t plane = (size_t)stride;
 #ifdef HAS_CONTACT_RECORD
     const Lane4 record = gather4(spring, slot);
     v3 sp = record.xyz;
@@ -146,7 +151,7 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
 #endif
     const v3 ti = v_sel(on, v_add(v_mul(ai, c.n_cross_ft), c.rolling), v_zero());
     const v3 tj = v_sel(on, v_sub(v_mul(aj, c.n_cross_ft), c.rolling), v_zero());
-    scatter4(pair_force, slot, keep, v_neg(fi), flag);
+    scatter4(share, slot, keep, v_neg(fi), flag);
     scatter4(pair_torque, slot, keep, tj, half_e);
     f = v_add(f, fi);
     t = v_add(t, ti);
@@ -159,16 +164,16 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
 
 INLINE void collect_one(int i, __global const int* restrict nbr_count,
                         __global const int* restrict nbr_upper,
+                        __global const uint* restrict lo_off,
                         __global const int* restrict mirror,
                         __global const real4* restrict pair_force,
                         __global const real4* restrict pair_torque,
-                        __global real4* restrict force, __global real4* restrict torque,
-                        int cap, int n) {
+                        __global real4* restrict force, __global real4* restrict torque) {
   real4 f = force[i];
   real4 t = torque[i];
-  const int len = nbr_count[i];
-  for (int k = nbr_upper[i]; k < len; ++k) {
-    const int slot = mirror[NBR(i, k, n, cap)];
+  const int lower = nbr_count[i] - nbr_upper[i];
+  for (int k = 0; k < lower; ++k) {
+    const int slot = mirror[SLOT(lo_off, i, k)];
     f += pair_force[slot];
     t += pair_torque[slot];
   }

@@ -65,8 +65,9 @@ __kernel void scan_apply(__global const uint* count, __global const uint* chunk_
   const uint b1 = min(b0 + chunk_len, table);
   uint s = chunk_sum[c];
   for (uint b = b0; b < b1; ++b) {
+    const uint v = count[b];  // read first: start may be count (in place)
     start[b] = s;
-    s += count[b];
+    s += v;
   }
 }
 

@@ -107,20 +107,20 @@ __kernel void finish_particles(
     __global real* pos, __global float* pos_lo, __global real* vel, __global real* omega,
     __global real* force, __global real* torque, __global const real4* pos_build,
     __global volatile int* flags, __global int* contacts_last, __global const int* nbr_count,
-    __global const int* nbr_upper, __global const int* mirror,
-    __global const real4* pair_force, __global const real4* pair_torque,
+    __global const int* nbr_upper, __global const uint* lo_off, __global const int* mirror,
+    __global const real4* share,
     __global const real* walls, __global const real* wall_point,
     __global const float* wall_point_lo, __global const real* wall_vel,
     __global real* wall_spring, __global real* wall_force, __global const real* pairs,
     __global int* wall_touch, __global const int* wall_near, real4 gravity, real4 fluid,
-    real fluid_viscosity, real dt, real rolling_damping, real skin, int cap, int n, int nwalls,
+    real fluid_viscosity, real dt, real rolling_damping, real skin, int stride, int n, int nwalls,
     int nmat) {
   const int base = get_global_id(0) * LANES;
   if (base >= n) return;
   const int count = min(LANES, n - base);
   for (int l = 0; l < count; ++l)
-    collect_one(base + l, nbr_count, nbr_upper, mirror, pair_force, pair_torque,
-                (__global real4*)force, (__global real4*)torque, cap, n);
+    collect_one(base + l, nbr_count, nbr_upper, lo_off, mirror, share, share + stride,
+                (__global real4*)force, (__global real4*)torque);
 #ifdef HAS_WALLS
   wall_contacts(base, pos POS_LO_PASS, vel, omega, walls, wall_point WALL_LO_PASS, wall_vel,
                 wall_spring, wall_force, pairs, force, torque, wall_touch, wall_near,

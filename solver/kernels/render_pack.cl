@@ -157,17 +157,18 @@ INLINE real normal_part(real3 f, real3 d) {
 
 // Per particle i: a segment for each touching pair it owns (partners j > i,
 // the upper part of its list, as in forces.cl) and, when nwalls > 0, for
-// each wall it touches. pair_force slot: the partner's share, w = 1 when
+// each wall it touches. Share slot (plane 0): the partner's force, w = 1 when
 // touching; wall_force slot w*n+i: the force on the wall, w = 1 when
 // touching. partial[3g..3g+2]: contacts, sum and max of |F_n| over group g.
 __kernel void pack_contacts(__global const real4* pos, __global const real4* pos_lo,
-                            __global const int* nbr, __global const int* nbr_upper,
+                            __global const uint* up_off, __global const int* nbr,
+                            __global const int* nbr_upper,
                             __global const real4* pair_force, __global const real4* walls,
                             __global const real4* wall_point,
                             __global const real4* wall_point_lo,
                             __global const real4* wall_force, real4 origin, real4 origin_lo,
                             __global float4* segments, volatile __global int* counter,
-                            int capacity, __global real* partial, int n, int cap, int nwalls,
+                            int capacity, __global real* partial, int n, int nwalls,
                             __local real* scratch) {
   const int i = get_global_id(0);
   const int l = get_local_id(0);
@@ -179,7 +180,7 @@ __kernel void pack_contacts(__global const real4* pos, __global const real4* pos
     const real3 a = diff_pos(x, x_lo, origin, origin_lo);
     const int upper = nbr_upper[i];
     for (int k = 0; k < upper; ++k) {
-      const int slot = NBR(i, k, n, cap);
+      const int slot = SLOT(up_off, i, k);
       const real4 f = pair_force[slot];
       if (f.w == (real)0) continue;  // listed, not touching
       const int j = nbr[slot];
