@@ -115,6 +115,7 @@ void write_payload(Writer& w, Simulation& sim, const std::string& extra) {
   w.pod<std::int64_t>(s.late_builds);
   w.pod<std::int32_t>(s.up_slots);
   w.pod<std::int32_t>(s.lo_slots);
+  w.pod<std::int32_t>(s.wall_slots);
   std::vector<char> data;
   for (auto& [name, buf] : s.dynamic_buffers()) {
     data.resize(buf->bytes);
@@ -206,11 +207,15 @@ std::unique_ptr<Simulation> load_checkpoint(std::shared_ptr<Device> device, cons
   s.late_builds = r.pod<std::int64_t>();
   const int up = r.pod<std::int32_t>();
   const int lo = r.pod<std::int32_t>();
+  const int walls = r.pod<std::int32_t>();
   const std::int64_t most = std::int64_t(s.n) * 256;  // MAX_CAP in neighbors.cl
   if (up < 0 || lo < 0 || up > most || lo > most)
     r.fail("neighbour-list capacity " + std::to_string(up) + ", " + std::to_string(lo) +
            " out of range (0 to 256 per particle)");
+  if (walls < 0 || walls > std::int64_t(s.n) * 32)
+    r.fail("wall-slot capacity " + std::to_string(walls) + " out of range (0 to 32 per particle)");
   if (up != s.up_slots || lo != s.lo_slots) s.resize_lists(sim->model(), up, lo);
+  if (walls != s.wall_slots) s.resize_walls(sim->model(), walls);
   read_buffers(r, *sim);
   derive_state(sim->model(), sim->state());
   sim->state_replaced();

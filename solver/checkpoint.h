@@ -9,7 +9,7 @@
 //   payload CRC-32   u32 (zlib's crc32 of the payload)
 //   payload          the scene as exact TOML (to_toml), step, list builds,
 //                    next list check, late builds, the allocated upper and
-//                    lower neighbour-list slots (two i32), every
+//                    lower neighbour-list slots and wall slots (three i32), every
 //                    dynamic buffer as (name, byte count, bytes), then the
 //                    driver's `extra` (e.g. the shear test's loading program)
 // The whole file is verified (size and checksum) before anything is built

@@ -77,6 +77,7 @@ void Guard::take_copy() {
   copy_late_builds_ = state_.late_builds;
   copy_up_ = state_.up_slots;
   copy_lo_ = state_.lo_slots;
+  copy_walls_ = state_.wall_slots;
   have_copy_ = true;
   log_.clear();
 }
@@ -84,6 +85,7 @@ void Guard::take_copy() {
 void Guard::restore_copy() {
   if (state_.up_slots != copy_up_ || state_.lo_slots != copy_lo_)
     state_.resize_lists(model_, copy_up_, copy_lo_);
+  if (state_.wall_slots != copy_walls_) state_.resize_walls(model_, copy_walls_);
   auto buffers = state_.dynamic_buffers();
   for (size_t k = 0; k < buffers.size(); ++k)
     model_.device().copy(copy_[k].get(), buffers[k].second->get(), copy_[k].bytes);
@@ -99,7 +101,8 @@ void Guard::restore_copy() {
 void Guard::apply_logged(size_t* next) {
   while (*next < log_.size() && log_[*next].step == state_.step) {
     const Logged& l = log_[(*next)++];
-    model_.device().write((state_.*l.buffer).get(), l.data.size(), l.data.data(), l.offset);
+    if (!l.buffer) detect_contacts(model_, state_, true);
+    else model_.device().write((state_.*l.buffer).get(), l.data.size(), l.data.data(), l.offset);
   }
 }
 
@@ -144,6 +147,12 @@ void Guard::write(Buffer State::*buffer, size_t offset, const void* data, size_t
                 static_cast<const unsigned char*>(data) + bytes);
   model_.device().write((state_.*buffer).get(), bytes, data, offset);
   log_.push_back(std::move(l));
+}
+
+void Guard::rebuild_lists() {
+  before_reading();
+  detect_contacts(model_, state_, true);
+  log_.push_back(Logged{state_.step, nullptr, 0, {}});
 }
 
 void Guard::throw_unlocated(const Mark& seen, std::int64_t seen_at) {

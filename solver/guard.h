@@ -83,6 +83,9 @@ class Guard {
   void before_reading();
   // A host write into a state buffer, logged so that a replay repeats it.
   void write(Buffer State::*buffer, size_t offset, const void* data, size_t bytes);
+  // Rebuilds the neighbour lists and wall slots now (after a host write
+  // they no longer cover), logged so that a replay rebuilds at this step too.
+  void rebuild_lists();
   // After the state was replaced wholesale (a checkpoint loaded): a fresh copy.
   void reset();
 
@@ -91,7 +94,7 @@ class Guard {
  private:
   struct Logged {
     std::int64_t step;
-    Buffer State::*buffer;
+    Buffer State::*buffer;  // nullptr: a list rebuild (rebuild_lists)
     size_t offset;
     std::vector<unsigned char> data;
   };
@@ -119,7 +122,7 @@ class Guard {
   std::int64_t copy_step_ = 0;
   double copy_time_ = 0;
   std::int64_t copy_list_builds_ = 0, copy_next_check_ = 0, copy_late_builds_ = 0;
-  int copy_up_ = 0, copy_lo_ = 0;  // list capacities of the copy
+  int copy_up_ = 0, copy_lo_ = 0, copy_walls_ = 0;  // list and wall-slot capacities of the copy
   std::vector<Buffer> copy_;
   std::vector<Logged> log_;
 };

@@ -31,6 +31,8 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
   if (config().walls) {
     kernels_.advance_walls = p.kernel("advance_walls");
     kernels_.build_wall_near = p.kernel("build_wall_near");
+    kernels_.wall_widths = p.kernel("wall_widths");
+    kernels_.carry_wall_slots = p.kernel("carry_wall_slots");
     kernels_.reset_wall_travel = p.kernel("reset_wall_travel");
     kernels_.reduce_walls = p.kernel("reduce_walls");
   }

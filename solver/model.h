@@ -19,7 +19,8 @@ namespace simsols {
 struct Kernels {
   ClKernel grid_clear, grid_count, scan_chunks, scan_totals, scan_apply, grid_scatter;
   ClKernel count_neighbors, slice_widths, build_neighbors, build_mirrors;
-  ClKernel pair_forces, finish_particles, advance_walls, build_wall_near, reset_wall_travel;
+  ClKernel pair_forces, finish_particles, advance_walls, build_wall_near, wall_widths,
+      carry_wall_slots, reset_wall_travel;
   ClKernel reduce_observables, reduce_walls, servo_walls;
 };
 

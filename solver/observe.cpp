@@ -125,6 +125,16 @@ UpperLists read_upper_lists(const Model& m, State& s) {
   return l;
 }
 
+WallSlots read_wall_slots(const Model& m, State& s) {
+  WallSlots l;
+  l.slice = m.config().slice;
+  l.mask.resize(s.n);
+  l.off.resize(s.slices + 1);
+  m.device().read(s.wall_near.get(), l.mask.size() * sizeof(int), l.mask.data());
+  m.device().read(s.wall_off.get(), l.off.size() * sizeof(std::uint32_t), l.off.data());
+  return l;
+}
+
 std::vector<ContactForce> contact_list(const Model& m, State& s) {
   const int n = s.n;
   std::vector<ContactForce> out;
@@ -141,10 +151,12 @@ std::vector<ContactForce> contact_list(const Model& m, State& s) {
     }
   if (m.config().walls) {
     const int nw = m.walls();
-    const std::vector<double> wf = read_reals(m, s.wall_force, size_t(nw) * n * 4);
+    const WallSlots ws = read_wall_slots(m, s);
+    const std::vector<double> wf = read_reals(m, s.wall_force, size_t(s.wall_slots) * 4);
     for (int w = 0; w < nw; ++w)
       for (int i = 0; i < n; ++i) {
-        const double* f = &wf[(size_t(w) * n + i) * 4];
+        if (!ws.near(i, w)) continue;
+        const double* f = &wf[ws.slot(i, w) * 4];
         if (f[3] == 0) continue;
         out.push_back({i, -1 - w, {-f[0], -f[1], -f[2]}});
       }

@@ -8,6 +8,7 @@
 // bit for bit.
 #pragma once
 
+#include <bit>
 #include <cstdint>
 #include <vector>
 
@@ -75,6 +76,19 @@ struct UpperLists {
   size_t slot(int i, int k) const { return list_slot(off, slice, i, k); }
 };
 UpperLists read_upper_lists(const Model& model, State& state);
+
+// The wall slots' layout (walls.cl), read back: which walls are near each
+// particle, and where their slots lie. Only for scenes with walls.
+struct WallSlots {
+  int slice = 1;
+  std::vector<int> mask;                // per particle, bit w: wall w near
+  std::vector<std::uint32_t> off;       // per slice, + the total
+  bool near(int i, int w) const { return (mask[i] >> w) & 1; }
+  size_t slot(int i, int w) const {
+    return list_slot(off, slice, i, std::popcount(unsigned(mask[i]) & ((1u << w) - 1)));
+  }
+};
+WallSlots read_wall_slots(const Model& model, State& state);
 
 // FNV-1a over the dynamic buffers (positions, velocities, springs, lists...).
 std::uint64_t state_hash(const Model& model, State& state);

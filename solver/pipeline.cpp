@@ -84,6 +84,11 @@ void build_lists(const Model& m, State& s) {
   const bool grow_up = need[0] > std::uint32_t(s.up_slots);
   if (grow_up) s.grow_upper(m, int(need[0] + need[0] / 8));
   if (need[1] > std::uint32_t(s.lo_slots)) s.grow_lower(m, int(need[1] + need[1] / 8));
+  // slots the build leaves unwritten (a slice's padding, the spare tail)
+  // hold zeros, not an older build's values: the state is the same however
+  // it was reached (a resumed run hashes as the straight one)
+  for (const Buffer* b : {&s.nbr, &s.spring, &s.nbr_lo, &s.mirror})
+    m.device().fill_zero(b->get(), b->bytes);
   set_args(m, k.build_neighbors, s.pos, s.pos_lo, s.cell_count, s.cell_start, s.sorted,
            s.old_up_off, s.old_upper, s.old_nbr, s.share, old_stride, s.up_off, s.lo_off,
            s.nbr_upper, s.nbr, s.nbr_lo, s.spring, s.up_slots, s.pos_build,
@@ -95,14 +100,34 @@ void build_lists(const Model& m, State& s) {
   launch(m, k.build_mirrors, s.n);
 }
 
-// The walls near each particle (walls.cl, broad phase), and the walls'
+// The walls near each particle (walls.cl, broad phase), their slots laid
+// out anew and carried over from the previous layout, and the walls'
 // travel restarted with the lists.
-void build_wall_near(const Model& m, State& s) {
+void build_wall_slots(const Model& m, State& s) {
   if (!m.config().walls) return;
   const Kernels& k = m.kernels();
+  s.wall_near.mem.swap(s.old_wall_near.mem);
+  s.wall_off.mem.swap(s.old_wall_off.mem);
+  s.wall_spring.mem.swap(s.old_wall_spring.mem);
+  s.wall_force.mem.swap(s.old_wall_force.mem);
   set_args(m, k.build_wall_near, s.pos, m.wall_buffer(), s.wall_point, s.wall_near,
            Real{m.skin()}, s.n, m.walls());
   launch(m, k.build_wall_near, s.n);
+  set_args(m, k.wall_widths, s.wall_near, s.wall_off, s.n, s.slices);
+  launch(m, k.wall_widths, s.slices + 1);
+  prefix_sum(m, s, s.wall_off, s.slices + 1);
+  std::uint32_t need = 0;
+  m.device().read(s.wall_off.get(), 4, &need, size_t(s.slices) * 4);
+  const int old_stride = s.wall_slots;
+  const bool grow = need > std::uint32_t(s.wall_slots);
+  if (grow) s.grow_walls(m, int(need + need / 8));
+  for (const Buffer* b : {&s.wall_spring, &s.wall_force})  // as in build_lists
+    m.device().fill_zero(b->get(), b->bytes);
+  set_args(m, k.carry_wall_slots, s.old_wall_near, s.old_wall_off, s.old_wall_spring,
+           s.old_wall_force, old_stride, s.wall_near, s.wall_off, s.wall_spring, s.wall_force,
+           s.wall_slots, s.n, m.walls());
+  launch(m, k.carry_wall_slots, s.n);
+  if (grow) s.wall_scratch(m);
   set_args(m, k.reset_wall_travel, s.wall_point, m.walls());
   launch_exact(m, k.reset_wall_travel, m.walls());
 }
@@ -140,7 +165,7 @@ void detect_contacts(const Model& m, State& s, bool force_rebuild) {
   s.up_off.mem.swap(s.old_up_off.mem);
   s.nbr_upper.mem.swap(s.old_upper.mem);
   build_lists(m, s);
-  build_wall_near(m, s);
+  build_wall_slots(m, s);
   ++s.list_builds;
 }
 
@@ -158,7 +183,8 @@ void finish_particles(const Model& m, State& s) {
   set_args(m, k.finish_particles, s.pos, s.pos_lo, s.vel, s.omega, s.force, s.torque,
            s.pos_build, s.flags, s.touching, s.nbr_count, s.nbr_upper, s.lo_off, s.mirror,
            s.share, m.wall_buffer(), s.wall_point, s.wall_point_lo, s.wall_vel,
-           s.wall_spring, s.wall_force, m.pair_buffer(), s.wall_touch, s.wall_near,
+           s.wall_off, s.wall_spring, s.wall_force, s.wall_slots, m.pair_buffer(), s.wall_touch,
+           s.wall_near,
            gravity_arg(m), fluid_arg(m), Real{e.fluid_params.viscosity}, Real{m.dt()},
            Real{e.rolling_damping}, Real{m.skin()}, s.up_slots, s.n, m.walls(), m.pairs().n);
   launch(m, k.finish_particles, lane_groups(m, s.n));
@@ -184,13 +210,13 @@ size_t reduce_wall_forces(const Model& m, State& s) {
   const Kernels& k = m.kernels();
   const int chunk = kWallChunk;
   const int chunks = std::max(1, (s.n + chunk - 1) / chunk);
-  set_args(m, k.reduce_walls, s.wall_force, s.wall_partial, s.n, chunk, chunks, m.walls());
+  set_args(m, k.reduce_walls, s.wall_near, s.wall_off, s.wall_force, s.wall_partial, s.n, chunk,
+           chunks, m.walls());
   launch(m, k.reduce_walls, size_t(chunks) * m.walls());
   return static_cast<size_t>(chunks);
 }
 
 void derive_state(const Model& m, State& s) {
-  s.all_walls_near(m);  // valid until the next list build (walls.cl)
   if (!m.config().rolling || m.config().rolling_spring) return;  // `touching` unused
   const std::vector<double> f = read_reals(m, s.force, size_t(s.n) * 4);
   std::vector<int> count(s.n);

@@ -120,10 +120,9 @@ void Simulation::set_wall_point(int wall, const Vec3& p) {
                          float_remainder(rel[2]), 0};
     guard_->write(&State::wall_point_lo, wall * sizeof lo, lo, sizeof lo);
   }
-  // a jump is no travel the broad phase can bound: every wall is near every
-  // particle until the next list build (walls.cl); logged, so a replay does it too
-  const std::vector<int> all(static_cast<size_t>(model_->particles()), -1);
-  guard_->write(&State::wall_near, 0, all.data(), all.size() * sizeof(int));
+  // a jump is no travel the broad phase can bound: the wall masks and slots
+  // are built anew at once (walls.cl); logged, so a replay does it too
+  guard_->rebuild_lists();
 }
 
 std::vector<Simulation::WallMean> Simulation::read_wall_means() {

@@ -102,12 +102,15 @@ State::State(const Model& model) {
   wall_point = make(d, nw * r4, wp.data());
   wall_point_lo = make(d, nw * 16, dbl ? nullptr : wlo.data());
   wall_vel = make(d, nw * r4, wv.data());
-  // per (wall, particle) slot: the history the compiled slots declare
-  wall_spring = make(d, std::max<size_t>(16, size_t(nw) * n * model.config().history_bytes_per_contact()));
-  wall_force = make(d, size_t(nw) * n * r4);
   wall_touch = make(d, n * sizeof(int));
+  // no wall near any particle and no slot until the first list build (the
+  // first step's: flags[0] below)
   wall_near = make(d, nw ? n * sizeof(int) : 16);
-  all_walls_near(model);
+  old_wall_near = make(d, nw ? n * sizeof(int) : 16);
+  wall_off = make(d, (slices + 1) * sizeof(std::uint32_t));
+  old_wall_off = make(d, (slices + 1) * sizeof(std::uint32_t));
+  grow_walls(model, 0);
+  wall_scratch(model);
   wall_reaction = make(d, std::max(1, nw) * r4);
   wall_mean = make(d, std::max(1, nw) * r4);
   RealPacker sv(dbl);
@@ -140,7 +143,9 @@ size_t State::device_bytes() const {
                           &nbr_upper, &up_off, &lo_off, &nbr, &spring, &share, &nbr_lo, &mirror,
                           &old_upper, &old_up_off, &old_nbr, &bucket, &slot,
                           &cell_count, &cell_start, &sorted, &chunk_sum, &wall_point,
-                          &wall_point_lo, &wall_vel, &wall_spring, &wall_force, &wall_touch, &wall_near, &wall_reaction, &wall_mean, &servo, &flags,
+                          &wall_point_lo, &wall_vel, &wall_spring, &wall_force, &wall_touch,
+                          &wall_near, &wall_off, &old_wall_near, &old_wall_off,
+                          &old_wall_spring, &old_wall_force, &wall_reaction, &wall_mean, &servo, &flags,
                           &obs_partial, &wall_partial, &touching})
     total += b->bytes;
   return total;
@@ -154,15 +159,23 @@ std::vector<std::pair<std::string, Buffer*>> State::dynamic_buffers() {
           {"up_off", &up_off},     {"lo_off", &lo_off},       {"nbr", &nbr},
           {"spring", &spring},     {"nbr_lo", &nbr_lo},       {"mirror", &mirror},
           {"wall_point", &wall_point}, {"wall_point_lo", &wall_point_lo},
-          {"wall_vel", &wall_vel}, {"wall_spring", &wall_spring}, {"wall_force", &wall_force},
+          {"wall_vel", &wall_vel}, {"wall_near", &wall_near}, {"wall_off", &wall_off},
+          {"wall_spring", &wall_spring}, {"wall_force", &wall_force},
           {"wall_touch", &wall_touch}, {"wall_reaction", &wall_reaction}, {"wall_mean", &wall_mean}, {"servo", &servo},
           {"flags", &flags}};
 }
 
-void State::all_walls_near(const Model& model) {
-  if (model.walls() == 0) return;
-  const std::vector<int> all(n, -1);
-  model.device().write(wall_near.get(), all.size() * sizeof(int), all.data());
+void State::grow_walls(const Model& model, int slots) {
+  Device& d = model.device();
+  wall_slots = slots;
+  wall_spring = make(d, std::max<size_t>(16, size_t(slots) * model.config().history_bytes_per_contact()));
+  wall_force = make(d, std::max<size_t>(16, size_t(slots) * 4 * model.real_size()));
+}
+
+void State::wall_scratch(const Model& model) {
+  Device& d = model.device();
+  old_wall_spring = make(d, wall_spring.bytes);
+  old_wall_force = make(d, wall_force.bytes);
 }
 
 void State::grow_upper(const Model& model, int slots) {

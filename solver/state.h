@@ -9,8 +9,9 @@
 //
 // Memory is linear in N: per particle a fixed number of records, per
 // listed pair one upper and one lower list slot (neighbors.cl, sliced
-// lists; grown when a rebuild needs more, with 1/8 to spare) and one slot
-// per wall; the grid hash table has ~2N buckets.
+// lists) and per wall near a particle one wall slot (walls.cl), both grown
+// when a rebuild needs more, with 1/8 to spare; the grid hash table has
+// ~2N buckets.
 #pragma once
 
 #include <array>
@@ -54,12 +55,16 @@ class State {
   // grid
   Buffer bucket, slot, cell_count, cell_start, sorted, chunk_sum;
   // walls: current reference point (+ float compensation; point.w: travel
-  // since the last list build), velocity, slots
-  Buffer wall_point, wall_point_lo, wall_vel, wall_spring, wall_force, wall_touch;
-  // per particle, bit w: wall w within radius + skin at the last list build
-  // (the wall broad phase, walls.cl). Not saved: all ones after a load or a
-  // restore (always valid) until the next build.
-  Buffer wall_near;
+  // since the last list build), velocity; per particle the walls it touched
+  // last step (bit w of wall_touch) and the walls within radius + skin at
+  // the last list build (bit w of wall_near: the broad phase, walls.cl); a
+  // slot per (particle, near wall), sliced as the lists are (wall_off, per
+  // slice and the total): its history (wall_spring, HIST planes of
+  // wall_slots records) and the force on the wall (wall_force). old_wall_*:
+  // the previous layout, which a rebuild carries the slots over from.
+  Buffer wall_point, wall_point_lo, wall_vel, wall_touch, wall_near, wall_off, wall_spring,
+      wall_force;
+  Buffer old_wall_near, old_wall_off, old_wall_spring, old_wall_force;
   // servo walls: per wall servo_record() (below), set by the scene and changed at run time (set_servo); and what the servo saw:
   // (F last step, sum of F since the last read, integral velocity, steps)
   // wall_mean: per wall the force summed over steps (xyz) and the steps (w),
@@ -79,6 +84,7 @@ class State {
   int slices = 0;        // list slices of KernelConfig::slice particles
   int up_slots = 0;      // allocated upper list slots (the history planes' stride)
   int lo_slots = 0;      // allocated lower list slots
+  int wall_slots = 0;    // allocated wall slots (the wall history planes' stride)
   std::uint32_t table = 0;   // grid hash buckets (power of two)
   std::uint32_t chunks = 256, chunk_len = 0;
 
@@ -105,9 +111,17 @@ class State {
   // Reallocates all slot buffers, zeroed, with the given capacities.
   void resize_lists(const Model& model, int up, int lo);
   size_t spring_bytes(const Model& model) const;
-  // Marks every wall near every particle (wall_near all ones): valid whatever
-  // moved, until the next list build narrows it.
-  void all_walls_near(const Model& model);
+  // Reallocates the current wall slots (wall_spring, wall_force) with
+  // `slots` slots, keeping the previous layout (old_wall_*) for the rebuild,
+  // which then calls wall_scratch().
+  void grow_walls(const Model& model, int slots);
+  // old_wall_spring and old_wall_force sized for wall_slots.
+  void wall_scratch(const Model& model);
+  // Reallocates all wall-slot buffers, zeroed, with `slots` slots.
+  void resize_walls(const Model& model, int slots) {
+    grow_walls(model, slots);
+    wall_scratch(model);
+  }
 
  private:
   Buffer make(Device& d, size_t bytes, const void* init = nullptr);

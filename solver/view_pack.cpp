@@ -226,7 +226,8 @@ ViewPacker::ContactStats ViewPacker::pack_contacts(cl_mem segments, size_t capac
   const Split o = split(m, origin_);
   m.device().fill_zero(counter_.get(), sizeof(int));
   set_args(m, pack_contacts_, s.pos, s.pos_lo, s.up_off, s.nbr, s.nbr_upper, s.share,
-           m.wall_buffer(), s.wall_point, s.wall_point_lo, s.wall_force, o.hi, o.lo, segments,
+           m.wall_buffer(), s.wall_point, s.wall_point_lo, s.wall_near, s.wall_off, s.wall_force,
+           o.hi, o.lo, segments,
            counter_, static_cast<int>(capacity), contact_partial_, n_, nwalls,
            Local{m.local_size() * 3 * m.real_size()});
   launch(m, pack_contacts_, n_);

@@ -97,12 +97,13 @@ TEST_P(EffectSlots, HistoryMemoryFollowsTheSlots) {
     EXPECT_EQ(k.history_planes(), c.planes);
     EXPECT_EQ(k.history_bytes_per_contact(), c.planes * 4 * real);
     const State& st = sim.state();
-    EXPECT_EQ(st.wall_spring.bytes, std::max<size_t>(16, size_t(st.n) * c.planes * 4 * real));
     EXPECT_NE(k.build_options().find("-DHIST_PLANES=" + std::to_string(c.planes)), std::string::npos);
     sim.advance(300);  // builds and runs with that layout
     EXPECT_GT(st.up_slots, 0);
     const size_t list = size_t(st.up_slots) * c.planes * 4 * real;
     EXPECT_EQ(st.spring.bytes, std::max<size_t>(16, list));  // 16: the stand-in when none
+    EXPECT_EQ(st.wall_spring.bytes,
+              std::max<size_t>(16, size_t(st.wall_slots) * c.planes * 4 * real));
     EXPECT_TRUE(std::isfinite(sim.observe().kinetic()));
     const std::string text = explain_effects(s, k);
     EXPECT_NE(text.find(std::to_string(c.planes * 4 * real) + " bytes per contact"),

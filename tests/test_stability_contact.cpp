@@ -112,11 +112,13 @@ double spring_energy(Simulation& sim, const ParticleSnapshot& q) {
       e += 0.5 * 8 * g * std::sqrt(rs * d) * dot(xi, xi);
     }
   if (m.config().walls) {
-    const std::vector<double> ws = read_reals(m, s.wall_spring, size_t(m.walls()) * n * 4);
+    const WallSlots wl = read_wall_slots(m, s);
+    const std::vector<double> ws = read_reals(m, s.wall_spring, size_t(s.wall_slots) * 4);
     for (int w = 0; w < m.walls(); ++w) {
       const Wall& wall = sc.walls[w];
       for (int i = 0; i < n; ++i) {
-        const size_t slot = size_t(w) * n + i;
+        if (!wl.near(i, w)) continue;
+        const size_t slot = wl.slot(i, w);
         const Vec3 xi{ws[4 * slot], ws[4 * slot + 1], ws[4 * slot + 2]};
         const double d = q.radius[i] - dot(sub(x[i], wall.point), wall.normal);
         if (d <= 0 || dot(xi, xi) == 0) continue;

@@ -111,7 +111,8 @@ __kernel void finish_particles(
     __global const real4* share,
     __global const real* walls, __global const real* wall_point,
     __global const float* wall_point_lo, __global const real* wall_vel,
-    __global real* wall_spring, __global real* wall_force, __global const real* pairs,
+    __global const uint* wall_off, __global real* wall_spring, __global real* wall_force,
+    int wall_stride, __global const real* pairs,
     __global int* wall_touch, __global const int* wall_near, real4 gravity, real4 fluid,
     real fluid_viscosity, real dt, real rolling_damping, real skin, int stride, int n, int nwalls,
     int nmat) {
@@ -123,8 +124,8 @@ __kernel void finish_particles(
                 (__global real4*)force, (__global real4*)torque);
 #ifdef HAS_WALLS
   wall_contacts(base, pos POS_LO_PASS, vel, omega, walls, wall_point WALL_LO_PASS, wall_vel,
-                wall_spring, wall_force, pairs, force, torque, wall_touch, wall_near,
-                contacts_last, dt, rolling_damping, n, nwalls, nmat);
+                wall_off, wall_spring, wall_force, wall_stride, pairs, force, torque, wall_touch,
+                wall_near, contacts_last, dt, rolling_damping, n, nwalls, nmat);
 #endif
   for (int l = 0; l < count; ++l)
     integrate_one(base + l, (__global real4*)pos, (__global float4*)pos_lo,

@@ -59,17 +59,20 @@ __kernel void reduce_observables(__global const real4* pos POS_LO_CARG,
 
 #ifdef HAS_WALLS
 // One work item per (wall, chunk of `chunk` particles): sums the chunk's
-// slots in index order, without barriers (cheap on CPUs, deterministic).
-// partial[w * chunks + c]; global size nwalls * chunks.
-__kernel void reduce_walls(__global const real4* wall_force, __global real4* partial, int n,
+// slots of wall w (walls.cl) in index order, without barriers (cheap on
+// CPUs, deterministic). partial[w * chunks + c]; global size nwalls * chunks.
+__kernel void reduce_walls(__global const int* wall_near, __global const uint* wall_off,
+                           __global const real4* wall_force, __global real4* partial, int n,
                            int chunk, int chunks, int nwalls) {
   const int g = get_global_id(0);
   if (g >= nwalls * chunks) return;
   const int w = g / chunks, c = g % chunks;
   const int lo = c * chunk, hi = min(n, lo + chunk);
-  __global const real4* f = wall_force + (size_t)w * n;
   real4 sum = (real4)(0);
-  for (int i = lo; i < hi; ++i) sum += f[i];
+  for (int i = lo; i < hi; ++i) {
+    const int mask = wall_near[i];
+    if ((mask >> w) & 1) sum += wall_force[SLOT(wall_off, i, (int)popcount(mask & ((1 << w) - 1)))];
+  }
   partial[g] = sum;
 }
 #endif

@@ -2,7 +2,7 @@
 // packed into compact float buffers on the device (view_pack.h).
 //
 // A program of its own, built with common.cl in front and the solver's
-// options (precision, HAS_WALLS, NBR_INTERLEAVED; LANES is irrelevant, the
+// options (precision, HAS_WALLS, SLICE; LANES is irrelevant, the
 // code is scalar, one particle per work item), so a run that never draws
 // never compiles it. The output buffers may be plain OpenCL buffers or
 // buffers shared with OpenGL; the kernels only write them.
@@ -158,7 +158,7 @@ INLINE real normal_part(real3 f, real3 d) {
 // Per particle i: a segment for each touching pair it owns (partners j > i,
 // the upper part of its list, as in forces.cl) and, when nwalls > 0, for
 // each wall it touches. Share slot (plane 0): the partner's force, w = 1 when
-// touching; wall_force slot w*n+i: the force on the wall, w = 1 when
+// touching; wall_force slot (walls.cl): the force on the wall, w = 1 when
 // touching. partial[3g..3g+2]: contacts, sum and max of |F_n| over group g.
 __kernel void pack_contacts(__global const real4* pos, __global const real4* pos_lo,
                             __global const uint* up_off, __global const int* nbr,
@@ -166,6 +166,7 @@ __kernel void pack_contacts(__global const real4* pos, __global const real4* pos
                             __global const real4* pair_force, __global const real4* walls,
                             __global const real4* wall_point,
                             __global const real4* wall_point_lo,
+                            __global const int* wall_near, __global const uint* wall_off,
                             __global const real4* wall_force, real4 origin, real4 origin_lo,
                             __global float4* segments, volatile __global int* counter,
                             int capacity, __global real* partial, int n, int nwalls,
@@ -193,8 +194,10 @@ __kernel void pack_contacts(__global const real4* pos, __global const real4* pos
       most = fmax(most, fn);
     }
 #ifdef HAS_WALLS
+    const int mask = wall_near[i];
     for (int w = 0; w < nwalls; ++w) {
-      const real4 f = wall_force[(size_t)w * n + i];
+      if (!((mask >> w) & 1)) continue;
+      const real4 f = wall_force[SLOT(wall_off, i, (int)popcount(mask & ((1 << w) - 1)))];
       if (f.w == (real)0) continue;
       const real3 t = to_wall(walls, wall_point, wall_point_lo, w, x, x_lo);
       const real fn = normal_part(f.xyz, t);

@@ -4,9 +4,13 @@
 // mass and radius (R* = r_i, m* = m_i, I* = I_i); no capillary bridges with
 // walls (walls are dry). wall_contacts adds to the force/torque the pair
 // stage wrote; it runs inside finish_particles (integrate.cl).
-// Each (wall, particle) slot w*n+i keeps its history (HIST_PLANES records,
-// plane p at p*nwalls*n) and the force the particle exerts ON the wall, which
-// reduce_walls sums into the wall's reaction.
+// Each particle has a wall slot for each wall near it (below), sliced like
+// the neighbour lists (neighbors.cl): slot of wall w of particle i at
+// SLOT(wall_off, i, r), r = the rank of bit w among the bits of
+// wall_near[i]. A slot keeps the contact's history (HIST_PLANES records,
+// plane p at p * wall_stride) and the force the particle exerts ON the
+// wall, which reduce_walls sums into the wall's reaction. Particles far
+// from every wall have none.
 // One work item handles LANES particles (see forces.cl).
 // Wall records (4 x real4 per wall, see common.cl): [0] reference point and
 // shape, [1] normal and material, [2] axis_u and half_u, [3] axis_v and half_v.
@@ -21,8 +25,11 @@
 // at most their two displacements): particles are watched by integrate.cl,
 // walls by advance_walls, which raises the same flags (rebuild beyond
 // skin/4, late beyond skin/2) and reports its speed for the host's check
-// interval. A mask of all ones (after a load, a restore, a wall moved by
-// the host) is always valid.
+// interval. A wall the host moves (a jump, not travel) rebuilds the lists
+// and the masks at once (Simulation::set_wall_point). At each build the
+// slots are laid out anew (wall_widths, then grid.cl's prefix sum) and
+// carry_wall_slots carries every (particle, wall) slot's history and force
+// over from the previous layout (old_*).
 #ifdef HAS_WALLS
 
 #ifdef POS_COMPENSATED
@@ -104,6 +111,49 @@ __kernel void build_wall_near(__global const real4* restrict pos,
   wall_near[i] = mask;
 }
 
+// Slice g's wall block size in slots (its particles' most near walls,
+// times SLICE); entry `slices` is 0, so the prefix sum ends with the total.
+__kernel void wall_widths(__global const int* restrict wall_near, __global uint* restrict width,
+                          int n, int slices) {
+  const int g = get_global_id(0);
+  if (g > slices) return;
+  int most = 0;
+  for (int i = g * SLICE; g < slices && i < min(n, (g + 1) * SLICE); ++i)
+    most = max(most, (int)popcount(wall_near[i]));
+  width[g] = (uint)(most * SLICE);
+}
+
+// Slot of wall w (bit w of mask) of particle i.
+INLINE int wall_slot(__global const uint* off, int i, int mask, int w) {
+  return SLOT(off, i, (int)popcount(mask & ((1 << w) - 1)));
+}
+
+// The new layout's slots from the previous one: a wall near the particle
+// then and now keeps its history and force; a newly near wall starts at 0.
+__kernel void carry_wall_slots(__global const int* restrict old_near,
+                               __global const uint* restrict old_off,
+                               __global const real4* restrict old_spring,
+                               __global const real4* restrict old_force, int old_stride,
+                               __global const int* restrict wall_near,
+                               __global const uint* restrict wall_off,
+                               __global real4* restrict wall_spring,
+                               __global real4* restrict wall_force, int stride, int n,
+                               int nwalls) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  const int was = old_near[i], mask = wall_near[i];
+  for (int w = 0; w < nwalls; ++w) {
+    if (!((mask >> w) & 1)) continue;
+    const int to = wall_slot(wall_off, i, mask, w);
+    const int kept = (was >> w) & 1;
+    const int from = kept ? wall_slot(old_off, i, was, w) : 0;
+    for (int p = 0; p < HIST_PLANES; ++p)
+      wall_spring[(size_t)p * stride + to] =
+          kept ? old_spring[(size_t)p * old_stride + from] : (real4)(0);
+    wall_force[to] = kept ? old_force[from] : (real4)(0);
+  }
+}
+
 // The walls' travel restarts with the lists (point.w, see above).
 __kernel void reset_wall_travel(__global real4* wall_point, int nwalls) {
   const int w = get_global_id(0);
@@ -116,20 +166,23 @@ INLINE void wall_contacts(int base, __global const real* restrict pos POS_LO_SAR
                           __global const real* restrict walls,
                           __global const real* restrict wall_point WALL_LO_ARG,
                           __global const real* restrict wall_vel,
+                          __global const uint* restrict wall_off,
                           __global real* restrict wall_spring, __global real* restrict wall_force,
-                          __global const real* restrict pairs, __global real* restrict force,
-                          __global real* restrict torque, __global int* restrict wall_touch,
+                          int wall_stride, __global const real* restrict pairs,
+                          __global real* restrict force, __global real* restrict torque,
+                          __global int* restrict wall_touch,
                           __global const int* restrict wall_near,
                           __global const int* restrict contacts_last, real dt,
                           real rolling_damping, int n, int nwalls, int nmat) {
-  int ii[LANES], valid[LANES], pair[LANES], was[LANES], now[LANES];
-  int near = 0;  // walls near any lane (broad phase), or touched by one last step
+  int ii[LANES], valid[LANES], pair[LANES], was[LANES], now[LANES], mask[LANES];
+  int near = 0;  // walls near any lane (broad phase)
 #pragma unroll
   for (int l = 0; l < LANES; ++l) {
     valid[l] = base + l < n;
     ii[l] = valid[l] ? base + l : n - 1;
-    was[l] = valid[l] ? wall_touch[ii[l]] : 0;  // walls touched last step (bit w)
-    near |= valid[l] ? wall_near[ii[l]] | was[l] : 0;
+    mask[l] = valid[l] ? wall_near[ii[l]] : 0;  // a wall touched is near: was, now within mask
+    was[l] = valid[l] ? wall_touch[ii[l]] & mask[l] : 0;  // walls touched last step (bit w)
+    near |= mask[l];
     now[l] = 0;
   }
   // Most particles are near no wall and leave at once.
@@ -146,7 +199,7 @@ INLINE void wall_contacts(int base, __global const real* restrict pos POS_LO_SAR
     int on[LANES];
     lane_flags((dist2 < ri * ri) & (dist2 > (real)0), on);
 #pragma unroll
-    for (int l = 0; l < LANES; ++l) now[l] |= on[l] << w;
+    for (int l = 0; l < LANES; ++l) now[l] |= (on[l] << w) & mask[l];
   }
 #pragma unroll
   for (int l = 0; l < LANES; ++l) busy |= valid[l] && (now[l] | was[l]);
@@ -176,7 +229,7 @@ INLINE void wall_contacts(int base, __global const real* restrict pos POS_LO_SAR
     for (int l = 0; l < LANES; ++l) {
       keep[l] = valid[l] && (((now[l] | was[l]) >> w) & 1);
       any_keep |= keep[l];
-      slot[l] = w * n + ii[l];
+      slot[l] = keep[l] ? wall_slot(wall_off, ii[l], mask[l], w) : 0;
     }
     if (!any_keep) continue;
     v3 to_wall;
@@ -198,7 +251,7 @@ INLINE void wall_contacts(int base, __global const real* restrict pos POS_LO_SAR
     lane dash = (lane)0;
 #endif
 #ifdef HAS_ROLLING_SPRING
-    __global real* roll_plane = wall_spring + 4 * HIST_ROLL * (size_t)nwalls * n;
+    __global real* roll_plane = wall_spring + 4 * HIST_ROLL * (size_t)wall_stride;
     v3 rsp = gather3(roll_plane, slot);
 #else
     v3 rsp = v_zero();
