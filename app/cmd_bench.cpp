@@ -78,9 +78,25 @@ struct BenchOptions {
   int repeat = 5;       // timed repetitions per case; the median is reported
   bool render = false;  // --render: renderer frame times instead
   bool effects = false; // --effects: each effect slot on and off
+  bool buffers = false; // --buffers: the device memory buffer by buffer
   RenderBenchOptions render_opt;
   std::string frame_size = "1280x720";
 };
+
+// The state's buffers, bytes per particle, largest first (those under
+// 0.5 B per particle summed in one line).
+void print_buffers(const State& state, int n) {
+  std::vector<std::pair<std::string, const Buffer*>> all = state.all_buffers();
+  std::sort(all.begin(), all.end(),
+            [](const auto& a, const auto& b) { return a.second->bytes > b.second->bytes; });
+  double small = 0;
+  for (const auto& [name, b] : all) {
+    const double per = double(b->bytes) / n;
+    if (per < 0.5) small += per;
+    else std::printf("%10s   %-16s %8.1f bytes/particle\n", "", name.c_str(), per);
+  }
+  std::printf("%10s   %-16s %8.1f bytes/particle\n", "", "(the rest)", small);
+}
 
 int bench(const BenchOptions& opt) {
   auto device = default_device();
@@ -137,6 +153,7 @@ int bench(const BenchOptions& opt) {
                   "the stepping; its memory %.0f bytes/particle\n",
                   "", 1e3 * copies[1], interval, 100 * copies[1] / (interval * step_s),
                   double(sim.guard().backup_bytes()) / n);
+      if (opt.buffers) print_buffers(sim.state(), n);
       std::fflush(stdout);
     }
   }
@@ -166,6 +183,8 @@ CommandRunner add_bench_command(CLI::App& app) {
                 "--render: the eight Alioscopy views and the interleaving (1920x1080 panel)");
   cmd->add_option("--gl", opt->render_opt.gl, "--render: headless OpenGL auto, egl or osmesa")
       ->check(CLI::IsMember({"auto", "egl", "osmesa"}));
+  cmd->add_flag("--buffers", opt->buffers,
+                "Also print the device memory buffer by buffer (bytes per particle)");
   cmd->add_flag("--effects", opt->effects,
                 "Time per step and bytes per contact with each effect slot on and off "
                 "(default 50000 beads, float)");

@@ -137,17 +137,56 @@ State::State(const Model& model) {
   wall_partial = make(d, std::max(1, nw) * wall_chunks * r4);
 }
 
+std::vector<std::pair<std::string, const Buffer*>> State::all_buffers() const {
+  return {{"pos", &pos},
+          {"pos_lo", &pos_lo},
+          {"vel", &vel},
+          {"omega", &omega},
+          {"force", &force},
+          {"torque", &torque},
+          {"pos_build", &pos_build},
+          {"nbr_count", &nbr_count},
+          {"nbr_upper", &nbr_upper},
+          {"up_off", &up_off},
+          {"lo_off", &lo_off},
+          {"nbr", &nbr},
+          {"spring", &spring},
+          {"share", &share},
+          {"nbr_lo", &nbr_lo},
+          {"mirror", &mirror},
+          {"old_upper", &old_upper},
+          {"old_up_off", &old_up_off},
+          {"old_nbr", &old_nbr},
+          {"bucket", &bucket},
+          {"slot", &slot},
+          {"cell_count", &cell_count},
+          {"cell_start", &cell_start},
+          {"sorted", &sorted},
+          {"chunk_sum", &chunk_sum},
+          {"wall_point", &wall_point},
+          {"wall_point_lo", &wall_point_lo},
+          {"wall_vel", &wall_vel},
+          {"wall_touch", &wall_touch},
+          {"wall_near", &wall_near},
+          {"wall_off", &wall_off},
+          {"wall_spring", &wall_spring},
+          {"wall_force", &wall_force},
+          {"old_wall_near", &old_wall_near},
+          {"old_wall_off", &old_wall_off},
+          {"old_wall_spring", &old_wall_spring},
+          {"old_wall_force", &old_wall_force},
+          {"wall_reaction", &wall_reaction},
+          {"wall_mean", &wall_mean},
+          {"servo", &servo},
+          {"flags", &flags},
+          {"obs_partial", &obs_partial},
+          {"wall_partial", &wall_partial},
+          {"touching", &touching}};
+}
+
 size_t State::device_bytes() const {
   size_t total = 0;
-  for (const Buffer* b : {&pos, &pos_lo, &vel, &omega, &force, &torque, &pos_build, &nbr_count,
-                          &nbr_upper, &up_off, &lo_off, &nbr, &spring, &share, &nbr_lo, &mirror,
-                          &old_upper, &old_up_off, &old_nbr, &bucket, &slot,
-                          &cell_count, &cell_start, &sorted, &chunk_sum, &wall_point,
-                          &wall_point_lo, &wall_vel, &wall_spring, &wall_force, &wall_touch,
-                          &wall_near, &wall_off, &old_wall_near, &old_wall_off,
-                          &old_wall_spring, &old_wall_force, &wall_reaction, &wall_mean, &servo, &flags,
-                          &obs_partial, &wall_partial, &touching})
-    total += b->bytes;
+  for (const auto& [name, b] : all_buffers()) total += b->bytes;
   return total;
 }
 

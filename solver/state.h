@@ -96,6 +96,8 @@ class State {
   bool fault_seen = false;       // a list check found the runaway mark set (guard.h)
 
   size_t device_bytes() const;
+  // Every buffer, named (device_bytes() is their sum).
+  std::vector<std::pair<std::string, const Buffer*>> all_buffers() const;
 
   // Named dynamic buffers and their sizes, for checkpoints (fixed order).
   std::vector<std::pair<std::string, Buffer*>> dynamic_buffers();
