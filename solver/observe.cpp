@@ -8,12 +8,12 @@
 namespace simsols {
 namespace {
 
-std::vector<float> read_floats(const Model& m, const Buffer& b, size_t count) {
-  std::vector<float> f(count);
-  m.device().read(b.get(), count * sizeof(float), f.data());
-  return f;
+template <typename T>
+std::vector<T> read_array(const Model& m, const Buffer& b, size_t count) {
+  std::vector<T> v(count);
+  m.device().read(b.get(), count * sizeof(T), v.data());
+  return v;
 }
-
 
 }  // namespace
 
@@ -74,7 +74,8 @@ std::vector<Vec3> wall_points(const Model& m, State& s) {
   const int nw = m.walls();
   const std::vector<double> hi = read_reals(m, s.wall_point, size_t(nw) * 4);
   std::vector<float> lo;
-  if (!m.config().double_precision && nw > 0) lo = read_floats(m, s.wall_point_lo, size_t(nw) * 4);
+  if (!m.config().double_precision && nw > 0)
+    lo = read_array<float>(m, s.wall_point_lo, size_t(nw) * 4);
   std::vector<Vec3> out(nw);
   for (int w = 0; w < nw; ++w)
     for (int a = 0; a < 3; ++a)
@@ -89,7 +90,7 @@ ParticleSnapshot download(const Model& m, State& s) {
   const std::vector<double> om = read_reals(m, s.omega, n * 4);
   const std::vector<double> f = read_reals(m, s.force, n * 4);
   std::vector<float> lo;
-  if (!m.config().double_precision) lo = read_floats(m, s.pos_lo, n * 4);
+  if (!m.config().double_precision) lo = read_array<float>(m, s.pos_lo, n * 4);
   // wall contacts are counted into force.w by wall_forces as well
   ParticleSnapshot p;
   p.position.resize(n);
@@ -114,25 +115,14 @@ ParticleSnapshot download(const Model& m, State& s) {
 }
 
 UpperLists read_upper_lists(const Model& m, State& s) {
-  UpperLists l;
-  l.slice = m.config().slice;
-  l.upper.resize(s.n);
-  l.off.resize(s.slices + 1);
-  l.nbr.resize(s.up_slots);
-  m.device().read(s.nbr_upper.get(), l.upper.size() * sizeof(int), l.upper.data());
-  m.device().read(s.up_off.get(), l.off.size() * sizeof(std::uint32_t), l.off.data());
-  m.device().read(s.nbr.get(), l.nbr.size() * sizeof(int), l.nbr.data());
-  return l;
+  return {m.config().slice, read_array<int>(m, s.nbr_upper, s.n),
+          read_array<std::uint32_t>(m, s.up_off, s.slices + 1),
+          read_array<int>(m, s.nbr, s.up_slots)};
 }
 
 WallSlots read_wall_slots(const Model& m, State& s) {
-  WallSlots l;
-  l.slice = m.config().slice;
-  l.mask.resize(s.n);
-  l.off.resize(s.slices + 1);
-  m.device().read(s.wall_near.get(), l.mask.size() * sizeof(int), l.mask.data());
-  m.device().read(s.wall_off.get(), l.off.size() * sizeof(std::uint32_t), l.off.data());
-  return l;
+  return {m.config().slice, read_array<int>(m, s.wall_near, s.n),
+          read_array<std::uint32_t>(m, s.wall_off, s.slices + 1)};
 }
 
 std::vector<ContactForce> contact_list(const Model& m, State& s) {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -112,6 +113,25 @@ TEST_F(CheckpointFile, TruncatedFileIsRefused) {
   longer.push_back('x');
   write_bytes(bad, longer);
   EXPECT_THROW(verify_checkpoint(bad.string()), SceneError) << "a byte appended";
+}
+
+TEST_F(CheckpointFile, OlderFormatsAreRefusedWithTheReason) {
+  // versions 3 and 4 held fixed-capacity neighbour lists: refused, not misread
+  std::vector<char> old = read_bytes(path_);
+  const fs::path f = dir_ / "old.bin";
+  for (std::uint32_t version : {3u, 4u}) {
+    std::memcpy(old.data() + 12, &version, 4);  // after the 12-byte magic
+    write_bytes(f, old);
+    try {
+      verify_checkpoint(f.string());
+      ADD_FAILURE() << "version " << version << " accepted";
+    } catch (const SceneError& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find("format version " + std::to_string(version)), std::string::npos) << m;
+      EXPECT_NE(m.find("sliced neighbour lists"), std::string::npos) << m;
+      EXPECT_NE(m.find("old.bin"), std::string::npos) << m;
+    }
+  }
 }
 
 TEST_F(CheckpointFile, InputKindsAreTold) {

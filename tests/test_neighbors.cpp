@@ -69,6 +69,31 @@ TEST_P(Neighbors, ListsGrowOnOverflowWithoutChangingResults) {
     for (int c = 0; c < 3; ++c) ASSERT_EQ(pa.position[i][c], pb.position[i][c]) << i;
 }
 
+TEST_P(Neighbors, ListMemoryFollowsThePairs) {
+  // A 16^3 simple cubic lattice of touching beads: 3 * 16^2 * 15 pairs
+  // within the skin (the diagonals lie beyond it). Each pair takes one upper
+  // slot (its owner's) and one lower slot; slices add padding only where
+  // their beads' lists differ in length (the lattice's faces), and the
+  // buffers keep 1/8 to spare.
+  const int side = 16;
+  const double R = 1e-3, a = 2 * R * (1 - 1e-4);
+  Scene s = empty_scene(GetParam(), glass());
+  for (int k = 0; k < side; ++k)
+    for (int j = 0; j < side; ++j)
+      for (int i = 0; i < side; ++i) s.particles.push_back(sphere(R, {i * a, j * a, k * a}));
+  Simulation sim(default_device(), s);
+  sim.advance(2);
+  const double pairs = 3.0 * side * side * (side - 1);
+  const State& st = sim.state();
+  std::printf("[measure] %s: %.0f pairs, %d upper and %d lower slots\n",
+              precision_name(GetParam()), pairs, st.up_slots, st.lo_slots);
+  EXPECT_GE(st.up_slots, pairs);
+  EXPECT_LE(st.up_slots, 1.2 * pairs);
+  EXPECT_GE(st.lo_slots, pairs);
+  EXPECT_LE(st.lo_slots, 1.2 * pairs);
+  EXPECT_EQ(st.wall_slots, 0);  // no walls
+}
+
 TEST_P(Neighbors, MemoryGrowsLinearly) {
   auto bytes_per_particle = [&](int side) {
     Scene s = empty_scene(GetParam(), glass());
