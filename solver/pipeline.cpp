@@ -82,8 +82,8 @@ void build_lists(const Model& m, State& s) {
   const int old_stride = s.up_slots;
   const std::array<std::uint32_t, 2> need = size_lists(m, s);
   const bool grow_up = need[0] > std::uint32_t(s.up_slots);
-  if (grow_up) s.grow_upper(m, int(need[0] + need[0] / 8));
-  if (need[1] > std::uint32_t(s.lo_slots)) s.grow_lower(m, int(need[1] + need[1] / 8));
+  if (grow_up) s.grow_upper(m, int(need[0] + need[0] / 16));
+  if (need[1] > std::uint32_t(s.lo_slots)) s.grow_lower(m, int(need[1] + need[1] / 16));
   // slots the build leaves unwritten (a slice's padding, the spare tail)
   // hold zeros, not an older build's values: the state is the same however
   // it was reached (a resumed run hashes as the straight one)
@@ -120,7 +120,7 @@ void build_wall_slots(const Model& m, State& s) {
   m.device().read(s.wall_off.get(), 4, &need, size_t(s.slices) * 4);
   const int old_stride = s.wall_slots;
   const bool grow = need > std::uint32_t(s.wall_slots);
-  if (grow) s.grow_walls(m, int(need + need / 8));
+  if (grow) s.grow_walls(m, int(need + need / 16));
   for (const Buffer* b : {&s.wall_spring, &s.wall_force})  // as in build_lists
     m.device().fill_zero(b->get(), b->bytes);
   set_args(m, k.carry_wall_slots, s.old_wall_near, s.old_wall_off, s.old_wall_spring,

@@ -46,7 +46,7 @@ State::State(const Model& model) {
   const size_t r4 = 4 * model.real_size();
   n = model.particles();
   slices = (n + model.config().slice - 1) / model.config().slice;
-  table = next_pow2(2ull * n);
+  table = next_pow2(n);  // ~1-2 buckets per particle (one cell holds about one)
   chunk_len = (table + chunks - 1) / chunks;
 
   RealPacker p(dbl), lo(false), v(dbl), w(dbl);
@@ -73,7 +73,7 @@ State::State(const Model& model) {
   omega = make(d, n * r4, w.data());
   force = make(d, n * r4);
   torque = make(d, n * r4);
-  pos_build = make(d, n * r4);
+  pos_build = make(d, n * 16);  // float4 in every precision (integrate.cl)
 
   nbr_count = make(d, n * sizeof(int));
   nbr_upper = make(d, n * sizeof(int));

@@ -10,8 +10,8 @@
 // Memory is linear in N: per particle a fixed number of records, per
 // listed pair one upper and one lower list slot (neighbors.cl, sliced
 // lists) and per wall near a particle one wall slot (walls.cl), both grown
-// when a rebuild needs more, with 1/8 to spare; the grid hash table has
-// ~2N buckets.
+// when a rebuild needs more, with 1/16 to spare; the grid hash table has
+// N to 2N buckets.
 #pragma once
 
 #include <array>

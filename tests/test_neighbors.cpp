@@ -74,7 +74,7 @@ TEST_P(Neighbors, ListMemoryFollowsThePairs) {
   // within the skin (the diagonals lie beyond it). Each pair takes one upper
   // slot (its owner's) and one lower slot; slices add padding only where
   // their beads' lists differ in length (the lattice's faces), and the
-  // buffers keep 1/8 to spare.
+  // buffers keep 1/16 to spare.
   const int side = 16;
   const double R = 1e-3, a = 2 * R * (1 - 1e-4);
   Scene s = empty_scene(GetParam(), glass());

@@ -35,11 +35,13 @@
 typedef double real;
 typedef double3 real3;
 typedef double4 real4;
+#define to_real3(v) convert_double3(v)
 #else
 #define REAL_NAME float
 typedef float real;
 typedef float3 real3;
 typedef float4 real4;
+#define to_real3(v) (v)
 #define POS_COMPENSATED 1
 #endif
 

@@ -30,7 +30,7 @@
 INLINE void integrate_one(int i, __global real4* pos, __global float4* pos_lo,
                           __global real4* vel, __global real4* omega,
                           __global const real4* force, __global const real4* torque,
-                          __global const real4* pos_build, __global volatile int* flags,
+                          __global const float4* pos_build, __global volatile int* flags,
                           __global int* contacts_last, real4 gravity, real4 fluid,
                           real fluid_viscosity, real dt, real skin) {
   real4 v = vel[i];
@@ -84,7 +84,9 @@ INLINE void integrate_one(int i, __global real4* pos, __global float4* pos_lo,
     atomic_or(&flags[5], finite ? 2 : 1);
     atomic_inc(&flags[6]);
   }
-  const real3 moved = x.xyz - pos_build[i].xyz;
+  // pos_build is float in every precision: it only measures a path against
+  // the skin (~0.1 d), far above a float's rounding
+  const real3 moved = x.xyz - to_real3(pos_build[i].xyz);
   const real moved2 = dot(moved, moved);
   if (moved2 > (real)0.0625 * skin * skin) flags[0] = 1;
   if (moved2 > (real)0.25 * skin * skin) flags[3] = 1;
@@ -105,7 +107,7 @@ INLINE void integrate_one(int i, __global real4* pos, __global float4* pos_lo,
 // wall_point_lo are unused in double runs; the wall arguments without walls.
 __kernel void finish_particles(
     __global real* pos, __global float* pos_lo, __global real* vel, __global real* omega,
-    __global real* force, __global real* torque, __global const real4* pos_build,
+    __global real* force, __global real* torque, __global const float4* pos_build,
     __global volatile int* flags, __global int* contacts_last, __global const int* nbr_count,
     __global const int* nbr_upper, __global const uint* lo_off, __global const int* mirror,
     __global const real4* share,

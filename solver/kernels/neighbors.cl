@@ -117,7 +117,7 @@ __kernel void build_neighbors(__global const real4* pos POS_LO_CARG,
                               __global const uint* up_off, __global const uint* lo_off,
                               __global const int* nbr_upper, __global int* nbr,
                               __global int* nbr_lo, __global real4* spring, int stride,
-                              __global real4* pos_build, real inv_cell, real skin, uint table,
+                              __global float4* pos_build, real inv_cell, real skin, uint table,
                               int n) {
   const int i = get_global_id(0);
   if (i >= n) return;
@@ -141,7 +141,7 @@ __kernel void build_neighbors(__global const real4* pos POS_LO_CARG,
           found ? old_hist[(size_t)p * old_stride + SLOT(old_up_off, i, o)] : (real4)(0);
   }
   for (int t = 0; t < lower; ++t) nbr_lo[SLOT(lo_off, i, t)] = list[t];
-  pos_build[i] = pi;
+  pos_build[i] = convert_float4(pi);
 }
 
 // For every lower partner j < i of particle i, the upper slot of i in j's
