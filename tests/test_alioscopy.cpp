@@ -3,6 +3,7 @@
 // written out here, independently of the library; de-interleaving gives the
 // views back; the rig puts the focus plane at screen depth and shifts points
 // in front of it by the disparity its geometry predicts.
+#include <unistd.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -143,7 +144,7 @@ TEST(Alioscopy, GridAndSingleViewShowTheViews) {
 }
 
 TEST(Alioscopy, ProfileErrorsNameFileFieldAndRange) {
-  const auto dir = std::filesystem::temp_directory_path() / "simsols_alioscopy";
+  const auto dir = std::filesystem::temp_directory_path() / ("simsols_alioscopy_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   auto write = [&](const char* name, const char* text) {
     const auto p = dir / name;

@@ -1,6 +1,7 @@
 // The simsols executable end to end: a bad scene writes nothing and exits
 // with status 2; a run stopped at a checkpoint and resumed with --resume ends
 // with the same state hash as the uninterrupted run; outputs exist.
+#include <unistd.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -30,7 +31,7 @@ std::string hash_of(const std::string& out) {
 }
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("simsols_cli_" + name);
+  const fs::path d = fs::temp_directory_path() / ("simsols_cli_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(d);
   return d;
 }

@@ -4,6 +4,7 @@
 // mean" for a mistyped key or name. The lab's script errors list what is
 // accepted (the commands, the Table 1 sizes) and name no file the user did
 // not give.
+#include <unistd.h>
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -37,7 +38,7 @@ Result run_in(const fs::path& cwd, const std::string& args) {
 
 // An empty directory outside the repository.
 fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("simsols_cli_errors_" + name);
+  const fs::path d = fs::temp_directory_path() / ("simsols_cli_errors_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(d);
   fs::create_directories(d);
   return d;

@@ -2,6 +2,7 @@
 // same device and precision end with identical state hashes; a run stopped
 // at a checkpoint and resumed ends bit for bit where the uninterrupted run
 // does.
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 
@@ -53,7 +54,7 @@ TEST_P(Determinism, CheckpointResumesBitForBit) {
   Simulation first(default_device(), s);
   first.advance(170);
   const auto path = std::filesystem::temp_directory_path() /
-                    ("simsols_ckpt_" + std::string(precision_name(GetParam())) + ".bin");
+                    ("simsols_ckpt_" + std::string(precision_name(GetParam())) + "_" + std::to_string(::getpid()) + ".bin");
   save_checkpoint(first, path.string());
   auto resumed = load_checkpoint(default_device(), path.string());
   EXPECT_EQ(resumed->steps(), 170);
@@ -64,7 +65,7 @@ TEST_P(Determinism, CheckpointResumesBitForBit) {
 }
 
 TEST(Checkpoint, RejectsForeignFile) {
-  const auto path = std::filesystem::temp_directory_path() / "simsols_not_a_checkpoint.bin";
+  const auto path = std::filesystem::temp_directory_path() / ("simsols_not_a_checkpoint_" + std::to_string(::getpid()) + ".bin");
   {
     std::ofstream out(path);
     out << "hello";

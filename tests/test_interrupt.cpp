@@ -37,7 +37,7 @@ std::string read(const fs::path& p) {
 }
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::path(::testing::TempDir()) / ("simsols_interrupt_" + name);
+  const fs::path d = fs::path(::testing::TempDir()) / ("simsols_interrupt_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(d);
   fs::create_directories(d);
   return d;

@@ -5,6 +5,7 @@
 // servo target changed, the checkpoint reloads to the same state and goes
 // on exactly as the first session did) and the screenshot (the panel drawn,
 // the beads visible in the viewport).
+#include <unistd.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -47,7 +48,7 @@ std::string lab(const fs::path& script) {
 
 TEST(Lab, ScriptedSessionShearsChangesStressAndCheckpoints) {
   if (run("command -v xvfb-run") != 0) GTEST_SKIP() << "xvfb-run not installed (Debian: xvfb)";
-  const fs::path d = fs::temp_directory_path() / "simsols_lab";
+  const fs::path d = fs::temp_directory_path() / ("simsols_lab_" + std::to_string(::getpid()));
   fs::remove_all(d);
   fs::create_directories(d);
   std::ofstream(d / "one.txt") << "preset 6.35 160\nprepare\nload\nstart\nrows 3\nstate "
@@ -111,7 +112,7 @@ TEST(Lab, ScriptedSessionShearsChangesStressAndCheckpoints) {
 // 16 bytes per contact.
 TEST(Lab, EffectSlotsSwitchTheCompiledKernels) {
   if (run("command -v xvfb-run") != 0) GTEST_SKIP() << "xvfb-run not installed (Debian: xvfb)";
-  const fs::path d = fs::temp_directory_path() / "simsols_lab_slots";
+  const fs::path d = fs::temp_directory_path() / ("simsols_lab_slots_" + std::to_string(::getpid()));
   fs::remove_all(d);
   fs::create_directories(d);
   std::ofstream(d / "s.txt") << "preset 6.35 160\neffect rolling none\neffect tangential none\n"

@@ -2,6 +2,7 @@
 // break, each asserted with a bound that could fail. docs/stability.md lists
 // every case, what it guards against and its measured margins; cases not yet
 // written are listed there as such.
+#include <unistd.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -320,7 +321,7 @@ TEST_P(Runaway, StopsAtTheFirstBadStepNamingTheParticle) {
     EXPECT_EQ(first, fault->particle) << "lowest bad particle";
 
     // The state before, saved and loaded, runs into the same fault.
-    const std::string ck = ::testing::TempDir() + "/runaway_" + precision_name(GetParam()) + ".bin";
+    const std::string ck = ::testing::TempDir() + "/runaway_" + precision_name(GetParam()) + "_" + std::to_string(::getpid()) + ".bin";
     save_checkpoint(sim, ck);
     auto loaded = load_checkpoint(default_device(), ck);
     EXPECT_EQ(loaded->hash(), sim.hash());
