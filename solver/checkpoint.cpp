@@ -17,7 +17,6 @@
 namespace simsols {
 namespace {
 
-
 [[noreturn]] void refuse(const std::string& path, const std::string& what) {
   throw SceneError("bad_checkpoint", path, 0, "", "not a usable SimSols checkpoint: " + what);
 }
@@ -214,8 +213,7 @@ std::unique_ptr<Simulation> load_checkpoint(std::shared_ptr<Device> device, cons
            " out of range (0 to 256 per particle)");
   if (walls < 0 || walls > std::int64_t(s.n) * 32)
     r.fail("wall-slot capacity " + std::to_string(walls) + " out of range (0 to 32 per particle)");
-  if (up != s.up_slots || lo != s.lo_slots) s.resize_lists(sim->model(), up, lo);
-  if (walls != s.wall_slots) s.resize_walls(sim->model(), walls);
+  s.resize_slots(sim->model(), up, lo, walls);
   read_buffers(r, *sim);
   derive_state(sim->model(), sim->state());
   sim->state_replaced();

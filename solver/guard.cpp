@@ -83,9 +83,7 @@ void Guard::take_copy() {
 }
 
 void Guard::restore_copy() {
-  if (state_.up_slots != copy_up_ || state_.lo_slots != copy_lo_)
-    state_.resize_lists(model_, copy_up_, copy_lo_);
-  if (state_.wall_slots != copy_walls_) state_.resize_walls(model_, copy_walls_);
+  state_.resize_slots(model_, copy_up_, copy_lo_, copy_walls_);
   auto buffers = state_.dynamic_buffers();
   for (size_t k = 0; k < buffers.size(); ++k)
     model_.device().copy(copy_[k].get(), buffers[k].second->get(), copy_[k].bytes);

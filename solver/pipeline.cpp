@@ -36,9 +36,14 @@ void build_grid(const Model& m, State& s) {
   launch(m, k.grid_scatter, s.n);
 }
 
+// Slots to allocate for `need`: 1/16 to spare, so that a slowly growing
+// list does not reallocate at every rebuild.
+int with_spare(std::uint32_t need) { return int(need + need / 16); }
+
 // In-place exclusive prefix sum of `values` (entries 0..len-1), with the
-// grid's scan kernels (grid.cl) and its chunk sums as scratch.
-void prefix_sum(const Model& m, State& s, const Buffer& values, std::uint32_t len) {
+// grid's scan kernels (grid.cl) and its chunk sums as scratch. Returns the
+// last entry afterwards: with a 0 there, the sum of the others.
+std::uint32_t prefix_sum(const Model& m, State& s, const Buffer& values, std::uint32_t len) {
   const Kernels& k = m.kernels();
   const std::uint32_t chunk_len = (len + s.chunks - 1) / s.chunks;
   set_args(m, k.scan_chunks, values, s.chunk_sum, len, chunk_len);
@@ -47,6 +52,9 @@ void prefix_sum(const Model& m, State& s, const Buffer& values, std::uint32_t le
   launch_exact(m, k.scan_totals, 1);
   set_args(m, k.scan_apply, values, s.chunk_sum, values, len, chunk_len);
   launch_exact(m, k.scan_apply, s.chunks);
+  std::uint32_t last = 0;
+  m.device().read(values.get(), sizeof last, &last, size_t(len - 1) * sizeof last);
+  return last;
 }
 
 // Lengths, then the slices' offsets (neighbors.cl). Returns the upper and
@@ -65,12 +73,7 @@ std::array<std::uint32_t, 2> size_lists(const Model& m, State& s) {
                       "size ratio");
   set_args(m, k.slice_widths, s.nbr_count, s.nbr_upper, s.up_off, s.lo_off, s.n, s.slices);
   launch(m, k.slice_widths, s.slices + 1);
-  prefix_sum(m, s, s.up_off, s.slices + 1);
-  prefix_sum(m, s, s.lo_off, s.slices + 1);
-  std::array<std::uint32_t, 2> total{};
-  m.device().read(s.up_off.get(), 4, &total[0], size_t(s.slices) * 4);
-  m.device().read(s.lo_off.get(), 4, &total[1], size_t(s.slices) * 4);
-  return total;
+  return {prefix_sum(m, s, s.up_off, s.slices + 1), prefix_sum(m, s, s.lo_off, s.slices + 1)};
 }
 
 // The lists (neighbors.cl), after the ones in use became the old ones. The
@@ -82,8 +85,8 @@ void build_lists(const Model& m, State& s) {
   const int old_stride = s.up_slots;
   const std::array<std::uint32_t, 2> need = size_lists(m, s);
   const bool grow_up = need[0] > std::uint32_t(s.up_slots);
-  if (grow_up) s.grow_upper(m, int(need[0] + need[0] / 16));
-  if (need[1] > std::uint32_t(s.lo_slots)) s.grow_lower(m, int(need[1] + need[1] / 16));
+  if (grow_up) s.grow_upper(m, with_spare(need[0]));
+  if (need[1] > std::uint32_t(s.lo_slots)) s.grow_lower(m, with_spare(need[1]));
   // slots the build leaves unwritten (a slice's padding, the spare tail)
   // hold zeros, not an older build's values: the state is the same however
   // it was reached (a resumed run hashes as the straight one)
@@ -115,12 +118,10 @@ void build_wall_slots(const Model& m, State& s) {
   launch(m, k.build_wall_near, s.n);
   set_args(m, k.wall_widths, s.wall_near, s.wall_off, s.n, s.slices);
   launch(m, k.wall_widths, s.slices + 1);
-  prefix_sum(m, s, s.wall_off, s.slices + 1);
-  std::uint32_t need = 0;
-  m.device().read(s.wall_off.get(), 4, &need, size_t(s.slices) * 4);
+  const std::uint32_t need = prefix_sum(m, s, s.wall_off, s.slices + 1);
   const int old_stride = s.wall_slots;
   const bool grow = need > std::uint32_t(s.wall_slots);
-  if (grow) s.grow_walls(m, int(need + need / 16));
+  if (grow) s.grow_walls(m, with_spare(need));
   for (const Buffer* b : {&s.wall_spring, &s.wall_force})  // as in build_lists
     m.device().fill_zero(b->get(), b->bytes);
   set_args(m, k.carry_wall_slots, s.old_wall_near, s.old_wall_off, s.old_wall_spring,
@@ -184,8 +185,7 @@ void finish_particles(const Model& m, State& s) {
            s.pos_build, s.flags, s.touching, s.nbr_count, s.nbr_upper, s.lo_off, s.mirror,
            s.share, m.wall_buffer(), s.wall_point, s.wall_point_lo, s.wall_vel,
            s.wall_off, s.wall_spring, s.wall_force, s.wall_slots, m.pair_buffer(), s.wall_touch,
-           s.wall_near,
-           gravity_arg(m), fluid_arg(m), Real{e.fluid_params.viscosity}, Real{m.dt()},
+           s.wall_near, gravity_arg(m), fluid_arg(m), Real{e.fluid_params.viscosity}, Real{m.dt()},
            Real{e.rolling_damping}, Real{m.skin()}, s.up_slots, s.n, m.walls(), m.pairs().n);
   launch(m, k.finish_particles, lane_groups(m, s.n));
 }

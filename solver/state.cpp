@@ -109,8 +109,7 @@ State::State(const Model& model) {
   old_wall_near = make(d, nw ? n * sizeof(int) : 16);
   wall_off = make(d, (slices + 1) * sizeof(std::uint32_t));
   old_wall_off = make(d, (slices + 1) * sizeof(std::uint32_t));
-  grow_walls(model, 0);
-  wall_scratch(model);
+  resize_walls(model, 0);
   wall_reaction = make(d, std::max(1, nw) * r4);
   wall_mean = make(d, std::max(1, nw) * r4);
   RealPacker sv(dbl);

@@ -124,6 +124,12 @@ class State {
     grow_walls(model, slots);
     wall_scratch(model);
   }
+  // The list and wall capacities of a saved state (a checkpoint, the
+  // guard's copy): reallocates, zeroed, the buffers whose capacity differs.
+  void resize_slots(const Model& model, int up, int lo, int walls) {
+    if (up != up_slots || lo != lo_slots) resize_lists(model, up, lo);
+    if (walls != wall_slots) resize_walls(model, walls);
+  }
 
  private:
   Buffer make(Device& d, size_t bytes, const void* init = nullptr);

@@ -53,6 +53,9 @@ typedef float4 real4;
 #define SLICE 8
 #endif
 #define SLOT(off, i, k) ((int)(off)[(i) / SLICE] + (k) * SLICE + (i) % SLICE)
+// Wall w's slot of particle i (walls.cl): rank r of bit w among the bits of
+// its near-wall mask. observe.h's WallSlots::slot() is the host's copy.
+#define WALL_SLOT(off, i, mask, w) SLOT(off, i, (int)popcount((mask) & ((1 << (w)) - 1)))
 
 // Per-pair coefficient record: PAIR_RECORD reals, see contact_law.cl.
 #ifndef PAIR_RECORD

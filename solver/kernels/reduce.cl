@@ -71,7 +71,7 @@ __kernel void reduce_walls(__global const int* wall_near, __global const uint* w
   real4 sum = (real4)(0);
   for (int i = lo; i < hi; ++i) {
     const int mask = wall_near[i];
-    if ((mask >> w) & 1) sum += wall_force[SLOT(wall_off, i, (int)popcount(mask & ((1 << w) - 1)))];
+    if ((mask >> w) & 1) sum += wall_force[WALL_SLOT(wall_off, i, mask, w)];
   }
   partial[g] = sum;
 }

@@ -197,7 +197,7 @@ __kernel void pack_contacts(__global const real4* pos, __global const real4* pos
     const int mask = wall_near[i];
     for (int w = 0; w < nwalls; ++w) {
       if (!((mask >> w) & 1)) continue;
-      const real4 f = wall_force[SLOT(wall_off, i, (int)popcount(mask & ((1 << w) - 1)))];
+      const real4 f = wall_force[WALL_SLOT(wall_off, i, mask, w)];
       if (f.w == (real)0) continue;
       const real3 t = to_wall(walls, wall_point, wall_point_lo, w, x, x_lo);
       const real fn = normal_part(f.xyz, t);

@@ -6,8 +6,8 @@
 // stage wrote; it runs inside finish_particles (integrate.cl).
 // Each particle has a wall slot for each wall near it (below), sliced like
 // the neighbour lists (neighbors.cl): slot of wall w of particle i at
-// SLOT(wall_off, i, r), r = the rank of bit w among the bits of
-// wall_near[i]. A slot keeps the contact's history (HIST_PLANES records,
+// WALL_SLOT (common.cl): SLOT(wall_off, i, r), r = the rank of bit w among
+// the bits of wall_near[i]. A slot keeps the contact's history (HIST_PLANES records,
 // plane p at p * wall_stride) and the force the particle exerts ON the
 // wall, which reduce_walls sums into the wall's reaction. Particles far
 // from every wall have none.
@@ -123,11 +123,6 @@ __kernel void wall_widths(__global const int* restrict wall_near, __global uint*
   width[g] = (uint)(most * SLICE);
 }
 
-// Slot of wall w (bit w of mask) of particle i.
-INLINE int wall_slot(__global const uint* off, int i, int mask, int w) {
-  return SLOT(off, i, (int)popcount(mask & ((1 << w) - 1)));
-}
-
 // The new layout's slots from the previous one: a wall near the particle
 // then and now keeps its history and force; a newly near wall starts at 0.
 __kernel void carry_wall_slots(__global const int* restrict old_near,
@@ -144,9 +139,9 @@ __kernel void carry_wall_slots(__global const int* restrict old_near,
   const int was = old_near[i], mask = wall_near[i];
   for (int w = 0; w < nwalls; ++w) {
     if (!((mask >> w) & 1)) continue;
-    const int to = wall_slot(wall_off, i, mask, w);
+    const int to = WALL_SLOT(wall_off, i, mask, w);
     const int kept = (was >> w) & 1;
-    const int from = kept ? wall_slot(old_off, i, was, w) : 0;
+    const int from = kept ? WALL_SLOT(old_off, i, was, w) : 0;
     for (int p = 0; p < HIST_PLANES; ++p)
       wall_spring[(size_t)p * stride + to] =
           kept ? old_spring[(size_t)p * old_stride + from] : (real4)(0);
@@ -229,7 +224,7 @@ INLINE void wall_contacts(int base, __global const real* restrict pos POS_LO_SAR
     for (int l = 0; l < LANES; ++l) {
       keep[l] = valid[l] && (((now[l] | was[l]) >> w) & 1);
       any_keep |= keep[l];
-      slot[l] = keep[l] ? wall_slot(wall_off, ii[l], mask[l], w) : 0;
+      slot[l] = keep[l] ? WALL_SLOT(wall_off, ii[l], mask[l], w) : 0;
     }
     if (!any_keep) continue;
     v3 to_wall;
