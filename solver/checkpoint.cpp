@@ -97,7 +97,7 @@ Header read_header(std::ifstream& in, const std::string& path) {
     refuse(path, "format version " + std::to_string(h.version) +
                      ", written before the sliced neighbour lists; this build reads version " +
                      std::to_string(kCheckpointVersion) + ": rerun the run from its scene");
-  if (h.version != kCheckpointVersion)
+  if (h.version != kCheckpointVersion && h.version != 5)
     refuse(path, "format version " + std::to_string(h.version) + ", this build reads version " +
                      std::to_string(kCheckpointVersion));
   h.payload = r.pod<std::uint64_t>();
@@ -125,9 +125,16 @@ void write_payload(Writer& w, Simulation& sim, const std::string& extra) {
   w.str(extra);
 }
 
-void read_buffers(Reader& r, Simulation& sim) {
+// Version 5 also held the lower slots' partner ids (nbr_lo), which only the
+// list build needs: skipped.
+void read_buffers(Reader& r, Simulation& sim, std::uint32_t version) {
   for (auto& [name, buf] : sim.state().dynamic_buffers()) {
-    if (r.str() != name) r.fail("buffer '" + name + "' missing");
+    std::string seen = r.str();
+    if (version == 5 && seen == "nbr_lo") {
+      r.bytes();
+      seen = r.str();
+    }
+    if (seen != name) r.fail("buffer '" + name + "' missing");
     const std::vector<char> data = r.bytes();
     if (data.size() != buf->bytes) r.fail("buffer '" + name + "' has the wrong size");
     sim.model().device().write(buf->get(), data.size(), data.data());
@@ -193,7 +200,7 @@ std::unique_ptr<Simulation> load_checkpoint(std::shared_ptr<Device> device, cons
   verify_checkpoint(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError("io", path, 0, "", "cannot open checkpoint");
-  read_header(in, path);
+  const std::uint32_t version = read_header(in, path).version;
   Reader r(in, path);
   const std::string text = r.str();
   Scene scene = parse_scene(text, path + " (embedded scene)");
@@ -214,7 +221,7 @@ std::unique_ptr<Simulation> load_checkpoint(std::shared_ptr<Device> device, cons
   if (walls < 0 || walls > std::int64_t(s.n) * 32)
     r.fail("wall-slot capacity " + std::to_string(walls) + " out of range (0 to 32 per particle)");
   s.resize_slots(sim->model(), up, lo, walls);
-  read_buffers(r, *sim);
+  read_buffers(r, *sim, version);
   derive_state(sim->model(), sim->state());
   sim->state_replaced();
   const std::string rest = r.str();

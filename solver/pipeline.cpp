@@ -90,16 +90,16 @@ void build_lists(const Model& m, State& s) {
   // slots the build leaves unwritten (a slice's padding, the spare tail)
   // hold zeros, not an older build's values: the state is the same however
   // it was reached (a resumed run hashes as the straight one)
-  for (const Buffer* b : {&s.nbr, &s.spring, &s.nbr_lo, &s.mirror})
+  for (const Buffer* b : {&s.nbr, &s.spring, &s.mirror})
     m.device().fill_zero(b->get(), b->bytes);
   set_args(m, k.build_neighbors, s.pos, s.pos_lo, s.cell_count, s.cell_start, s.sorted,
            s.old_up_off, s.old_upper, s.old_nbr, s.share, old_stride, s.up_off, s.lo_off,
-           s.nbr_upper, s.nbr, s.nbr_lo, s.spring, s.up_slots, s.pos_build,
+           s.nbr_upper, s.nbr, s.mirror, s.spring, s.up_slots, s.pos_build,
            Real{1.0 / m.cell_size()}, Real{m.skin()}, s.table, s.n);
   launch(m, k.build_neighbors, s.n);
   if (grow_up) s.upper_scratch(m);
-  set_args(m, k.build_mirrors, s.nbr_count, s.nbr_upper, s.up_off, s.nbr, s.lo_off, s.nbr_lo,
-           s.mirror, s.n);
+  set_args(m, k.build_mirrors, s.nbr_count, s.nbr_upper, s.up_off, s.nbr, s.lo_off, s.mirror,
+           s.n);
   launch(m, k.build_mirrors, s.n);
 }
 

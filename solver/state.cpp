@@ -151,7 +151,6 @@ std::vector<std::pair<std::string, const Buffer*>> State::all_buffers() const {
           {"nbr", &nbr},
           {"spring", &spring},
           {"share", &share},
-          {"nbr_lo", &nbr_lo},
           {"mirror", &mirror},
           {"old_upper", &old_upper},
           {"old_up_off", &old_up_off},
@@ -195,7 +194,7 @@ std::vector<std::pair<std::string, Buffer*>> State::dynamic_buffers() {
           {"omega", &omega},       {"force", &force},           {"torque", &torque},
           {"pos_build", &pos_build}, {"nbr_count", &nbr_count}, {"nbr_upper", &nbr_upper},
           {"up_off", &up_off},     {"lo_off", &lo_off},       {"nbr", &nbr},
-          {"spring", &spring},     {"nbr_lo", &nbr_lo},       {"mirror", &mirror},
+          {"spring", &spring},     {"mirror", &mirror},
           {"wall_point", &wall_point}, {"wall_point_lo", &wall_point_lo},
           {"wall_vel", &wall_vel}, {"wall_near", &wall_near}, {"wall_off", &wall_off},
           {"wall_spring", &wall_spring}, {"wall_force", &wall_force},
@@ -232,7 +231,6 @@ void State::upper_scratch(const Model& model) {
 void State::grow_lower(const Model& model, int slots) {
   Device& d = model.device();
   lo_slots = slots;
-  nbr_lo = make(d, std::max<size_t>(16, size_t(lo_slots) * sizeof(int)));
   mirror = make(d, std::max<size_t>(16, size_t(lo_slots) * sizeof(int)));
 }
 

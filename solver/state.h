@@ -47,10 +47,10 @@ class State {
   // (nbr), the contact's history (spring, HIST planes of up_slots records)
   // and the partner's share of the last step (share: a force plane and a
   // torque plane; it holds the previous history during a rebuild). Per
-  // lower slot (lo_slots): the partner (nbr_lo) and the upper slot where
-  // its share waits (mirror). old_*: the previous upper lists, which a
+  // lower slot (lo_slots): the upper slot where the partner's share waits
+  // (mirror; the rebuild puts the partner's id there first). old_*: the previous upper lists, which a
   // rebuild carries the history over from.
-  Buffer pos_build, nbr_count, nbr_upper, up_off, lo_off, nbr, spring, share, nbr_lo, mirror;
+  Buffer pos_build, nbr_count, nbr_upper, up_off, lo_off, nbr, spring, share, mirror;
   Buffer old_upper, old_up_off, old_nbr;
   // grid
   Buffer bucket, slot, cell_count, cell_start, sorted, chunk_sum;
@@ -108,7 +108,7 @@ class State {
   void grow_upper(const Model& model, int slots);
   // share and old_nbr sized for up_slots.
   void upper_scratch(const Model& model);
-  // Reallocates the lower lists (nbr_lo, mirror) with `slots` slots.
+  // Reallocates the lower lists (mirror) with `slots` slots.
   void grow_lower(const Model& model, int slots);
   // Reallocates all slot buffers, zeroed, with the given capacities.
   void resize_lists(const Model& model, int up, int lo);

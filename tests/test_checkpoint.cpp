@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <zlib.h>
+
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -134,6 +137,43 @@ TEST_F(CheckpointFile, OlderFormatsAreRefusedWithTheReason) {
   }
 }
 
+
+// Version 5 files held one more buffer, the lower slots' partner ids
+// ("nbr_lo", before "mirror"): they load, that buffer skipped, to the state
+// a version 6 file gives.
+TEST_F(CheckpointFile, VersionFiveLoadsWithoutItsLowerIds) {
+  std::vector<char> v5 = read_bytes(path_);
+  const size_t header = 12 + 4 + 8 + 4;  // magic, version, payload size, CRC
+  const std::string name = "mirror";
+  std::vector<char> key(8 + name.size());
+  const std::uint64_t len = name.size();
+  std::memcpy(key.data(), &len, 8);
+  std::memcpy(key.data() + 8, name.data(), name.size());
+  const auto at = std::search(v5.begin() + header, v5.end(), key.begin(), key.end());
+  ASSERT_NE(at, v5.end()) << "no mirror buffer in the file";
+  std::vector<char> extra(8 + 6 + 8 + 16, char(0x5a));  // "nbr_lo", 16 bytes of junk
+  const std::uint64_t six = 6, sixteen = 16;
+  std::memcpy(extra.data(), &six, 8);
+  std::memcpy(extra.data() + 8, "nbr_lo", 6);
+  std::memcpy(extra.data() + 14, &sixteen, 8);
+  v5.insert(at, extra.begin(), extra.end());
+  const std::uint32_t version = 5;
+  const std::uint64_t payload = v5.size() - header;
+  const std::uint32_t crc = static_cast<std::uint32_t>(
+      crc32(0, reinterpret_cast<const Bytef*>(v5.data() + header), uInt(payload)));
+  std::memcpy(v5.data() + 12, &version, 4);
+  std::memcpy(v5.data() + 16, &payload, 8);
+  std::memcpy(v5.data() + 24, &crc, 4);
+  const fs::path f = dir_ / "v5.bin";
+  write_bytes(f, v5);
+  EXPECT_EQ(verify_checkpoint(f.string()), 5u);
+  auto sim = load_checkpoint(default_device(), f.string());
+  EXPECT_EQ(sim->hash(), hash_);
+  auto straight = load_checkpoint(default_device(), path_.string());
+  sim->advance(200);
+  straight->advance(200);
+  EXPECT_EQ(sim->hash(), straight->hash());
+}
 TEST_F(CheckpointFile, InputKindsAreTold) {
   const std::vector<char> good = read_bytes(path_);
   EXPECT_EQ(classify_input(path_.string()), InputKind::Checkpoint);

@@ -21,8 +21,10 @@
 //                    turns them into the offsets up_off, lo_off
 //   build_neighbors  the lists, the history carried over from the previous
 //                    upper list by a merge join on j, so contact history
-//                    survives every rebuild
-//   build_mirrors    the mirror of each lower slot
+//                    survives every rebuild; a lower slot receives its
+//                    partner's id in the mirror buffer
+//   build_mirrors    replaces each lower slot's partner id by its mirror, in
+//                    place (a lower slot's id is needed only to find it)
 // The previous list's history waits in the share buffer during a rebuild
 // (the shares are dead then: written and read within one step).
 // flags[1] receives the longest list asked for when one exceeds MAX_CAP.
@@ -116,7 +118,7 @@ __kernel void build_neighbors(__global const real4* pos POS_LO_CARG,
                               __global const real4* old_hist, int old_stride,
                               __global const uint* up_off, __global const uint* lo_off,
                               __global const int* nbr_upper, __global int* nbr,
-                              __global int* nbr_lo, __global real4* spring, int stride,
+                              __global int* mirror, __global real4* spring, int stride,
                               __global float4* pos_build, real inv_cell, real skin, uint table,
                               int n) {
   const int i = get_global_id(0);
@@ -140,21 +142,21 @@ __kernel void build_neighbors(__global const real4* pos POS_LO_CARG,
       spring[(size_t)p * stride + slot] =
           found ? old_hist[(size_t)p * old_stride + SLOT(old_up_off, i, o)] : (real4)(0);
   }
-  for (int t = 0; t < lower; ++t) nbr_lo[SLOT(lo_off, i, t)] = list[t];
+  for (int t = 0; t < lower; ++t) mirror[SLOT(lo_off, i, t)] = list[t];  // the partner, for now
   pos_build[i] = convert_float4(pi);
 }
 
-// For every lower partner j < i of particle i, the upper slot of i in j's
-// list, where j computed the pair (see forces.cl).
+// For every lower partner j < i of particle i (its id left in the slot by
+// build_neighbors), the upper slot of i in j's list, where j computed the
+// pair (see forces.cl). Each work item rewrites only its own lower slots.
 __kernel void build_mirrors(__global const int* nbr_count, __global const int* nbr_upper,
                             __global const uint* up_off, __global const int* nbr,
-                            __global const uint* lo_off, __global const int* nbr_lo,
-                            __global int* mirror, int n) {
+                            __global const uint* lo_off, __global int* mirror, int n) {
   const int i = get_global_id(0);
   if (i >= n) return;
   const int lower = nbr_count[i] - nbr_upper[i];
   for (int k = 0; k < lower; ++k) {
-    const int j = nbr_lo[SLOT(lo_off, i, k)];
+    const int j = mirror[SLOT(lo_off, i, k)];
     // i > j lies in the upper, sorted part of j's list: binary search
     int lo = 0, hi = nbr_upper[j] - 1;
     while (lo < hi) {
