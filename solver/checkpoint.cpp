@@ -97,7 +97,7 @@ Header read_header(std::ifstream& in, const std::string& path) {
     refuse(path, "format version " + std::to_string(h.version) +
                      ", written before the sliced neighbour lists; this build reads version " +
                      std::to_string(kCheckpointVersion) + ": rerun the run from its scene");
-  if (h.version != kCheckpointVersion && h.version != 5)
+  if (h.version != kCheckpointVersion && h.version != 5 && h.version != 6)
     refuse(path, "format version " + std::to_string(h.version) + ", this build reads version " +
                      std::to_string(kCheckpointVersion));
   h.payload = r.pod<std::uint64_t>();
@@ -125,17 +125,39 @@ void write_payload(Writer& w, Simulation& sim, const std::string& extra) {
   w.str(extra);
 }
 
+// Versions 5 and 6 stored each list-slot record whole (x, y, z, w of a slot
+// together); since version 7 a slice's records go by component (SLOT_REAL in
+// common.cl). Regroups every plane of `slots` records; slots past the last
+// whole slice are spare and stay zero.
+std::vector<char> regroup_slot_records(const std::vector<char>& in, size_t slots, int slice,
+                                       size_t real) {
+  const size_t plane = 4 * slots * real;  // bytes
+  if (slots == 0 || in.size() < plane) return in;  // the stand-in of a run without history
+  std::vector<char> out(in.size(), 0);
+  for (size_t p = 0; p + plane <= in.size(); p += plane)
+    for (size_t s = 0; s < slots; ++s)
+      for (int c = 0; c < 4; ++c) {
+        const size_t to = slot_real(s, slice, c);
+        if (to < 4 * slots) std::memcpy(&out[p + to * real], &in[p + (4 * s + c) * real], real);
+      }
+  return out;
+}
+
 // Version 5 also held the lower slots' partner ids (nbr_lo), which only the
 // list build needs: skipped.
 void read_buffers(Reader& r, Simulation& sim, std::uint32_t version) {
-  for (auto& [name, buf] : sim.state().dynamic_buffers()) {
+  State& s = sim.state();
+  for (auto& [name, buf] : s.dynamic_buffers()) {
     std::string seen = r.str();
     if (version == 5 && seen == "nbr_lo") {
       r.bytes();
       seen = r.str();
     }
     if (seen != name) r.fail("buffer '" + name + "' missing");
-    const std::vector<char> data = r.bytes();
+    std::vector<char> data = r.bytes();
+    if (version < 7 && (name == "spring" || name == "share"))
+      data = regroup_slot_records(data, size_t(s.up_slots), sim.model().config().slice,
+                                  sim.model().real_size());
     if (data.size() != buf->bytes) r.fail("buffer '" + name + "' has the wrong size");
     sim.model().device().write(buf->get(), data.size(), data.data());
   }

@@ -2,9 +2,9 @@
 // continues bit for bit as if it had never stopped (same device, same
 // precision).
 //
-// File layout (format version 6, little endian):
+// File layout (format version 7, little endian):
 //   "SIMSOLS-CKPT"   12 bytes of magic
-//   version          u32 (6)
+//   version          u32 (7)
 //   payload bytes    u64
 //   payload CRC-32   u32 (zlib's crc32 of the payload)
 //   payload          the scene as exact TOML (to_toml), step, list builds,
@@ -14,8 +14,9 @@
 //                    driver's `extra` (e.g. the shear test's loading program)
 // The whole file is verified (size and checksum) before anything is built
 // from it, so a damaged file is refused with the reason instead of
-// resuming from garbage. Files of version 5 load (their one extra buffer,
-// the lower slots' partner ids, is skipped). Files of versions 3 and 4
+// resuming from garbage. Files of versions 5 and 6 load: their list-slot
+// records (spring, share) are regrouped by component, and version 5's one
+// extra buffer, the lower slots' partner ids, is skipped. Files of versions 3 and 4
 // (fixed-capacity neighbour lists) are refused with that reason: rerun them
 // from their scene.
 //
@@ -32,14 +33,14 @@
 
 namespace simsols {
 
-inline constexpr std::uint32_t kCheckpointVersion = 6;
+inline constexpr std::uint32_t kCheckpointVersion = 7;
 
 // `extra`: the state of whatever drives the run (e.g. the shear test's
 // loading program), stored verbatim and handed back by load_checkpoint.
 void save_checkpoint(Simulation& sim, const std::string& path, const std::string& extra = {});
 
 // Throws SceneError naming `path` unless it is a complete checkpoint whose
-// size and checksum match (version 6, or 5). Reads the file
+// size and checksum match (version 7, 6 or 5). Reads the file
 // once; builds nothing. Returns the format version.
 std::uint32_t verify_checkpoint(const std::string& path);
 

@@ -136,8 +136,9 @@ std::vector<ContactForce> contact_list(const Model& m, State& s) {
   for (int i = 0; i < n; ++i)
     for (int k = 0; k < upper[i]; ++k) {
       const size_t slot = l.slot(i, k);
-      if (pf[slot * 4 + 3] == 0) continue;  // listed, not touching
-      out.push_back({i, nbr[slot], {-pf[slot * 4], -pf[slot * 4 + 1], -pf[slot * 4 + 2]}});
+      if (pf[l.real_at(slot, 3)] == 0) continue;  // listed, not touching
+      out.push_back({i, nbr[slot],
+                     {-pf[l.real_at(slot, 0)], -pf[l.real_at(slot, 1)], -pf[l.real_at(slot, 2)]}});
     }
   if (m.config().walls) {
     const int nw = m.walls();

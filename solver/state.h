@@ -140,4 +140,10 @@ inline size_t list_slot(const std::vector<std::uint32_t>& off, int slice, int i,
   return off[i / slice] + size_t(k) * slice + i % slice;
 }
 
+// Component c (0..3) of slot `slot`'s record in a plane of list-slot records
+// (spring, share): SLOT_REAL in common.cl (a slice's records by component).
+inline size_t slot_real(size_t slot, int slice, int c) {
+  return slot / slice * 4 * slice + size_t(c) * slice + slot % slice;
+}
+
 }  // namespace simsols

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "checkpoint.h"
@@ -138,42 +139,123 @@ TEST_F(CheckpointFile, OlderFormatsAreRefusedWithTheReason) {
 }
 
 
-// Version 5 files held one more buffer, the lower slots' partner ids
-// ("nbr_lo", before "mirror"): they load, that buffer skipped, to the state
-// a version 6 file gives.
-TEST_F(CheckpointFile, VersionFiveLoadsWithoutItsLowerIds) {
-  std::vector<char> v5 = read_bytes(path_);
-  const size_t header = 12 + 4 + 8 + 4;  // magic, version, payload size, CRC
-  const std::string name = "mirror";
-  std::vector<char> key(8 + name.size());
-  const std::uint64_t len = name.size();
-  std::memcpy(key.data(), &len, 8);
-  std::memcpy(key.data() + 8, name.data(), name.size());
-  const auto at = std::search(v5.begin() + header, v5.end(), key.begin(), key.end());
-  ASSERT_NE(at, v5.end()) << "no mirror buffer in the file";
-  std::vector<char> extra(8 + 6 + 8 + 16, char(0x5a));  // "nbr_lo", 16 bytes of junk
-  const std::uint64_t six = 6, sixteen = 16;
-  std::memcpy(extra.data(), &six, 8);
-  std::memcpy(extra.data() + 8, "nbr_lo", 6);
-  std::memcpy(extra.data() + 14, &sixteen, 8);
-  v5.insert(at, extra.begin(), extra.end());
-  const std::uint32_t version = 5;
-  const std::uint64_t payload = v5.size() - header;
-  const std::uint32_t crc = static_cast<std::uint32_t>(
-      crc32(0, reinterpret_cast<const Bytef*>(v5.data() + header), uInt(payload)));
-  std::memcpy(v5.data() + 12, &version, 4);
-  std::memcpy(v5.data() + 16, &payload, 8);
-  std::memcpy(v5.data() + 24, &crc, 4);
-  const fs::path f = dir_ / "v5.bin";
-  write_bytes(f, v5);
-  EXPECT_EQ(verify_checkpoint(f.string()), 5u);
-  auto sim = load_checkpoint(default_device(), f.string());
-  EXPECT_EQ(sim->hash(), hash_);
-  auto straight = load_checkpoint(default_device(), path_.string());
-  sim->advance(200);
-  straight->advance(200);
-  EXPECT_EQ(sim->hash(), straight->hash());
+// A checkpoint file's payload taken apart: the scene and counters as they
+// are, then the buffers by name, then the driver's state.
+struct Payload {
+  std::vector<char> head;  // the scene (a block) and the counters, verbatim
+  std::vector<std::pair<std::string, std::vector<char>>> buffers;
+  std::vector<char> tail;  // the driver's state (a block)
+};
+
+constexpr size_t kHeader = 12 + 4 + 8 + 4;  // magic, version, payload size, CRC
+
+std::uint64_t block_size(const std::vector<char>& f, size_t at) {
+  std::uint64_t n = 0;
+  std::memcpy(&n, f.data() + at, 8);
+  return n;
 }
+
+Payload take_apart(const std::vector<char>& f, size_t nbuffers) {
+  Payload p;
+  size_t at = kHeader;
+  at += 8 + block_size(f, at) + 4 * 8 + 3 * 4;  // scene, four i64, three i32
+  p.head.assign(f.begin() + kHeader, f.begin() + std::ptrdiff_t(at));
+  for (size_t b = 0; b < nbuffers; ++b) {
+    const size_t name = block_size(f, at);
+    std::string key(f.data() + at + 8, name);
+    at += 8 + name;
+    const size_t size = block_size(f, at);
+    p.buffers.emplace_back(key, std::vector<char>(f.begin() + std::ptrdiff_t(at + 8),
+                                                  f.begin() + std::ptrdiff_t(at + 8 + size)));
+    at += 8 + size;
+  }
+  p.tail.assign(f.begin() + std::ptrdiff_t(at), f.end());
+  return p;
+}
+
+std::vector<char> put_together(const Payload& p, std::uint32_t version) {
+  std::vector<char> body = p.head;
+  auto block = [&body](const char* data, std::uint64_t n) {
+    const char* size = reinterpret_cast<const char*>(&n);
+    body.insert(body.end(), size, size + 8);
+    body.insert(body.end(), data, data + n);
+  };
+  for (const auto& [name, bytes] : p.buffers) {
+    block(name.data(), name.size());
+    block(bytes.data(), bytes.size());
+  }
+  body.insert(body.end(), p.tail.begin(), p.tail.end());
+  const std::uint64_t payload = body.size();
+  const std::uint32_t crc = static_cast<std::uint32_t>(
+      crc32(0, reinterpret_cast<const Bytef*>(body.data()), uInt(payload)));
+  std::vector<char> f(kHeader + body.size());
+  std::memcpy(f.data(), "SIMSOLS-CKPT", 12);
+  std::memcpy(f.data() + 12, &version, 4);
+  std::memcpy(f.data() + 16, &payload, 8);
+  std::memcpy(f.data() + 24, &crc, 4);
+  std::memcpy(f.data() + kHeader, body.data(), body.size());
+  return f;
+}
+
+// Versions 5 and 6 kept each list-slot record whole (spring, share: x, y, z,
+// w of a slot together), and version 5 one more buffer, the lower slots'
+// partner ids ("nbr_lo", before "mirror"). Files written that way load to
+// the state a version 7 file gives, and run on the same.
+TEST_F(CheckpointFile, VersionsFiveAndSixLoadToTheSameState) {
+  // a packed block of 18 beads, sliding and spinning: loaded springs in
+  // every slice
+  Scene block = empty_scene(Precision::Float, glass(0.5, 0.3, 1e-5));
+  for (int k = 0; k < 18; ++k)
+    block.particles.push_back(sphere(1e-3,
+                                     {2e-3 * (k % 3), 2e-3 * (k / 3 % 3), 1e-3 + 2e-3 * (k / 9)},
+                                     {0.001 * (k % 4), -0.001 * (k % 3), 0}, {0, 0, k % 5}));
+  block.walls.push_back(plane("floor", {0, 0, 0}, {0, 0, 1}));
+  block.effects.gravity = {3, 2, -9.81};  // the block slides and settles
+  validate_scene(block, "block");
+  auto sim = std::make_unique<Simulation>(default_device(), block);
+  sim->advance(2000);
+  const std::uint64_t at_save = sim->hash();
+  const fs::path now_file = dir_ / "block.bin";
+  save_checkpoint(*sim, now_file.string());
+  const size_t slots = size_t(sim->state().up_slots);
+  const int slice = sim->model().config().slice;
+  const size_t real = sim->model().real_size();
+  const Payload now = take_apart(read_bytes(now_file), sim->state().dynamic_buffers().size());
+  for (const auto& [name, bytes] : now.buffers)
+    if (name == "spring")
+      EXPECT_NE(std::count(bytes.begin(), bytes.end(), char(0)), std::ptrdiff_t(bytes.size()))
+          << "no spring loaded: the test would not see a misplaced record";
+  sim->advance(200);
+  for (std::uint32_t version : {5u, 6u}) {
+    Payload old = now;
+    for (auto& [name, bytes] : old.buffers) {
+      if (name != "spring" && name != "share") continue;
+      std::vector<char> whole(bytes.size(), 0);
+      const size_t plane = 4 * slots * real;
+      for (size_t p = 0; p + plane <= bytes.size(); p += plane)
+        for (size_t s = 0; s < slots; ++s)
+          for (int c = 0; c < 4; ++c)
+            if (slot_real(s, slice, c) < 4 * slots)
+              std::memcpy(&whole[p + (4 * s + c) * real], &bytes[p + slot_real(s, slice, c) * real],
+                          real);
+      bytes = whole;
+    }
+    if (version == 5) {
+      auto at = std::find_if(old.buffers.begin(), old.buffers.end(),
+                             [](const auto& b) { return b.first == "mirror"; });
+      ASSERT_NE(at, old.buffers.end());
+      old.buffers.insert(at, {"nbr_lo", std::vector<char>(16, char(0x5a))});
+    }
+    const fs::path f = dir_ / ("v" + std::to_string(version) + ".bin");
+    write_bytes(f, put_together(old, version));
+    EXPECT_EQ(verify_checkpoint(f.string()), version);
+    auto loaded = load_checkpoint(default_device(), f.string());
+    EXPECT_EQ(loaded->hash(), at_save) << "version " << version;
+    loaded->advance(200);
+    EXPECT_EQ(loaded->hash(), sim->hash()) << "version " << version;
+  }
+}
+
 TEST_F(CheckpointFile, InputKindsAreTold) {
   const std::vector<char> good = read_bytes(path_);
   EXPECT_EQ(classify_input(path_.string()), InputKind::Checkpoint);

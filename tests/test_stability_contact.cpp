@@ -104,7 +104,7 @@ double spring_energy(Simulation& sim, const ParticleSnapshot& q) {
     for (int k = 0; k < l.upper[i]; ++k) {
       const size_t slot = l.slot(i, k);
       const int j = l.nbr[slot];
-      const Vec3 xi{sp[4 * slot], sp[4 * slot + 1], sp[4 * slot + 2]};
+      const Vec3 xi{sp[l.real_at(slot, 0)], sp[l.real_at(slot, 1)], sp[l.real_at(slot, 2)]};
       const double d = q.radius[i] + q.radius[j] - norm(sub(x[j], x[i]));
       if (d <= 0) continue;
       const double rs = q.radius[i] * q.radius[j] / (q.radius[i] + q.radius[j]);

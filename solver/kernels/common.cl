@@ -53,6 +53,13 @@ typedef float4 real4;
 #define SLICE 8
 #endif
 #define SLOT(off, i, k) ((int)(off)[(i) / SLICE] + (k) * SLICE + (i) % SLICE)
+// Component c (0..3) of slot s's record in the buffers of list-slot records
+// (the history planes `spring`, the `share` planes): a slice's records are
+// stored component by component, the x of its SLICE slots side by side, then
+// y, z and w, so a work item's lanes (consecutive slots of one slice) load
+// and store each component as one vector. state.h's slot_real() is the
+// host's copy.
+#define SLOT_REAL(s, c) ((size_t)(s) / SLICE * (4 * SLICE) + (c) * SLICE + (size_t)(s) % SLICE)
 // Wall w's slot of particle i (walls.cl): rank r of bit w among the bits of
 // its near-wall mask. observe.h's WallSlots::slot() is the host's copy.
 #define WALL_SLOT(off, i, mask, w) SLOT(off, i, (int)popcount((mask) & ((1 << (w)) - 1)))
@@ -219,6 +226,27 @@ INLINE void scatter4(__global real* p, const int* idx, const int* keep, v3 v, la
     __global real* r = p + 4 * idx[l];
     r[0] = x[l]; r[1] = y[l]; r[2] = z[l]; r[3] = q[l];
   }
+}
+// The records of consecutive slots s0, s0 + 1, ... (one per lane, in one
+// slice), at p + SLOT_REAL(s0, 0): four vector loads or stores. Lanes that
+// keep nothing store the zeros their caller selected (the slot is a slice's
+// padding then, zero since the rebuild).
+INLINE Lane4 load_slots(__global const real* p, size_t at) {
+  Lane4 r;
+  r.xyz = V3(LANE_LOAD(p + at), LANE_LOAD(p + at + SLICE), LANE_LOAD(p + at + 2 * SLICE));
+  r.w = LANE_LOAD(p + at + 3 * SLICE);
+  return r;
+}
+INLINE void store_slots(__global real* p, size_t at, v3 v, lane w) {
+  LANE_STORE(v.x, p + at);
+  LANE_STORE(v.y, p + at + SLICE);
+  LANE_STORE(v.z, p + at + 2 * SLICE);
+  LANE_STORE(w, p + at + 3 * SLICE);
+}
+// Slot s's record as one real4 (SLOT_REAL above).
+INLINE real4 slot_record(__global const real* p, int s) {
+  const size_t at = SLOT_REAL(s, 0);
+  return (real4)(p[at], p[at + SLICE], p[at + 2 * SLICE], p[at + 3 * SLICE]);
 }
 // A lane mask from per-lane flags.
 INLINE lmask mask_of(const int* flag) {

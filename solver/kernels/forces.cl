@@ -47,7 +47,7 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
     longest = max(longest, len[l]);
   }
   // the lanes lie in one slice (SLICE % LANES == 0), side by side; lanes
-  // past n read slots of that slice too, and keep nothing
+  // past n list nothing and store zeros into that slice's padding
   const int first = SLOT(up_off, base, 0);
   const LanePos pi = gather_pos(pos POS_LO_PASS, ii);
   const lane ri = gather(pos, ii, 3);
@@ -63,13 +63,13 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
   lane e = (lane)0;
   lane touching = (lane)0;
   for (int q = 0; q < longest; ++q) {
-    int jj[LANES], slot[LANES], listed[LANES], keep[LANES], pair[LANES];
+    int jj[LANES], listed[LANES], pair[LANES];
+    const int slot = first + q * SLICE;  // lane l's: SLOT(up_off, base + l, q) = slot + l
+    const size_t at = SLOT_REAL(slot, 0);  // its records' components (load_slots)
 #pragma unroll
     for (int l = 0; l < LANES; ++l) {
-      listed[l] = q < len[l];
-      keep[l] = listed[l] && valid[l];
-      slot[l] = first + q * SLICE + l;  // SLOT(up_off, base + l, q)
-      jj[l] = listed[l] ? nbr[slot[l]] : ii[l];
+      listed[l] = q < len[l];  // a lane past n lists nothing
+      jj[l] = listed[l] ? nbr[slot + l] : ii[l];
     }
     const Lane4 pr = gather4(pos, jj);
     LanePos pj;
@@ -103,7 +103,7 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
     // per-contact history: the planes the compiled slots declare (common.cl)
     const size_t plane = (size_t)stride;
 #ifdef HAS_CONTACT_RECORD
-    const Lane4 record = gather4(spring, slot);
+    const Lane4 record = load_slots(spring, at);
     v3 sp = record.xyz;
     lane dash = record.w;
 #else
@@ -111,7 +111,7 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
     lane dash = (lane)0;
 #endif
 #ifdef HAS_ROLLING_SPRING
-    v3 rsp = gather3(spring + 4 * HIST_ROLL * plane, slot);
+    v3 rsp = load_slots(spring + 4 * HIST_ROLL * plane, at).xyz;
 #else
     v3 rsp = v_zero();
 #endif
@@ -128,11 +128,11 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
                                           mi * mj / (mi + mj), istar, coef, dt, &sp, &dash,
                                           &rsp, rolling_damping);
 #ifdef HAS_CONTACT_RECORD
-    // lost contacts end their history
-    scatter4(spring, slot, keep, v_sel(on, sp, v_zero()), SEL(on, dash, (lane)0));
+    // lost contacts end their history (lanes not listed: padding, zeros)
+    store_slots(spring, at, v_sel(on, sp, v_zero()), SEL(on, dash, (lane)0));
 #endif
 #ifdef HAS_ROLLING_SPRING
-    scatter4(spring + 4 * HIST_ROLL * plane, slot, keep, v_sel(on, rsp, v_zero()), (lane)0);
+    store_slots(spring + 4 * HIST_ROLL * plane, at, v_sel(on, rsp, v_zero()), (lane)0);
 #endif
 #ifdef HAS_CAPILLARY
     // liquid bridge: listed pairs closer than the rupture distance, touching or not
@@ -151,8 +151,9 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
 #endif
     const v3 ti = v_sel(on, v_add(v_mul(ai, c.n_cross_ft), c.rolling), v_zero());
     const v3 tj = v_sel(on, v_sub(v_mul(aj, c.n_cross_ft), c.rolling), v_zero());
-    scatter4(share, slot, keep, v_neg(fi), flag);
-    scatter4(pair_torque, slot, keep, tj, half_e);
+    // lanes not listed store zeros (fi, tj, flag and half_e are 0 there)
+    store_slots(share, at, v_neg(fi), flag);
+    store_slots(pair_torque, at, tj, half_e);
     f = v_add(f, fi);
     t = v_add(t, ti);
     e += half_e;
@@ -166,16 +167,16 @@ INLINE void collect_one(int i, __global const int* restrict nbr_count,
                         __global const int* restrict nbr_upper,
                         __global const uint* restrict lo_off,
                         __global const int* restrict mirror,
-                        __global const real4* restrict pair_force,
-                        __global const real4* restrict pair_torque,
+                        __global const real* restrict pair_force,
+                        __global const real* restrict pair_torque,
                         __global real4* restrict force, __global real4* restrict torque) {
   real4 f = force[i];
   real4 t = torque[i];
   const int lower = nbr_count[i] - nbr_upper[i];
   for (int k = 0; k < lower; ++k) {
     const int slot = mirror[SLOT(lo_off, i, k)];
-    f += pair_force[slot];
-    t += pair_torque[slot];
+    f += slot_record(pair_force, slot);
+    t += slot_record(pair_torque, slot);
   }
   force[i] = f;
   torque[i] = t;

@@ -115,10 +115,10 @@ __kernel void build_neighbors(__global const real4* pos POS_LO_CARG,
                               __global const uint* count, __global const uint* start,
                               __global const int* sorted, __global const uint* old_up_off,
                               __global const int* old_upper, __global const int* old_nbr,
-                              __global const real4* old_hist, int old_stride,
+                              __global const real* old_hist, int old_stride,
                               __global const uint* up_off, __global const uint* lo_off,
                               __global const int* nbr_upper, __global int* nbr,
-                              __global int* mirror, __global real4* spring, int stride,
+                              __global int* mirror, __global real* spring, int stride,
                               __global float4* pos_build, real inv_cell, real skin, uint table,
                               int n) {
   const int i = get_global_id(0);
@@ -137,10 +137,13 @@ __kernel void build_neighbors(__global const real4* pos POS_LO_CARG,
     const int found = o < old_up && old_nbr[SLOT(old_up_off, i, o)] == j;
     const int slot = SLOT(up_off, i, u);
     nbr[slot] = j;
-    // every history plane the compiled slots declare
+    // every history plane the compiled slots declare (planes of 4 x stride
+    // reals, records by component: SLOT_REAL)
+    const int from = found ? SLOT(old_up_off, i, o) : 0;
     for (int p = 0; p < HIST_PLANES; ++p)
-      spring[(size_t)p * stride + slot] =
-          found ? old_hist[(size_t)p * old_stride + SLOT(old_up_off, i, o)] : (real4)(0);
+      for (int c = 0; c < 4; ++c)
+        spring[4 * (size_t)p * stride + SLOT_REAL(slot, c)] =
+            found ? old_hist[4 * (size_t)p * old_stride + SLOT_REAL(from, c)] : (real)0;
   }
   for (int t = 0; t < lower; ++t) mirror[SLOT(lo_off, i, t)] = list[t];  // the partner, for now
   pos_build[i] = convert_float4(pi);
