@@ -26,6 +26,25 @@
 // whose neighbour does not touch, runs the law on stand-in values
 // (half-overlapping spheres) and adds zero: no branches in the arithmetic.
 
+// A step of pair_forces in which no lane's pair touches: the history of
+// every slot ends (zeros), the partners' shares are zero (the force as
+// -0, as the law's path leaves it), and the sums get the +0 that path adds.
+INLINE void apart(__global real* spring, __global real* pair_torque, __global real* share,
+                  size_t at, size_t plane, v3* f, v3* t, lane* e, lane* touching) {
+#ifdef HAS_CONTACT_RECORD
+  store_slots(spring, at, v_zero(), (lane)0);
+#endif
+#ifdef HAS_ROLLING_SPRING
+  store_slots(spring + 4 * HIST_ROLL * plane, at, v_zero(), (lane)0);
+#endif
+  store_slots(share, at, v_neg(v_zero()), (lane)0);
+  store_slots(pair_torque, at, v_zero(), (lane)0);
+  *f = v_add(*f, v_zero());
+  *t = v_add(*t, v_zero());
+  *e += (lane)0;
+  *touching += (lane)0;
+}
+
 __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
                           __global const real* restrict vel, __global const real* restrict omega,
                           __global const uint* restrict up_off, __global const int* restrict nbr,
@@ -57,7 +76,11 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
   const lane inertia_i = (real)0.4 * mi * ri * ri;
   real row_t[LANES];
   LANE_STORE(wmi.w, row_t);
+#if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
+  const lane cap_i = cap_divisor_wall(contacts_last, ii);  // this lane's part of the divisor
+#endif
 
+  const size_t plane = (size_t)stride;  // records per history plane
   v3 f = v_zero();
   v3 t = v_zero();
   lane e = (lane)0;
@@ -84,6 +107,12 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
     const lane rsum = ri + rj;
     const lane d2 = v_dot(d, d);
     const lmask on = mask_of(listed) & (d2 < rsum * rsum) & (d2 > (real)0);
+#ifndef HAS_CAPILLARY
+    if (!mask_any(on)) {  // no lane touches: what the law would leave, without it
+      apart(spring, pair_torque, share, at, plane, &f, &t, &e, &touching);
+      continue;
+    }
+#endif
     const lane inv_dist = SEL(on, rsqrt(d2), 2 / rsum);
     const lane dist = SEL(on, d2 * inv_dist, (real)0.5 * rsum);
     const v3 nv = v_sel(on, v_mul(inv_dist, d), V3((lane)1, (lane)0, (lane)0));
@@ -91,17 +120,18 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
     const Lane4 vmj = gather4(vel, jj), wmj = gather4(omega, jj);
     const v3 vj = vmj.xyz, wj = wmj.xyz;
     const lane mj = vmj.w;
-    real mat_j[LANES];
-    LANE_STORE(wmj.w, mat_j);
+    if (nmat > 1) {
+      real mat_j[LANES];
+      LANE_STORE(wmj.w, mat_j);
 #pragma unroll
-    for (int l = 0; l < LANES; ++l) pair[l] = (int)row_t[l] * nmat + (int)mat_j[l];
+      for (int l = 0; l < LANES; ++l) pair[l] = (int)row_t[l] * nmat + (int)mat_j[l];
+    }
     const lane inertia_j = (real)0.4 * mj * rj * rj;
     const lane ai = ri - (real)0.5 * delta;  // lever arms to the common contact point
     const lane aj = rj - (real)0.5 * delta;
     const v3 vrel = v_sub(v_add(vi, v_cross(wi, v_mul(ai, nv))),
                           v_add(vj, v_cross(wj, v_neg(v_mul(aj, nv)))));
     // per-contact history: the planes the compiled slots declare (common.cl)
-    const size_t plane = (size_t)stride;
 #ifdef HAS_CONTACT_RECORD
     const Lane4 record = load_slots(spring, at);
     v3 sp = record.xyz;
@@ -120,7 +150,7 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
 #if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
     // the constant torque's cap is shared among the contacts (see above)
     const lane istar = inertia_i * inertia_j / (inertia_i + inertia_j) /
-                       cap_divisor(contacts_last, ii, jj);
+                       fmax(cap_i, cap_divisor_wall(contacts_last, jj));
 #else
     const lane istar = inertia_i * inertia_j / (inertia_i + inertia_j);
 #endif
