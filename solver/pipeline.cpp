@@ -194,10 +194,13 @@ void move_walls(const Model& m, State& s) {
   if (!m.config().walls) return;
   const Kernels& k = m.kernels();
   if (m.config().servo) {
-    const size_t groups = reduce_wall_forces(m, s);
-    set_args(m, k.servo_walls, m.wall_buffer(), s.servo, s.wall_partial, s.wall_vel,
-             s.wall_reaction, s.wall_mean, s.wall_point, s.wall_point_lo, s.flags,
-             Real{m.dt()}, Real{m.skin()}, static_cast<int>(groups), m.walls());
+    // CPUs sum the wall forces in servo_walls itself, GPUs in reduce_walls
+    const bool reduce_here = m.config().lanes > 1;
+    const int groups = reduce_here ? wall_chunks(s) : static_cast<int>(reduce_wall_forces(m, s));
+    set_args(m, k.servo_walls, m.wall_buffer(), s.servo, s.wall_near, s.wall_off, s.wall_force,
+             s.wall_partial, s.wall_vel, s.wall_reaction, s.wall_mean, s.wall_point,
+             s.wall_point_lo, s.flags, Real{m.dt()}, Real{m.skin()}, s.n, kWallChunk, groups,
+             int{reduce_here}, m.walls());
     launch_exact(m, k.servo_walls, 1);
   } else {
     set_args(m, k.advance_walls, s.wall_point, s.wall_point_lo, s.wall_vel, s.flags,
@@ -206,13 +209,14 @@ void move_walls(const Model& m, State& s) {
   }
 }
 
+int wall_chunks(const State& s) { return std::max(1, (s.n + kWallChunk - 1) / kWallChunk); }
+
 size_t reduce_wall_forces(const Model& m, State& s) {
   const Kernels& k = m.kernels();
-  const int chunk = kWallChunk;
-  const int chunks = std::max(1, (s.n + chunk - 1) / chunk);
-  set_args(m, k.reduce_walls, s.wall_near, s.wall_off, s.wall_force, s.wall_partial, s.n, chunk,
-           chunks, m.walls());
-  launch(m, k.reduce_walls, size_t(chunks) * m.walls());
+  const int chunks = wall_chunks(s);
+  set_args(m, k.reduce_walls, s.wall_near, s.wall_off, s.wall_force, s.wall_partial, s.n,
+           kWallChunk, chunks, m.walls());
+  launch(m, k.reduce_walls, size_t(chunks));
   return static_cast<size_t>(chunks);
 }
 

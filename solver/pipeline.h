@@ -42,5 +42,6 @@ void derive_state(const Model& model, State& state);
 // index order); returns the number of chunks.
 inline constexpr int kWallChunk = 128;
 size_t reduce_wall_forces(const Model& model, State& state);
+int wall_chunks(const State& state);  // chunks of kWallChunk particles
 
 }  // namespace simsols

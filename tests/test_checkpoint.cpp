@@ -208,7 +208,7 @@ TEST_F(CheckpointFile, VersionsFiveAndSixLoadToTheSameState) {
   for (int k = 0; k < 18; ++k)
     block.particles.push_back(sphere(1e-3,
                                      {2e-3 * (k % 3), 2e-3 * (k / 3 % 3), 1e-3 + 2e-3 * (k / 9)},
-                                     {0.001 * (k % 4), -0.001 * (k % 3), 0}, {0, 0, k % 5}));
+                                     {0.001 * (k % 4), -0.001 * (k % 3), 0}, {0, 0, double(k % 5)}));
   block.walls.push_back(plane("floor", {0, 0, 0}, {0, 0, 1}));
   block.effects.gravity = {3, 2, -9.81};  // the block slides and settles
   validate_scene(block, "block");
@@ -221,10 +221,11 @@ TEST_F(CheckpointFile, VersionsFiveAndSixLoadToTheSameState) {
   const int slice = sim->model().config().slice;
   const size_t real = sim->model().real_size();
   const Payload now = take_apart(read_bytes(now_file), sim->state().dynamic_buffers().size());
-  for (const auto& [name, bytes] : now.buffers)
-    if (name == "spring")
-      EXPECT_NE(std::count(bytes.begin(), bytes.end(), char(0)), std::ptrdiff_t(bytes.size()))
-          << "no spring loaded: the test would not see a misplaced record";
+  for (const auto& [name, bytes] : now.buffers) {
+    if (name != "spring") continue;
+    EXPECT_NE(std::count(bytes.begin(), bytes.end(), char(0)), std::ptrdiff_t(bytes.size()))
+        << "no spring loaded: the test would not see a misplaced record";
+  }
   sim->advance(200);
   for (std::uint32_t version : {5u, 6u}) {
     Payload old = now;

@@ -58,21 +58,14 @@ __kernel void reduce_observables(__global const real4* pos POS_LO_CARG,
 }
 
 #ifdef HAS_WALLS
-// One work item per (wall, chunk of `chunk` particles): sums the chunk's
-// slots of wall w (walls.cl) in index order, without barriers (cheap on
-// CPUs, deterministic). partial[w * chunks + c]; global size nwalls * chunks.
+// One work item per chunk of `chunk` particles: the chunk's sums for every
+// wall (walls.cl's wall_chunk_sums, in index order, deterministic).
+// partial[w * chunks + c]; global size chunks.
 __kernel void reduce_walls(__global const int* wall_near, __global const uint* wall_off,
                            __global const real4* wall_force, __global real4* partial, int n,
                            int chunk, int chunks, int nwalls) {
-  const int g = get_global_id(0);
-  if (g >= nwalls * chunks) return;
-  const int w = g / chunks, c = g % chunks;
-  const int lo = c * chunk, hi = min(n, lo + chunk);
-  real4 sum = (real4)(0);
-  for (int i = lo; i < hi; ++i) {
-    const int mask = wall_near[i];
-    if ((mask >> w) & 1) sum += wall_force[WALL_SLOT(wall_off, i, mask, w)];
-  }
-  partial[g] = sum;
+  const int c = get_global_id(0);
+  if (c < chunks)
+    wall_chunk_sums(c, wall_near, wall_off, wall_force, partial, n, chunk, chunks, nwalls);
 }
 #endif

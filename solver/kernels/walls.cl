@@ -309,6 +309,23 @@ INLINE void advance_wall(int w, __global real4* wall_point, __global float4* wal
   if (v2 > flags[2]) atomic_max(&flags[2], v2);
 }
 
+// The forces of chunk c's particles (`chunk` consecutive indices) on each
+// wall, summed in index order in one pass over the chunk (a particle's wall
+// slots come in the order of its near walls' bits): partial[w * chunks + c].
+INLINE void wall_chunk_sums(int c, __global const int* wall_near, __global const uint* wall_off,
+                            __global const real4* wall_force, __global real4* partial, int n,
+                            int chunk, int chunks, int nwalls) {
+  real4 sum[32];  // a wall mask has 32 bits
+  for (int w = 0; w < nwalls; ++w) sum[w] = (real4)(0);
+  const int lo = c * chunk, hi = min(n, lo + chunk);
+  for (int i = lo; i < hi; ++i) {
+    int r = 0;  // rank of wall w among the near walls: its slot (WALL_SLOT)
+    for (uint m = (uint)wall_near[i]; m != 0; m &= m - 1, ++r)
+      sum[popcount((m & (0u - m)) - 1)] += wall_force[SLOT(wall_off, i, r)];  // lowest bit's wall
+  }
+  for (int w = 0; w < nwalls; ++w) partial[w * chunks + c] = sum[w];
+}
+
 // All walls, one work item each (scenes without servo walls; servo_walls
 // below advances the walls itself).
 __kernel void advance_walls(__global real4* wall_point, __global float4* wall_point_lo,
@@ -367,15 +384,21 @@ INLINE void servo_wall(int w, __global const real4* walls, __global const real4*
   wall_vel[w] = (real4)(v * n, 0);
 }
 
-// One work item: every wall's servo step, then every wall advances
-// (advance_wall), controlled or not: one launch for the walls' whole step.
+// One work item: the walls' forces (with `reduce` set: the chunk sums of
+// reduce_walls, computed here; else reduce_walls ran before), every wall's
+// servo step, then every wall advances (advance_wall), controlled or not:
+// one launch for the walls' whole step. CPUs reduce here (one pass over the
+// masks costs less than a launch), GPUs in reduce_walls, in parallel.
 __kernel void servo_walls(__global const real4* walls, __global const real4* servo,
-                          __global const real4* partial, __global real4* wall_vel,
-                          __global real4* reading, __global real4* mean,
-                          __global real4* wall_point, __global float4* wall_point_lo,
-                          __global volatile int* flags, real dt, real skin, int groups,
-                          int nwalls) {
+                          __global const int* wall_near, __global const uint* wall_off,
+                          __global const real4* wall_force, __global real4* partial,
+                          __global real4* wall_vel, __global real4* reading,
+                          __global real4* mean, __global real4* wall_point,
+                          __global float4* wall_point_lo, __global volatile int* flags, real dt,
+                          real skin, int n, int chunk, int groups, int reduce, int nwalls) {
   if (get_global_id(0) != 0) return;
+  for (int c = 0; reduce && c < groups; ++c)
+    wall_chunk_sums(c, wall_near, wall_off, wall_force, partial, n, chunk, groups, nwalls);
   for (int w = 0; w < nwalls; ++w) {
     servo_wall(w, walls, servo, partial, wall_vel, reading, mean, dt, groups);
     advance_wall(w, wall_point, wall_point_lo, wall_vel, flags, dt, skin);
