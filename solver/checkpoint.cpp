@@ -125,7 +125,7 @@ void write_payload(Writer& w, Simulation& sim, const std::string& extra) {
   w.str(extra);
 }
 
-// Versions 5 and 6 stored each list-slot record whole (x, y, z, w of a slot
+// Versions 5 and 6 stored each history record whole (x, y, z, w of a slot
 // together); since version 7 a slice's records go by component (SLOT_REAL in
 // common.cl). Regroups every plane of `slots` records; slots past the last
 // whole slice are spare and stay zero.
@@ -143,6 +143,19 @@ std::vector<char> regroup_slot_records(const std::vector<char>& in, size_t slots
   return out;
 }
 
+// Versions 5 and 6 kept the shares as two planes (every slot's force record,
+// then every slot's torque record); since version 7 a slot's two records lie
+// side by side.
+std::vector<char> interleave_shares(const std::vector<char>& in, size_t slots, size_t real) {
+  const size_t record = 4 * real;
+  if (in.size() < 2 * slots * record) return in;
+  std::vector<char> out(in.size(), 0);
+  for (size_t s = 0; s < slots; ++s)
+    for (size_t p = 0; p < 2; ++p)
+      std::memcpy(&out[(2 * s + p) * record], &in[(p * slots + s) * record], record);
+  return out;
+}
+
 // Version 5 also held the lower slots' partner ids (nbr_lo), which only the
 // list build needs: skipped.
 void read_buffers(Reader& r, Simulation& sim, std::uint32_t version) {
@@ -155,9 +168,11 @@ void read_buffers(Reader& r, Simulation& sim, std::uint32_t version) {
     }
     if (seen != name) r.fail("buffer '" + name + "' missing");
     std::vector<char> data = r.bytes();
-    if (version < 7 && (name == "spring" || name == "share"))
+    if (version < 7 && name == "spring")
       data = regroup_slot_records(data, size_t(s.up_slots), sim.model().config().slice,
                                   sim.model().real_size());
+    if (version < 7 && name == "share")
+      data = interleave_shares(data, size_t(s.up_slots), sim.model().real_size());
     if (data.size() != buf->bytes) r.fail("buffer '" + name + "' has the wrong size");
     sim.model().device().write(buf->get(), data.size(), data.data());
   }

@@ -14,11 +14,11 @@
 //                    driver's `extra` (e.g. the shear test's loading program)
 // The whole file is verified (size and checksum) before anything is built
 // from it, so a damaged file is refused with the reason instead of
-// resuming from garbage. Files of versions 5 and 6 load: their list-slot
-// records (spring, share) are regrouped by component, and version 5's one
-// extra buffer, the lower slots' partner ids, is skipped. Files of versions 3 and 4
-// (fixed-capacity neighbour lists) are refused with that reason: rerun them
-// from their scene.
+// resuming from garbage. Files of versions 5 and 6 load: their history
+// records (spring) are regrouped by component, their shares interleaved,
+// and version 5's one extra buffer, the lower slots' partner ids, is
+// skipped. Files of versions 3 and 4 (fixed-capacity neighbour lists) are
+// refused with that reason: rerun them from their scene.
 //
 // Files are written to a temporary name in the same folder and renamed, so
 // a crash or a kill -9 never leaves half a checkpoint: the previous one

@@ -132,13 +132,13 @@ std::vector<ContactForce> contact_list(const Model& m, State& s) {
   const UpperLists l = read_upper_lists(m, s);
   const std::vector<int>& upper = l.upper;
   const std::vector<int>& nbr = l.nbr;
-  const std::vector<double> pf = read_reals(m, s.share, size_t(s.up_slots) * 4);
+  // per slot, the force record then the torque record (store_shares, common.cl)
+  const std::vector<double> pf = read_reals(m, s.share, size_t(s.up_slots) * 8);
   for (int i = 0; i < n; ++i)
     for (int k = 0; k < upper[i]; ++k) {
       const size_t slot = l.slot(i, k);
-      if (pf[l.real_at(slot, 3)] == 0) continue;  // listed, not touching
-      out.push_back({i, nbr[slot],
-                     {-pf[l.real_at(slot, 0)], -pf[l.real_at(slot, 1)], -pf[l.real_at(slot, 2)]}});
+      if (pf[slot * 8 + 3] == 0) continue;  // listed, not touching
+      out.push_back({i, nbr[slot], {-pf[slot * 8], -pf[slot * 8 + 1], -pf[slot * 8 + 2]}});
     }
   if (m.config().walls) {
     const int nw = m.walls();

@@ -45,8 +45,9 @@ class State {
   // per slice, where its upper and lower blocks start (up_off, lo_off, one
   // more entry: the totals). Per upper slot (up_slots of them): the partner
   // (nbr), the contact's history (spring, HIST planes of up_slots records)
-  // and the partner's share of the last step (share: a force plane and a
-  // torque plane; it holds the previous history during a rebuild). Per
+  // and the partner's share of the last step (share: a force record and a
+  // torque record side by side; it holds the previous history during a
+  // rebuild). Per
   // lower slot (lo_slots): the upper slot where the partner's share waits
   // (mirror; the rebuild puts the partner's id there first). old_*: the previous upper lists, which a
   // rebuild carries the history over from.
@@ -141,7 +142,7 @@ inline size_t list_slot(const std::vector<std::uint32_t>& off, int slice, int i,
 }
 
 // Component c (0..3) of slot `slot`'s record in a plane of list-slot records
-// (spring, share): SLOT_REAL in common.cl (a slice's records by component).
+// (spring): SLOT_REAL in common.cl (a slice's records by component).
 inline size_t slot_real(size_t slot, int slice, int c) {
   return slot / slice * 4 * slice + size_t(c) * slice + slot % slice;
 }

@@ -197,8 +197,8 @@ std::vector<char> put_together(const Payload& p, std::uint32_t version) {
   return f;
 }
 
-// Versions 5 and 6 kept each list-slot record whole (spring, share: x, y, z,
-// w of a slot together), and version 5 one more buffer, the lower slots'
+// Versions 5 and 6 kept each history record whole (spring: x, y, z, w of a
+// slot together), the shares as a force plane and a torque plane, and version 5 one more buffer, the lower slots'
 // partner ids ("nbr_lo", before "mirror"). Files written that way load to
 // the state a version 7 file gives, and run on the same.
 TEST_F(CheckpointFile, VersionsFiveAndSixLoadToTheSameState) {
@@ -230,7 +230,15 @@ TEST_F(CheckpointFile, VersionsFiveAndSixLoadToTheSameState) {
   for (std::uint32_t version : {5u, 6u}) {
     Payload old = now;
     for (auto& [name, bytes] : old.buffers) {
-      if (name != "spring" && name != "share") continue;
+      if (name == "share") {  // a slot's force and torque records -> two planes
+        std::vector<char> planes(bytes.size(), 0);
+        const size_t record = 4 * real;
+        for (size_t s = 0; s < slots; ++s)
+          for (size_t p = 0; p < 2; ++p)
+            std::memcpy(&planes[(p * slots + s) * record], &bytes[(2 * s + p) * record], record);
+        bytes = planes;
+      }
+      if (name != "spring") continue;
       std::vector<char> whole(bytes.size(), 0);
       const size_t plane = 4 * slots * real;
       for (size_t p = 0; p + plane <= bytes.size(); p += plane)

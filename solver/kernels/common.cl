@@ -53,11 +53,12 @@ typedef float4 real4;
 #define SLICE 8
 #endif
 #define SLOT(off, i, k) ((int)(off)[(i) / SLICE] + (k) * SLICE + (i) % SLICE)
-// Component c (0..3) of slot s's record in the buffers of list-slot records
-// (the history planes `spring`, the `share` planes): a slice's records are
-// stored component by component, the x of its SLICE slots side by side, then
-// y, z and w, so a work item's lanes (consecutive slots of one slice) load
-// and store each component as one vector. state.h's slot_real() is the
+// Component c (0..3) of slot s's record in the history planes (`spring`):
+// a slice's records are stored component by component, the x of its SLICE
+// slots side by side, then y, z and w, so a work item's lanes (consecutive
+// slots of one slice) load and store each component as one vector. The
+// share buffer keeps whole records (store_shares): its readers (collect_one)
+// come one slot at a time, from anywhere. state.h's slot_real() is the
 // host's copy.
 #define SLOT_REAL(s, c) ((size_t)(s) / SLICE * (4 * SLICE) + (c) * SLICE + (size_t)(s) % SLICE)
 // Wall w's slot of particle i (walls.cl): rank r of bit w among the bits of
@@ -243,10 +244,19 @@ INLINE void store_slots(__global real* p, size_t at, v3 v, lane w) {
   LANE_STORE(v.z, p + at + 2 * SLICE);
   LANE_STORE(w, p + at + 3 * SLICE);
 }
-// Slot s's record as one real4 (SLOT_REAL above).
-INLINE real4 slot_record(__global const real* p, int s) {
-  const size_t at = SLOT_REAL(s, 0);
-  return (real4)(p[at], p[at + SLICE], p[at + 2 * SLICE], p[at + 3 * SLICE]);
+// The partners' shares of consecutive slots s0, s0 + 1, ... (one per lane),
+// a slot's force record (f, fw) and torque record (t, tw) side by side (8
+// reals: one cache line for the partner that collects them): one contiguous
+// block, every lane written.
+INLINE void store_shares(__global real* p, int s0, v3 f, lane fw, v3 t, lane tw) {
+  real a[8][LANES];
+  LANE_STORE(f.x, a[0]); LANE_STORE(f.y, a[1]); LANE_STORE(f.z, a[2]); LANE_STORE(fw, a[3]);
+  LANE_STORE(t.x, a[4]); LANE_STORE(t.y, a[5]); LANE_STORE(t.z, a[6]); LANE_STORE(tw, a[7]);
+  __global real* r = p + 8 * (size_t)s0;
+#pragma unroll
+  for (int l = 0; l < LANES; ++l)
+#pragma unroll
+    for (int c = 0; c < 8; ++c) r[8 * l + c] = a[c][l];
 }
 // A lane mask from per-lane flags.
 INLINE lmask mask_of(const int* flag) {

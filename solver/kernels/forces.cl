@@ -4,7 +4,7 @@
 //   from the upper part of its list (partners j > i, neighbors.cl). The
 //   particle keeps its own share in registers and leaves the partner's
 //   share (the opposite force, a contact flag; its torque, half the elastic
-//   energy) in the pair's slot of the share buffer's two planes.
+//   energy: two real4 side by side) in the pair's slot of the share buffer.
 // collect_one: every particle adds the shares waiting for it in the slots
 //   of its lower partners (found through `mirror`, built with the lists); it
 //   runs at the start of finish_particles (integrate.cl), the next launch.
@@ -29,16 +29,16 @@
 // A step of pair_forces in which no lane's pair touches: the history of
 // every slot ends (zeros), the partners' shares are zero (the force as
 // -0, as the law's path leaves it), and the sums get the +0 that path adds.
-INLINE void apart(__global real* spring, __global real* pair_torque, __global real* share,
-                  size_t at, size_t plane, v3* f, v3* t, lane* e, lane* touching) {
+INLINE void apart(__global real* spring, __global real* share,
+                  int slot, size_t at, size_t plane, v3* f, v3* t, lane* e,
+                  lane* touching) {
 #ifdef HAS_CONTACT_RECORD
   store_slots(spring, at, v_zero(), (lane)0);
 #endif
 #ifdef HAS_ROLLING_SPRING
   store_slots(spring + 4 * HIST_ROLL * plane, at, v_zero(), (lane)0);
 #endif
-  store_slots(share, at, v_neg(v_zero()), (lane)0);
-  store_slots(pair_torque, at, v_zero(), (lane)0);
+  store_shares(share, slot, v_neg(v_zero()), (lane)0, v_zero(), (lane)0);
   *f = v_add(*f, v_zero());
   *t = v_add(*t, v_zero());
   *e += (lane)0;
@@ -53,7 +53,6 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
                           __global real* restrict force, __global real* restrict torque,
                           __global const int* restrict contacts_last, real dt,
                           real rolling_damping, int stride, int n, int nmat) {
-  __global real* restrict pair_torque = share + 4 * (size_t)stride;
   const int base = get_global_id(0) * LANES;
   if (base >= n) return;
   int ii[LANES], valid[LANES], len[LANES];
@@ -109,7 +108,7 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
     const lmask on = mask_of(listed) & (d2 < rsum * rsum) & (d2 > (real)0);
 #ifndef HAS_CAPILLARY
     if (!mask_any(on)) {  // no lane touches: what the law would leave, without it
-      apart(spring, pair_torque, share, at, plane, &f, &t, &e, &touching);
+      apart(spring, share, slot, at, plane, &f, &t, &e, &touching);
       continue;
     }
 #endif
@@ -182,8 +181,7 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
     const v3 ti = v_sel(on, v_add(v_mul(ai, c.n_cross_ft), c.rolling), v_zero());
     const v3 tj = v_sel(on, v_sub(v_mul(aj, c.n_cross_ft), c.rolling), v_zero());
     // lanes not listed store zeros (fi, tj, flag and half_e are 0 there)
-    store_slots(share, at, v_neg(fi), flag);
-    store_slots(pair_torque, at, tj, half_e);
+    store_shares(share, slot, v_neg(fi), flag, tj, half_e);
     f = v_add(f, fi);
     t = v_add(t, ti);
     e += half_e;
@@ -197,16 +195,15 @@ INLINE void collect_one(int i, __global const int* restrict nbr_count,
                         __global const int* restrict nbr_upper,
                         __global const uint* restrict lo_off,
                         __global const int* restrict mirror,
-                        __global const real* restrict pair_force,
-                        __global const real* restrict pair_torque,
+                        __global const real4* restrict share,
                         __global real4* restrict force, __global real4* restrict torque) {
   real4 f = force[i];
   real4 t = torque[i];
   const int lower = nbr_count[i] - nbr_upper[i];
   for (int k = 0; k < lower; ++k) {
     const int slot = mirror[SLOT(lo_off, i, k)];
-    f += slot_record(pair_force, slot);
-    t += slot_record(pair_torque, slot);
+    f += share[2 * slot];  // the force record, then the torque record (store_shares)
+    t += share[2 * slot + 1];
   }
   force[i] = f;
   torque[i] = t;

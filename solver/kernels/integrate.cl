@@ -110,7 +110,7 @@ __kernel void finish_particles(
     __global real* force, __global real* torque, __global const float4* pos_build,
     __global volatile int* flags, __global int* contacts_last, __global const int* nbr_count,
     __global const int* nbr_upper, __global const uint* lo_off, __global const int* mirror,
-    __global const real* share,
+    __global const real4* share,
     __global const real* walls, __global const real* wall_point,
     __global const float* wall_point_lo, __global const real* wall_vel,
     __global const uint* wall_off, __global real* wall_spring, __global real* wall_force,
@@ -122,8 +122,8 @@ __kernel void finish_particles(
   if (base >= n) return;
   const int count = min(LANES, n - base);
   for (int l = 0; l < count; ++l)
-    collect_one(base + l, nbr_count, nbr_upper, lo_off, mirror, share, share + 4 * (size_t)stride,
-                (__global real4*)force, (__global real4*)torque);
+    collect_one(base + l, nbr_count, nbr_upper, lo_off, mirror, share, (__global real4*)force,
+                (__global real4*)torque);
 #ifdef HAS_WALLS
   wall_contacts(base, pos POS_LO_PASS, vel, omega, walls, wall_point WALL_LO_PASS, wall_vel,
                 wall_off, wall_spring, wall_force, wall_stride, pairs, force, torque, wall_touch,

@@ -163,7 +163,7 @@ INLINE real normal_part(real3 f, real3 d) {
 __kernel void pack_contacts(__global const real4* pos, __global const real4* pos_lo,
                             __global const uint* up_off, __global const int* nbr,
                             __global const int* nbr_upper,
-                            __global const real* pair_force, __global const real4* walls,
+                            __global const real4* pair_force, __global const real4* walls,
                             __global const real4* wall_point,
                             __global const real4* wall_point_lo,
                             __global const int* wall_near, __global const uint* wall_off,
@@ -182,7 +182,7 @@ __kernel void pack_contacts(__global const real4* pos, __global const real4* pos
     const int upper = nbr_upper[i];
     for (int k = 0; k < upper; ++k) {
       const int slot = SLOT(up_off, i, k);
-      const real4 f = slot_record(pair_force, slot);
+      const real4 f = pair_force[2 * slot];  // the force record of the slot's shares
       if (f.w == (real)0) continue;  // listed, not touching
       const int j = nbr[slot];
       const real4 y = pos[j];
