@@ -23,6 +23,7 @@ std::string KernelConfig::build_options() const {
   o += " -DPAIR_RECORD=" + std::to_string(pair_record());
   if (walls) o += " -DHAS_WALLS";
   if (servo) o += " -DHAS_SERVO";
+  if (servo_in_finish()) o += " -DSERVO_IN_FINISH";
   o += " -DSLICE=" + std::to_string(slice);
   o += " -DLANES=" + std::to_string(lanes);
   if (!extra_options.empty()) o += " " + extra_options;

@@ -43,6 +43,9 @@ struct KernelConfig {
   // normal dashpot's record of viscous damping in the 4th) and the elastic
   // rolling torque (spring_dashpot). 0 when nothing needs history.
   bool contact_record() const { return friction || damping; }
+  // The walls' step at the end of finish_particles (CPUs, lanes > 1),
+  // instead of a servo_walls launch (integrate.cl).
+  bool servo_in_finish() const { return servo && lanes > 1; }
   int history_planes() const { return (contact_record() ? 1 : 0) + (rolling_spring ? 1 : 0); }
   size_t real_size() const { return double_precision ? 8 : 4; }
   size_t history_bytes_per_contact() const { return history_planes() * 4 * real_size(); }

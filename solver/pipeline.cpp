@@ -185,22 +185,21 @@ void finish_particles(const Model& m, State& s) {
            s.pos_build, s.flags, s.touching, s.nbr_count, s.nbr_upper, s.lo_off, s.mirror,
            s.share, m.wall_buffer(), s.wall_point, s.wall_point_lo, s.wall_vel,
            s.wall_off, s.wall_spring, s.wall_force, s.wall_slots, m.pair_buffer(), s.wall_touch,
-           s.wall_near, gravity_arg(m), fluid_arg(m), Real{e.fluid_params.viscosity}, Real{m.dt()},
-           Real{e.rolling_damping}, Real{m.skin()}, s.up_slots, s.n, m.walls(), m.pairs().n);
+           s.wall_near, s.servo, s.wall_partial, s.wall_reaction, s.wall_mean, gravity_arg(m),
+           fluid_arg(m), Real{e.fluid_params.viscosity}, Real{m.dt()}, Real{e.rolling_damping},
+           Real{m.skin()}, s.up_slots, s.n, m.walls(), m.pairs().n, kWallChunk, wall_chunks(s));
   launch(m, k.finish_particles, lane_groups(m, s.n));
 }
 
 void move_walls(const Model& m, State& s) {
   if (!m.config().walls) return;
   const Kernels& k = m.kernels();
+  if (m.config().servo_in_finish()) return;  // finish_particles moved them (CPUs)
   if (m.config().servo) {
-    // CPUs sum the wall forces in servo_walls itself, GPUs in reduce_walls
-    const bool reduce_here = m.config().lanes > 1;
-    const int groups = reduce_here ? wall_chunks(s) : static_cast<int>(reduce_wall_forces(m, s));
-    set_args(m, k.servo_walls, m.wall_buffer(), s.servo, s.wall_near, s.wall_off, s.wall_force,
-             s.wall_partial, s.wall_vel, s.wall_reaction, s.wall_mean, s.wall_point,
-             s.wall_point_lo, s.flags, Real{m.dt()}, Real{m.skin()}, s.n, kWallChunk, groups,
-             int{reduce_here}, m.walls());
+    const int groups = static_cast<int>(reduce_wall_forces(m, s));
+    set_args(m, k.servo_walls, m.wall_buffer(), s.servo, s.wall_partial, s.wall_vel,
+             s.wall_reaction, s.wall_mean, s.wall_point, s.wall_point_lo, s.flags,
+             Real{m.dt()}, Real{m.skin()}, groups, m.walls());
     launch_exact(m, k.servo_walls, 1);
   } else {
     set_args(m, k.advance_walls, s.wall_point, s.wall_point_lo, s.wall_vel, s.flags,

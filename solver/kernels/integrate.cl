@@ -105,19 +105,27 @@ INLINE void integrate_one(int i, __global real4* pos, __global float4* pos_lo,
 // the three parts see each other's writes in program order, and the sums
 // are those of three separate kernels, bit for bit. pos_lo and
 // wall_point_lo are unused in double runs; the wall arguments without walls.
+// With servo walls on CPUs (SERVO_IN_FINISH), the last work item to finish
+// runs the walls' step (walls_step, walls.cl), so a step is two launches:
+// the work items count themselves out in flags[7] (0 between launches) and
+// the one that completes the count sees every wall force written (x86
+// stores are seen in order, the count is a locked instruction). GPUs, whose
+// OpenCL 1.2 memory model promises no such thing across work groups,
+// launch servo_walls instead.
 __kernel void finish_particles(
     __global real* pos, __global float* pos_lo, __global real* vel, __global real* omega,
     __global real* force, __global real* torque, __global const float4* pos_build,
     __global volatile int* flags, __global int* contacts_last, __global const int* nbr_count,
     __global const int* nbr_upper, __global const uint* lo_off, __global const int* mirror,
     __global const real4* share,
-    __global const real* walls, __global const real* wall_point,
-    __global const float* wall_point_lo, __global const real* wall_vel,
+    __global const real* walls, __global real* wall_point,
+    __global float* wall_point_lo, __global real* wall_vel,
     __global const uint* wall_off, __global real* wall_spring, __global real* wall_force,
     int wall_stride, __global const real* pairs,
-    __global int* wall_touch, __global const int* wall_near, real4 gravity, real4 fluid,
-    real fluid_viscosity, real dt, real rolling_damping, real skin, int stride, int n, int nwalls,
-    int nmat) {
+    __global int* wall_touch, __global const int* wall_near, __global const real* servo,
+    __global real* wall_partial, __global real* wall_reaction, __global real* wall_mean,
+    real4 gravity, real4 fluid, real fluid_viscosity, real dt, real rolling_damping, real skin,
+    int stride, int n, int nwalls, int nmat, int wall_chunk, int wall_groups) {
   const int base = get_global_id(0) * LANES;
   if (base >= n) return;
   const int count = min(LANES, n - base);
@@ -134,4 +142,16 @@ __kernel void finish_particles(
                   (__global real4*)vel, (__global real4*)omega, (__global const real4*)force,
                   (__global const real4*)torque, pos_build, flags, contacts_last, gravity,
                   fluid, fluid_viscosity, dt, skin);
+#ifdef SERVO_IN_FINISH
+  mem_fence(CLK_GLOBAL_MEM_FENCE);
+  if (atomic_inc(&flags[7]) != (n + LANES - 1) / LANES - 1) return;
+  flags[7] = 0;
+  mem_fence(CLK_GLOBAL_MEM_FENCE);
+  walls_step((__global const real4*)walls, (__global const real4*)servo, wall_near, wall_off,
+             (__global const real4*)wall_force, (__global real4*)wall_partial,
+             (__global real4*)wall_vel, (__global real4*)wall_reaction,
+             (__global real4*)wall_mean, (__global real4*)wall_point,
+             (__global float4*)wall_point_lo, flags, dt, skin, n, wall_chunk, wall_groups, 1,
+             nwalls);
+#endif
 }

@@ -384,24 +384,36 @@ INLINE void servo_wall(int w, __global const real4* walls, __global const real4*
   wall_vel[w] = (real4)(v * n, 0);
 }
 
-// One work item: the walls' forces (with `reduce` set: the chunk sums of
-// reduce_walls, computed here; else reduce_walls ran before), every wall's
-// servo step, then every wall advances (advance_wall), controlled or not:
-// one launch for the walls' whole step. CPUs reduce here (one pass over the
-// masks costs less than a launch), GPUs in reduce_walls, in parallel.
-__kernel void servo_walls(__global const real4* walls, __global const real4* servo,
-                          __global const int* wall_near, __global const uint* wall_off,
-                          __global const real4* wall_force, __global real4* partial,
-                          __global real4* wall_vel, __global real4* reading,
-                          __global real4* mean, __global real4* wall_point,
-                          __global float4* wall_point_lo, __global volatile int* flags, real dt,
-                          real skin, int n, int chunk, int groups, int reduce, int nwalls) {
-  if (get_global_id(0) != 0) return;
+// The walls' whole step, by one work item: the forces on them (with
+// `reduce` set, the chunk sums of reduce_walls, computed here; else
+// reduce_walls ran before), every wall's servo step, then every wall
+// advances (advance_wall), controlled or not. CPUs run it at the end of
+// finish_particles (integrate.cl; one pass over the masks costs less than
+// a launch), GPUs as servo_walls after reduce_walls, in parallel.
+INLINE void walls_step(__global const real4* walls, __global const real4* servo,
+                       __global const int* wall_near, __global const uint* wall_off,
+                       __global const real4* wall_force, __global real4* partial,
+                       __global real4* wall_vel, __global real4* reading, __global real4* mean,
+                       __global real4* wall_point, __global float4* wall_point_lo,
+                       __global volatile int* flags, real dt, real skin, int n, int chunk,
+                       int groups, int reduce, int nwalls) {
   for (int c = 0; reduce && c < groups; ++c)
     wall_chunk_sums(c, wall_near, wall_off, wall_force, partial, n, chunk, groups, nwalls);
   for (int w = 0; w < nwalls; ++w) {
     servo_wall(w, walls, servo, partial, wall_vel, reading, mean, dt, groups);
     advance_wall(w, wall_point, wall_point_lo, wall_vel, flags, dt, skin);
   }
+}
+
+// walls_step as a launch of one work item (GPUs, after reduce_walls).
+__kernel void servo_walls(__global const real4* walls, __global const real4* servo,
+                          __global real4* partial, __global real4* wall_vel,
+                          __global real4* reading, __global real4* mean,
+                          __global real4* wall_point, __global float4* wall_point_lo,
+                          __global volatile int* flags, real dt, real skin, int groups,
+                          int nwalls) {
+  if (get_global_id(0) != 0) return;
+  walls_step(walls, servo, 0, 0, 0, partial, wall_vel, reading, mean, wall_point, wall_point_lo,
+             flags, dt, skin, 0, 0, groups, 0, nwalls);
 }
 #endif  // HAS_SERVO
