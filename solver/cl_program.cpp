@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <vector>
 
 #include "kernel_source.h"
@@ -9,7 +10,7 @@
 namespace simsols {
 
 std::string KernelConfig::build_options() const {
-  std::string o = "-cl-std=CL1.2";
+  std::string o = "-cl-std=CL1.2 -cl-kernel-arg-info";
   if (double_precision) o += " -DSIMSOLS_DOUBLE";
   if (gravity) o += " -DHAS_GRAVITY";
   if (damping) o += " -DHAS_DAMPING";
@@ -119,13 +120,28 @@ Program::Program(Device& device, const KernelConfig& config, std::span<const Ker
   }
 }
 
-ClKernel Program::kernel(const char* name) const {
+Kernel Program::kernel(const char* name) const {
   cl_int err = CL_SUCCESS;
   cl_kernel k = clCreateKernel(program_.get(), name, &err);
   if (err != CL_SUCCESS)
     throw DeviceError(std::string("kernel '") + name + "' missing from the program (error " +
                       std::to_string(err) + ")");
-  return ClKernel(k);
+  Kernel out{ClKernel(k), name, {}, 0};
+  check(clGetKernelInfo(k, CL_KERNEL_NUM_ARGS, sizeof out.count, &out.count, nullptr),
+        "clGetKernelInfo(CL_KERNEL_NUM_ARGS)");
+  for (cl_uint i = 0; i < out.count; ++i) {
+    size_t n = 0;
+    if (clGetKernelArgInfo(k, i, CL_KERNEL_ARG_NAME, 0, nullptr, &n) != CL_SUCCESS) {
+      out.params.clear();  // no argument names kept: only the count is checked
+      break;
+    }
+    std::string param(n, '\0');
+    check(clGetKernelArgInfo(k, i, CL_KERNEL_ARG_NAME, n, param.data(), nullptr),
+          "clGetKernelArgInfo(CL_KERNEL_ARG_NAME)");
+    param.resize(std::strlen(param.c_str()));
+    out.params.push_back(std::move(param));
+  }
+  return out;
 }
 
 }  // namespace simsols

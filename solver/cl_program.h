@@ -10,6 +10,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "cl_device.h"
 #include "kernel_source.h"
@@ -55,6 +56,21 @@ struct KernelConfig {
 
 KernelConfig make_kernel_config(const Scene& scene, const Device& device);
 
+// A kernel and the names of its parameters as the compiler reports them
+// (programs are built with -cl-kernel-arg-info). set_args (kernel_args.h)
+// binds every argument by name against them, so a call that names its
+// arguments in another order than the kernel's signature, or leaves one
+// out, stops with the kernel and the argument named instead of binding the
+// wrong buffer. A driver that keeps no argument names leaves `params`
+// empty: then only the count is checked.
+struct Kernel {
+  ClKernel handle;
+  std::string name;
+  std::vector<std::string> params;
+  cl_uint count = 0;  // number of parameters
+  cl_kernel get() const { return handle.get(); }
+};
+
 class Program {
  public:
   // Builds the solver program (kernel_files()); throws DeviceError with the
@@ -64,7 +80,7 @@ class Program {
   // common.cl + render_pack.cl for the renderer's packing kernels).
   Program(Device& device, const KernelConfig& config, std::span<const KernelFile> files);
 
-  ClKernel kernel(const char* name) const;  // throws DeviceError if absent
+  Kernel kernel(const char* name) const;  // throws DeviceError if absent
   const KernelConfig& config() const { return config_; }
   double build_seconds() const { return build_seconds_; }
 

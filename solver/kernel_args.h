@@ -1,15 +1,26 @@
-// Setting kernel arguments without repeating clSetKernelArg by hand.
+// Binding kernel arguments by name, from one list at the call site.
 //
-// set_args(model, kernel, a, b, ...) sets the arguments in order. Buffers
-// pass as Buffer or cl_mem, integers as int / uint32_t, and floating-point
-// values as Real{x}, converted to the precision the program was built with.
-// Real4 likewise. Local memory is Local{bytes}. Errors name the kernel
-// argument index.
+// set_args(model, kernel, arg("pos", s.pos), arg("n", s.n), ...) names each
+// argument as the kernel's signature names its parameter, in the
+// signature's order. Before anything is set, the list is checked against
+// the names the compiler reports (Kernel::params, cl_program.h): a missing,
+// extra or misplaced argument throws DeviceError naming the kernel, the
+// position and both names, at the first call, so a signature changed in a
+// .cl file without its call site (or the reverse) fails at start-up
+// instead of binding the wrong buffer. A parameter that precision compiles
+// away keeps its place under the name `<name>_unused` (common.cl's
+// POS_LO_* macros), which matches `<name>`.
+//
+// Values: buffers as Buffer or cl_mem, integers as int / uint32_t,
+// floating-point values as Real{x}, converted to the precision the program
+// was built with, Real4 likewise, local memory as Local{bytes}.
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "cl_device.h"
+#include "errors.h"
 #include "model.h"
 #include "state.h"
 
@@ -55,10 +66,31 @@ inline void set_one(const Model& m, cl_kernel k, cl_uint i, Real4 r) {
 }
 }  // namespace detail
 
-template <typename... Args>
-void set_args(const Model& m, const ClKernel& k, const Args&... args) {
+// One argument and the name of the parameter it binds.
+template <typename T>
+struct Arg {
+  const char* name;
+  const T& value;
+};
+template <typename T>
+Arg<T> arg(const char* name, const T& value) {
+  return {name, value};
+}
+
+namespace detail {
+// Throws unless `name` is the kernel's parameter `i` (or it is absent: a
+// driver without argument names).
+void check_arg(const Kernel& k, cl_uint i, const char* name);
+void check_count(const Kernel& k, cl_uint given);
+}  // namespace detail
+
+template <typename... Ts>
+void set_args(const Model& m, const Kernel& k, const Arg<Ts>&... args) {
+  detail::check_count(k, sizeof...(Ts));
   cl_uint i = 0;
-  (detail::set_one(m, k.get(), i++, args), ...);
+  (detail::check_arg(k, i++, args.name), ...);
+  i = 0;
+  (detail::set_one(m, k.get(), i++, args.value), ...);
 }
 
 // Gravity as a real4 kernel argument.
@@ -74,7 +106,7 @@ inline Real4 fluid_arg(const Model& m) {
 }
 
 // Enqueues a 1-D range over `n` items, padded to the model's local size.
-inline void launch(const Model& m, const ClKernel& k, size_t n) {
+inline void launch(const Model& m, const Kernel& k, size_t n) {
   if (n == 0) return;
   const size_t local = m.local_size();
   const size_t global = m.global_size(n);
@@ -84,7 +116,7 @@ inline void launch(const Model& m, const ClKernel& k, size_t n) {
 }
 
 // Enqueues exactly `n` items with no local size (serial helpers, small ranges).
-inline void launch_exact(const Model& m, const ClKernel& k, size_t n) {
+inline void launch_exact(const Model& m, const Kernel& k, size_t n) {
   if (n == 0) return;
   check(clEnqueueNDRangeKernel(m.device().queue(), k.get(), 1, nullptr, &n, nullptr, 0, nullptr,
                                nullptr),

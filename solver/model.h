@@ -17,11 +17,11 @@
 namespace simsols {
 
 struct Kernels {
-  ClKernel grid_clear, grid_count, scan_chunks, scan_totals, scan_apply, grid_scatter;
-  ClKernel count_neighbors, slice_widths, build_neighbors, build_mirrors;
-  ClKernel pair_forces, finish_particles, advance_walls, build_wall_near, wall_widths,
+  Kernel grid_clear, grid_count, scan_chunks, scan_totals, scan_apply, grid_scatter;
+  Kernel count_neighbors, slice_widths, build_neighbors, build_mirrors;
+  Kernel pair_forces, finish_particles, advance_walls, build_wall_near, wall_widths,
       carry_wall_slots, reset_wall_travel;
-  ClKernel reduce_observables, reduce_walls, servo_walls;
+  Kernel reduce_observables, reduce_walls, servo_walls;
 };
 
 class Model {

@@ -32,9 +32,10 @@ std::vector<double> read_reals(const Model& m, const Buffer& b, size_t count, si
 Observables observe(const Model& m, State& s) {
   constexpr int kObs = 12;  // NOBS in reduce.cl
   const Kernels& k = m.kernels();
-  set_args(m, k.reduce_observables, s.pos, s.pos_lo, s.vel, s.omega, s.force, s.torque,
-           s.obs_partial, gravity_arg(m), Real{m.dt()}, s.n,
-           Local{m.local_size() * kObs * m.real_size()});
+  set_args(m, k.reduce_observables, arg("pos", s.pos), arg("pos_lo", s.pos_lo), arg("vel", s.vel),
+           arg("omega", s.omega), arg("force", s.force), arg("torque", s.torque),
+           arg("partial", s.obs_partial), arg("gravity", gravity_arg(m)), arg("dt", Real{m.dt()}),
+           arg("n", s.n), arg("scratch", Local{m.local_size() * kObs * m.real_size()}));
   launch(m, k.reduce_observables, s.n);
   const size_t groups = m.global_size(s.n) / m.local_size();
   const std::vector<double> part = read_reals(m, s.obs_partial, groups * kObs);
@@ -102,7 +103,8 @@ ParticleSnapshot download(const Model& m, State& s) {
   p.contacts.resize(n);
   for (size_t i = 0; i < n; ++i) {
     for (int a = 0; a < 3; ++a) {
-      p.position[i][a] = m.origin()[a] + pos[4 * i + a] + (lo.empty() ? 0.0 : double(lo[4 * i + a]));
+      p.position[i][a] =
+          m.origin()[a] + pos[4 * i + a] + (lo.empty() ? 0.0 : double(lo[4 * i + a]));
       p.velocity[i][a] = vel[4 * i + a];
       p.angular_velocity[i][a] = om[4 * i + a];
       p.force[i][a] = f[4 * i + a];

@@ -15,24 +15,27 @@ namespace {
 constexpr int kMaxNeighbors = 256;  // MAX_CAP in neighbors.cl
 
 // Work items of the lane kernels (LANES particles each).
-size_t lane_groups(const Model& m, int n) {
-  return (n + m.config().lanes - 1) / m.config().lanes;
-}
+size_t lane_groups(const Model& m, int n) { return (n + m.config().lanes - 1) / m.config().lanes; }
 
 void build_grid(const Model& m, State& s) {
   const Kernels& k = m.kernels();
   const Real inv_cell{1.0 / m.cell_size()};
-  set_args(m, k.grid_clear, s.cell_count, s.table);
+  set_args(m, k.grid_clear, arg("count", s.cell_count), arg("table", s.table));
   launch_exact(m, k.grid_clear, s.table);
-  set_args(m, k.grid_count, s.pos, s.bucket, s.slot, s.cell_count, inv_cell, s.table, s.n);
+  set_args(m, k.grid_count, arg("pos", s.pos), arg("bucket", s.bucket), arg("slot", s.slot),
+           arg("count", s.cell_count), arg("inv_cell", inv_cell), arg("table", s.table),
+           arg("n", s.n));
   launch(m, k.grid_count, s.n);
-  set_args(m, k.scan_chunks, s.cell_count, s.chunk_sum, s.table, s.chunk_len);
+  set_args(m, k.scan_chunks, arg("count", s.cell_count), arg("chunk_sum", s.chunk_sum),
+           arg("table", s.table), arg("chunk_len", s.chunk_len));
   launch_exact(m, k.scan_chunks, s.chunks);
-  set_args(m, k.scan_totals, s.chunk_sum, s.chunks);
+  set_args(m, k.scan_totals, arg("chunk_sum", s.chunk_sum), arg("chunks", s.chunks));
   launch_exact(m, k.scan_totals, 1);
-  set_args(m, k.scan_apply, s.cell_count, s.chunk_sum, s.cell_start, s.table, s.chunk_len);
+  set_args(m, k.scan_apply, arg("count", s.cell_count), arg("chunk_sum", s.chunk_sum),
+           arg("start", s.cell_start), arg("table", s.table), arg("chunk_len", s.chunk_len));
   launch_exact(m, k.scan_apply, s.chunks);
-  set_args(m, k.grid_scatter, s.bucket, s.slot, s.cell_start, s.sorted, s.n);
+  set_args(m, k.grid_scatter, arg("bucket", s.bucket), arg("slot", s.slot),
+           arg("start", s.cell_start), arg("sorted", s.sorted), arg("n", s.n));
   launch(m, k.grid_scatter, s.n);
 }
 
@@ -46,11 +49,13 @@ int with_spare(std::uint32_t need) { return int(need + need / 16); }
 std::uint32_t prefix_sum(const Model& m, State& s, const Buffer& values, std::uint32_t len) {
   const Kernels& k = m.kernels();
   const std::uint32_t chunk_len = (len + s.chunks - 1) / s.chunks;
-  set_args(m, k.scan_chunks, values, s.chunk_sum, len, chunk_len);
+  set_args(m, k.scan_chunks, arg("count", values), arg("chunk_sum", s.chunk_sum), arg("table", len),
+           arg("chunk_len", chunk_len));
   launch_exact(m, k.scan_chunks, s.chunks);
-  set_args(m, k.scan_totals, s.chunk_sum, s.chunks);
+  set_args(m, k.scan_totals, arg("chunk_sum", s.chunk_sum), arg("chunks", s.chunks));
   launch_exact(m, k.scan_totals, 1);
-  set_args(m, k.scan_apply, values, s.chunk_sum, values, len, chunk_len);
+  set_args(m, k.scan_apply, arg("count", values), arg("chunk_sum", s.chunk_sum),
+           arg("start", values), arg("table", len), arg("chunk_len", chunk_len));
   launch_exact(m, k.scan_apply, s.chunks);
   std::uint32_t last = 0;
   m.device().read(values.get(), sizeof last, &last, size_t(len - 1) * sizeof last);
@@ -61,9 +66,11 @@ std::uint32_t prefix_sum(const Model& m, State& s, const Buffer& values, std::ui
 // lower slots the new lists need.
 std::array<std::uint32_t, 2> size_lists(const Model& m, State& s) {
   const Kernels& k = m.kernels();
-  set_args(m, k.count_neighbors, s.pos, s.pos_lo, s.cell_count, s.cell_start, s.sorted,
-           s.nbr_count, s.nbr_upper, s.flags, Real{1.0 / m.cell_size()}, Real{m.skin()},
-           s.table, s.n);
+  set_args(m, k.count_neighbors, arg("pos", s.pos), arg("pos_lo", s.pos_lo),
+           arg("count", s.cell_count), arg("start", s.cell_start), arg("sorted", s.sorted),
+           arg("nbr_count", s.nbr_count), arg("nbr_upper", s.nbr_upper), arg("flags", s.flags),
+           arg("inv_cell", Real{1.0 / m.cell_size()}), arg("skin", Real{m.skin()}),
+           arg("table", s.table), arg("n", s.n));
   launch(m, k.count_neighbors, s.n);
   int flags[2] = {0, 0};
   m.device().read(s.flags.get(), sizeof flags, flags);
@@ -71,7 +78,9 @@ std::array<std::uint32_t, 2> size_lists(const Model& m, State& s) {
     throw DeviceError("a particle has " + std::to_string(flags[1]) +
                       " neighbours within the skin (limit 256): reduce numerics.skin or the "
                       "size ratio");
-  set_args(m, k.slice_widths, s.nbr_count, s.nbr_upper, s.up_off, s.lo_off, s.n, s.slices);
+  set_args(m, k.slice_widths, arg("nbr_count", s.nbr_count), arg("nbr_upper", s.nbr_upper),
+           arg("up_width", s.up_off), arg("lo_width", s.lo_off), arg("n", s.n),
+           arg("slices", s.slices));
   launch(m, k.slice_widths, s.slices + 1);
   return {prefix_sum(m, s, s.up_off, s.slices + 1), prefix_sum(m, s, s.lo_off, s.slices + 1)};
 }
@@ -81,7 +90,8 @@ std::array<std::uint32_t, 2> size_lists(const Model& m, State& s) {
 void build_lists(const Model& m, State& s) {
   const Kernels& k = m.kernels();
   // the previous history into share (dead between steps), at its stride
-  if (m.config().history_planes() > 0) m.device().copy(s.spring.get(), s.share.get(), s.spring.bytes);
+  if (m.config().history_planes() > 0)
+    m.device().copy(s.spring.get(), s.share.get(), s.spring.bytes);
   const int old_stride = s.up_slots;
   const std::array<std::uint32_t, 2> need = size_lists(m, s);
   const bool grow_up = need[0] > std::uint32_t(s.up_slots);
@@ -90,16 +100,21 @@ void build_lists(const Model& m, State& s) {
   // slots the build leaves unwritten (a slice's padding, the spare tail)
   // hold zeros, not an older build's values: the state is the same however
   // it was reached (a resumed run hashes as the straight one)
-  for (const Buffer* b : {&s.nbr, &s.spring, &s.mirror})
-    m.device().fill_zero(b->get(), b->bytes);
-  set_args(m, k.build_neighbors, s.pos, s.pos_lo, s.cell_count, s.cell_start, s.sorted,
-           s.old_up_off, s.old_upper, s.old_nbr, s.share, old_stride, s.up_off, s.lo_off,
-           s.nbr_upper, s.nbr, s.mirror, s.spring, s.up_slots, s.pos_build,
-           Real{1.0 / m.cell_size()}, Real{m.skin()}, s.table, s.n);
+  for (const Buffer* b : {&s.nbr, &s.spring, &s.mirror}) m.device().fill_zero(b->get(), b->bytes);
+  set_args(m, k.build_neighbors, arg("pos", s.pos), arg("pos_lo", s.pos_lo),
+           arg("count", s.cell_count), arg("start", s.cell_start), arg("sorted", s.sorted),
+           arg("old_up_off", s.old_up_off), arg("old_upper", s.old_upper),
+           arg("old_nbr", s.old_nbr), arg("old_hist", s.share), arg("old_stride", old_stride),
+           arg("up_off", s.up_off), arg("lo_off", s.lo_off), arg("nbr_upper", s.nbr_upper),
+           arg("nbr", s.nbr), arg("mirror", s.mirror), arg("spring", s.spring),
+           arg("stride", s.up_slots), arg("pos_build", s.pos_build),
+           arg("inv_cell", Real{1.0 / m.cell_size()}), arg("skin", Real{m.skin()}),
+           arg("table", s.table), arg("n", s.n));
   launch(m, k.build_neighbors, s.n);
   if (grow_up) s.upper_scratch(m);
-  set_args(m, k.build_mirrors, s.nbr_count, s.nbr_upper, s.up_off, s.nbr, s.lo_off, s.mirror,
-           s.n);
+  set_args(m, k.build_mirrors, arg("nbr_count", s.nbr_count), arg("nbr_upper", s.nbr_upper),
+           arg("up_off", s.up_off), arg("nbr", s.nbr), arg("lo_off", s.lo_off),
+           arg("mirror", s.mirror), arg("n", s.n));
   launch(m, k.build_mirrors, s.n);
 }
 
@@ -113,10 +128,12 @@ void build_wall_slots(const Model& m, State& s) {
   s.wall_off.mem.swap(s.old_wall_off.mem);
   s.wall_spring.mem.swap(s.old_wall_spring.mem);
   s.wall_force.mem.swap(s.old_wall_force.mem);
-  set_args(m, k.build_wall_near, s.pos, m.wall_buffer(), s.wall_point, s.wall_near,
-           Real{m.skin()}, s.n, m.walls());
+  set_args(m, k.build_wall_near, arg("pos", s.pos), arg("walls", m.wall_buffer()),
+           arg("wall_point", s.wall_point), arg("wall_near", s.wall_near),
+           arg("skin", Real{m.skin()}), arg("n", s.n), arg("nwalls", m.walls()));
   launch(m, k.build_wall_near, s.n);
-  set_args(m, k.wall_widths, s.wall_near, s.wall_off, s.n, s.slices);
+  set_args(m, k.wall_widths, arg("wall_near", s.wall_near), arg("width", s.wall_off), arg("n", s.n),
+           arg("slices", s.slices));
   launch(m, k.wall_widths, s.slices + 1);
   const std::uint32_t need = prefix_sum(m, s, s.wall_off, s.slices + 1);
   const int old_stride = s.wall_slots;
@@ -124,12 +141,15 @@ void build_wall_slots(const Model& m, State& s) {
   if (grow) s.grow_walls(m, with_spare(need));
   for (const Buffer* b : {&s.wall_spring, &s.wall_force})  // as in build_lists
     m.device().fill_zero(b->get(), b->bytes);
-  set_args(m, k.carry_wall_slots, s.old_wall_near, s.old_wall_off, s.old_wall_spring,
-           s.old_wall_force, old_stride, s.wall_near, s.wall_off, s.wall_spring, s.wall_force,
-           s.wall_slots, s.n, m.walls());
+  set_args(m, k.carry_wall_slots, arg("old_near", s.old_wall_near), arg("old_off", s.old_wall_off),
+           arg("old_spring", s.old_wall_spring), arg("old_force", s.old_wall_force),
+           arg("old_stride", old_stride), arg("wall_near", s.wall_near),
+           arg("wall_off", s.wall_off), arg("wall_spring", s.wall_spring),
+           arg("wall_force", s.wall_force), arg("stride", s.wall_slots), arg("n", s.n),
+           arg("nwalls", m.walls()));
   launch(m, k.carry_wall_slots, s.n);
   if (grow) s.wall_scratch(m);
-  set_args(m, k.reset_wall_travel, s.wall_point, m.walls());
+  set_args(m, k.reset_wall_travel, arg("wall_point", s.wall_point), arg("nwalls", m.walls()));
   launch_exact(m, k.reset_wall_travel, m.walls());
 }
 
@@ -172,22 +192,36 @@ void detect_contacts(const Model& m, State& s, bool force_rebuild) {
 
 void contact_forces(const Model& m, State& s) {
   const Kernels& k = m.kernels();
-  set_args(m, k.pair_forces, s.pos, s.pos_lo, s.vel, s.omega, s.up_off, s.nbr, s.nbr_upper,
-           s.spring, m.pair_buffer(), s.share, s.force, s.torque, s.touching, Real{m.dt()},
-           Real{m.scene().effects.rolling_damping}, s.up_slots, s.n, m.pairs().n);
+  set_args(m, k.pair_forces, arg("pos", s.pos), arg("pos_lo", s.pos_lo), arg("vel", s.vel),
+           arg("omega", s.omega), arg("up_off", s.up_off), arg("nbr", s.nbr),
+           arg("nbr_upper", s.nbr_upper), arg("spring", s.spring), arg("pairs", m.pair_buffer()),
+           arg("share", s.share), arg("force", s.force), arg("torque", s.torque),
+           arg("contacts_last", s.touching), arg("dt", Real{m.dt()}),
+           arg("rolling_damping", Real{m.scene().effects.rolling_damping}),
+           arg("stride", s.up_slots), arg("n", s.n), arg("nmat", m.pairs().n));
   launch(m, k.pair_forces, lane_groups(m, s.n));
 }
 
 void finish_particles(const Model& m, State& s) {
   const Kernels& k = m.kernels();
   const Effects& e = m.scene().effects;
-  set_args(m, k.finish_particles, s.pos, s.pos_lo, s.vel, s.omega, s.force, s.torque,
-           s.pos_build, s.flags, s.touching, s.nbr_count, s.nbr_upper, s.lo_off, s.mirror,
-           s.share, m.wall_buffer(), s.wall_point, s.wall_point_lo, s.wall_vel,
-           s.wall_off, s.wall_spring, s.wall_force, s.wall_slots, m.pair_buffer(), s.wall_touch,
-           s.wall_near, s.servo, s.wall_partial, s.wall_reaction, s.wall_mean, gravity_arg(m),
-           fluid_arg(m), Real{e.fluid_params.viscosity}, Real{m.dt()}, Real{e.rolling_damping},
-           Real{m.skin()}, s.up_slots, s.n, m.walls(), m.pairs().n, kWallChunk, wall_chunks(s));
+  set_args(m, k.finish_particles, arg("pos", s.pos), arg("pos_lo", s.pos_lo), arg("vel", s.vel),
+           arg("omega", s.omega), arg("force", s.force), arg("torque", s.torque),
+           arg("pos_build", s.pos_build), arg("flags", s.flags), arg("contacts_last", s.touching),
+           arg("nbr_count", s.nbr_count), arg("nbr_upper", s.nbr_upper), arg("lo_off", s.lo_off),
+           arg("mirror", s.mirror), arg("share", s.share), arg("walls", m.wall_buffer()),
+           arg("wall_point", s.wall_point), arg("wall_point_lo", s.wall_point_lo),
+           arg("wall_vel", s.wall_vel), arg("wall_off", s.wall_off),
+           arg("wall_spring", s.wall_spring), arg("wall_force", s.wall_force),
+           arg("wall_stride", s.wall_slots), arg("pairs", m.pair_buffer()),
+           arg("wall_touch", s.wall_touch), arg("wall_near", s.wall_near), arg("servo", s.servo),
+           arg("wall_partial", s.wall_partial), arg("wall_reaction", s.wall_reaction),
+           arg("wall_mean", s.wall_mean), arg("gravity", gravity_arg(m)),
+           arg("fluid", fluid_arg(m)), arg("fluid_viscosity", Real{e.fluid_params.viscosity}),
+           arg("dt", Real{m.dt()}), arg("rolling_damping", Real{e.rolling_damping}),
+           arg("skin", Real{m.skin()}), arg("stride", s.up_slots), arg("n", s.n),
+           arg("nwalls", m.walls()), arg("nmat", m.pairs().n), arg("wall_chunk", kWallChunk),
+           arg("wall_groups", wall_chunks(s)));
   launch(m, k.finish_particles, lane_groups(m, s.n));
 }
 
@@ -197,13 +231,18 @@ void move_walls(const Model& m, State& s) {
   if (m.config().servo_in_finish()) return;  // finish_particles moved them (CPUs)
   if (m.config().servo) {
     const int groups = static_cast<int>(reduce_wall_forces(m, s));
-    set_args(m, k.servo_walls, m.wall_buffer(), s.servo, s.wall_partial, s.wall_vel,
-             s.wall_reaction, s.wall_mean, s.wall_point, s.wall_point_lo, s.flags,
-             Real{m.dt()}, Real{m.skin()}, groups, m.walls());
+    set_args(m, k.servo_walls, arg("walls", m.wall_buffer()), arg("servo", s.servo),
+             arg("partial", s.wall_partial), arg("wall_vel", s.wall_vel),
+             arg("reading", s.wall_reaction), arg("mean", s.wall_mean),
+             arg("wall_point", s.wall_point), arg("wall_point_lo", s.wall_point_lo),
+             arg("flags", s.flags), arg("dt", Real{m.dt()}), arg("skin", Real{m.skin()}),
+             arg("groups", groups), arg("nwalls", m.walls()));
     launch_exact(m, k.servo_walls, 1);
   } else {
-    set_args(m, k.advance_walls, s.wall_point, s.wall_point_lo, s.wall_vel, s.flags,
-             Real{m.dt()}, Real{m.skin()}, m.walls());
+    set_args(m, k.advance_walls, arg("wall_point", s.wall_point),
+             arg("wall_point_lo", s.wall_point_lo), arg("wall_vel", s.wall_vel),
+             arg("flags", s.flags), arg("dt", Real{m.dt()}), arg("skin", Real{m.skin()}),
+             arg("nwalls", m.walls()));
     launch_exact(m, k.advance_walls, m.walls());
   }
 }
@@ -213,8 +252,9 @@ int wall_chunks(const State& s) { return std::max(1, (s.n + kWallChunk - 1) / kW
 size_t reduce_wall_forces(const Model& m, State& s) {
   const Kernels& k = m.kernels();
   const int chunks = wall_chunks(s);
-  set_args(m, k.reduce_walls, s.wall_near, s.wall_off, s.wall_force, s.wall_partial, s.n,
-           kWallChunk, chunks, m.walls());
+  set_args(m, k.reduce_walls, arg("wall_near", s.wall_near), arg("wall_off", s.wall_off),
+           arg("wall_force", s.wall_force), arg("partial", s.wall_partial), arg("n", s.n),
+           arg("chunk", kWallChunk), arg("chunks", chunks), arg("nwalls", m.walls()));
   launch(m, k.reduce_walls, size_t(chunks));
   return static_cast<size_t>(chunks);
 }

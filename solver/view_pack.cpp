@@ -77,8 +77,7 @@ const char* unit_of(ColorField f) { return kUnits[static_cast<int>(f)]; }
 std::optional<ColorField> parse_color_field(std::string_view s) {
   for (ColorField f : kColorFields) {
     const std::string_view name = to_string(f);
-    if (name.size() == s.size() &&
-        std::equal(s.begin(), s.end(), name.begin(), [](char a, char b) {
+    if (name.size() == s.size() && std::equal(s.begin(), s.end(), name.begin(), [](char a, char b) {
           return std::tolower(static_cast<unsigned char>(a)) == b;
         }))
       return f;
@@ -173,17 +172,18 @@ void ViewPacker::set_reference() {
 
 void ViewPacker::set_reference(const std::vector<Vec3>& absolute_positions) {
   if (absolute_positions.size() != static_cast<size_t>(n_))
-    throw std::invalid_argument("ViewPacker::set_reference: " +
-                                std::to_string(absolute_positions.size()) +
-                                " positions for " + std::to_string(n_) + " beads");
+    throw std::invalid_argument(
+        "ViewPacker::set_reference: " + std::to_string(absolute_positions.size()) +
+        " positions for " + std::to_string(n_) + " beads");
   write_reference(absolute_positions);
   follow_reference_bottom(absolute_positions);
 }
 
 void ViewPacker::set_layer_bands(double z0, double band) {
   if (!std::isfinite(z0) || !std::isfinite(band) || band <= 0)
-    throw std::invalid_argument("ViewPacker::set_layer_bands: need a finite z0 and band > 0 (got z0 = " +
-                                std::to_string(z0) + ", band = " + std::to_string(band) + ")");
+    throw std::invalid_argument(
+        "ViewPacker::set_layer_bands: need a finite z0 and band > 0 (got z0 = " +
+        std::to_string(z0) + ", band = " + std::to_string(band) + ")");
   z0_ = z0;
   band_ = band;
   user_bands_ = true;
@@ -197,9 +197,12 @@ ViewPacker::Range ViewPacker::pack_beads(ColorField field, cl_mem beads, cl_mem 
   State& s = sim_.state();
   const Split o = split(m, origin_);
   const Split z0 = split(m, {origin_[0], origin_[1], z0_});
-  set_args(m, pack_beads_, s.pos, s.pos_lo, s.vel, s.omega, s.force, ref_, ref_lo_, o.hi, o.lo,
-           static_cast<int>(field), Real{z0.hi.z}, Real{z0.lo.z}, Real{band_}, beads, values,
-           bead_partial_, n_, Local{m.local_size() * 2 * sizeof(float)});
+  set_args(m, pack_beads_, arg("pos", s.pos), arg("pos_lo", s.pos_lo), arg("vel", s.vel),
+           arg("omega", s.omega), arg("force", s.force), arg("ref", ref_), arg("ref_lo", ref_lo_),
+           arg("origin", o.hi), arg("origin_lo", o.lo), arg("field", static_cast<int>(field)),
+           arg("z0", Real{z0.hi.z}), arg("z0_lo", Real{z0.lo.z}), arg("band", Real{band_}),
+           arg("beads", beads), arg("values", values), arg("partial", bead_partial_), arg("n", n_),
+           arg("scratch", Local{m.local_size() * 2 * sizeof(float)}));
   launch(m, pack_beads_, n_);
   const size_t groups = m.global_size(n_) / m.local_size();
   std::vector<float> part(groups * 2);
@@ -213,11 +216,10 @@ ViewPacker::Range ViewPacker::pack_beads(ColorField field, cl_mem beads, cl_mem 
 }
 
 ViewPacker::ContactStats ViewPacker::pack_contacts(cl_mem segments, size_t capacity, bool walls) {
-  if (capacity == 0)
-    throw std::invalid_argument("ViewPacker::pack_contacts: capacity must be > 0");
+  if (capacity == 0) throw std::invalid_argument("ViewPacker::pack_contacts: capacity must be > 0");
   if (capacity > static_cast<size_t>(INT_MAX) / 2)
-    throw std::invalid_argument("ViewPacker::pack_contacts: capacity " +
-                                std::to_string(capacity) + " is too large");
+    throw std::invalid_argument("ViewPacker::pack_contacts: capacity " + std::to_string(capacity) +
+                                " is too large");
   require_buffer(segments, capacity * 8 * sizeof(float), "segments");
   build();
   const Model& m = sim_.model();
@@ -225,11 +227,15 @@ ViewPacker::ContactStats ViewPacker::pack_contacts(cl_mem segments, size_t capac
   const int nwalls = walls && m.config().walls ? m.walls() : 0;
   const Split o = split(m, origin_);
   m.device().fill_zero(counter_.get(), sizeof(int));
-  set_args(m, pack_contacts_, s.pos, s.pos_lo, s.up_off, s.nbr, s.nbr_upper, s.share,
-           m.wall_buffer(), s.wall_point, s.wall_point_lo, s.wall_near, s.wall_off, s.wall_force,
-           o.hi, o.lo, segments,
-           counter_, static_cast<int>(capacity), contact_partial_, n_, nwalls,
-           Local{m.local_size() * 3 * m.real_size()});
+  set_args(m, pack_contacts_, arg("pos", s.pos), arg("pos_lo", s.pos_lo), arg("up_off", s.up_off),
+           arg("nbr", s.nbr), arg("nbr_upper", s.nbr_upper), arg("pair_force", s.share),
+           arg("walls", m.wall_buffer()), arg("wall_point", s.wall_point),
+           arg("wall_point_lo", s.wall_point_lo), arg("wall_near", s.wall_near),
+           arg("wall_off", s.wall_off), arg("wall_force", s.wall_force), arg("origin", o.hi),
+           arg("origin_lo", o.lo), arg("segments", segments), arg("counter", counter_),
+           arg("capacity", static_cast<int>(capacity)), arg("partial", contact_partial_),
+           arg("n", n_), arg("nwalls", nwalls),
+           arg("scratch", Local{m.local_size() * 3 * m.real_size()}));
   launch(m, pack_contacts_, n_);
   const size_t groups = m.global_size(n_) / m.local_size();
   const std::vector<double> part = read_reals(m, contact_partial_, groups * 3);

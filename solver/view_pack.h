@@ -131,7 +131,7 @@ class ViewPacker {
   Simulation& sim_;
   int n_ = 0;
   std::unique_ptr<Program> program_;
-  ClKernel pack_beads_, pack_contacts_;
+  Kernel pack_beads_, pack_contacts_;
   Vec3 origin_{};
   double z0_ = 0, band_ = 0;
   bool user_bands_ = false;

@@ -432,7 +432,7 @@ TEST_P(RigidPairRotation, TangentialForceStaysInPlaneAndKeepsItsSize) {
   std::vector<KernelFile> files = {kernel_file("common.cl"), kernel_file("contact_law.cl"),
                                    {"rigid_pair.cl", kRigidPairKernel}};
   const Program program(dev, config, files);
-  const ClKernel kernel = program.kernel("rigid_pair");
+  const Kernel kernel = program.kernel("rigid_pair");
 
   const Vec3 n0{1, 0, 0};
   const double tilt30 = std::numbers::pi / 6, tilt60 = std::numbers::pi / 3;
