@@ -2,7 +2,8 @@
 // removes from the kernels, and that removing it changes nothing else.
 //   - rolling = "none" against the same scene with mu_r = 0 on every pair in
 //     use (the rolling code compiled in through an unused material): the
-//     same trajectories, compared number for number, and the state hash;
+//     same trajectories, compared number for number (the state hashes may
+//     differ: a torque of -0 against none at all);
 //   - the per-contact history the State allocates follows the slots: 0, 1
 //     or 2 records of 4 reals per list slot and wall slot (the tangential
 //     spring and the normal dashpot share the first);
@@ -67,9 +68,6 @@ TEST_P(EffectSlots, RollingNoneEqualsZeroRollingFriction) {
     contacts = std::max(contacts, a.observe().contacts);
   }
   EXPECT_GT(contacts, 10) << "the pile must be in contact for the comparison to mean anything";
-  std::printf("[measure] rolling none vs mu_r = 0 (%s): state hashes %s after %lld steps\n",
-              precision_name(GetParam()), a.hash() == b.hash() ? "identical" : "differ (signed zeros)",
-              static_cast<long long>(a.steps()));
 }
 
 TEST_P(EffectSlots, HistoryMemoryFollowsTheSlots) {

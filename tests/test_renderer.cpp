@@ -354,6 +354,7 @@ TEST(Renderer, BadFrameSizeIsAnError) {
   EXPECT_THROW(r.resize(10, Renderer::kMaxSize + 1), RenderError);
   try {
     r.resize(-3, 4);
+    FAIL() << "a negative width was accepted";
   } catch (const RenderError& e) {
     EXPECT_NE(std::string(e.what()).find("[1, 16384]"), std::string::npos) << e.what();
   }

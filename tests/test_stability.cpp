@@ -128,9 +128,14 @@ TEST(FarFromOrigin, MotionsFarFromTheFloatFrameMatch) {
 
 // Case 9. Degenerate inputs: each either runs sensibly or stops at once
 // with a clear error; nothing writes NaN.
+// Each degenerate scene has one right outcome: it runs (2 000 steps, every
+// number finite) or it is refused before anything runs, by a SceneError
+// naming the scene and the field at fault.
+enum class Outcome { Runs, Refused };
+
 TEST(DegenerateInputs, RunOrRefuseNeverNaN) {
   const double R = 1e-3;
-  auto run = [&](const char* what, Scene s) {
+  auto run = [&](const char* what, Scene s, Outcome expected, const char* field) {
     SCOPED_TRACE(what);
     try {
       validate_scene(s, what);
@@ -140,11 +145,13 @@ TEST(DegenerateInputs, RunOrRefuseNeverNaN) {
       EXPECT_TRUE(all_finite(q)) << "NaN or inf in the state";
       const Observables o = sim.observe();
       EXPECT_TRUE(std::isfinite(o.total_energy()));
+      EXPECT_EQ(expected, Outcome::Runs) << "ran; it should have been refused";
       std::printf("[measure] %s: ran 2000 steps, all finite, kinetic energy %.3g J\n", what,
                   o.kinetic());
     } catch (const SceneError& e) {
-      // refused: the message names the scene and a field
+      EXPECT_EQ(expected, Outcome::Refused) << "refused; it should have run: " << e.what();
       EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
       std::printf("[measure] %s: refused: %s\n", what, e.what());
     }
   };
@@ -153,28 +160,28 @@ TEST(DegenerateInputs, RunOrRefuseNeverNaN) {
   {
     Scene s = base;  // two beads created exactly overlapping
     s.particles = {sphere(R, {0, 0, 0.01}), sphere(R, {0, 0, 0.01})};
-    run("coincident beads", s);
+    run("coincident beads", s, Outcome::Refused, "particles[1]");
   }
   {
     Scene s = base;  // a bead whose centre lies exactly on a wall
     s.particles = {sphere(R, {0, 0, 0})};
     s.walls = {plane("floor", {0, 0, 0}, {0, 0, 1})};
-    run("bead centre on the wall", s);
+    run("bead centre on the wall", s, Outcome::Refused, "particles[0]");
   }
   {
     Scene s = base;  // zero velocity everywhere, no gravity
     s.effects.gravity = {0, 0, 0};
     s.particles = {sphere(R, {0, 0, 0.01}), sphere(R, {0.003, 0, 0.01})};
-    run("at rest", s);
+    run("at rest", s, Outcome::Runs, "");
   }
   {
     Scene s = base;  // one bead
     s.particles = {sphere(R, {0, 0, 0.01})};
-    run("single bead", s);
+    run("single bead", s, Outcome::Runs, "");
   }
   {
     Scene s = base;  // nothing at all
-    run("empty scene", s);
+    run("empty scene", s, Outcome::Refused, "'particles'");
   }
 }
 
