@@ -74,7 +74,7 @@ struct UpperLists {
   std::vector<std::uint32_t> off;       // per slice, + the total
   std::vector<int> nbr;                 // per upper slot
   size_t slot(int i, int k) const { return list_slot(off, slice, i, k); }
-  // component c of a slot's record in a plane of records (spring, share)
+  // component c of a slot's record in a history plane (spring)
   size_t real_at(size_t slot, int c) const { return slot_real(slot, slice, c); }
 };
 UpperLists read_upper_lists(const Model& model, State& state);

@@ -47,10 +47,10 @@ class State {
   // (nbr), the contact's history (spring, HIST planes of up_slots records)
   // and the partner's share of the last step (share: a force record and a
   // torque record side by side; it holds the previous history during a
-  // rebuild). Per
-  // lower slot (lo_slots): the upper slot where the partner's share waits
-  // (mirror; the rebuild puts the partner's id there first). old_*: the previous upper lists, which a
-  // rebuild carries the history over from.
+  // rebuild). Per lower slot (lo_slots): the upper slot where the partner's
+  // share waits (mirror; the rebuild puts the partner's id there first).
+  // old_*: the previous upper lists, which a rebuild carries the history
+  // over from.
   Buffer pos_build, nbr_count, nbr_upper, up_off, lo_off, nbr, spring, share, mirror;
   Buffer old_upper, old_up_off, old_nbr;
   // grid

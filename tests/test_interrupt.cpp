@@ -61,22 +61,15 @@ struct Child {
     }
   }
   // Waits until the log holds `text` (true) or the process ended (false).
-  // Until the output holds `text` `times` times (or the child exits).
-  bool wait_for(const std::string& text, int times = 1, std::chrono::seconds limit = 300s) {
-    auto seen = [&] {
-      const std::string out = read(log);
-      int n = 0;
-      for (size_t at = out.find(text); at != std::string::npos; at = out.find(text, at + 1)) ++n;
-      return n >= times;
-    };
+  bool wait_for(const std::string& text, std::chrono::seconds limit = 300s) {
     const auto end = std::chrono::steady_clock::now() + limit;
     while (std::chrono::steady_clock::now() < end) {
-      if (seen()) return true;
+      if (read(log).find(text) != std::string::npos) return true;
       int status = 0;
       if (waitpid(pid, &status, WNOHANG) == pid) {
         exited_ = true;
         status_ = status;
-        return seen();
+        return read(log).find(text) != std::string::npos;
       }
       std::this_thread::sleep_for(20ms);
     }

@@ -179,16 +179,10 @@ INLINE lane gather(__global const real* p, const int* idx, int c) {
   for (int l = 0; l < LANES; ++l) t[l] = p[4 * idx[l] + c];
   return LANE_LOAD(t);
 }
-// The rolling cap's divisor (contact_law.cl): the larger of the contact
-// counts of the last step of each lane's two particles, at least 1; for a
-// wall contact, the particle's own count.
-INLINE lane cap_divisor(__global const int* touching, const int* ii, const int* jj) {
-  real t[LANES];
-  #pragma unroll
-  for (int l = 0; l < LANES; ++l) t[l] = (real)max(1, max(touching[ii[l]], touching[jj[l]]));
-  return LANE_LOAD(t);
-}
-INLINE lane cap_divisor_wall(__global const int* touching, const int* ii) {
+// The rolling cap's divisor (contact_law.cl) is the larger of the contact
+// counts of the last step of a pair's two particles, at least 1 (for a wall
+// contact, the particle's own): this is each lane's particle's part of it.
+INLINE lane cap_count(__global const int* touching, const int* ii) {
   real t[LANES];
   #pragma unroll
   for (int l = 0; l < LANES; ++l) t[l] = (real)max(1, touching[ii[l]]);

@@ -76,7 +76,7 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
   real row_t[LANES];
   LANE_STORE(wmi.w, row_t);
 #if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
-  const lane cap_i = cap_divisor_wall(contacts_last, ii);  // this lane's part of the divisor
+  const lane cap_i = cap_count(contacts_last, ii);  // the bead's part of the divisor
 #endif
 
   const size_t plane = (size_t)stride;  // records per history plane
@@ -149,7 +149,7 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
 #if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
     // the constant torque's cap is shared among the contacts (see above)
     const lane istar = inertia_i * inertia_j / (inertia_i + inertia_j) /
-                       fmax(cap_i, cap_divisor_wall(contacts_last, jj));
+                       fmax(cap_i, cap_count(contacts_last, jj));
 #else
     const lane istar = inertia_i * inertia_j / (inertia_i + inertia_j);
 #endif

@@ -211,7 +211,7 @@ INLINE void wall_contacts(int base, __global const real* restrict pos POS_LO_SAR
   lane count = f0.w, e = t0.w;
 #if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
   // the constant rolling torque's cap is shared among the contacts (forces.cl)
-  const lane roll_inertia = inertia / cap_divisor_wall(contacts_last, ii);
+  const lane roll_inertia = inertia / cap_count(contacts_last, ii);
 #else
   const lane roll_inertia = inertia;
 #endif
