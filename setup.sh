@@ -33,11 +33,11 @@ PACKAGES=(
   xvfb
   xauth
   clinfo
-  # app/lab_window.cpp includes <GLFW/glfw3native.h> for X11, which includes
+  # app/lab/lab_window.cpp includes <GLFW/glfw3native.h> for X11, which includes
   # X11/Xlib.h and X11/extensions/Xrandr.h; libglfw3-dev only recommends these.
   libx11-dev
   libxrandr-dev
-  # Boost.Math, header-only: Student's t quantiles (app/study_stats.cpp)
+  # Boost.Math, header-only: Student's t quantiles (app/experiment/study_stats.cpp)
   libboost-math-dev
 )
 

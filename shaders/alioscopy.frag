@@ -1,5 +1,5 @@
 // alioscopy.frag — composes the eight views (a 2D texture array) into the
-// output, 1:1 (see render/alioscopy.h):
+// output, 1:1 (see render/gl/alioscopy.h):
 //   u_mode 0  interleaved for the lenticular screen:
 //             v = (Y - (3X + c) + phase) mod 8, or with flip_slant
 //             (-Y - (3X + c) + phase) mod 8; view = v or 7 - v (reversed);

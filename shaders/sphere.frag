@@ -1,6 +1,6 @@
 // sphere.frag — ray-sphere intersection per fragment: exact outline, exact
 // depth (gl_FragDepth from the hit point), per-pixel normal for lighting.
-#ifdef GL_ARB_conservative_depth  // enabled in the prelude (render/shader.cpp)
+#ifdef GL_ARB_conservative_depth  // enabled in the prelude (render/gl/shader.cpp)
 layout(depth_greater) out float gl_FragDepth;
 #endif
 in vec3 v_quad;

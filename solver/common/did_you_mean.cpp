@@ -1,4 +1,4 @@
-#include "did_you_mean.h"
+#include "solver/common/did_you_mean.h"
 
 #include <algorithm>
 

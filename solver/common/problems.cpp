@@ -1,4 +1,4 @@
-#include "problems.h"
+#include "solver/common/problems.h"
 
 namespace simsols {
 

@@ -41,11 +41,11 @@ command -v dpkg-query >/dev/null || { echo "check_packages: SKIP, no dpkg here (
 MA=$(dpkg-architecture -qDEB_HOST_MULTIARCH 2>/dev/null || gcc -print-multiarch)
 RUNTIME=(
   "/etc/OpenCL/vendors/pocl.icd|the OpenCL loader finds PoCL through it"
-  "lib:libOSMesa.so.8|render/gl_context.cpp dlopens OSMesa"
+  "lib:libOSMesa.so.8|render/gl/gl_context.cpp dlopens OSMesa"
   "/usr/share/glvnd/egl_vendor.d/50_mesa.json|libglvnd's EGL finds Mesa through it"
   "lib:libEGL_mesa.so.0|Mesa's EGL (surfaceless)"
   "/usr/lib/$MA/dri/swrast_dri.so|Mesa's llvmpipe driver"
-  "exe:xvfb-run|tests/test_lab.cpp runs the lab under it"
+  "exe:xvfb-run|tests/app/lab/test_lab.cpp runs the lab under it"
   "exe:Xvfb|xvfb-run starts it"
   "exe:xauth|xvfb-run calls it"
 )

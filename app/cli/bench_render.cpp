@@ -1,0 +1,132 @@
+// simsols bench --render: for each size, the jammed cubic lattice of the
+// solver benchmark (6 contacts per bead, so the force chains are real) is
+// stepped once, then timed:
+//   pack      beads (positions + field) from the solver's buffers to the GL
+//             buffers (kernels + the shared or host-copy path)
+//   contacts  the same for the force-chain segments
+//   opaque / transparent / chains   one frame at W x H, draw + glFinish
+// With --stereo: the eight views of the Alioscopy rig (each at half the
+// 1920 x 1080 panel, opaque and transparent) plus the interleaving pass.
+// Medians over `frames` repetitions, in milliseconds. llvmpipe renders on
+// the CPU with all cores; a GPU driver reports its own figures.
+#include "app/cli/bench_render.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+#include "render/gl/alioscopy.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/renderer.h"
+#include "render/view/sim_view.h"
+#include "solver/core/simulation.h"
+
+namespace simsols {
+
+namespace {
+
+double median_ms(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2] * 1e3;
+}
+
+template <typename F>
+double time_median(int frames, F f) {
+  std::vector<double> t;
+  for (int k = 0; k < frames; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  return median_ms(t);
+}
+
+}  // namespace
+
+int bench_render(const RenderBenchOptions& opt) {
+  auto backend = render::parse_gl_backend(opt.gl);
+  if (!backend) throw std::invalid_argument("--gl must be auto, egl or osmesa");
+  auto ctx = render::create_headless_context(*backend);
+  auto device = Device::open(render::cl_share_properties(ctx->share_handles()));
+  const render::Gl& gl = ctx->gl();
+  render::Renderer renderer(gl);
+  renderer.resize(opt.width, opt.height);
+  std::printf("GL: %s\nOpenCL: %s\nframe %dx%d, median of %d\n", ctx->description().c_str(),
+              device->description().c_str(), opt.width, opt.height, opt.frames);
+  render::DisplayProfile profile;
+  std::unique_ptr<render::AlioscopyOutput> alioscopy;
+  if (opt.stereo) {
+    alioscopy = std::make_unique<render::AlioscopyOutput>(gl, profile);
+    std::printf("Alioscopy: %d views of %dx%d, interleaved at %dx%d\n", profile.views,
+                profile.view_width(), profile.view_height(), profile.width, profile.height);
+    std::printf("%10s %16s %14s %18s %14s\n", "beads", "8 views opaque", "interleave",
+                "8 views transp.", "total opaque");
+  } else {
+    std::printf("%10s %10s %12s %10s %12s %10s %9s  %s\n", "beads", "contacts", "pack (ms)",
+                "chains(ms)", "opaque (ms)", "transp(ms)", "chains", "buffers");
+  }
+  for (int n : opt.sizes) {
+    Simulation sim(device, bench_scene(n, Precision::Float, false));
+    sim.advance(2);
+    render::SimulationView view(gl, sim);
+    render::Camera cam;
+    cam.set_preset(render::ViewPreset::ThreeQuarter);
+    cam.fit(view.lo(), view.hi(), double(opt.width) / opt.height);
+    ViewPacker::Range range;
+    ViewPacker::ContactStats stats;
+    const double pack = time_median(opt.frames, [&] {
+      range = view.update(ColorField::Contacts, false).range;
+      gl.Finish();
+    });
+    const double contacts = time_median(opt.frames, [&] {
+      stats = view.update(ColorField::Contacts, true).contacts;
+      gl.Finish();
+    });
+    render::ViewSettings s;
+    s.bead_map = render::colormap_for(ColorField::Contacts);
+    s.value_min = range.min;
+    s.value_max = range.max;
+    const render::FrameGeometry g = view.geometry();
+    if (opt.stereo) {
+      render::StereoRig rig;
+      double views[2];
+      for (int m = 0; m < 2; ++m) {
+        s.mode = m == 0 ? render::ViewMode::Opaque : render::ViewMode::Transparent;
+        alioscopy->render_views(renderer, rig, cam, g, s);  // warm-up
+        gl.Finish();
+        views[m] = time_median(opt.frames, [&] {
+          alioscopy->render_views(renderer, rig, cam, g, s);
+          gl.Finish();
+        });
+      }
+      const double inter = time_median(opt.frames, [&] {
+        alioscopy->compose(render::AlioscopyOutput::Mode::Interleaved);
+        gl.Finish();
+      });
+      std::printf("%10d %16.2f %14.2f %18.2f %14.2f\n", n, views[0], inter, views[1],
+                  views[0] + inter);
+      std::fflush(stdout);
+      renderer.resize(opt.width, opt.height);
+      continue;
+    }
+    double ms[3];
+    int k = 0;
+    for (render::ViewMode m :
+         {render::ViewMode::Opaque, render::ViewMode::Transparent, render::ViewMode::Chains}) {
+      s.mode = m;
+      renderer.draw(cam, g, s);  // warm-up (shader variants, first upload)
+      gl.Finish();
+      ms[k++] = time_median(opt.frames, [&] {
+        renderer.draw(cam, g, s);
+        gl.Finish();
+      });
+    }
+    std::printf("%10d %10zu %12.2f %10.2f %12.2f %10.2f %9.2f  %s\n", n, stats.total, pack,
+                contacts, ms[0], ms[1], ms[2], view.bridge().path().c_str());
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
+}  // namespace simsols

@@ -1,0 +1,378 @@
+// simsols run: a headless experiment from a scene file, or its resumption.
+//
+// Order matters for "nothing half-written": the scene is loaded and
+// validated and the kernels are built before the output folder is touched.
+// Outputs in DIR: scene.toml (the file as given), scene.resolved.toml (the
+// exact scene used, explicit particles), series.csv, particles_<step>.csv/.vtk,
+// checkpoint.bin (latest; `--resume DIR` continues from it bit for bit).
+// When a step runs away (guard.h) the run stops there: fault.txt says at
+// which step and which particle, fault_checkpoint.bin holds the state just
+// before, and the exit status is 4.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+#include "solver/io/checkpoint.h"
+#include "app/cli/commands.h"
+#include "solver/scene/contact_model.h"
+#include "solver/common/errors.h"
+#include "render/view/frames.h"
+#include "app/cli/interrupt.h"
+#include "solver/io/output.h"
+#include "app/experiment/progress.h"
+#include "app/experiment/run_cost.h"
+#include "solver/io/scene_toml.h"
+#include "app/experiment/shear_run.h"
+#include "solver/core/simulation.h"
+#include "solver/core/slots.h"
+
+namespace simsols {
+namespace {
+
+struct RunOptions {
+  std::string scene_path;
+  std::string out_dir;
+  bool resume = false;
+  std::string precision;
+  double duration = 0;
+  long long stop_after = 0;  // stop (with a checkpoint) after this many steps of this invocation
+  bool quiet = false;
+  bool explain = false;       // print the compiled effect slots and exit
+  std::string frames_dir;     // --frames: PNG frames every `frames_every` steps
+  long long frames_every = 0;
+  FrameFlags frame;
+};
+
+// `run --frames DIR --every N`: one PNG every N steps, named by step. For a
+// shear test the displacement field counts from the start of shearing.
+class FrameSeries {
+ public:
+  FrameSeries(const RunOptions& opt)
+      : flags_(opt.frame), dir_(opt.frames_dir), every_(opt.frames_every),
+        exporter_(FrameOptions::resolve(opt.frame)) {}
+  void after_steps(Simulation& sim, bool shearing) {
+    if (!attached_) {
+      exporter_.attach(sim, flags_);
+      std::filesystem::create_directories(dir_);
+      std::fprintf(stderr, "[frames] every %lld steps into %s; %s\n", every_, dir_.c_str(),
+                   exporter_.describe().c_str());
+      attached_ = true;
+      next_ = sim.steps();  // a first frame now
+    }
+    if (shearing && !shearing_) exporter_.set_reference();
+    shearing_ = shearing;
+    if (sim.steps() < next_) return;
+    char name[64];
+    std::snprintf(name, sizeof name, "frame_%09lld.png", static_cast<long long>(sim.steps()));
+    exporter_.write((std::filesystem::path(dir_) / name).string());
+    next_ = (sim.steps() / every_ + 1) * every_;
+  }
+  long long every() const { return every_; }
+
+ private:
+  FrameFlags flags_;
+  std::string dir_;
+  long long every_;
+  FrameExporter exporter_;
+  bool attached_ = false, shearing_ = false;
+  long long next_ = 0;
+};
+
+std::int64_t every(double interval, double dt, std::int64_t fallback) {
+  if (interval <= 0) return fallback;
+  return std::max<std::int64_t>(1, std::llround(interval / dt));
+}
+
+std::string step_name(const char* stem, std::int64_t step, const char* ext) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%s_%09lld.%s", stem, static_cast<long long>(step), ext);
+  return buf;
+}
+
+void dump(Simulation& sim, const std::filesystem::path& dir) {
+  const ParticleSnapshot snap = sim.snapshot();
+  const Outputs& o = sim.scene().outputs;
+  if (o.dump_csv) write_particles_csv(dir / step_name("particles", sim.steps(), "csv"), snap);
+  if (o.dump_vtk) write_particles_vtk(dir / step_name("particles", sim.steps(), "vtk"), snap, sim.time());
+}
+
+void print_summary(const ShearRunResult& r, const std::string& dir) {
+  const ShearSummary& s = r.summary;
+  const char* how = r.finished ? "finished" : r.interrupted ? "interrupted" : "stopped";
+  std::printf("shear test %s: sigma = %.0f kPa, d = %.4g mm, %d beads, %lld steps in %.0f s\n", how,
+              s.normal_stress_target * 1e-3, s.bead_diameter * 1e3, r.particles, r.steps,
+              s.wall_seconds);
+  if (r.rows.empty()) {
+    std::printf("  nothing measured yet: stopped before shearing began (step %lld)\n", r.steps);
+  } else {
+    std::printf(
+        "  peak     tau/sigma = %.3f  phi_peak     = %.2f deg  (tau = %.2f kPa at %.2f mm; the first "
+        "peak)\n"
+        "  residual tau/sigma = %.3f  phi_residual = %.2f deg  (tau = %.2f kPa, mean over the last "
+        "20 %%)\n",
+        s.peak_ratio, s.peak_angle, s.peak_tau * 1e-3, s.peak_displacement * 1e3, s.residual_ratio,
+        s.residual_angle, s.residual_tau * 1e-3);
+    if (s.max_ratio > s.peak_ratio)
+      std::printf("  largest  tau/sigma = %.3f  (phi = %.2f deg at %.2f mm, after the peak)\n",
+                  s.max_ratio, s.max_angle, s.max_displacement * 1e3);
+    std::printf("  max dilatancy angle %.2f deg; inertial number <= %.2g; beads outside %d\n"
+                "  sigma band %+.2f%% / %+.2f%% (RMS %.2f%%)%s; tau/sigma at rest %.3f\n",
+                s.max_dilatancy_angle, s.max_inertial_number, s.max_outside,
+                100 * s.sigma_band_lo, 100 * s.sigma_band_hi, 100 * s.sigma_rms,
+                s.valid ? "" : " INVALID: the load was not held within +-10 %",
+                s.start_ratio);
+    if (!r.finished)
+      std::printf("  (so far: %zu of the test's rows, at %.2f mm)\n", r.rows.size(),
+                  r.rows.back().displacement * 1e3);
+  }
+  std::printf("  results in %s\n", dir.c_str());
+  if (!r.finished) std::printf("  %s\n", resume_hint(dir).c_str());
+}
+
+// --precision overrides numerics.precision.
+void apply_precision(const RunOptions& opt, Scene& scene) {
+  if (opt.precision.empty()) return;
+  if (opt.precision != "float" && opt.precision != "double")
+    throw SceneError("bad_enum", "command line", 0, "--precision",
+                     "'" + opt.precision + "' is not one of: float, double");
+  scene.numerics.precision = opt.precision == "float" ? Precision::Float : Precision::Double;
+}
+
+// `run SCENE --explain`: the slots the scene compiles, no run, no output folder.
+int explain(const RunOptions& opt) {
+  if (opt.scene_path.empty())
+    throw SceneError("missing_field", "", 0, "SCENE", "--explain needs a scene file");
+  Scene scene = load_scene(opt.scene_path);
+  apply_precision(opt, scene);
+  const KernelConfig config = make_kernel_config(scene, *default_device());
+  std::printf("%s", explain_effects(scene, config).c_str());
+  return 0;
+}
+
+struct Cadence {
+  std::int64_t total = 0, series = 1, dump = 0, checkpoint = 0;
+};
+
+Cadence cadence(const Simulation& sim, const RunOptions& opt) {
+  const Scene& scene = sim.scene();
+  const double dt = sim.dt();
+  // --duration also extends (or shortens) a resumed run
+  const double duration = opt.duration > 0 ? opt.duration : scene.numerics.duration;
+  Cadence c;
+  c.total = static_cast<std::int64_t>(std::ceil(duration / dt - 1e-9));
+  c.series = every(scene.outputs.series_interval, dt, std::max<std::int64_t>(1, c.total / 1000));
+  c.dump = every(scene.outputs.dump_interval, dt, 0);
+  c.checkpoint = every(scene.outputs.checkpoint_interval, dt, 0);
+  return c;
+}
+
+void print_run_header(Simulation& sim, const Cadence& c, bool resumed) {
+  const Scene& scene = sim.scene();
+  std::fprintf(stderr,
+               "[run] %s: %d particles, %d walls, %s on %s\n"
+               "[run] dt = %.4g s (%.3g x Rayleigh %.4g s), %lld steps, kernel build %.2f s\n",
+               scene.name.c_str(), sim.model().particles(), sim.model().walls(),
+               sim.model().config().double_precision ? "double" : "float",
+               sim.model().device().description().c_str(), sim.dt(),
+               sim.dt() / sim.model().rayleigh_dt(), sim.model().rayleigh_dt(),
+               static_cast<long long>(c.total), sim.model().program().build_seconds());
+  if (resumed)
+    std::fprintf(stderr, "[run] resumed at step %lld, t = %.6g s\n",
+                 static_cast<long long>(sim.steps()), sim.time());
+  print_cost("run", run_cost(sim, double(std::max<std::int64_t>(0, c.total - sim.steps()))));
+}
+
+// A scene without a loading programme: steps to numerics.duration, with the
+// time series, dumps and checkpoints its [outputs] ask for.
+int run_plain(Simulation& sim, const RunOptions& opt, FrameSeries* frames,
+              const InterruptScope& interrupt) {
+  const std::filesystem::path dir = opt.out_dir;
+  const Cadence c = cadence(sim, opt);
+  print_run_header(sim, c, opt.resume);
+  std::vector<std::string> wall_names;
+  for (const Wall& w : sim.scene().walls) wall_names.push_back(w.name);
+  TimeSeries series((dir / "series.csv").string(), wall_names, opt.resume ? sim.steps() : -1);
+  auto record = [&] {
+    series.append(sim.time(), sim.steps(), sim.observe(), sim.wall_reactions(),
+                  wall_points(sim.model(), sim.state()));
+  };
+  const auto checkpoint = [&] {
+    series.flush();
+    save_checkpoint(sim, (dir / "checkpoint.bin").string());
+  };
+  if (!opt.resume) {
+    record();
+    if (c.dump > 0) dump(sim, dir);
+  }
+  if (frames) frames->after_steps(sim, false);
+  Progress progress("run", c.total, sim.dt(), sim.model().particles(), opt.quiet);
+  const std::int64_t start = sim.steps();
+  bool stopped = false;
+  // A runaway is noticed at the guard's next look (a list check, its next
+  // copy, or any reading below) and leaves the simulation at the step before.
+  try {
+    while (sim.steps() < c.total && !(stopped = interrupt.requested())) {
+      sim.advance(1);
+      const std::int64_t s = sim.steps();
+      if (s % c.series == 0 || s == c.total) record();
+      if (c.dump > 0 && s % c.dump == 0) dump(sim, dir);
+      if (c.checkpoint > 0 && s % c.checkpoint == 0) checkpoint();
+      if (frames) frames->after_steps(sim, false);
+      progress.update(s);
+      if (opt.stop_after > 0 && s - start >= opt.stop_after && s < c.total) {
+        stopped = true;
+        break;
+      }
+    }
+    sim.check();
+  } catch (const RunawayError& e) {
+    progress.finish(sim.steps());
+    series.flush();
+    save_fault(sim, dir, e);
+    throw;
+  }
+  progress.finish(sim.steps());
+  checkpoint();
+  if (!stopped && (c.dump == 0 || sim.steps() % c.dump != 0)) dump(sim, dir);
+  if (sim.state().late_builds > 0)
+    std::fprintf(stderr,
+                 "warning: %lld neighbour-list checks found a particle beyond skin/2 (lists may "
+                 "have missed contacts); raise numerics.skin or lower the time step\n",
+                 static_cast<long long>(sim.state().late_builds));
+  char hash[32];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sim.hash()));
+  const bool interrupted = interrupt.requested() && sim.steps() < c.total;
+  std::printf("%s at step %lld, t = %.6g s; state hash %s; results in %s\n",
+              interrupted ? "interrupted" : stopped ? "stopped" : "finished",
+              static_cast<long long>(sim.steps()), sim.time(), hash, dir.string().c_str());
+  if (stopped) std::printf("  %s\n", resume_hint(dir.string()).c_str());
+  return interrupted ? interrupt.exit_status() : 0;
+}
+
+void check_flags(const RunOptions& opt) {
+  if (opt.out_dir.empty())
+    throw SceneError("missing_field", "command line", 0, "--out",
+                     "--out DIR is required (the folder for the results)");
+  if (!opt.frames_dir.empty() && opt.frames_every <= 0)
+    throw SceneError("missing_field", "command line", 0, "--every",
+                     "--frames needs --every N (steps between frames, > 0)");
+  if (opt.frames_dir.empty() && opt.frames_every > 0)
+    throw SceneError("missing_field", "command line", 0, "--frames",
+                     "--every needs --frames DIR (the folder for the PNG frames)");
+  if (opt.duration != 0 && !(opt.duration > 0 && std::isfinite(opt.duration)))
+    throw SceneError("out_of_range", "command line", 0, "--duration", "must be a finite time > 0 s");
+}
+
+// The scene of a new run, with the command line's overrides, validated.
+Scene load_run_scene(const RunOptions& opt) {
+  if (opt.scene_path.empty())
+    throw SceneError("missing_field", "", 0, "SCENE", "a scene file is required (or --resume)");
+  Scene scene = load_scene(opt.scene_path);
+  apply_precision(opt, scene);
+  if (opt.duration != 0) scene.numerics.duration = opt.duration;
+  validate_scene(scene, scene.source_path);
+  FrameOptions::resolve(opt.frame, &scene);  // a bad [view] is refused even without --frames
+  if (scene.shear_box && opt.duration != 0)
+    throw SceneError("conflicting_keys", "command line", 0, "--duration",
+                     "a shear test's loading program sets its duration "
+                     "(shear_box.shear_displacement)");
+  return scene;
+}
+
+// --resume: the checkpoint in DIR, verified, with the driver state it carries.
+std::unique_ptr<Simulation> load_resume(const std::filesystem::path& dir, std::string* extra) {
+  const auto ck = dir / "checkpoint.bin";
+  if (!std::filesystem::exists(ck)) {
+    std::string hint = "no checkpoint to resume from. A shear test writes one every minute of wall "
+                       "time, a plain run at output.checkpoint_interval, both at the end, at "
+                       "--stop-after and when stopped with Ctrl-C or kill";
+    if (std::filesystem::exists(dir / "scene.toml"))
+      hint += "; this run stopped before its first: start it again with 'simsols run " +
+              (dir / "scene.toml").string() + " --out " + dir.string() + "'";
+    throw SceneError("io", ck.string(), 0, "--resume", hint);
+  }
+  return load_checkpoint(default_device(), ck.string(), extra);
+}
+
+ShearRunOptions shear_options(const RunOptions& opt, FrameSeries* frames,
+                              const InterruptScope& interrupt) {
+  ShearRunOptions shear;
+  shear.out_dir = opt.out_dir;
+  shear.quiet = opt.quiet;
+  shear.stop_after = opt.stop_after;
+  shear.label = "shear";
+  shear.stop_requested = interrupt.stop_function();
+  if (frames) {
+    shear.chunk_steps = std::min(2000LL, frames->every());
+    shear.after_chunk = [frames](Simulation& s, bool shearing) { frames->after_steps(s, shearing); };
+  }
+  return shear;
+}
+
+int finish_shear(const ShearRunResult& r, const RunOptions& opt, const InterruptScope& interrupt) {
+  print_summary(r, opt.out_dir);
+  return r.interrupted ? interrupt.exit_status() : 0;
+}
+
+int run(const RunOptions& opt) {
+  if (opt.explain) return explain(opt);
+  check_flags(opt);
+  const std::filesystem::path dir = opt.out_dir;
+  InterruptScope interrupt;
+  std::unique_ptr<Simulation> sim;
+  std::string extra;
+  std::optional<Scene> scene;
+  if (opt.resume) {
+    if (shear_finished(opt.out_dir)) {
+      std::printf("the shear test in %s finished already (summary.txt): nothing to resume\n",
+                  opt.out_dir.c_str());
+      return 0;
+    }
+    sim = load_resume(dir, &extra);
+  } else {
+    scene = load_run_scene(opt);
+  }
+  // Before any simulation: the exporter picks the OpenCL device (sharing
+  // its GL context where possible).
+  std::unique_ptr<FrameSeries> frames;
+  if (!opt.frames_dir.empty()) frames = std::make_unique<FrameSeries>(opt);
+  const ShearRunOptions shear = shear_options(opt, frames.get(), interrupt);
+  if (sim && sim->scene().shear_box)
+    return finish_shear(resume_shear(std::move(sim), extra, shear), opt, interrupt);
+  if (scene && scene->shear_box) return finish_shear(run_shear(*scene, shear), opt, interrupt);
+  if (!sim) {
+    sim = std::make_unique<Simulation>(default_device(), *scene);
+    std::filesystem::create_directories(dir);
+    write_file_atomic((dir / "scene.toml").string(), scene->source_text);
+    write_file_atomic((dir / "scene.resolved.toml").string(), to_toml(*scene));
+  }
+  return run_plain(*sim, opt, frames.get(), interrupt);
+}
+
+}  // namespace
+
+CommandRunner add_run_command(CLI::App& app) {
+  auto opt = std::make_shared<RunOptions>();
+  CLI::App* cmd = app.add_subcommand("run", "Run a scene headless and write its results");
+  cmd->add_option("scene", opt->scene_path, "Scene file (TOML), see docs/scene-format.md");
+  cmd->add_option("--out,-o", opt->out_dir, "Output folder (required unless --explain)");
+  cmd->add_flag("--explain", opt->explain,
+                "Print the effect slots compiled in, the -D build options and the per-contact "
+                "history size, and exit without running");
+  cmd->add_flag("--resume", opt->resume, "Continue the run in --out from its last checkpoint");
+  cmd->add_option("--precision", opt->precision, "Override numerics.precision: float or double");
+  cmd->add_option("--duration", opt->duration, "Override numerics.duration (s, > 0)");
+  cmd->add_option("--stop-after", opt->stop_after,
+                  "Stop after this many steps (a checkpoint is written; resume with --resume)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--quiet,-q", opt->quiet, "No progress line");
+  cmd->add_option("--frames", opt->frames_dir, "Write PNG frames (offscreen) into this folder");
+  cmd->add_option("--every", opt->frames_every, "Steps between frames (with --frames)")
+      ->check(CLI::PositiveNumber);
+  add_frame_flags(cmd, opt->frame);
+  return [opt] { return run(*opt); };
+}
+
+}  // namespace simsols

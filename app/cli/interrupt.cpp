@@ -1,0 +1,48 @@
+#include "app/cli/interrupt.h"
+
+#include <unistd.h>
+
+#include <atomic>
+
+namespace simsols {
+namespace {
+
+// See interrupt.h: the one process-wide flag. Lock-free atomic, so that
+// both the signal handler and the study's worker threads may touch it.
+std::atomic<int> g_signal = 0;
+static_assert(std::atomic<int>::is_always_lock_free);
+
+void on_signal(int sig) {
+  if (g_signal != 0) {  // the second one: leave now
+    static const char msg[] = "\nsecond interrupt: exiting at once\n";
+    [[maybe_unused]] const ssize_t n = write(STDERR_FILENO, msg, sizeof msg - 1);
+    _exit(128 + sig);
+  }
+  g_signal = sig;
+  static const char msg[] =
+      "\ninterrupted: finishing the current step, then writing the checkpoint (interrupt again "
+      "to exit at once)\n";
+  [[maybe_unused]] const ssize_t n = write(STDERR_FILENO, msg, sizeof msg - 1);
+}
+
+}  // namespace
+
+InterruptScope::InterruptScope() {
+  g_signal = 0;
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESTART;
+  sigaction(SIGINT, &sa, &old_int_);
+  sigaction(SIGTERM, &sa, &old_term_);
+}
+
+InterruptScope::~InterruptScope() {
+  sigaction(SIGINT, &old_int_, nullptr);
+  sigaction(SIGTERM, &old_term_, nullptr);
+}
+
+bool InterruptScope::requested() const { return g_signal != 0; }
+int InterruptScope::signal() const { return g_signal; }
+
+}  // namespace simsols

@@ -1,0 +1,59 @@
+// simsols — the SimSols executable.
+//
+//   simsols run SCENE.toml --out DIR     headless run (time series, dumps, checkpoints)
+//   simsols run --resume DIR             continue a run from its last checkpoint
+//   simsols campaign --out DIR           the paper's 20 direct shear tests (resumable)
+//   simsols bench                        particle-steps per second and memory
+//   simsols snapshot SCENE|CKPT --out F  one offscreen frame (PNG)
+//   simsols lab [SCENE] [--script F]     the desktop lab (window)
+//   simsols study accuracy --out DIR     what accuracy costs in time
+//
+// Exit status: 0 success, 2 bad input, 3 device or I/O failure, 4 the run ran
+// away (NaN or a particle too fast; see solver/core/guard.h), 130 / 143 stopped by
+// SIGINT / SIGTERM with a checkpoint (app/cli/interrupt.h).
+#include <cstdio>
+#include <map>
+
+#include "app/cli/commands.h"
+#include "solver/common/errors.h"
+#include "solver/core/guard.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"SimSols — a 3D virtual laboratory for granular materials (DEM on OpenCL)"};
+  app.require_subcommand(1);
+  std::map<CLI::App*, simsols::CommandRunner> runners;
+  auto add = [&](simsols::CommandRunner (*f)(CLI::App&)) {
+    const size_t before = app.get_subcommands({}).size();
+    auto runner = f(app);
+    runners[app.get_subcommands({})[before]] = std::move(runner);
+  };
+  add(simsols::add_run_command);
+  add(simsols::add_bench_command);
+  add(simsols::add_campaign_command);
+  add(simsols::add_snapshot_command);
+  add(simsols::add_lab_command);
+  add(simsols::add_study_command);
+  add(simsols::add_plot_command);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+  for (auto& [sub, run] : runners) {
+    if (!sub->parsed()) continue;
+    try {
+      return run();
+    } catch (const simsols::SceneError& e) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      return 2;
+    } catch (const simsols::RunawayError& e) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      return 4;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      return 3;
+    }
+  }
+  return 2;
+}

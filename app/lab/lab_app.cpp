@@ -1,0 +1,260 @@
+#include "app/lab/lab_app.h"
+
+#define GLFW_INCLUDE_NONE  // GL comes from render/gl/gl_api.h
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "solver/common/errors.h"
+#include "app/lab/lab_script.h"
+#include "render/view/particle_bridge.h"
+#include "render/plot/png.h"
+#include "render/view/view_pack.h"
+
+namespace simsols {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+constexpr float kPanelWidth = 430;  // pixels at scale 1
+}  // namespace
+
+LabApp::LabApp(const LabOptions& options) : opt_(options) {
+  window_ = std::make_unique<LabWindow>(opt_.width, opt_.height, "SimSols — direct shear lab");
+  glfwSetWindowUserPointer(window_->handle(), this);
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the user's folder
+  ImGui::StyleColorsDark();
+  ImGui_ImplGlfw_InitForOpenGL(window_->handle(), true);
+  ImGui_ImplOpenGL3_Init("#version 330");
+  // The OpenCL device shares the window's GL context where it can.
+  device_ = Device::open(render::cl_share_properties(window_->share_handles()));
+  renderer_ = std::make_unique<render::Renderer>(window_->gl());
+  exp_ = std::make_unique<LabExperiment>(device_);
+  exp_->set_precision(Precision::Float);
+  std::string err = opt_.scene.empty() ? exp_->load_preset(6.35, 160) : exp_->load_scene_file(opt_.scene);
+  if (!err.empty()) {
+    message_ = err;
+    if (!opt_.scene.empty()) err = exp_->load_preset(6.35, 160);
+  }
+  if (exp_->scene().shear_box) sigma_kpa_ = float(exp_->scene().shear_box->normal_stress * 1e-3);
+  if (opt_.script.empty()) {
+    act(exp_->prepare());
+    return;
+  }
+  std::ifstream in(opt_.script);
+  if (!in) throw SceneError("io", opt_.script, 0, "--script", "cannot read the script");
+  script_ = std::make_unique<Script>();
+  script_->file = opt_.script;
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos) continue;
+    line = line.substr(first, line.find_last_not_of(" \t\r") - first + 1);
+    script_->lines.emplace_back(n, line);
+  }
+}
+
+LabApp::~LabApp() {
+  sim_view_.reset();
+  alioscopy_.reset();
+  renderer_.reset();
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+}
+
+void LabApp::act(const std::string& error) {
+  if (!error.empty()) message_ = error;
+}
+
+void LabApp::attach_view() {
+  if (!exp_->simulation() || exp_->generation() == generation_) return;
+  generation_ = exp_->generation();
+  sim_view_ = std::make_unique<render::SimulationView>(window_->gl(), *exp_->simulation());
+  fit_view();
+}
+
+void LabApp::fit_view() {
+  if (!sim_view_) return;
+  camera_.set_preset(preset_);
+  camera_.fit(sim_view_->lo(), sim_view_->hi(), double(view_w_) / std::max(1, view_h_));
+}
+
+void LabApp::poll_input() {
+  ImGuiIO& io = ImGui::GetIO();
+  GLFWwindow* w = window_->handle();
+  if (!io.WantCaptureKeyboard) {
+    // ImGui 1.86 (Debian 12) indexes keys by the platform's (GLFW's) codes
+    auto pressed = [&](int key) { return ImGui::IsKeyPressed(key, false); };
+    if (pressed(GLFW_KEY_SPACE)) exp_->paused() ? exp_->resume() : exp_->pause();
+    if (pressed(GLFW_KEY_S)) act(exp_->step());
+    if (pressed(GLFW_KEY_R)) act(exp_->reset());
+    if (pressed(GLFW_KEY_F)) fit_view();
+    if (pressed(GLFW_KEY_F11)) window_->toggle_fullscreen();
+    if (pressed(GLFW_KEY_H) || pressed(GLFW_KEY_F1)) help_ = !help_;
+    if (pressed(GLFW_KEY_ESCAPE)) help_ = false;
+  }
+  // Mouse in the viewport: left drag orbits, right drag pans, wheel zooms.
+  double mx = 0, my = 0;
+  glfwGetCursorPos(w, &mx, &my);
+  if (!io.WantCaptureMouse) {
+    for (int b : {0, 1})
+      if (ImGui::IsMouseClicked(b)) dragging_ = b;
+    if (io.MouseWheel != 0) camera_.zoom(std::pow(0.9, io.MouseWheel));
+  }
+  if (dragging_ >= 0 && !ImGui::IsMouseDown(dragging_)) dragging_ = -1;
+  if (dragging_ == 0) camera_.orbit(-(mx - last_x_) * 0.3, (my - last_y_) * 0.3);
+  if (dragging_ == 1) camera_.pan((mx - last_x_) / view_h_, -(my - last_y_) / view_h_);
+  last_x_ = mx;
+  last_y_ = my;
+}
+
+void LabApp::draw_view(int x, int y, int w, int h) {
+  const render::Gl& gl = window_->gl();
+  if (!sim_view_ || w < 1 || h < 1) return;
+  const bool chains = view == LabView::Chains || chains_overlay;
+  // contacts are packed every frame (0.5 ms for 5 000 beads): the status
+  // line counts them, the chains draw them when asked
+  const auto update = sim_view_->update(field, true);
+  contacts_ = update.contacts.total;
+  render::ViewSettings s;
+  s.mode = view == LabView::Opaque   ? render::ViewMode::Opaque
+           : view == LabView::Chains ? render::ViewMode::Chains
+                                     : render::ViewMode::Transparent;
+  s.show_chains = chains;
+  s.chain_threshold = threshold;
+  s.bead_map = render::colormap_for(field);
+  s.value_min = update.range.min;
+  s.value_max = update.range.max;
+  const bool stereo = view == LabView::Alioscopy || view == LabView::Grid || view == LabView::Single;
+  if (!stereo) {
+    // Adaptive resolution: llvmpipe is fill-bound, so the flat view renders
+    // at a scale that keeps the drawing near 20 ms (>= 30 frames per second
+    // with the solver's share), and is scaled up into the viewport.
+    const double target_ms = 20;
+    if (render_ms_ > 0)
+      render_scale_ = std::clamp(render_scale_ * std::sqrt(target_ms / render_ms_), 0.35, 1.0);
+    const int rw = std::max(1, int(w * render_scale_)), rh = std::max(1, int(h * render_scale_));
+    const auto r0 = Clock::now();
+    renderer_->resize(rw, rh);
+    renderer_->draw(camera_, sim_view_->geometry(), s);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, renderer_->framebuffer());
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    gl.BlitFramebuffer(0, 0, rw, rh, x, y, x + w, y + h, GL_COLOR_BUFFER_BIT,
+                       rw == w ? GL_NEAREST : GL_LINEAR);
+    gl.Finish();
+    render_ms_ = 0.7 * render_ms_ + 0.3 * ms_since(r0);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    return;
+  }
+  // Alioscopy: the interleaved image covers the whole window, pixel for
+  // pixel, with the window's screen position; grid and single view the
+  // viewport.
+  s.mode = view == LabView::Alioscopy ? s.mode : render::ViewMode::Transparent;
+  if (!alioscopy_) alioscopy_ = std::make_unique<render::AlioscopyOutput>(gl, render::DisplayProfile{});
+  int fw = 0, fh = 0;
+  glfwGetFramebufferSize(window_->handle(), &fw, &fh);
+  const int ow = view == LabView::Alioscopy ? fw : w, oh = view == LabView::Alioscopy ? fh : h;
+  alioscopy_->resize_output(ow, oh);
+  alioscopy_->render_views(*renderer_, render::StereoRig{}, camera_, sim_view_->geometry(), s);
+  int wx = 0, wy = 0;
+  window_->position(&wx, &wy);
+  alioscopy_->compose(view == LabView::Alioscopy ? render::AlioscopyOutput::Mode::Interleaved
+                      : view == LabView::Grid    ? render::AlioscopyOutput::Mode::Grid
+                                                 : render::AlioscopyOutput::Mode::Single,
+                      single_view, {wx, wy});
+  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, alioscopy_->framebuffer());
+  gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  const int dx = view == LabView::Alioscopy ? 0 : x, dy = view == LabView::Alioscopy ? 0 : y;
+  gl.BlitFramebuffer(0, 0, ow, oh, dx, dy, dx + ow, dy + oh, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void LabApp::save_screenshot(const std::string& path) {
+  int fw = 0, fh = 0;
+  glfwGetFramebufferSize(window_->handle(), &fw, &fh);
+  plot::Image img = render::read_framebuffer(window_->gl(), 0, fw, fh, GL_BACK);
+  for (std::size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 255;  // the window's alpha is not ours
+  plot::write_png(img, path);
+}
+
+void LabApp::save_frame(const std::string& path) {
+  if (view == LabView::Alioscopy && alioscopy_) {
+    plot::write_png(alioscopy_->read_pixels(), path);
+    return;
+  }
+  plot::write_png(renderer_->read_pixels(), path);
+}
+
+int LabApp::run() {
+  GLFWwindow* w = window_->handle();
+  auto last = Clock::now();
+  while (!quit_) {
+    glfwPollEvents();
+    if (glfwWindowShouldClose(w)) {
+      glfwSetWindowShouldClose(w, GLFW_FALSE);
+      const LabStage st = exp_->stage();
+      if (script_ || st == LabStage::Empty || st == LabStage::Prepared || st == LabStage::Done)
+        quit_ = true;
+      else
+        close_asked_ = true;  // ask whether to save a checkpoint first
+    }
+    act(exp_->poll());
+    attach_view();
+    if (script_) run_script();
+    // the solver gets what the frame budget leaves after drawing
+    const double budget = std::max(0.004, 1.0 / 30 - draw_ms_ * 1e-3 - 0.004);
+    exp_->advance(budget);
+    if (std::string f = exp_->take_fault(); !f.empty())
+      message_ = "stopped: " + f + " (paused at the step before; save a checkpoint to study it)";
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    poll_input();
+    const auto d0 = Clock::now();
+    int fw = 0, fh = 0;
+    glfwGetFramebufferSize(w, &fw, &fh);
+    const render::Gl& gl = window_->gl();
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl.Viewport(0, 0, fw, fh);
+    gl.ClearColor(0.086f, 0.094f, 0.11f, 1);
+    gl.Clear(GL_COLOR_BUFFER_BIT);
+    const int panel = view == LabView::Alioscopy ? 0 : int(kPanelWidth);
+    view_x_ = panel;
+    view_y_ = 0;
+    view_w_ = std::max(1, fw - panel);
+    view_h_ = std::max(1, fh);
+    draw_view(view_x_, view_y_, view_w_, view_h_);
+    if (record_ && sim_view_ && (frame_no_++ % std::max(1, record_every_)) == 0) {
+      char name[64];
+      std::snprintf(name, sizeof name, "/frames/frame_%09lld.png",
+                    static_cast<long long>(exp_->simulation()->steps()));
+      std::filesystem::create_directories(std::string(out_path_) + "/frames");
+      save_frame(out_path_ + std::string(name));
+    }
+    draw_panel(panel);
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (script_ && script_pending_screenshot()) take_script_screenshot();
+    glfwSwapBuffers(w);
+    draw_ms_ = ms_since(d0);
+    const double since = std::chrono::duration<double>(Clock::now() - last).count();
+    last = Clock::now();
+    fps_ = fps_ == 0 ? 1 / since : 0.9 * fps_ + 0.1 / since;
+  }
+  return exit_status_;
+}
+
+}  // namespace simsols

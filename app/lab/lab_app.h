@@ -1,0 +1,108 @@
+// LabApp: the desktop lab. One window (LabWindow), the Dear ImGui panel,
+// the renderer drawing the running experiment (LabExperiment) into the
+// viewport beside the panel, and an optional script that drives the same
+// actions as the panel (tests, demonstrations).
+//
+// Each frame, in order:
+//   poll          input, background builds, the script's next command
+//   advance       the solver runs for what is left of the frame budget
+//                 (1/30 s minus the last frame's drawing), so the window
+//                 stays responsive however slow a step is
+//   draw_view     the specimen: flat (opaque, transparent, chains) into the
+//                 viewport, or the Alioscopy output (interleaved full
+//                 screen, 8-view grid, one view) written 1:1
+//   draw_panel    controls, live plots, status line, help overlay
+// Closing the window during a test asks whether to save a checkpoint.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "render/gl/alioscopy.h"
+#include "render/gl/camera.h"
+#include "app/lab/lab_experiment.h"
+#include "app/lab/lab_window.h"
+#include "render/gl/renderer.h"
+#include "render/view/sim_view.h"
+
+namespace simsols {
+
+struct LabOptions {
+  std::string scene;   // open this scene at start (else the 6.35 mm / 160 kPa preset)
+  std::string script;  // run these commands (see lab_script.cpp)
+  int width = 1400, height = 860;
+};
+
+enum class LabView { Opaque, Transparent, Chains, Alioscopy, Grid, Single };
+
+class LabApp {
+ public:
+  explicit LabApp(const LabOptions& options);
+  ~LabApp();
+  int run();  // the main loop; returns the exit status
+
+  // Actions shared by the panel, the keyboard and the script.
+  void act(const std::string& error);  // shows an action's error in the panel
+  LabExperiment& experiment() { return *exp_; }
+  void fit_view();
+  void save_screenshot(const std::string& path);
+  void save_frame(const std::string& path);  // the viewport only (or the Alioscopy image)
+  std::string state_text();                  // key = value lines (scripts, tests)
+
+  // view settings (public: the script sets them too)
+  LabView view = LabView::Transparent;
+  int single_view = 3;
+  ColorField field = ColorField::Layer;
+  float threshold = 1.0f;
+  bool chains_overlay = false;
+
+ private:
+  struct Script;
+  void poll_input();
+  void run_script();
+  bool script_pending_screenshot() const;
+  void take_script_screenshot();
+  void attach_view();
+  void draw_view(int x, int y, int w, int h);
+  void draw_panel(int panel_width);
+  void draw_controls();
+  bool draw_effect_slots();  // lab_effects.cpp; true when a slot changed
+  void draw_plots();
+  void draw_status(int panel_width);
+  void draw_help();
+  void draw_close_dialog();
+
+  LabOptions opt_;
+  std::unique_ptr<LabWindow> window_;
+  std::shared_ptr<Device> device_;
+  std::unique_ptr<LabExperiment> exp_;
+  std::unique_ptr<render::Renderer> renderer_;
+  std::unique_ptr<render::AlioscopyOutput> alioscopy_;
+  std::unique_ptr<render::SimulationView> sim_view_;
+  render::Camera camera_;
+  render::ViewPreset preset_ = render::ViewPreset::ThreeQuarter;
+  int generation_ = -1;
+  std::string message_;  // last error or note, shown in the panel
+  bool help_ = false, close_asked_ = false, quit_ = false;
+  double draw_ms_ = 0, fps_ = 0;
+  std::size_t contacts_ = 0;  // touching contacts drawn last frame
+  double render_ms_ = 0, render_scale_ = 1;  // flat view: adaptive resolution
+  std::unique_ptr<Script> script_;
+  int exit_status_ = 0;
+  // panel state
+  int preset_size_ = 4, preset_stress_ = 1;
+  float sigma_kpa_ = 160, speed_mm_s_ = 0;
+  char scene_path_[512] = "";
+  char out_path_[512] = "results/lab";
+  bool record_ = false;
+  int record_every_ = 5, frame_no_ = 0;
+  int dragging_ = -1;
+  double last_x_ = 0, last_y_ = 0;
+  int view_x_ = 0, view_y_ = 0, view_w_ = 1, view_h_ = 1;
+};
+
+int run_lab(const LabOptions& options);
+
+}  // namespace simsols

@@ -1,0 +1,315 @@
+// The lab's control panel (Dear ImGui): experiment, loading, view, output,
+// live plots, the status line, the help overlay and the close dialog. Every
+// button calls the same LabExperiment action as the keyboard and scripts.
+#define GLFW_INCLUDE_NONE  // GL comes from render/gl/gl_api.h
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "app/experiment/accuracy_table.h"
+#include "app/lab/lab_app.h"
+#include "app/lab/lab_plots.h"
+#include "app/experiment/paper_tests.h"
+#include "solver/core/slots.h"
+
+namespace simsols {
+
+namespace {
+
+const char* kViews[] = {"flat opaque", "flat transparent", "force chains",
+                        "Alioscopy (full screen)", "eight-view grid", "single view"};
+const char* kFields[] = {"size", "layer", "speed", "displacement", "contacts", "rotation"};
+const char* kPresets[] = {"front", "side", "top", "three-quarter"};
+
+
+}  // namespace
+
+void LabApp::draw_panel(int panel_width) {
+  int fw = 0, fh = 0;
+  glfwGetFramebufferSize(window_->handle(), &fw, &fh);
+  if (panel_width > 0) {
+    ImGui::SetNextWindowPos({0, 0});
+    ImGui::SetNextWindowSize({float(panel_width), float(fh)});
+    ImGui::Begin("SimSols lab", nullptr,
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    draw_controls();
+    draw_plots();
+    ImGui::End();
+  } else {
+    // Alioscopy full screen: a small overlay to get back
+    ImGui::SetNextWindowPos({10, 10});
+    ImGui::Begin("##back", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoTitleBar);
+    if (ImGui::Button("Back to the flat view")) view = LabView::Transparent;
+    ImGui::End();
+  }
+  draw_status(panel_width);
+  if (help_) draw_help();
+  if (close_asked_) draw_close_dialog();
+}
+
+void LabApp::draw_controls() {
+  const LabStage stage = exp_->stage();
+  ImGui::TextColored({0.55f, 0.8f, 1, 1}, "%s", exp_->scene_label().c_str());
+  ImGui::Text("stage: %s%s", to_string(stage),
+              exp_->paused() && (stage == LabStage::Loading || stage == LabStage::Shearing) ? " (paused)" : "");
+  if (!message_.empty()) {
+    ImGui::PushTextWrapPos(0);
+    ImGui::TextColored({1, 0.45f, 0.35f, 1}, "%s", message_.c_str());
+    ImGui::PopTextWrapPos();
+    if (ImGui::SmallButton("dismiss")) message_.clear();
+  }
+
+  if (ImGui::CollapsingHeader("Specimen", ImGuiTreeNodeFlags_DefaultOpen)) {
+    static const char* sizes[] = {"2.38 mm (8 layers)", "3.18 mm (6)", "3.97 mm (5)", "4.76 mm (4)",
+                                  "6.35 mm (4)"};
+    static const char* stresses[] = {"50 kPa", "160 kPa", "280 kPa", "400 kPa"};
+    ImGui::SetNextItemWidth(150);
+    ImGui::Combo("##size", &preset_size_, sizes, 5);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(100);
+    ImGui::Combo("##stress", &preset_stress_, stresses, 4);
+    ImGui::SameLine();
+    if (ImGui::Button("Preset")) {
+      message_.clear();
+      const std::string err = exp_->load_preset(kTable1SizesMm[preset_size_], kPaperStressesKpa[preset_stress_]);
+      act(err);
+      if (err.empty()) {
+        sigma_kpa_ = float(kPaperStressesKpa[preset_stress_]);
+        act(exp_->prepare());
+      }
+    }
+    ImGui::SetNextItemWidth(300);
+    ImGui::InputText("##scene", scene_path_, sizeof scene_path_);
+    ImGui::SameLine();
+    if (ImGui::Button("Open")) {
+      message_.clear();
+      const std::string err = exp_->load_scene_file(scene_path_);
+      act(err);  // a failed load keeps the current experiment
+      if (err.empty()) act(exp_->prepare());
+    }
+    int precision = exp_->scene().numerics.precision == Precision::Float ? 0 : 1;
+    ImGui::Text("precision");
+    ImGui::SameLine();
+    bool changed = ImGui::RadioButton("float", &precision, 0);
+    ImGui::SameLine();
+    changed |= ImGui::RadioButton("double", &precision, 1);
+    if (changed) exp_->set_precision(precision == 0 ? Precision::Float : Precision::Double);
+    float dt_fraction = float(exp_->scene().numerics.dt_fraction);
+    ImGui::SetNextItemWidth(200);
+    if (ImGui::SliderFloat("time step (x Rayleigh)", &dt_fraction, 0.05f, 0.5f, "%.2f"))
+      exp_->set_dt_fraction(dt_fraction);
+    // what the accuracy study measured for these settings on the specimen
+    // most like this one (docs/accuracy.md)
+    const auto& box = exp_->scene().shear_box;
+    const StudySpecimen kind = box && box->specimen.method == ShearSpecimen::Method::Layers
+                                   ? StudySpecimen::Layered
+                                   : StudySpecimen::Poured;
+    if (const SettingSummary* a =
+            expected_accuracy(dt_fraction, exp_->scene().numerics.precision, kind)) {
+      ImGui::PushTextWrapPos(0);
+      const ImVec4 grey = ImGui::GetStyle().Colors[ImGuiCol_TextDisabled];
+      ImGui::TextColored(grey, "%s", expected_accuracy_text(*a).c_str());
+      ImGui::PopTextWrapPos();
+    }
+    if (draw_effect_slots()) {
+      message_ = "effects and precision apply when the specimen is prepared again (Reset): the "
+                 "kernels are rebuilt in the background";
+    }
+    ImGui::BeginDisabled(stage == LabStage::Building);
+    if (ImGui::Button("Prepare / Reset (R)")) act(exp_->reset());
+    ImGui::EndDisabled();
+  }
+
+  if (ImGui::CollapsingHeader("Loading and shear", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::BeginDisabled(stage != LabStage::Prepared);
+    if (ImGui::Button("Apply normal stress")) act(exp_->apply_normal_stress());
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::BeginDisabled(stage != LabStage::Loaded && stage != LabStage::Loading);
+    if (ImGui::Button("Start shear")) act(exp_->start_shear());
+    ImGui::EndDisabled();
+    if (ImGui::Button(exp_->paused() ? "Resume (space)" : "Pause (space)"))
+      exp_->paused() ? exp_->resume() : exp_->pause();
+    ImGui::SameLine();
+    if (ImGui::Button("Step (S)")) act(exp_->step());
+    ImGui::SetNextItemWidth(160);
+    if (ImGui::InputFloat("normal stress (kPa)", &sigma_kpa_, 10, 50, "%.0f",
+                          ImGuiInputTextFlags_EnterReturnsTrue))
+      act(exp_->set_normal_stress(double(sigma_kpa_) * 1e3));
+    if (ShearTest* t = exp_->test(); t && speed_mm_s_ == 0 && t->shear_speed() > 0)
+      speed_mm_s_ = float(t->shear_speed() * 1e3);
+    ImGui::SetNextItemWidth(160);
+    if (ImGui::InputFloat("shear speed (mm/s)", &speed_mm_s_, 0, 0, "%.4g",
+                          ImGuiInputTextFlags_EnterReturnsTrue))
+      act(exp_->set_shear_speed(double(speed_mm_s_) * 1e-3));
+  }
+
+  if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
+    int v = int(view);
+    ImGui::SetNextItemWidth(200);
+    if (ImGui::Combo("view", &v, kViews, 6)) view = LabView(v);
+    if (view == LabView::Single) {
+      ImGui::SetNextItemWidth(200);
+      ImGui::SliderInt("view index", &single_view, 0, 7);
+    }
+    int f = int(field);
+    ImGui::SetNextItemWidth(200);
+    if (ImGui::Combo("colour by", &f, kFields, 6)) field = ColorField(f);
+    ImGui::SetNextItemWidth(200);
+    ImGui::SliderFloat("chain threshold (F/F mean)", &threshold, 0, 4, "%.2f");
+    ImGui::Checkbox("force chains over the beads", &chains_overlay);
+    int p = int(preset_);
+    ImGui::SetNextItemWidth(200);
+    if (ImGui::Combo("camera", &p, kPresets, 4)) {
+      preset_ = render::ViewPreset(p);
+      fit_view();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Fit (F)")) fit_view();
+  }
+
+  if (ImGui::CollapsingHeader("Save")) {
+    ImGui::SetNextItemWidth(300);
+    ImGui::InputText("folder", out_path_, sizeof out_path_);
+    const std::string dir = out_path_;
+    auto stamp = [&](const char* stem, const char* ext) {
+      std::filesystem::create_directories(dir);
+      const long long step = exp_->simulation() ? exp_->simulation()->steps() : 0;
+      return dir + "/" + stem + "_" + std::to_string(step) + ext;
+    };
+    if (ImGui::Button("Frame (PNG)")) {
+      const std::string f = stamp(view == LabView::Alioscopy ? "alioscopy" : "frame", ".png");
+      save_frame(f);
+      message_ = "saved " + f;
+    }
+    ImGui::SameLine();
+    ImGui::Checkbox("record frames", &record_);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(80);
+    ImGui::InputInt("every", &record_every_);
+    if (ImGui::Button("Save checkpoint")) {
+      const std::string f = stamp("checkpoint", ".bin");
+      const std::string err = exp_->save_checkpoint(f);
+      message_ = err.empty() ? "saved " + f : err;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Load checkpoint")) {
+      const std::string err = exp_->load_checkpoint(scene_path_);
+      message_ = err.empty() ? std::string("loaded ") + scene_path_ : err;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Export CSV + plots")) {
+      const std::string err = exp_->export_results(dir);
+      message_ = err.empty() ? "exported into " + dir : err;
+    }
+    ImGui::TextDisabled("Load checkpoint reads the path in the scene field.");
+  }
+}
+
+void LabApp::draw_plots() {
+  ShearTest* t = exp_->test();
+  if (!t || !ImGui::CollapsingHeader("Live plots", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  LabPlot ratio{"tau/sigma", "horizontal displacement (mm)", "tau/sigma (-)", {}, {}, {}};
+  LabPlot tau{"shear stress", "horizontal displacement (mm)", "tau (kPa)", {}, {}, {}};
+  LabPlot dil{"dilation", "horizontal displacement (mm)", "vertical displacement (mm)", {}, {}, {}};
+  for (const ShearRow& r : t->rows()) {
+    ratio.x.push_back(r.displacement * 1e3);
+    ratio.y.push_back(r.sigma > 0 ? r.tau / r.sigma : 0);
+    tau.x.push_back(r.displacement * 1e3);
+    tau.y.push_back(r.tau * 1e-3);
+    dil.x.push_back(r.displacement * 1e3);
+    dil.y.push_back(r.dilation * 1e3);
+  }
+  // the peak as in the summaries: the first peak of tau/sigma (shear_analysis.h)
+  const FirstPeak first =
+      first_peak(t->rows(), t->normal_stress(), kPeakRecoveryDiameters * t->bead_diameter());
+  if (first.row >= 0) ratio.peak = tau.peak = std::size_t(first.row);
+  const float w = ImGui::GetContentRegionAvail().x;
+  const float h = std::max(120.0f, (ImGui::GetContentRegionAvail().y - 40) / 3);
+  draw_lab_plot("##ratio", ratio, {w, h});
+  draw_lab_plot("##tau", tau, {w, h});
+  draw_lab_plot("##dil", dil, {w, h});
+}
+
+void LabApp::draw_status(int panel_width) {
+  int fw = 0, fh = 0;
+  glfwGetFramebufferSize(window_->handle(), &fw, &fh);
+  ImGui::SetNextWindowPos({float(panel_width) + 8, float(fh) - 8}, 0, {0, 1});
+  ImGui::SetNextWindowBgAlpha(0.6f);
+  ImGui::Begin("##status", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                   ImGuiWindowFlags_NoInputs);
+  Simulation* sim = exp_->simulation();
+  if (sim) {
+    const ShearTest* t = exp_->test();
+    const double inertial = t && !t->rows().empty() ? t->rows().back().inertial_number : 0;
+    ImGui::Text("t = %.5f s   %.0f steps/s   %d beads   %zu contacts   I = %.2g   dt = %.3g s   %s",
+                sim->time(), exp_->steps_per_second(), sim->model().particles(), contacts_,
+                inertial, sim->dt(), sim->model().config().double_precision ? "double" : "float");
+    if (inertial > kQuasiStaticInertialNumber)
+      ImGui::TextColored({1.0f, 0.6f, 0.2f, 1.0f},
+                         "I = %.2g > %.0e: the shear is no longer quasi-static; lower the shear "
+                         "speed (the summary will say quasi_static = no)",
+                         inertial, kQuasiStaticInertialNumber);
+    std::string device = sim->model().device().name();
+    if (device.size() > 48) device = device.substr(0, 45) + "...";
+    ImGui::Text("%s   %s   %.0f fps (view at %.0f%%)   H: help", device.c_str(),
+                sim_view_ ? (sim_view_->bridge().shared() ? "buffers shared (CL-GL)" : "buffers copied")
+                          : "",
+                fps_, render_scale_ * 100);
+    ImGui::Text("compiled: %s",
+                compiled_slots_line(sim->scene(), sim->model().config()).c_str());
+  } else {
+    ImGui::Text("%s   %.0f fps   (H: help)", to_string(exp_->stage()), fps_);
+  }
+  ImGui::End();
+}
+
+void LabApp::draw_help() {
+  ImGui::SetNextWindowPos(ImGui::GetMainViewport()->GetCenter(), 0, {0.5f, 0.5f});
+  ImGui::Begin("Keyboard and mouse", &help_, ImGuiWindowFlags_AlwaysAutoResize);
+  const char* keys[][2] = {{"Space", "pause / resume"},
+                           {"S", "single step (one measurement row)"},
+                           {"R", "reset: a fresh specimen"},
+                           {"F", "fit the view to the specimen"},
+                           {"F11", "full screen"},
+                           {"H, F1", "this help; Esc closes it"},
+                           {"left drag", "orbit"},
+                           {"right drag", "pan"},
+                           {"wheel", "zoom"}};
+  for (auto& k : keys) ImGui::Text("%-12s %s", k[0], k[1]);
+  ImGui::End();
+}
+
+void LabApp::draw_close_dialog() {
+  ImGui::OpenPopup("Close the lab?");
+  if (ImGui::BeginPopupModal("Close the lab?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::Text("A test is running. Save a checkpoint before closing?");
+    if (ImGui::Button("Save and close")) {
+      std::filesystem::create_directories(out_path_);
+      const std::string f = std::string(out_path_) + "/checkpoint_on_close.bin";
+      const std::string err = exp_->save_checkpoint(f);
+      if (err.empty()) {
+        std::printf("saved %s\n", f.c_str());
+        quit_ = true;
+      } else {
+        message_ = err;
+      }
+      close_asked_ = false;
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Close without saving")) quit_ = true;
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel")) {
+      close_asked_ = false;
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
+  }
+}
+
+}  // namespace simsols

@@ -1,0 +1,72 @@
+#include "app/lab/lab_plots.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "render/plot/chart.h"
+
+namespace simsols {
+
+void draw_lab_plot(const char* id, const LabPlot& p, ImVec2 size) {
+  ImGui::BeginChild(id, size, true, ImGuiWindowFlags_NoScrollbar);
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const ImVec2 o = ImGui::GetCursorScreenPos();
+  const ImVec2 avail = ImGui::GetContentRegionAvail();
+  const float fh = ImGui::GetFontSize();
+  ImGui::TextUnformatted(p.title.c_str());
+  // plot area: left margin for tick labels, bottom for ticks and x title
+  const ImVec2 a(o.x + 4.2f * fh, o.y + 1.4f * fh);
+  const ImVec2 b(o.x + avail.x - 0.6f * fh, o.y + avail.y - 2.3f * fh);
+  if (b.x - a.x < 20 || b.y - a.y < 20) {
+    ImGui::EndChild();
+    return;
+  }
+  const ImU32 axis = IM_COL32(150, 155, 165, 255), grid = IM_COL32(60, 64, 72, 255),
+              line = IM_COL32(90, 170, 255, 255), peak = IM_COL32(255, 120, 60, 255);
+  double x0 = 0, x1 = 1, y0 = 0, y1 = 1;
+  if (!p.x.empty()) {
+    x0 = std::min(0.0, *std::min_element(p.x.begin(), p.x.end()));
+    x1 = *std::max_element(p.x.begin(), p.x.end());
+    y0 = std::min(0.0, *std::min_element(p.y.begin(), p.y.end()));
+    y1 = std::max(0.0, *std::max_element(p.y.begin(), p.y.end()));
+  }
+  if (x1 <= x0) x1 = x0 + 1;
+  if (y1 <= y0) y1 = y0 + 1;
+  const std::vector<double> xt = plot::nice_ticks(x0, x1, 5), yt = plot::nice_ticks(y0, y1, 4);
+  if (xt.size() >= 2) x0 = std::min(x0, xt.front()), x1 = std::max(x1, xt.back());
+  if (yt.size() >= 2) y0 = std::min(y0, yt.front()), y1 = std::max(y1, yt.back());
+  auto X = [&](double v) { return float(a.x + (v - x0) / (x1 - x0) * (b.x - a.x)); };
+  auto Y = [&](double v) { return float(b.y - (v - y0) / (y1 - y0) * (b.y - a.y)); };
+  const double xs = xt.size() >= 2 ? xt[1] - xt[0] : 1, ys = yt.size() >= 2 ? yt[1] - yt[0] : 1;
+  for (double v : xt) {
+    dl->AddLine({X(v), a.y}, {X(v), b.y}, grid);
+    const std::string s = plot::format_tick(v, xs);
+    dl->AddText({X(v) - ImGui::CalcTextSize(s.c_str()).x / 2, b.y + 0.2f * fh}, axis, s.c_str());
+  }
+  for (double v : yt) {
+    dl->AddLine({a.x, Y(v)}, {b.x, Y(v)}, grid);
+    const std::string s = plot::format_tick(v, ys);
+    dl->AddText({a.x - ImGui::CalcTextSize(s.c_str()).x - 0.3f * fh, Y(v) - 0.5f * fh}, axis,
+                s.c_str());
+  }
+  dl->AddRect(a, b, axis);
+  const ImVec2 xl = ImGui::CalcTextSize(p.x_label.c_str());
+  dl->AddText({(a.x + b.x - xl.x) / 2, b.y + 1.2f * fh}, axis, p.x_label.c_str());
+  dl->AddText({a.x + 0.3f * fh, a.y + 0.1f * fh}, axis, p.y_label.c_str());
+  std::vector<ImVec2> pts;
+  pts.reserve(p.x.size());
+  for (std::size_t i = 0; i < p.x.size(); ++i) pts.push_back({X(p.x[i]), Y(p.y[i])});
+  dl->PushClipRect(a, b, true);
+  if (pts.size() >= 2) dl->AddPolyline(pts.data(), int(pts.size()), line, 0, 2.0f);
+  if (p.peak && *p.peak < pts.size()) {
+    const ImVec2 q = pts[*p.peak];
+    dl->AddCircle(q, 5, peak, 16, 2.0f);
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "peak %.3g", p.y[*p.peak]);
+    dl->AddText({q.x + 6, q.y - fh - 2}, peak, buf);
+  }
+  dl->PopClipRect();
+  ImGui::EndChild();
+}
+
+}  // namespace simsols

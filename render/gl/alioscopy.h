@@ -1,0 +1,137 @@
+// Alioscopy: eight views interleaved at subpixel level for a lenticular
+// autostereoscopic screen, and the views shown flat for people without one.
+//
+// The mapping (docs/alioscopy.md). For the output subpixel in physical
+// screen pixel column X (from the left), row Y (from the top), channel
+// c = 0, 1, 2 (R, G, B):
+//   v = (Y - (3X + c) + phase) mod 8     (flip_slant: (-Y - (3X + c) + phase) mod 8)
+//   view = v, or 7 - v when reversed
+// The period is 8 subpixels and the pattern shifts one subpixel per row.
+// Every channel samples its view at the same pixel-centre coordinate. X and
+// Y are physical screen pixels: the window's position on the screen is
+// added, so the pattern stays fixed to the lenses when the window moves.
+// This matches Alioscopy's sample shader, which counts rows from the bottom
+// and adds the window offset. The pass writes the output 1:1 into an RGBA8
+// target; nothing filters or scales the image afterwards.
+//
+// The display profile (assets/displays/*.toml, also built in) holds the panel size, the
+// phase, the reversed-order and flipped-slant switches (public descriptions
+// disagree on both), the per-view resolution and the rig's spacing ratio.
+//
+// AlioscopyOutput owns the views (a 2D texture array, one layer per view),
+// renders them with a Renderer and a StereoRig, and composes:
+//   Interleaved  the image for the screen
+//   Grid         the eight views in a 4 x 2 grid, view 0 top left
+//   Single       one view, full size
+// deinterleave() is the lens simulation: what the eye behind the lenses
+// would get of view k from an interleaved image.
+#pragma once
+
+#include <array>
+#include <glm/glm.hpp>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "render/gl/camera.h"
+#include "render/gl/gl_api.h"
+#include "render/plot/image.h"
+#include "solver/common/problems.h"
+#include "render/gl/renderer.h"
+#include "render/gl/stereo_rig.h"
+
+namespace simsols::render {
+
+class ShaderProgram;
+
+struct DisplayProfile {
+  std::string name = "Alioscopy HD (1920x1080, 8 views)";
+  int width = 1920, height = 1080;  // physical pixels of the panel
+  int views = 8;                    // fixed by the interleaving formula
+  int phase = 0;                    // [0, 7]
+  bool reversed = false;
+  bool flip_slant = false;
+  double view_scale = 0.5;          // per-view resolution / panel, (0, 1]
+  double interaxial_ratio = 6.5 / 400;  // camera spacing / focus when interaxial = 0
+  double interaxial = 0;            // m between neighbouring cameras; 0 = ratio x focus
+  double focus = 0;                 // m to the focus plane; 0 = the camera's distance to its target
+  bool nearest_views = false;       // sample the views without filtering (tests)
+
+  int view_width() const;   // ceil(width * view_scale)
+  int view_height() const;
+};
+
+// A display profile that cannot be used: every problem found in one pass
+// (unknown keys, with a "did you mean", and values out of range), each
+// naming the field and what is allowed; what() names the file once.
+struct DisplayProfileError : std::runtime_error {
+  DisplayProfileError(std::string file, std::vector<FileProblem> problems);
+  std::string file;
+  std::vector<FileProblem> problems;
+};
+
+// Reads a profile file (display_profile.cpp); throws DisplayProfileError.
+DisplayProfile load_display_profile(const std::string& path);
+// The same from text; `name` names it in messages.
+DisplayProfile parse_display_profile(std::string_view text, const std::string& name);
+// The profiles of assets/displays, embedded at build time: their names
+// ("alioscopy_hd"), and the text of one (nullopt for another name).
+std::vector<std::string> builtin_display_profiles();
+std::optional<std::string_view> builtin_display_profile(std::string_view name);
+
+// The view index of subpixel (X, Y, c) (screen pixels, Y from the top).
+int alioscopy_view(int x, int y, int c, const DisplayProfile& profile);
+
+// Lens simulation: view k as seen through the lenses. Pixel (x, y), channel
+// c is taken from the nearest subpixel of the same channel in the same row
+// that shows view k (those lie every 8 pixels); `window` is the image's
+// top-left pixel on the screen.
+plot::Image deinterleave(const plot::Image& interleaved, int k, const DisplayProfile& profile,
+                         glm::ivec2 window = {0, 0});
+
+class AlioscopyOutput {
+ public:
+  enum class Mode { Interleaved, Grid, Single };
+
+  AlioscopyOutput(const Gl& gl, const DisplayProfile& profile);
+  ~AlioscopyOutput();
+  AlioscopyOutput(const AlioscopyOutput&) = delete;
+  AlioscopyOutput& operator=(const AlioscopyOutput&) = delete;
+
+  const DisplayProfile& profile() const { return profile_; }
+  // Output size (defaults to the panel) and the views' size.
+  void resize_output(int width, int height);
+  int output_width() const { return out_w_; }
+  int output_height() const { return out_h_; }
+
+  // Renders the eight views of `camera` (views sized by the profile).
+  void render_views(Renderer& renderer, const StereoRig& rig, const Camera& camera,
+                    const FrameGeometry& geometry, const ViewSettings& settings);
+  // Copies the current frame of `renderer` into view k (tests fill views
+  // with known images this way).
+  void copy_view(int k, const Renderer& renderer);
+  // Fills view k with one colour, or with an image of the views' size
+  // (row 0 at the top) (tests, imported views).
+  void fill_view(int k, glm::vec4 rgba);
+  void upload_view(int k, const plot::Image& image);
+
+  // Composes into the output framebuffer. `window` is the output's
+  // top-left pixel on the physical screen (Interleaved only).
+  void compose(Mode mode, int single_view = 0, glm::ivec2 window = {0, 0});
+  plot::Image read_pixels() const;
+  plot::Image read_view(int k) const;
+  GLuint framebuffer() const { return out_fbo_; }
+  GLuint views_texture() const { return views_tex_; }
+
+ private:
+  const Gl& gl_;
+  DisplayProfile profile_;
+  std::unique_ptr<ShaderProgram> program_;
+  GLuint views_tex_ = 0, layer_fbo_ = 0, out_tex_ = 0, out_fbo_ = 0, vao_ = 0;
+  int out_w_ = 0, out_h_ = 0;
+};
+
+}  // namespace simsols::render

@@ -1,0 +1,169 @@
+// Renderer: draws one frame of a granular specimen into its own offscreen
+// framebuffer (OpenGL 3.3 core), in stages read in order:
+//
+//   draw_opaque       beads as lit sphere impostors (opaque mode), force
+//                     chains, wall edges; depth written
+//   draw_transparent  beads (transparent and chains modes) and the walls
+//                     into weighted blended OIT targets, depth-tested
+//                     against the opaque stage, nothing sorted
+//   composite         resolves the transparent layer over the opaque image
+//
+// Inputs are GL buffers (FrameGeometry) that the data path fills either
+// through OpenCL-OpenGL sharing or one host copy; the renderer does not know
+// which. No globals: the GL function table comes with the context, and every
+// piece of GL state a frame changes is restored when draw() returns (framebuffer,
+// viewport, program, vertex array, blend and depth state), as Dear ImGui's
+// renderer backends do, so a window's UI can draw over the result.
+//
+// Formulas (docs/rendering.md):
+//   bead:  exact ray-sphere hit, Lambert + ambient + Blinn highlight
+//   chain: width_px = clamp(chain_width_px * F/F_mean, 1, chain_max_width_px),
+//          hidden where F/F_mean < chain_threshold; colour from the Force map
+//   OIT:   C = (sum C_i a_i w_i / sum a_i w_i)(1 - prod(1 - a_i)) + C_0 prod(1 - a_i),
+//          w_i = a_i max(0.01, 100 (1 - d_i)^3), d_i the depth in the scene's range
+#pragma once
+
+#include <cstddef>
+#include <glm/glm.hpp>
+#include <map>
+#include <optional>
+#include <string_view>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/gl/camera.h"
+#include "render/plot/colormap.h"
+#include "render/gl/gl_api.h"
+#include "render/plot/image.h"
+
+namespace simsols::render {
+
+class ShaderProgram;
+
+// A rectangle of the apparatus: centre +- axis_u +- axis_v (half extents
+// included), in the render frame (positions relative to the render origin).
+struct WallQuad {
+  glm::vec3 centre{}, axis_u{}, axis_v{};
+};
+
+// GL buffers with what to draw. beads: float4 (x, y, z, radius) per bead;
+// values: one float per bead (the colour field); segments: two float4
+// (end xyz, |F_n|) per contact.
+struct FrameGeometry {
+  GLuint beads = 0, values = 0;
+  std::size_t bead_count = 0;
+  GLuint segments = 0;
+  std::size_t segment_count = 0;
+  float mean_force = 0;  // N, over all contacts (sets the chain widths)
+  std::vector<WallQuad> walls;
+  glm::dvec3 lo{0}, hi{0};  // bounds of everything drawn (depth range of the OIT weight)
+};
+
+enum class ViewMode { Opaque, Transparent, Chains };
+const char* to_string(ViewMode m);  // "opaque", "transparent", "chains"
+std::optional<ViewMode> parse_view_mode(std::string_view s);
+
+struct ViewSettings {
+  ViewMode mode = ViewMode::Opaque;
+  float bead_alpha = 0.3f;          // transparent mode
+  float chains_bead_alpha = 0.06f;  // chains mode: faint beads around the chains
+  bool lighting = true;
+  bool show_beads = true;
+  bool show_walls = true;
+  bool show_chains = false;  // overlay in any mode; always on in chains mode
+  float chain_threshold = 1.0f;  // F/F_mean below which a contact is not drawn
+  float chain_width_px = 2.0f;   // at F = F_mean
+  float chain_max_width_px = 10.0f;
+  plot::ColorMap bead_map = plot::ColorMap::Sequential;
+  float value_min = 0, value_max = 1;
+  plot::Color background{22, 24, 28};
+  glm::vec4 wall_color{0.62f, 0.68f, 0.76f, 0.14f};
+  glm::vec4 wall_edge_color{0.70f, 0.75f, 0.82f, 1.0f};
+  float wall_edge_px = 1.5f;  // 0: no edges
+  bool chains_visible() const { return show_chains || mode == ViewMode::Chains; }
+};
+
+// Owns GL buffers for FrameGeometry and fills them from host arrays (tests,
+// the host-copy path). Sizes grow, never shrink.
+class GeometryBuffers {
+ public:
+  explicit GeometryBuffers(const Gl& gl);
+  ~GeometryBuffers();
+  GeometryBuffers(const GeometryBuffers&) = delete;
+  GeometryBuffers& operator=(const GeometryBuffers&) = delete;
+
+  // Makes room for `beads` beads and `segments` segments (GL_STREAM_DRAW).
+  void reserve(std::size_t beads, std::size_t segments);
+  void upload_beads(const std::vector<float>& xyzr, const std::vector<float>& values);
+  void upload_segments(const std::vector<float>& segments, float mean_force);
+  GLuint beads() const { return beads_; }
+  GLuint values() const { return values_; }
+  GLuint segments() const { return segments_; }
+  std::size_t bead_capacity() const { return bead_cap_; }
+  std::size_t segment_capacity() const { return seg_cap_; }
+  // The geometry to draw (walls and bounds filled by the caller).
+  FrameGeometry geometry() const { return geom_; }
+  FrameGeometry& mutable_geometry() { return geom_; }
+
+ private:
+  const Gl& gl_;
+  GLuint beads_ = 0, values_ = 0, segments_ = 0;
+  std::size_t bead_cap_ = 0, seg_cap_ = 0;
+  FrameGeometry geom_;
+};
+
+// Colour buffer `buffer` of `fbo` (RGBA8), top row first: attachment 0 of
+// the renderer's framebuffers, or GL_BACK of a window (fbo 0).
+plot::Image read_framebuffer(const Gl& gl, GLuint fbo, int width, int height,
+                             GLenum buffer = GL_COLOR_ATTACHMENT0);
+
+class Renderer {
+ public:
+  explicit Renderer(const Gl& gl);  // compiles the shaders; throws RenderError
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Sets the frame size (1..16384 per side; RenderError otherwise).
+  void resize(int width, int height);
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+  void draw(const Camera& camera, const FrameGeometry& geometry, const ViewSettings& settings);
+  void draw(const ViewProjection& vp, const FrameGeometry& geometry, const ViewSettings& settings);
+  // The last frame, top row first.
+  plot::Image read_pixels() const;
+  GLuint framebuffer() const { return scene_fbo_; }
+  GLuint color_texture() const { return color_tex_; }
+
+  static constexpr int kMaxSize = 16384;
+
+ private:
+  void draw_opaque(const FrameGeometry& g, const ViewSettings& s);
+  void draw_transparent(const FrameGeometry& g, const ViewSettings& s);
+  void composite();
+  void draw_segments(GLuint buffer, std::size_t count);
+  void draw_beads(ShaderProgram& p, const FrameGeometry& g, const ViewSettings& s, float alpha);
+  void set_common(ShaderProgram& p, const ViewSettings& s, bool force_map);
+  void bind_colormap(ShaderProgram& p, plot::ColorMap map);
+  void release_targets();
+
+  const Gl& gl_;
+  std::unique_ptr<ShaderProgram> sphere_, sphere_oit_, segment_, wall_oit_, composite_;
+  GLuint vao_ = 0, empty_vao_ = 0, edge_buffer_ = 0;
+  struct MapTexture {
+    GLuint tex = 0;
+    int size = 0;
+  };
+  std::map<plot::ColorMap, MapTexture> maps_;
+  int width_ = 0, height_ = 0;
+  GLuint scene_fbo_ = 0, color_tex_ = 0, depth_rb_ = 0;
+  GLuint oit_fbo_ = 0, accum_tex_ = 0, weight_tex_ = 0;
+  // per frame
+  glm::mat4 view_{1}, proj_{1};
+  bool ortho_ = false;
+  glm::vec2 depth_range_{0, 1};
+};
+
+}  // namespace simsols::render

@@ -1,0 +1,104 @@
+// Colour maps for the 3D renderer (particles coloured by speed, stress,
+// force or category) and the colour legend drawn over its frames.
+//
+// The continuous maps are designed here from a few control points in CIELAB
+// (D65), not copied from any published table. Lightness L* runs linearly in
+// t, so equal steps of value look like equal steps of colour and a map still
+// reads when printed in grey; a* and b* follow a Catmull-Rom spline through
+// the control points, so the hue turns without kinks. A point outside sRGB
+// would lose chroma at constant L* (the control points below stay inside).
+// Rounding to 8 bits picks, among the 8 floor/ceil combinations of the
+// channels, the one nearest the intended L*, which keeps lightness strictly
+// monotonic even between neighbouring entries of a 256-entry table.
+//
+//   Sequential   L* 14 -> 91: dark blue-violet, blue, teal, green, yellow.
+//   Diverging    L* 36 -> 96.5 -> 36: blue, near white, red. Each half is its
+//                own spline meeting at a neutral centre, and the lightness is
+//                symmetric about t = 1/2, so neither sign looks stronger.
+//   Categorical  8 colours of similar chroma spread over hue, neighbours far
+//                apart in hue and lightness (smallest CIELAB distance ~38);
+//                mid lightness, so lit and shaded sides of a sphere both
+//                keep their hue.
+//   Force        L* 86 -> 27: light greyish orange to dark red, chroma
+//                growing with force, so strong chains stand out and weak
+//                ones recede.
+//
+// colormap_table gives the renderer the same colours as a 1D texture, so the
+// shader and the legend agree to the bit.
+//
+// The legend is a semi-opaque rounded panel in a corner: the title, a
+// vertical colour bar (t = 0 at the bottom) with 1-2-5 ticks from chart.h,
+// or one swatch per category, and optionally a key of line widths for force
+// chains. It is drawn into a copy of its own rectangle that is then written
+// back, so no pixel outside the returned rectangle changes, text included.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "render/plot/image.h"
+
+namespace simsols::plot {
+
+enum class ColorMap {
+  Sequential,   // dark blue-violet -> teal -> green -> yellow, lightness increasing
+  Diverging,    // blue - near white - red, for signed values
+  Categorical,  // 8 distinct colours; category k -> colour k mod 8
+  Force,        // light grey-orange -> dark red, darker and more saturated
+};
+
+// t in [0, 1], clamped (NaN reads as 0). Categorical: t is the category
+// index, rounded to the nearest integer, any value (negative ones cycle too).
+Color colormap_color(ColorMap map, double t);
+
+// RGBA8, 4 bytes per entry: `entries` samples at t = i / (entries - 1) (one
+// entry: t = 0; none for entries <= 0). Categorical: always its 8 colours,
+// entry k = category k, whatever `entries` says.
+std::vector<std::uint8_t> colormap_table(ColorMap map, int entries = 256);
+
+// "sequential", "diverging", "categorical", "force" (any case).
+std::optional<ColorMap> parse_colormap(std::string_view s);
+const char* to_string(ColorMap map);
+
+struct Legend {
+  std::string title;  // e.g. "speed (m/s)"
+  ColorMap map = ColorMap::Sequential;
+  // Value range of the bar: min at the bottom, max at the top. Categorical:
+  // the categories min..max (integers), one swatch each, min at the top.
+  double min = 0, max = 1;
+  // Categorical only: category_labels[k] names category min + k; missing
+  // labels are the category numbers.
+  std::vector<std::string> category_labels;
+  enum class Corner { TopLeft, TopRight, BottomLeft, BottomRight } corner = Corner::TopRight;
+  double scale = 1;  // 1 = sized for a ~1000 px tall image; scaled with the image
+  // For force chains: sample lines labelled with force ratios F / F_mean and
+  // drawn with the caller's widths in pixels (unscaled: the widths the
+  // renderer draws), e.g. {{1, 1.5}, {2, 3}, {4, 6}}.
+  std::vector<std::pair<double, double>> width_key;  // (F / F_mean, line width px)
+  std::string width_title;                           // e.g. "normal force / mean"
+  bool dark = false;  // light text on a dark panel, for dark backgrounds
+};
+
+// Where draw_legend puts things, in image pixels. All empty when nothing is
+// drawn (an image under 120 px either way).
+struct LegendLayout {
+  Rect panel{0, 0, 0, 0};  // everything drawn lies inside (clipped to the image)
+  // Continuous maps: pixel row y of the bar shows
+  // t = (bar.y1 - 1 - y) / (bar.y1 - bar.y0 - 1): t = 1 on the top row, 0 on the bottom one.
+  // Categorical: the union of the swatches.
+  Rect bar{0, 0, 0, 0};
+  std::vector<Rect> swatches;  // Categorical: category min + k in swatches[k], top to bottom
+  double unit = 0;             // pixels per layout unit (1 at 1000 px tall, before fitting)
+};
+
+LegendLayout legend_layout(int width, int height, const Legend& legend);
+
+// Draws the legend onto the image; returns the rectangle it covered (empty,
+// and nothing drawn, on images under 120 px either way).
+Rect draw_legend(Image& img, const Legend& legend);
+
+}  // namespace simsols::plot

@@ -1,0 +1,113 @@
+#include "render/view/sim_view.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "solver/core/observe.h"
+
+namespace simsols::render {
+
+plot::ColorMap colormap_for(ColorField field) {
+  return field == ColorField::Layer ? plot::ColorMap::Categorical : plot::ColorMap::Sequential;
+}
+
+std::string legend_title(ColorField field) {
+  const std::string unit = unit_of(field);
+  return std::string(to_string(field)) + (unit.empty() ? "" : " (" + unit + ")");
+}
+
+namespace {
+
+glm::dvec3 to_glm(const Vec3& v) { return {v[0], v[1], v[2]}; }
+
+// Two unit vectors spanning the plane normal to n.
+std::pair<glm::dvec3, glm::dvec3> plane_axes(const glm::dvec3& n) {
+  const glm::dvec3 a = std::abs(n.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
+  const glm::dvec3 u = glm::normalize(glm::cross(n, a));
+  return {u, glm::cross(n, u)};
+}
+
+}  // namespace
+
+SimulationView::SimulationView(const Gl& gl, Simulation& sim)
+    : sim_(sim), packer_(sim), buffers_(gl) {
+  const Scene& scene = sim.scene();
+  const glm::dvec3 origin = to_glm(packer_.origin());
+  // Layered shear-box specimens: one band per layer, from the reference
+  // heights (the layers' centres are evenly spaced by construction).
+  if (scene.shear_box && scene.shear_box->specimen.method == ShearSpecimen::Method::Layers &&
+      scene.shear_box->specimen.layers > 1 && !scene.particles.empty()) {
+    double zmin = 1e300, zmax = -1e300;
+    for (const Particle& p : scene.particles) {
+      zmin = std::min(zmin, p.position[2]);
+      zmax = std::max(zmax, p.position[2]);
+    }
+    const int layers = scene.shear_box->specimen.layers;
+    if (zmax > zmin) packer_.set_layer_bands(zmin, (zmax - zmin) / (layers - 1));
+  }
+  // Bounds: the initial specimen and the rectangles.
+  glm::dvec3 lo(1e300), hi(-1e300);
+  for (const Particle& p : scene.particles) {
+    lo = glm::min(lo, to_glm(p.position) - p.radius);
+    hi = glm::max(hi, to_glm(p.position) + p.radius);
+  }
+  for (const Wall& w : scene.walls) {
+    if (w.shape != WallShape::Rectangle) continue;
+    const glm::dvec3 c = to_glm(w.point), u = to_glm(w.axis_u) * w.half_u,
+                     v = glm::cross(to_glm(w.normal), to_glm(w.axis_u)) * w.half_v;
+    for (int k = 0; k < 4; ++k) {
+      const glm::dvec3 q = c + ((k & 1) ? u : -u) + ((k & 2) ? v : -v);
+      lo = glm::min(lo, q);
+      hi = glm::max(hi, q);
+    }
+  }
+  if (lo.x > hi.x) lo = hi = glm::dvec3(0);
+  lo_ = lo - origin;
+  hi_ = hi - origin;
+  bridge_ = std::make_unique<ParticleBridge>(gl, buffers_, packer_, sim.model().device());
+}
+
+SimulationView::Update SimulationView::update(ColorField field, bool contacts) {
+  Update u;
+  u.range = bridge_->update_beads(field);
+  if (contacts) {
+    u.contacts = bridge_->update_contacts(true);
+  } else {
+    buffers_.mutable_geometry().segment_count = 0;
+  }
+  return u;
+}
+
+FrameGeometry SimulationView::geometry() {
+  FrameGeometry g = buffers_.geometry();
+  const glm::dvec3 origin = to_glm(packer_.origin());
+  const Scene& scene = sim_.scene();
+  g.walls.clear();
+  if (!scene.walls.empty()) {
+    const std::vector<Vec3> points = wall_points(sim_.model(), sim_.state());
+    const glm::dvec3 centre = 0.5 * (lo_ + hi_);
+    const double span = 0.6 * glm::length(hi_ - lo_);
+    for (size_t i = 0; i < scene.walls.size(); ++i) {
+      const Wall& w = scene.walls[i];
+      const glm::dvec3 p = to_glm(points[i]) - origin, n = to_glm(w.normal);
+      WallQuad q;
+      if (w.shape == WallShape::Rectangle) {
+        q.centre = glm::vec3(p);
+        q.axis_u = glm::vec3(to_glm(w.axis_u) * w.half_u);
+        q.axis_v = glm::vec3(glm::cross(n, to_glm(w.axis_u)) * w.half_v);
+      } else {
+        // an infinite plane: the part of it under the specimen
+        const auto [u, v] = plane_axes(n);
+        q.centre = glm::vec3(centre - glm::dot(centre - p, n) * n);
+        q.axis_u = glm::vec3(u * span);
+        q.axis_v = glm::vec3(v * span);
+      }
+      g.walls.push_back(q);
+    }
+  }
+  g.lo = lo_;
+  g.hi = hi_;
+  return g;
+}
+
+}  // namespace simsols::render

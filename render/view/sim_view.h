@@ -1,0 +1,63 @@
+// SimulationView: what the renderer draws of a running Simulation.
+//
+// Glue between the solver and the renderer, one per (GL context,
+// simulation): the ViewPacker (device kernels), the GL buffers, the
+// ParticleBridge that fills them (shared or host copy), and the apparatus:
+// every rectangle wall at its current position as a translucent plate, and
+// plane walls as plates spanning the specimen. Everything is in the render
+// frame, i.e. relative to the packer's origin, so float vertex data keeps
+// its precision at the specimen wherever the scene sits.
+//
+// Colouring: `layer` uses the categorical map (one colour per layer band;
+// shear-box specimens built in layers get their own layer spacing), the
+// other fields the sequential map over their current range, unless the
+// caller fixes a range.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "render/plot/colormap.h"
+#include "render/view/particle_bridge.h"
+#include "render/gl/renderer.h"
+#include "render/view/view_pack.h"
+
+namespace simsols::render {
+
+plot::ColorMap colormap_for(ColorField field);
+// "speed (m/s)", "layer", "contacts", ...
+std::string legend_title(ColorField field);
+
+class SimulationView {
+ public:
+  SimulationView(const Gl& gl, Simulation& sim);
+
+  ViewPacker& packer() { return packer_; }
+  const ParticleBridge& bridge() const { return *bridge_; }
+
+  struct Update {
+    ViewPacker::Range range;
+    ViewPacker::ContactStats contacts;
+  };
+  // Packs the current state: beads coloured by `field`, and the contacts
+  // when `contacts` is set (else none are drawn).
+  Update update(ColorField field, bool contacts);
+
+  // The geometry to draw: the buffers, the walls where they are now, bounds.
+  FrameGeometry geometry();
+  // Bounds of the specimen and the apparatus at the start (render frame):
+  // what camera fitting uses, so a view does not jump as the run goes on.
+  glm::dvec3 lo() const { return lo_; }
+  glm::dvec3 hi() const { return hi_; }
+
+ private:
+  Simulation& sim_;
+  ViewPacker packer_;
+  GeometryBuffers buffers_;
+  std::unique_ptr<ParticleBridge> bridge_;
+  glm::dvec3 lo_{0}, hi_{0};
+};
+
+}  // namespace simsols::render

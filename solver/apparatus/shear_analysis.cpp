@@ -1,0 +1,414 @@
+#include "solver/apparatus/shear_analysis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace simsols {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kRad = 180.0 / kPi;
+
+// A first peak is a maximum of mobilised strength: while the running
+// maximum of tau/sigma is below this share of the test's largest, its
+// wiggles (noise about zero at the start of shearing) are not softening.
+constexpr double kPeakMobilised = 0.25;
+
+// Slope of y(x) by least squares over rows [a, b).
+double slope(const std::vector<ShearRow>& r, size_t a, size_t b) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = static_cast<double>(b - a);
+  for (size_t i = a; i < b; ++i) {
+    sx += r[i].displacement;
+    sy += r[i].dilation;
+    sxx += r[i].displacement * r[i].displacement;
+    sxy += r[i].displacement * r[i].dilation;
+  }
+  const double den = n * sxx - sx * sx;
+  return den > 0 ? (n * sxy - sx * sy) / den : 0;
+}
+
+// The row's target normal stress (rows read from older files have none).
+double target_of(const ShearRow& r, double test_target) {
+  return r.sigma_target > 0 ? r.sigma_target : test_target;
+}
+
+// Whether the platen carried the load in this row (a platen that lost
+// contact gives no ratio).
+bool loaded(const ShearRow& r, double test_target) {
+  return r.sigma > 0.5 * target_of(r, test_target);
+}
+
+}  // namespace
+
+std::string shear_rows_csv(const std::vector<ShearRow>& rows) {
+  std::string out =
+      "time_s,step,displacement_mm,shear_force_N,shear_force_upper_N,tau_kPa,tau_corrected_kPa,"
+      "normal_force_N,sigma_kPa,dilation_mm,tau_over_sigma,friction_angle_deg,coordination,"
+      "kinetic_energy_J,inertial_number,outside,sigma_target_kPa\n";
+  char buf[512];
+  for (const ShearRow& r : rows) {
+    std::snprintf(buf, sizeof buf,
+                  "%.9g,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%.9g\n",
+                  r.time, static_cast<long long>(r.step), r.displacement * 1e3, r.shear_force,
+                  r.shear_force_upper, r.tau * 1e-3, r.tau_corrected * 1e-3, r.normal_force,
+                  r.sigma * 1e-3, r.dilation * 1e3, r.sigma > 0 ? r.tau / r.sigma : 0,
+                  r.friction_angle, r.coordination, r.kinetic_energy, r.inertial_number,
+                  r.outside, r.sigma_target * 1e-3);
+    out += buf;
+  }
+  return out;
+}
+
+Residual residual_of(const std::vector<ShearRow>& rows, double sigma_target) {
+  Residual r;
+  if (rows.empty()) return r;
+  // the window's first row sits at 0.8 x the end when rows are evenly
+  // spaced: included whether the displacements are exact or read back from
+  // shear.csv (9 digits)
+  const double from = 0.8 * rows.back().displacement * (1 - 1e-7);
+  int count = 0;
+  for (const ShearRow& row : rows)
+    if (row.displacement >= from && loaded(row, sigma_target)) {
+      r.tau += row.tau;
+      r.ratio += row.tau / row.sigma;
+      ++count;
+    }
+  if (count > 0) {
+    r.tau /= count;
+    r.ratio /= count;
+  }
+  return r;
+}
+
+FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target, double recovery,
+                     double softening) {
+  // what counts as a peak: a quarter of the test's largest ratio, and no
+  // less than its residual strength
+  double top = 0;
+  for (const ShearRow& r : rows)
+    if (loaded(r, sigma_target)) top = std::max(top, r.tau / r.sigma);
+  const double floor = std::max(kPeakMobilised * top, residual_of(rows, sigma_target).ratio);
+  FirstPeak best;
+  double fell_at = 0;  // displacement where the curve fell below (1 - softening) x best
+  bool fallen = false;
+  for (const ShearRow& r : rows) {
+    if (!loaded(r, sigma_target)) continue;
+    const double ratio = r.tau / r.sigma;
+    if (ratio > best.ratio) {
+      best.ratio = ratio;
+      best.displacement = r.displacement;
+      best.row = static_cast<int>(&r - rows.data());
+      fallen = false;
+    } else if (!fallen && best.ratio >= floor && ratio < (1 - softening) * best.ratio) {
+      fallen = true;
+      fell_at = r.displacement;
+    }
+    if (fallen && r.displacement - fell_at >= recovery) break;  // softened, not regained
+  }
+  return best;
+}
+
+namespace {
+
+// The normal stress's band and RMS deviation from each row's target, and
+// the test's validity.
+void sigma_band(const std::vector<ShearRow>& rows, ShearSummary& s) {
+  const double target = s.normal_stress_target;
+  s.sigma_min = s.sigma_max = rows[0].sigma;
+  s.sigma_band_lo = s.sigma_band_hi = rows[0].sigma / target_of(rows[0], target) - 1;
+  double sum2 = 0;
+  for (const ShearRow& r : rows) {
+    const double dev = r.sigma / target_of(r, target) - 1;
+    s.sigma_min = std::min(s.sigma_min, r.sigma);
+    s.sigma_max = std::max(s.sigma_max, r.sigma);
+    s.sigma_band_lo = std::min(s.sigma_band_lo, dev);
+    s.sigma_band_hi = std::max(s.sigma_band_hi, dev);
+    sum2 += dev * dev;
+  }
+  s.sigma_rms = std::sqrt(sum2 / static_cast<double>(rows.size()));
+  s.valid = s.sigma_band_lo >= -kValidSigmaBand && s.sigma_band_hi <= kValidSigmaBand;
+}
+
+}  // namespace
+
+void analyse_shear_rows(const std::vector<ShearRow>& rows, ShearSummary& out) {
+  // the apparatus' fields are kept; the rest is derived afresh
+  ShearSummary s;
+  s.normal_stress_target = out.normal_stress_target;
+  s.shear_speed = out.shear_speed;
+  s.specimen_height = out.specimen_height;
+  s.bead_diameter = out.bead_diameter;
+  s.settle_time = out.settle_time;
+  s.consolidate_time = out.consolidate_time;
+  s.platen_mass = out.platen_mass;
+  s.wall_seconds = out.wall_seconds;
+  out = s;
+  if (rows.empty()) return;
+  const double target = s.normal_stress_target;
+  for (const ShearRow& r : rows) {
+    const double ratio = loaded(r, target) ? r.tau / r.sigma : 0;
+    if (ratio > s.max_ratio) {
+      s.max_ratio = ratio;
+      s.max_displacement = r.displacement;
+    }
+    s.max_tau = std::max(s.max_tau, r.tau);
+    s.max_inertial_number = std::max(s.max_inertial_number, r.inertial_number);
+    s.max_outside = std::max(s.max_outside, r.outside);
+  }
+  sigma_band(rows, s);
+  s.quasi_static = s.max_inertial_number < kQuasiStaticInertialNumber;
+  s.start_tau = rows[0].tau;
+  s.start_ratio = rows[0].sigma > 0 ? rows[0].tau / rows[0].sigma : 0;
+  s.max_angle = std::atan(s.max_ratio) * kRad;
+  const FirstPeak first = first_peak(rows, target, kPeakRecoveryDiameters * s.bead_diameter);
+  s.peak_ratio = first.ratio;
+  s.peak_displacement = first.displacement;
+  s.peak_angle = std::atan(first.ratio) * kRad;
+  s.peak_tau = first.row >= 0 ? rows[first.row].tau : 0;
+  const Residual res = residual_of(rows, target);
+  s.residual_tau = res.tau;
+  s.residual_ratio = res.ratio;
+  s.residual_angle = std::atan(res.ratio) * kRad;
+  // Dilatancy: least-squares slope of dz(dx) over a sliding window of
+  // ~1/40 of the test (at least 3 rows), the steepest rise.
+  const size_t w = std::max<size_t>(3, rows.size() / 40);
+  double steepest = 0;
+  for (size_t a = 0; a + w <= rows.size(); ++a) steepest = std::max(steepest, slope(rows, a, a + w));
+  s.max_dilatancy_angle = std::atan(steepest) * kRad;
+  out = s;
+}
+
+std::string shear_summary_text(const ShearSummary& s) {
+  char buf[2560];
+  std::snprintf(
+      buf, sizeof buf,
+      "normal_stress_kPa = %.6g\nbead_diameter_mm = %.6g\nspecimen_height_mm = %.6g\n"
+      "shear_speed_mm_s = %.6g\nplaten_mass_kg = %.6g\nvalid = %s\n"
+      "start_tau_kPa = %.6g\nstart_tau_over_sigma = %.6g\npeak_tau_kPa = %.6g\n"
+      "peak_tau_over_sigma = %.6g\npeak_friction_angle_deg = %.4f\npeak_displacement_mm = %.6g\n"
+      "max_tau_kPa = %.6g\nmax_tau_over_sigma = %.6g\nmax_friction_angle_deg = %.4f\n"
+      "max_displacement_mm = %.6g\nresidual_tau_kPa = %.6g\n"
+      "residual_tau_over_sigma = %.6g\nresidual_friction_angle_deg = %.4f\n"
+      "max_dilatancy_angle_deg = %.4f\nmax_inertial_number = %.4g\nquasi_static = %s\n"
+      "sigma_min_kPa = %.6g\n"
+      "sigma_max_kPa = %.6g\nsigma_band_percent = %+.3f %+.3f\nsigma_rms_percent = %.3f\n"
+      "max_beads_outside = %d\nsettle_time_s = %.6g\nconsolidate_time_s = %.6g\n"
+      "wall_seconds = %.1f\n",
+      s.normal_stress_target * 1e-3, s.bead_diameter * 1e3, s.specimen_height * 1e3,
+      s.shear_speed * 1e3, s.platen_mass, s.valid ? "yes" : "no", s.start_tau * 1e-3,
+      s.start_ratio, s.peak_tau * 1e-3, s.peak_ratio, s.peak_angle, s.peak_displacement * 1e3,
+      s.max_tau * 1e-3, s.max_ratio, s.max_angle, s.max_displacement * 1e3,
+      s.residual_tau * 1e-3, s.residual_ratio, s.residual_angle, s.max_dilatancy_angle,
+      s.max_inertial_number, s.quasi_static ? "yes" : "no", s.sigma_min * 1e-3, s.sigma_max * 1e-3, 100 * s.sigma_band_lo,
+      100 * s.sigma_band_hi, 100 * s.sigma_rms, s.max_outside, s.settle_time,
+      s.consolidate_time, s.wall_seconds);
+  return buf;
+}
+
+namespace {
+
+std::vector<std::string> split(const std::string& line, char sep) {
+  std::vector<std::string> out;
+  std::string cur;
+  for (char c : line) {
+    if (c == sep) {
+      out.push_back(cur);
+      cur.clear();
+    } else if (c != '\r') {
+      cur += c;
+    }
+  }
+  out.push_back(cur);
+  return out;
+}
+
+double to_double(const std::string& s, const std::string& what) {
+  try {
+    size_t used = 0;
+    const double v = std::stod(s, &used);
+    if (used == 0) throw std::invalid_argument(s);
+    return v;
+  } catch (const std::exception&) {
+    throw std::runtime_error("malformed number '" + s + "' in " + what);
+  }
+}
+
+}  // namespace
+
+std::vector<ShearRow> parse_shear_rows_csv(const std::string& text) {
+  std::istringstream in(text);
+  std::string line;
+  std::getline(in, line);
+  if (line.rfind("time_s,step,displacement_mm", 0) != 0)
+    throw std::runtime_error("not a shear.csv (header differs)");
+  std::vector<ShearRow> rows;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    const auto f = split(line, ',');
+    if (f.size() != 16 && f.size() != 17)  // 16: written before sigma_target_kPa
+      throw std::runtime_error("shear.csv row " + std::to_string(rows.size() + 1) + " has " +
+                               std::to_string(f.size()) + " fields, expected 17");
+    const std::string where = "shear.csv row " + std::to_string(rows.size() + 1);
+    std::vector<double> v;
+    for (const std::string& x : f) v.push_back(to_double(x, where));
+    ShearRow r;
+    r.time = v[0];
+    r.step = static_cast<std::int64_t>(v[1]);
+    r.displacement = v[2] * 1e-3;
+    r.shear_force = v[3];
+    r.shear_force_upper = v[4];
+    r.tau = v[5] * 1e3;
+    r.tau_corrected = v[6] * 1e3;
+    r.normal_force = v[7];
+    r.sigma = v[8] * 1e3;
+    r.dilation = v[9] * 1e-3;
+    r.friction_angle = v[11];
+    r.coordination = v[12];
+    r.kinetic_energy = v[13];
+    r.inertial_number = v[14];
+    r.outside = static_cast<int>(v[15]);
+    if (v.size() > 16) r.sigma_target = v[16] * 1e3;
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+namespace {
+
+// Summaries written before the peak meant the first peak called the overall
+// maximum peak_* and the first peak first_peak_*: their keys, renamed.
+void rename_older_keys(std::map<std::string, std::string>& kv) {
+  if (!kv.count("first_peak_tau_over_sigma")) return;
+  for (const char* k : {"tau_kPa", "tau_over_sigma", "friction_angle_deg", "displacement_mm"}) {
+    const std::string peak = std::string("peak_") + k, first = "first_" + peak;
+    if (kv.count(peak)) kv["max_" + std::string(k)] = kv[peak];
+    kv.erase(peak);
+    if (kv.count(first)) kv[peak] = kv[first];
+  }
+}
+
+// The band as written ("lo hi" in percent), or from sigma_min/max and the
+// target in older summaries; valid as written, or from the band.
+void read_band(const std::map<std::string, std::string>& kv, ShearSummary& s) {
+  const auto band = kv.find("sigma_band_percent");
+  std::istringstream in(band != kv.end() ? band->second : std::string());
+  double lo = 0, hi = 0;
+  if (in >> lo >> hi) {
+    s.sigma_band_lo = lo * 1e-2;
+    s.sigma_band_hi = hi * 1e-2;
+  } else if (s.normal_stress_target > 0) {
+    s.sigma_band_lo = s.sigma_min / s.normal_stress_target - 1;
+    s.sigma_band_hi = s.sigma_max / s.normal_stress_target - 1;
+  }
+  s.quasi_static = s.max_inertial_number < kQuasiStaticInertialNumber;
+  const auto valid = kv.find("valid");
+  s.valid = valid != kv.end() ? valid->second == "yes"
+                              : s.sigma_band_lo >= -kValidSigmaBand &&
+                                    s.sigma_band_hi <= kValidSigmaBand;
+}
+
+}  // namespace
+
+std::map<std::string, std::string> summary_keys(const std::string& text) {
+  std::map<std::string, std::string> kv;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    const size_t eq = line.find(" = ");
+    if (eq != std::string::npos) kv[line.substr(0, eq)] = line.substr(eq + 3);
+  }
+  return kv;
+}
+
+ShearSummary parse_shear_summary(const std::string& text) {
+  std::map<std::string, std::string> kv = summary_keys(text);
+  rename_older_keys(kv);
+  ShearSummary s;
+  const struct {
+    const char* key;
+    double* target;
+    double scale;
+  } fields[] = {{"normal_stress_kPa", &s.normal_stress_target, 1e3},
+                {"bead_diameter_mm", &s.bead_diameter, 1e-3},
+                {"specimen_height_mm", &s.specimen_height, 1e-3},
+                {"shear_speed_mm_s", &s.shear_speed, 1e-3},
+                {"peak_tau_kPa", &s.peak_tau, 1e3},
+                {"peak_tau_over_sigma", &s.peak_ratio, 1},
+                {"peak_friction_angle_deg", &s.peak_angle, 1},
+                {"peak_displacement_mm", &s.peak_displacement, 1e-3},
+                {"max_tau_kPa", &s.max_tau, 1e3},
+                {"max_tau_over_sigma", &s.max_ratio, 1},
+                {"max_friction_angle_deg", &s.max_angle, 1},
+                {"max_displacement_mm", &s.max_displacement, 1e-3},
+                {"residual_tau_kPa", &s.residual_tau, 1e3},
+                {"residual_tau_over_sigma", &s.residual_ratio, 1},
+                {"residual_friction_angle_deg", &s.residual_angle, 1},
+                {"max_dilatancy_angle_deg", &s.max_dilatancy_angle, 1},
+                {"max_inertial_number", &s.max_inertial_number, 1},
+                {"sigma_min_kPa", &s.sigma_min, 1e3},
+                {"sigma_max_kPa", &s.sigma_max, 1e3},
+                {"sigma_rms_percent", &s.sigma_rms, 1e-2},
+                {"start_tau_kPa", &s.start_tau, 1e3},
+                {"start_tau_over_sigma", &s.start_ratio, 1},
+                {"platen_mass_kg", &s.platen_mass, 1},
+                {"settle_time_s", &s.settle_time, 1},
+                {"consolidate_time_s", &s.consolidate_time, 1},
+                {"wall_seconds", &s.wall_seconds, 1}};
+  int seen = 0;
+  for (const auto& f : fields)
+    if (const auto it = kv.find(f.key); it != kv.end()) {
+      *f.target = to_double(it->second, "summary key " + it->first) * f.scale;
+      ++seen;
+    }
+  if (const auto it = kv.find("max_beads_outside"); it != kv.end())
+    s.max_outside = static_cast<int>(to_double(it->second, it->first));
+  if (seen < 10) throw std::runtime_error("not a shear-test summary (too few keys)");
+  read_band(kv, s);
+  return s;
+}
+
+MohrCoulomb fit_mohr_coulomb(const std::vector<double>& sigma, const std::vector<double>& tau) {
+  MohrCoulomb m;
+  const size_t n = std::min(sigma.size(), tau.size());
+  m.points = static_cast<int>(n);
+  if (n < 2) return m;
+  double sx = 0, sy = 0;
+  for (size_t i = 0; i < n; ++i) {
+    sx += sigma[i];
+    sy += tau[i];
+  }
+  const double mx = sx / n, my = sy / n;
+  double sxx = 0, sxy = 0, ss_tot = 0;
+  for (size_t i = 0; i < n; ++i) {
+    sxx += (sigma[i] - mx) * (sigma[i] - mx);
+    sxy += (sigma[i] - mx) * (tau[i] - my);
+    ss_tot += (tau[i] - my) * (tau[i] - my);
+  }
+  if (sxx <= 0) return m;
+  m.tan_phi = sxy / sxx;
+  m.cohesion = my - m.tan_phi * mx;
+  m.phi_deg = std::atan(m.tan_phi) * kRad;
+  double ss_res = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const double e = tau[i] - (m.cohesion + m.tan_phi * sigma[i]);
+    ss_res += e * e;
+  }
+  m.r2 = ss_tot > 0 ? 1 - ss_res / ss_tot : 1;
+  m.exact = n == 2;
+  if (m.exact) {
+    m.cohesion_se = m.tan_phi_se = m.phi_se_deg = std::numeric_limits<double>::quiet_NaN();
+    return m;
+  }
+  const double s2 = ss_res / double(n - 2);
+  m.tan_phi_se = std::sqrt(s2 / sxx);
+  m.cohesion_se = std::sqrt(s2 * (1.0 / n + mx * mx / sxx));
+  m.phi_se_deg = m.tan_phi_se / (1 + m.tan_phi * m.tan_phi) * kRad;
+  return m;
+}
+
+}  // namespace simsols

@@ -1,0 +1,313 @@
+#include "solver/apparatus/shear_box.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "solver/common/number_text.h"
+#include "solver/scene/sphere_grid.h"
+
+namespace simsols {
+namespace {
+
+std::string num(double v) { return shortest_number(v); }
+
+struct Problem {
+  SceneIssue issue;
+};
+
+[[noreturn]] void fail(const std::string& code, const std::string& field,
+                       const std::string& message) {
+  throw Problem{{code, "shear_box." + field, message}};
+}
+
+void require(bool ok, const std::string& field, double v, const std::string& allowed) {
+  if (!std::isfinite(v)) fail("not_finite", field, num(v) + " is not a finite number");
+  if (!ok) fail("out_of_range", field, num(v) + " is out of range, allowed " + allowed);
+}
+
+// Seeded and identical on every platform (mt19937_64 is fully specified).
+class Prng {
+ public:
+  explicit Prng(std::uint64_t seed) : engine_(seed) {}
+  double uniform(double a, double b) {
+    return a + (b - a) * (static_cast<double>(engine_() >> 11) * 0x1.0p-53);
+  }
+
+ private:
+  std::mt19937_64 engine_;
+};
+
+Wall rectangle(const std::string& name, int material, const Vec3& centre, const Vec3& normal,
+               const Vec3& axis_u, double half_u, double half_v) {
+  Wall w;
+  w.name = name;
+  w.shape = WallShape::Rectangle;
+  w.material = material;
+  w.point = centre;
+  w.normal = normal;
+  w.axis_u = axis_u;
+  w.half_u = half_u;
+  w.half_v = half_v;
+  return w;
+}
+
+void check_box(const ShearBox& b, const Scene& scene) {
+  require(b.length > 0 && b.length < 10, "length", b.length, "(0, 10) m");
+  require(b.width > 0 && b.width < 10, "width", b.width, "(0, 10) m");
+  require(b.normal_stress > 0 && b.normal_stress <= 1e9, "normal_stress", b.normal_stress,
+          "(0, 1e9] Pa");
+  require(b.shear_speed >= 0 && b.shear_speed <= 10, "shear_speed", b.shear_speed,
+          "[0, 10] m/s (0 = from inertial_number)");
+  require(b.inertial_number > 0 && b.inertial_number < 1, "inertial_number", b.inertial_number,
+          "(0, 1)");
+  require(b.shear_displacement > 0 && b.shear_displacement <= 0.5 * b.length,
+          "shear_displacement", b.shear_displacement, "(0, " + num(0.5 * b.length) + "] m (half the length)");
+  require(b.platen_mass >= 0 && b.platen_mass <= 1e4, "platen_mass", b.platen_mass,
+          "[0, 1e4] kg (0 = automatic)");
+  require(b.servo_gain >= 0, "servo_gain", b.servo_gain, "[0, inf) m/(s N) (0 = automatic)");
+  require(b.servo_max_speed > 0 && b.servo_max_speed <= 10, "servo_max_speed",
+          b.servo_max_speed, "(0, 10] m/s");
+  require(b.servo_integral_time >= 0, "servo_integral_time", b.servo_integral_time,
+          "[0, inf) s (0 = automatic)");
+  require(b.settle_time >= 0 && b.settle_time <= 100, "settle_time", b.settle_time, "[0, 100] s");
+  require(b.consolidate_time > 0 && b.consolidate_time <= 100, "consolidate_time",
+          b.consolidate_time, "(0, 100] s");
+  require(b.rows >= 10 && b.rows <= 1000000, "rows", b.rows, "[10, 1000000]");
+  require(b.split_height >= 0, "split_height", b.split_height, "[0, inf) m (0 = mid-height)");
+  require(b.gap >= 0, "gap", b.gap, "[0, inf) m (0 = automatic)");
+  if (scene.walls.size() + kShearBoxWalls > kMaxWalls)
+    fail("out_of_range", "length",
+         "the shear box adds " + std::to_string(int(kShearBoxWalls)) + " walls to the scene's " +
+             std::to_string(scene.walls.size()) + "; at most " + std::to_string(kMaxWalls) +
+             " walls are allowed");
+}
+
+// The paper's preparation: square layers, clearance shifted or spread.
+void place_layers(Scene& scene, const ShearBox& b) {
+  const ShearSpecimen& s = b.specimen;
+  const double d = s.diameter, r = d / 2;
+  const LayerGrid grid = layer_grid(b, d);
+  const double pitch = grid.pitch;
+  const int nx = grid.nx, ny = grid.ny;
+  const double cx = b.length - nx * pitch, cy = b.width - ny * pitch;  // clearances
+  Prng prng(static_cast<std::uint64_t>(s.seed));
+  for (int k = 0; k < s.layers; ++k) {
+    const double z = r + k * d * 1.001;
+    double sx = 0, sy = 0, gx = 0, gy = 0;  // layer shift; gap between rows
+    if (s.clearance == ShearSpecimen::Clearance::Shift) {
+      sx = prng.uniform(0, cx);
+      sy = prng.uniform(0, cy);
+    } else {
+      gx = cx / (nx + 1);
+      gy = cy / (ny + 1);
+      sx = gx;
+      sy = gy;
+    }
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        scene.particles.push_back({s.material, r,
+                                   {sx + r + i * (pitch + gx), sy + r + j * (pitch + gy), z},
+                                   {},
+                                   {}});
+  }
+}
+
+// Random pour: as many beads as the layers would hold, in a tall column.
+void place_pour(Scene& scene, const ShearBox& b) {
+  const ShearSpecimen& s = b.specimen;
+  const double d = s.diameter, r = d / 2;
+  const int count = beads_per_layer(b, d) * s.layers;
+  const double top = 3.0 * s.layers * d;
+  Prng prng(static_cast<std::uint64_t>(s.seed));
+  SphereGrid grid(d, static_cast<size_t>(count));
+  const size_t first = scene.particles.size();
+  const std::int64_t budget = 1000 + 2000LL * count;
+  std::int64_t attempts = 0;
+  for (int placed = 0; placed < count; ++placed) {
+    Vec3 p{};
+    bool hit = true;
+    while (hit) {
+      if (attempts++ == budget)
+        fail("out_of_range", "specimen.layers",
+             "could place only " + std::to_string(placed) + " of " + std::to_string(count) +
+                 " beads in the pouring column; use fewer layers");
+      p = {prng.uniform(r, b.length - r), prng.uniform(r, b.width - r),
+           prng.uniform(r, top - r)};
+      hit = false;
+      grid.for_each_near(p, [&](int q) {
+        const Vec3& o = scene.particles[first + q].position;
+        const double dx = p[0] - o[0], dy = p[1] - o[1], dz = p[2] - o[2];
+        hit = hit || dx * dx + dy * dy + dz * dz < d * d;
+      });
+    }
+    grid.insert(placed, p);
+    scene.particles.push_back({s.material, r, p, {}, {}});
+  }
+}
+
+void build(Scene& scene) {
+  ShearBox& b = *scene.shear_box;
+  check_box(b, scene);
+  ShearSpecimen& s = b.specimen;
+  if (s.method != ShearSpecimen::Method::Given) {
+    if (s.material < 0 || s.material >= static_cast<int>(scene.materials.size()))
+      fail("unknown_material", "specimen.material", "the specimen's material does not exist");
+    const double side = std::min(b.length, b.width);
+    require(s.diameter > 0 && s.diameter <= side, "specimen.diameter", s.diameter,
+            "(0, " + num(side) + "] m");
+    require(s.layers >= 1 && s.layers <= 200, "specimen.layers", s.layers, "[1, 200]");
+    const double beads = double(beads_per_layer(b, s.diameter)) * s.layers;
+    if (beads > 2e7)
+      fail("out_of_range", "specimen.diameter",
+           "the specimen would hold " + num(beads) + " beads (limit 2e7)");
+    if (!scene.particles.empty())
+      fail("conflicting_keys", "specimen.method",
+           "the scene lists particles; use specimen.method = \"given\" to shear them");
+    if (s.method == ShearSpecimen::Method::Layers)
+      place_layers(scene, b);
+    else
+      place_pour(scene, b);
+  }
+  if (scene.particles.empty())
+    fail("out_of_range", "specimen.method", "the specimen has no beads (the scene lists none)");
+
+  double r_min = scene.particles[0].radius, r_max = 0, top = 0, bottom = 1e300;
+  for (const Particle& p : scene.particles) {
+    r_min = std::min(r_min, p.radius);
+    r_max = std::max(r_max, p.radius);
+    top = std::max(top, p.position[2] + p.radius);
+    bottom = std::min(bottom, p.position[2] - p.radius);
+    const bool inside = p.position[0] >= p.radius && p.position[0] <= b.length - p.radius &&
+                        p.position[1] >= p.radius && p.position[1] <= b.width - p.radius &&
+                        p.position[2] >= p.radius;
+    if (!inside)
+      fail("out_of_range", "specimen.method",
+           "a bead at (" + num(p.position[0]) + ", " + num(p.position[1]) + ", " +
+               num(p.position[2]) + ") is not inside the box [0, length] x [0, width] x [0, inf)");
+  }
+  if (b.gap == 0) b.gap = 0.2 * 2 * r_min;
+  require(b.gap < r_min, "gap", b.gap, "[0, " + num(r_min) + ") m (below the smallest radius)");
+  if (b.split_height == 0) {
+    if (s.method == ShearSpecimen::Method::Layers) {
+      // Between the two layers nearest mid-height (the lower half holds
+      // floor(layers/2)), at the height they reach once every layer has
+      // nested into the one below as far as the row-wall clearance lets it
+      // shift (at most half a diameter each way: d/sqrt(2) apart).
+      const double d = s.diameter;
+      const LayerGrid grid = layer_grid(b, d);
+      const double cx = std::min(0.5 * d, b.length - grid.nx * d);
+      const double cy = std::min(0.5 * d, b.width - grid.ny * d);
+      const double spacing = s.clearance == ShearSpecimen::Clearance::Spread
+                                 ? d
+                                 : std::sqrt(d * d - cx * cx - cy * cy);
+      const int lower = std::max(1, s.layers / 2);
+      b.split_height = s.layers == 1 ? d / 2 : d / 2 + (lower - 0.5) * spacing;
+    } else {
+      // Mid-height of the given beads, or of a pour once settled (its
+      // volume at a solid fraction of 0.6).
+      double height = top - bottom;
+      if (s.method == ShearSpecimen::Method::Pour) {
+        double volume = 0;
+        for (const Particle& p : scene.particles)
+          volume += 4.0 / 3.0 * M_PI * std::pow(p.radius, 3);
+        height = volume / (0.6 * b.length * b.width);
+      }
+      b.split_height = bottom + 0.5 * height;
+    }
+  }
+  require(b.split_height > b.gap && b.split_height < top, "split_height", b.split_height,
+          "(" + num(b.gap) + ", " + num(top) + ") m (inside the specimen)");
+
+  if (b.wall_material < 0) {
+    b.wall_material = scene.material_index("steel");
+    if (b.wall_material < 0) {
+      scene.materials.push_back(default_box_steel());
+      b.wall_material = static_cast<int>(scene.materials.size()) - 1;
+    }
+  }
+  if (b.wall_material >= static_cast<int>(scene.materials.size()))
+    fail("unknown_material", "wall_material", "the box material does not exist");
+
+  // Geometry: plates reach a little past the corners; the upper half is
+  // tall enough for the platen's start and a generous dilation.
+  const int m = b.wall_material;
+  const double L = b.length, W = b.width, zs = b.split_height, g = b.gap;
+  const double platen_z = top + 0.1 * 2 * r_max;
+  const double upper_top = platen_z + 4 * r_max + 0.5 * b.shear_displacement;
+  const double low_h = zs - g / 2, up_lo = zs + g / 2, up_h = upper_top - up_lo;
+  const Vec3 ex{1, 0, 0}, ey{0, 1, 0}, ez{0, 0, 1};
+  b.first_wall = static_cast<int>(scene.walls.size());
+  auto& w = scene.walls;
+  w.push_back(rectangle("floor", m, {L / 2, W / 2, 0}, ez, ex, L / 2, W / 2));
+  w.push_back(rectangle("lower_x0", m, {0, W / 2, low_h / 2}, ex, ey, W / 2, low_h / 2));
+  w.push_back(rectangle("lower_x1", m, {L, W / 2, low_h / 2}, {-1, 0, 0}, ey, W / 2, low_h / 2));
+  w.push_back(rectangle("lower_y0", m, {L / 2, 0, low_h / 2}, ey, ex, L / 2, low_h / 2));
+  w.push_back(rectangle("lower_y1", m, {L / 2, W, low_h / 2}, {0, -1, 0}, ex, L / 2, low_h / 2));
+  // Real halves are frames with thick walls: once the lower half has moved
+  // by dx, the top face of its x0 wall closes the opening x in [0, dx] under
+  // the upper half, and the bottom face of the upper half's x1 wall closes
+  // x in [L, L + dx] over the lower half. Plates as wide as the travel.
+  const double frame = b.shear_displacement + 2 * r_max;
+  w.push_back(rectangle("lower_frame", m, {-frame / 2, W / 2, zs - g / 2}, ez, ex, frame / 2,
+                        W / 2));
+  const double zu = up_lo + up_h / 2;
+  w.push_back(rectangle("upper_x0", m, {0, W / 2, zu}, ex, ey, W / 2, up_h / 2));
+  w.push_back(rectangle("upper_x1", m, {L, W / 2, zu}, {-1, 0, 0}, ey, W / 2, up_h / 2));
+  w.push_back(rectangle("upper_y0", m, {L / 2, 0, zu}, ey, ex, L / 2, up_h / 2));
+  w.push_back(rectangle("upper_y1", m, {L / 2, W, zu}, {0, -1, 0}, ex, L / 2, up_h / 2));
+  w.push_back(rectangle("upper_frame", m, {L + frame / 2, W / 2, zs + g / 2}, {0, 0, -1}, ex,
+                        frame / 2, W / 2));
+  Wall platen = rectangle("platen", m, {L / 2, W / 2, platen_z}, {0, 0, -1}, ex, L / 2, W / 2);
+  // Switched on by the loading program (shear_test.h); its settings are set
+  // there too, from the specimen's stiffness.
+  platen.servo.enabled = true;
+  platen.servo.target_force = b.normal_stress * shear_area(b);
+  platen.servo.gain = 1;
+  platen.servo.max_speed = b.servo_max_speed;
+  w.push_back(platen);
+}
+
+}  // namespace
+
+Material default_box_steel() { return {"steel", 200e9, 0.3, 7850, 0.87, 0.02, 5e-5}; }
+
+std::optional<SceneIssue> build_shear_box(Scene& scene) {
+  if (!scene.shear_box) return std::nullopt;
+  try {
+    build(scene);
+  } catch (const Problem& p) {
+    return p.issue;
+  }
+  return std::nullopt;
+}
+
+double shear_area(const ShearBox& box) { return box.length * box.width; }
+
+double shear_area_corrected(const ShearBox& box, double dx) {
+  return std::max(0.0, box.length - std::fabs(dx)) * box.width;
+}
+
+LayerGrid layer_grid(const ShearBox& box, double d) {
+  LayerGrid g;
+  g.pitch = d * (1 + 1e-6);
+  g.nx = static_cast<int>(std::floor(box.length / g.pitch));
+  g.ny = static_cast<int>(std::floor(box.width / g.pitch));
+  return g;
+}
+
+int beads_per_layer(const ShearBox& box, double d) {
+  const LayerGrid g = layer_grid(box, d);
+  return g.nx * g.ny;
+}
+
+double inertial_number_of(double speed, double height, double d, double density, double sigma) {
+  return speed / height * d * std::sqrt(density / sigma);
+}
+
+double speed_for_inertial_number(double inertial_number, double height, double d, double density,
+                                 double sigma) {
+  return inertial_number * (height / d) * std::sqrt(sigma / density);
+}
+
+}  // namespace simsols

@@ -1,0 +1,71 @@
+// Shear box: the direct shear apparatus as walls, and its specimen.
+//
+// build_shear_box() is to a [shear_box] what a generator is to particles: it
+// expands the apparatus of Scene::shear_box (scene.h) into twelve rectangle
+// walls appended to Scene::walls (floor, the lower half's four side plates
+// and frame, the upper half's four and frame, the platen) and, unless the
+// specimen is given, places the beads. The frames stand for the thickness of
+// a real box's walls: without them, shearing by dx opens a slot dx wide
+// under the upper half's x0 wall and over the lower half's x1 wall, and
+// beads smaller than dx pour out through it.
+// Specimens:
+//   Layers  the paper's preparation (its section 5 and Table 1): square
+//           layers of floor(length/d) x floor(width/d) touching beads, the
+//           row-to-wall clearance used either by shifting each layer as a
+//           whole by a seeded random amount within it (Shift) or by spreading
+//           it evenly between the rows (Spread); layers stacked 0.1% of d apart
+//           so nothing overlaps before settling under gravity.
+//   Pour    the same number of beads placed at random, without overlap, in a
+//           column three specimen heights tall: rained in and settled.
+//   Given   the scene's own particles (listed or generated).
+// The halves are rectangles, not planes, so a bead in the gap meets their
+// edges: with gap < the smallest radius no bead centre can pass a wall.
+// The default split height is mid-height of the specimen: for Layers between
+// the two layers nearest mid-height, at the height they reach once each layer
+// has nested into the one below as far as its clearance lets it shift (an
+// estimate made before settling: d/sqrt(2) apart when the clearance allows
+// half a diameter, d apart for Spread); for Given / Pour beads half their
+// (settled) height.
+// Automatic values (gap, split height, wall material) are resolved into the
+// ShearBox, so to_toml() writes a scene that rebuilds the same walls.
+#pragma once
+
+#include <optional>
+
+#include "solver/scene/scene.h"
+#include "solver/scene/scene_check.h"
+
+namespace simsols {
+
+// The box's default material when the scene names none: steel. The paper
+// gives no wall properties; restitution and friction are the glass values
+// of its Table 2, so a glass-steel pair behaves as glass-glass but stiffer.
+Material default_box_steel();
+
+// Appends the apparatus (and the specimen) to `scene`; returns the first
+// problem, with its field under "shear_box".
+std::optional<SceneIssue> build_shear_box(Scene& scene);
+
+// Inside area of the box (m^2) and its corrected value after a relative
+// displacement dx of the halves.
+double shear_area(const ShearBox& box);
+double shear_area_corrected(const ShearBox& box, double dx);
+
+// The square layer the box allows for diameter d: floor(length/d) x
+// floor(width/d) beads at a pitch of d (1 + 1e-6) (touching, never
+// overlapping by round-off).
+struct LayerGrid {
+  int nx = 0, ny = 0;
+  double pitch = 0;
+};
+LayerGrid layer_grid(const ShearBox& box, double d);
+int beads_per_layer(const ShearBox& box, double d);
+
+// The inertial number of a shear at speed v across a specimen of height H,
+// beads of diameter d and density rho under sigma: I = (v/H) d sqrt(rho/sigma),
+// and the speed that gives a target I: v = I (H/d) sqrt(sigma/rho).
+double inertial_number_of(double speed, double height, double d, double density, double sigma);
+double speed_for_inertial_number(double inertial_number, double height, double d, double density,
+                                 double sigma);
+
+}  // namespace simsols

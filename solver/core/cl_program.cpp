@@ -1,0 +1,147 @@
+#include "solver/core/cl_program.h"
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+#include "solver/kernels/kernel_source.h"
+
+namespace simsols {
+
+std::string KernelConfig::build_options() const {
+  std::string o = "-cl-std=CL1.2 -cl-kernel-arg-info";
+  if (double_precision) o += " -DSIMSOLS_DOUBLE";
+  if (gravity) o += " -DHAS_GRAVITY";
+  if (damping) o += " -DHAS_DAMPING";
+  if (friction) o += " -DHAS_FRICTION";
+  if (rolling) o += " -DHAS_ROLLING";
+  if (rolling && rolling_spring) o += " -DHAS_ROLLING_SPRING";
+  if (capillary) o += " -DHAS_CAPILLARY";
+  if (fluid) o += " -DHAS_FLUID";
+  o += " -DHIST_PLANES=" + std::to_string(history_planes());
+  if (rolling && rolling_spring) o += " -DHIST_ROLL=" + std::to_string(contact_record() ? 1 : 0);
+  o += " -DPAIR_RECORD=" + std::to_string(pair_record());
+  if (walls) o += " -DHAS_WALLS";
+  if (servo) o += " -DHAS_SERVO";
+  if (servo_in_finish()) o += " -DSERVO_IN_FINISH";
+  o += " -DSLICE=" + std::to_string(slice);
+  o += " -DLANES=" + std::to_string(lanes);
+  if (!extra_options.empty()) o += " " + extra_options;
+  return o;
+}
+
+KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
+  KernelConfig c;
+  c.double_precision = scene.numerics.precision == Precision::Double;
+  if (c.double_precision && !device.has_double())
+    throw DeviceError("numerics.precision = \"double\" but the OpenCL device " + device.name() +
+                      " has no cl_khr_fp64; use precision = \"float\"");
+  c.gravity = scene.has_gravity();
+  bool any_friction = false, any_rolling = false, any_damping = false;
+  for (const Material& m : scene.materials) {
+    any_friction = any_friction || m.sliding_friction > 0;
+    any_rolling = any_rolling || m.rolling_friction > 0;
+    any_damping = any_damping || m.restitution < 1;
+  }
+  for (const PairOverride& p : scene.pair_overrides) {
+    any_friction = any_friction || p.sliding_friction.value_or(0) > 0;
+    any_rolling = any_rolling || p.rolling_friction.value_or(0) > 0;
+    any_damping = any_damping || p.restitution.value_or(1) < 1;
+  }
+  const Effects& e = scene.effects;
+  c.damping = e.damping == DampingModel::Viscous && any_damping;
+  c.friction = e.tangential == TangentialModel::Mindlin && any_friction;
+  c.rolling = e.rolling != RollingModel::None && any_rolling;
+  c.rolling_spring = c.rolling && e.rolling == RollingModel::SpringDashpot;
+  c.capillary = e.cohesion == CohesionModel::Capillary;
+  c.fluid = e.fluid == FluidModel::Drag;
+  c.walls = !scene.walls.empty();
+  for (const Wall& w : scene.walls) c.servo = c.servo || w.servo.enabled;
+  // CPUs: SIMD lanes, 8 floats or 4 doubles per work item (256-bit
+  // registers; measured fastest with PoCL 3.1 on AVX-512, docs/performance.md).
+  // GPUs already run one particle per SIMD lane.
+  c.lanes = device.is_gpu() ? 1 : (c.double_precision ? 4 : 8);
+  if (const char* l = std::getenv("SIMSOLS_LANES")) c.lanes = std::atoi(l);
+  if (c.lanes != 1 && c.lanes != 2 && c.lanes != 4 && c.lanes != 8 && c.lanes != 16)
+    throw DeviceError("SIMSOLS_LANES must be 1, 2, 4, 8 or 16");
+  // List slices (neighbors.cl): a work item's lanes are one slice, so they
+  // read consecutive slots; one particle per work item (GPUs) slices by 32,
+  // a warp, so neighbouring threads do. SLICE must be a multiple of LANES.
+  c.slice = c.lanes > 1 ? c.lanes : 32;
+  // extra OpenCL build options for experiments, e.g. "-cl-fast-relaxed-math"
+  if (const char* x = std::getenv("SIMSOLS_CL_OPTIONS")) c.extra_options = x;
+  return c;
+}
+
+std::string program_source() { return program_source(kernel_files()); }
+
+std::string program_source(std::span<const KernelFile> files) {
+  std::string text;
+  for (const KernelFile& f : files) {
+    text += "#line 1 \"";
+    text += f.name;
+    text += "\"\n";
+    text += f.text;
+    text += "\n";
+  }
+  return text;
+}
+
+const KernelFile& kernel_file(std::string_view name) {
+  for (const KernelFile& f : kernel_files())
+    if (name == f.name) return f;
+  throw DeviceError("no embedded kernel source named '" + std::string(name) + "'");
+}
+
+Program::Program(Device& device, const KernelConfig& config)
+    : Program(device, config, kernel_files()) {}
+
+Program::Program(Device& device, const KernelConfig& config, std::span<const KernelFile> files)
+    : config_(config) {
+  const std::string text = program_source(files);
+  const char* src = text.c_str();
+  const size_t len = text.size();
+  cl_int err = CL_SUCCESS;
+  program_ = ClProgram(clCreateProgramWithSource(device.context(), 1, &src, &len, &err));
+  check(err, "clCreateProgramWithSource");
+  const std::string options = config.build_options();
+  cl_device_id id = device.id();
+  const auto t0 = std::chrono::steady_clock::now();
+  err = clBuildProgram(program_.get(), 1, &id, options.c_str(), nullptr, nullptr);
+  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (err != CL_SUCCESS) {
+    size_t n = 0;
+    clGetProgramBuildInfo(program_.get(), id, CL_PROGRAM_BUILD_LOG, 0, nullptr, &n);
+    std::string log(n, '\0');
+    clGetProgramBuildInfo(program_.get(), id, CL_PROGRAM_BUILD_LOG, n, log.data(), nullptr);
+    throw DeviceError("OpenCL kernel build failed (error " + std::to_string(err) +
+                      ", options '" + options + "') on " + device.name() + ":\n" + log);
+  }
+}
+
+Kernel Program::kernel(const char* name) const {
+  cl_int err = CL_SUCCESS;
+  cl_kernel k = clCreateKernel(program_.get(), name, &err);
+  if (err != CL_SUCCESS)
+    throw DeviceError(std::string("kernel '") + name + "' missing from the program (error " +
+                      std::to_string(err) + ")");
+  Kernel out{ClKernel(k), name, {}, 0};
+  check(clGetKernelInfo(k, CL_KERNEL_NUM_ARGS, sizeof out.count, &out.count, nullptr),
+        "clGetKernelInfo(CL_KERNEL_NUM_ARGS)");
+  for (cl_uint i = 0; i < out.count; ++i) {
+    size_t n = 0;
+    if (clGetKernelArgInfo(k, i, CL_KERNEL_ARG_NAME, 0, nullptr, &n) != CL_SUCCESS) {
+      out.params.clear();  // no argument names kept: only the count is checked
+      break;
+    }
+    std::string param(n, '\0');
+    check(clGetKernelArgInfo(k, i, CL_KERNEL_ARG_NAME, n, param.data(), nullptr),
+          "clGetKernelArgInfo(CL_KERNEL_ARG_NAME)");
+    param.resize(std::strlen(param.c_str()));
+    out.params.push_back(std::move(param));
+  }
+  return out;
+}
+
+}  // namespace simsols

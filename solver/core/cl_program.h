@@ -1,0 +1,102 @@
+// Kernel program: the embedded .cl sources built for one configuration.
+//
+// A KernelConfig is derived from the Scene (make_kernel_config): precision
+// and the optional physics the scene uses become -D options, so a scene pays
+// only for what it calls for (MuJoCo's "disable flags", decided at build
+// time instead of at run time). A failed build throws DeviceError carrying
+// the full build log; nothing fails silently.
+#pragma once
+
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "solver/core/cl_device.h"
+#include "solver/kernels/kernel_source.h"
+#include "solver/scene/scene.h"
+
+namespace simsols {
+
+// One flag per effect slot (scene.h, Effects): a slot whose choice is none,
+// or whose coefficients are zero for every material pair, is not compiled.
+// Each compiled sub-model declares the per-contact history it needs
+// (LAMMPS GRANULAR style); the list and wall slots carry exactly that.
+struct KernelConfig {
+  bool double_precision = true;
+  bool gravity = true;
+  bool damping = true;        // slot damping = viscous
+  bool friction = true;       // slot tangential = mindlin
+  bool rolling = true;        // slot rolling = constant_torque or spring_dashpot
+  bool rolling_spring = false;  // rolling = spring_dashpot (else constant torque)
+  bool capillary = false;     // slot cohesion = capillary
+  bool fluid = false;         // slot fluid = drag
+  bool walls = true;
+  bool servo = false;  // some wall is servo-controlled
+  int lanes = 1;                   // particles per work item in the contact kernels
+  int slice = 32;                  // particles per slice of the neighbour lists (neighbors.cl)
+  std::string extra_options;       // appended verbatim (diagnostics, tests)
+
+  std::string build_options() const;
+
+  // Per-contact history, in records of 4 reals (one per history plane):
+  // the contact record (the tangential spring of mindlin in 3 reals, the
+  // normal dashpot's record of viscous damping in the 4th) and the elastic
+  // rolling torque (spring_dashpot). 0 when nothing needs history.
+  bool contact_record() const { return friction || damping; }
+  // The walls' step at the end of finish_particles (CPUs, lanes > 1),
+  // instead of a servo_walls launch (integrate.cl).
+  bool servo_in_finish() const { return servo && lanes > 1; }
+  int history_planes() const { return (contact_record() ? 1 : 0) + (rolling_spring ? 1 : 0); }
+  size_t real_size() const { return double_precision ? 8 : 4; }
+  size_t history_bytes_per_contact() const { return history_planes() * 4 * real_size(); }
+  int pair_record() const { return capillary ? 12 : 8; }  // reals per pair coefficient record
+  bool operator==(const KernelConfig&) const = default;
+};
+
+KernelConfig make_kernel_config(const Scene& scene, const Device& device);
+
+// A kernel and the names of its parameters as the compiler reports them
+// (programs are built with -cl-kernel-arg-info). set_args (kernel_args.h)
+// binds every argument by name against them, so a call that names its
+// arguments in another order than the kernel's signature, or leaves one
+// out, stops with the kernel and the argument named instead of binding the
+// wrong buffer. A driver that keeps no argument names leaves `params`
+// empty: then only the count is checked.
+struct Kernel {
+  ClKernel handle;
+  std::string name;
+  std::vector<std::string> params;
+  cl_uint count = 0;  // number of parameters
+  cl_kernel get() const { return handle.get(); }
+};
+
+class Program {
+ public:
+  // Builds the solver program (kernel_files()); throws DeviceError with the
+  // build log on failure.
+  Program(Device& device, const KernelConfig& config);
+  // Builds the given embedded files, in order, with the same options (e.g.
+  // common.cl + render_pack.cl for the renderer's packing kernels).
+  Program(Device& device, const KernelConfig& config, std::span<const KernelFile> files);
+
+  Kernel kernel(const char* name) const;  // throws DeviceError if absent
+  const KernelConfig& config() const { return config_; }
+  double build_seconds() const { return build_seconds_; }
+
+ private:
+  ClProgram program_;
+  KernelConfig config_;
+  double build_seconds_ = 0;
+};
+
+// The full program text for a configuration (prelude of #defines is passed
+// as build options, not text). Exposed for tools and tests.
+std::string program_source();
+std::string program_source(std::span<const KernelFile> files);
+
+// The embedded solver source named `name` (e.g. "common.cl"); throws
+// DeviceError if there is none.
+const KernelFile& kernel_file(std::string_view name);
+
+}  // namespace simsols

@@ -1,0 +1,92 @@
+#include "solver/core/model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <vector>
+
+#include "solver/common/errors.h"
+#include "solver/core/real_packer.h"
+
+namespace simsols {
+Model::Model(std::shared_ptr<Device> device, const Scene& scene)
+    : device_(std::move(device)), scene_(scene) {
+  if (scene_.particles.empty())
+    throw SceneError("no_particles", scene_.source_path, 0, "particles", "the scene has no particles");
+  program_ = std::make_unique<Program>(*device_, make_kernel_config(scene_, *device_));
+  const Program& p = *program_;
+  kernels_.grid_clear = p.kernel("grid_clear");
+  kernels_.grid_count = p.kernel("grid_count");
+  kernels_.scan_chunks = p.kernel("scan_chunks");
+  kernels_.scan_totals = p.kernel("scan_totals");
+  kernels_.scan_apply = p.kernel("scan_apply");
+  kernels_.grid_scatter = p.kernel("grid_scatter");
+  kernels_.count_neighbors = p.kernel("count_neighbors");
+  kernels_.slice_widths = p.kernel("slice_widths");
+  kernels_.build_neighbors = p.kernel("build_neighbors");
+  kernels_.build_mirrors = p.kernel("build_mirrors");
+  kernels_.pair_forces = p.kernel("pair_forces");
+  kernels_.finish_particles = p.kernel("finish_particles");
+  kernels_.reduce_observables = p.kernel("reduce_observables");
+  if (config().walls) {
+    kernels_.advance_walls = p.kernel("advance_walls");
+    kernels_.build_wall_near = p.kernel("build_wall_near");
+    kernels_.wall_widths = p.kernel("wall_widths");
+    kernels_.carry_wall_slots = p.kernel("carry_wall_slots");
+    kernels_.reset_wall_travel = p.kernel("reset_wall_travel");
+    kernels_.reduce_walls = p.kernel("reduce_walls");
+  }
+  if (config().servo) kernels_.servo_walls = p.kernel("servo_walls");
+
+  rayleigh_dt_ = rayleigh_time_step(scene_);
+  dt_ = effective_time_step(scene_);
+  double rmax = 0;
+  Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (const Particle& q : scene_.particles) {
+    rmax = std::max(rmax, q.radius);
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], q.position[a]);
+      hi[a] = std::max(hi[a], q.position[a]);
+    }
+  }
+  // with capillary bridges the lists must hold every pair within the rupture
+  // distance: each bead moves < skin/4 between builds (validate_scene
+  // refuses an explicit skin below twice the rupture distance)
+  skin_ = scene_.numerics.skin > 0 ? scene_.numerics.skin
+                                   : std::max(0.2 * rmax, 2 * scene_.rupture_distance());
+  cell_size_ = 2 * rmax + skin_;
+  // The float frame is centred on the initial packing, rounded to the largest
+  // diameter: reproducible, and independent of numerics such as the skin
+  // (the origin changes how positions round, hence results in the last bits).
+  for (int a = 0; a < 3; ++a) origin_[a] = std::round(0.25 * (lo[a] + hi[a]) / rmax) * 2 * rmax;
+
+  pairs_ = make_pair_table(scene_);
+  const bool dbl = config().double_precision;
+  RealPacker pk(dbl);
+  for (const PairCoefficients& c : pairs_.pairs) {
+    pk.put4(c.e_star, c.g_star, c.gamma_n, c.sliding_friction);
+    pk.put4(c.rolling_friction, std::sqrt(6 * c.g_star / c.e_star), 0, 0);
+    if (config().capillary) pk.put4(c.capillary_tension, c.liquid_volume, c.rupture_distance, 0);
+  }
+  pair_buf_ = device_->alloc(pk.bytes().size(), pk.bytes().data());
+
+  RealPacker wk(dbl);
+  for (const Wall& w : scene_.walls) {
+    const Vec3 v = cross(w.normal, w.axis_u);
+    wk.put4(w.point[0] - origin_[0], w.point[1] - origin_[1], w.point[2] - origin_[2],
+             w.shape == WallShape::Plane ? 0 : 1);
+    wk.put4(w.normal[0], w.normal[1], w.normal[2], w.material);
+    wk.put4(w.axis_u[0], w.axis_u[1], w.axis_u[2], w.half_u);
+    wk.put4(v[0], v[1], v[2], w.half_v);
+  }
+  wall_buf_ = device_->alloc(wk.bytes().size(), wk.bytes().data());
+  local_size_ = 64;
+  if (const char* ls = std::getenv("SIMSOLS_LOCAL_SIZE")) local_size_ = std::max(1, std::atoi(ls));
+}
+
+size_t Model::device_bytes() const {
+  return pairs_.pairs.size() * config().pair_record() * real_size() +
+         scene_.walls.size() * 16 * real_size();
+}
+
+}  // namespace simsols

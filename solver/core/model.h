@@ -1,0 +1,67 @@
+// Model: a Scene compiled for one OpenCL device.
+//
+// Static after construction, like the Scene it comes from: the kernel
+// program built for the scene's configuration, the kernels, the derived
+// numerics (time step, skin, grid cell size, origin of the float frame) and
+// the device copies of the constants (pair coefficient table, wall geometry).
+// Everything that changes during a run is in State.
+#pragma once
+
+#include <memory>
+
+#include "solver/core/cl_device.h"
+#include "solver/core/cl_program.h"
+#include "solver/scene/contact_model.h"
+#include "solver/scene/scene.h"
+
+namespace simsols {
+
+struct Kernels {
+  Kernel grid_clear, grid_count, scan_chunks, scan_totals, scan_apply, grid_scatter;
+  Kernel count_neighbors, slice_widths, build_neighbors, build_mirrors;
+  Kernel pair_forces, finish_particles, advance_walls, build_wall_near, wall_widths,
+      carry_wall_slots, reset_wall_travel;
+  Kernel reduce_observables, reduce_walls, servo_walls;
+};
+
+class Model {
+ public:
+  // Throws SceneError for scenes the device cannot run, DeviceError for
+  // OpenCL failures (kernel build log included).
+  Model(std::shared_ptr<Device> device, const Scene& scene);
+
+  Device& device() const { return *device_; }
+  const Scene& scene() const { return scene_; }
+  const Program& program() const { return *program_; }
+  const KernelConfig& config() const { return program_->config(); }
+  const PairTable& pairs() const { return pairs_; }
+  const Kernels& kernels() const { return kernels_; }
+
+  int particles() const { return static_cast<int>(scene_.particles.size()); }
+  int walls() const { return static_cast<int>(scene_.walls.size()); }
+  double dt() const { return dt_; }
+  double rayleigh_dt() const { return rayleigh_dt_; }
+  double skin() const { return skin_; }
+  double cell_size() const { return cell_size_; }
+  const Vec3& origin() const { return origin_; }  // positions on the device are relative to it
+  size_t real_size() const { return config().double_precision ? 8 : 4; }
+  size_t local_size() const { return local_size_; }
+  size_t global_size(size_t n) const { return (n + local_size_ - 1) / local_size_ * local_size_; }
+
+  cl_mem pair_buffer() const { return pair_buf_.get(); }
+  cl_mem wall_buffer() const { return wall_buf_.get(); }
+  size_t device_bytes() const;  // of the constant buffers
+
+ private:
+  std::shared_ptr<Device> device_;
+  Scene scene_;
+  std::unique_ptr<Program> program_;
+  Kernels kernels_;
+  PairTable pairs_;
+  double dt_ = 0, rayleigh_dt_ = 0, skin_ = 0, cell_size_ = 0;
+  Vec3 origin_{};
+  size_t local_size_ = 64;
+  ClMem pair_buf_, wall_buf_;
+};
+
+}  // namespace simsols

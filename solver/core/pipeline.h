@@ -1,0 +1,47 @@
+// Pipeline: one DEM step as named stages over (Model, State), in order.
+//
+//   detect_contacts   rebuild grid + neighbour lists when a particle or a
+//                     wall has moved more than skin/4 (springs carried
+//                     over; the walls near each particle kept with them)
+//                                               grid.cl, neighbors.cl, walls.cl
+//   contact_forces    particle-particle forces and torques, each pair once
+//                                                                  forces.cl
+//   finish_particles  per particle, one launch: the partners' shares
+//                     collected, wall contacts (near walls only), leapfrog
+//                     kick-drift                forces.cl, walls.cl, integrate.cl
+//   move_walls        servo walls set their velocity from the summed wall
+//                     reaction, every wall advances; returns early when the
+//                     scene has no walls                    reduce.cl, walls.cl
+//
+// step() runs the four in this order: three kernel launches per step
+// without servo walls, four with them (plus a list build now and then).
+// Stages only enqueue kernels on the device's in-order queue;
+// detect_contacts reads the flags back every few steps (check_interval).
+// Reductions for observables are in observe.h.
+#pragma once
+
+#include "solver/core/model.h"
+#include "solver/core/state.h"
+
+namespace simsols {
+
+void detect_contacts(const Model& model, State& state, bool force_rebuild = false);
+void contact_forces(const Model& model, State& state);
+void finish_particles(const Model& model, State& state);
+void move_walls(const Model& model, State& state);
+
+void step(const Model& model, State& state);
+
+// Recomputes what the state derives from its saved buffers (the contact
+// counts of the last step, State::touching) after they were written
+// wholesale: a checkpoint loaded, the guard's copy restored.
+void derive_state(const Model& model, State& state);
+
+// Enqueues the per-wall sums of the forces particles exert on walls into
+// state.wall_partial (walls x chunks of kWallChunk particles, each summed in
+// index order); returns the number of chunks.
+inline constexpr int kWallChunk = 128;
+size_t reduce_wall_forces(const Model& model, State& state);
+int wall_chunks(const State& state);  // chunks of kWallChunk particles
+
+}  // namespace simsols

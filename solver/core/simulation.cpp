@@ -1,0 +1,173 @@
+#include "solver/core/simulation.h"
+
+#include <array>
+#include <mutex>
+#include <stdexcept>
+
+#include "solver/core/real_packer.h"
+
+namespace simsols {
+
+Simulation::Simulation(std::shared_ptr<Device> device, const Scene& scene)
+    : model_(std::make_unique<Model>(std::move(device), scene)),
+      state_(std::make_unique<State>(*model_)),
+      guard_(std::make_unique<Guard>(*model_, *state_)) {
+  guard_->reset();
+}
+
+void Simulation::advance(std::int64_t steps) {
+  for (std::int64_t i = 0; i < steps; ++i) {
+    step(*model_, *state_);
+    guard_->after_step();
+  }
+}
+
+namespace {
+
+void check_wall(const Model& m, int wall, const char* what) {
+  if (wall < 0 || wall >= m.walls())
+    throw std::out_of_range(std::string(what) + ": wall " + std::to_string(wall) +
+                            " does not exist (the scene has " + std::to_string(m.walls()) +
+                            " walls)");
+}
+
+std::array<double, 4> read_real4(const Model& m, const Buffer& buf, size_t index) {
+  const std::vector<double> v = read_reals(m, buf, 4, 4 * index);
+  return {v[0], v[1], v[2], v[3]};
+}
+
+}  // namespace
+
+// Writes one real4 at record `index` of a state buffer, through the guard's
+// log (a replay repeats it).
+void Simulation::write_real4(Buffer State::*buffer, size_t index, double a, double b, double c,
+                             double d) {
+  RealPacker p(model_->config().double_precision);
+  p.put4(a, b, c, d);
+  guard_->write(buffer, index * p.size(), p.data(), p.size());
+}
+
+void Simulation::set_wall_velocity(int wall, const Vec3& v) {
+  check_wall(*model_, wall, "set_wall_velocity");
+  write_real4(&State::wall_vel, wall, v[0], v[1], v[2], 0);
+}
+
+void Simulation::set_servo(int wall, const WallServo& c) {
+  check_wall(*model_, wall, "set_servo");
+  if (c.enabled && !model_->config().servo)
+    throw std::logic_error("set_servo: the kernels were built without servo walls");
+  if (!model_->config().servo) return;
+  const std::array<double, 8> r = servo_record(c);
+  write_real4(&State::servo, 2 * wall, r[0], r[1], r[2], r[3]);
+  write_real4(&State::servo, 2 * wall + 1, r[4], r[5], r[6], r[7]);
+  if (!c.enabled) {
+    set_wall_velocity(wall, {0, 0, 0});
+    const auto r = read_real4(*model_, state_->wall_reaction, wall);
+    write_real4(&State::wall_reaction, wall, r[0], r[1], 0, r[3]);  // no stale integral
+  }
+}
+
+Simulation::ServoReading Simulation::read_servo(int wall) {
+  check_wall(*model_, wall, "read_servo");
+  guard_->before_reading();
+  const auto r = read_real4(*model_, state_->wall_reaction, wall);
+  write_real4(&State::wall_reaction, wall, r[0], 0, r[2], 0);
+  ServoReading out;
+  out.last = r[0];
+  out.steps = static_cast<std::int64_t>(r[3]);
+  out.mean = out.steps > 0 ? r[1] / r[3] : r[0];
+  return out;
+}
+
+Vec3 Simulation::wall_point(int wall) {
+  check_wall(*model_, wall, "wall_point");
+  guard_->before_reading();
+  return wall_points(*model_, *state_)[wall];
+}
+
+Vec3 Simulation::wall_velocity(int wall) {
+  check_wall(*model_, wall, "wall_velocity");
+  guard_->before_reading();
+  const auto v = read_real4(*model_, state_->wall_vel, wall);
+  return {v[0], v[1], v[2]};
+}
+
+void Simulation::nudge_particle(size_t slot, const Vec3& dx) {
+  if (slot >= static_cast<size_t>(model_->particles()))
+    throw std::out_of_range("nudge_particle: slot " + std::to_string(slot) + " does not exist");
+  const auto p = read_real4(*model_, state_->pos, slot);
+  double at[3] = {p[0] + dx[0], p[1] + dx[1], p[2] + dx[2]};
+  if (!model_->config().double_precision) {
+    // the float run's position is pos + pos_lo: move their sum
+    float lo[4];
+    model_->device().read(state_->pos_lo.get(), sizeof lo, lo, slot * sizeof lo);
+    for (int a = 0; a < 3; ++a) at[a] += lo[a];
+    const float fresh[4] = {float_remainder(at[0]), float_remainder(at[1]),
+                            float_remainder(at[2]), lo[3]};
+    guard_->write(&State::pos_lo, slot * sizeof fresh, fresh, sizeof fresh);
+  }
+  write_real4(&State::pos, slot, at[0], at[1], at[2], p[3]);
+}
+
+void Simulation::set_wall_point(int wall, const Vec3& p) {
+  check_wall(*model_, wall, "set_wall_point");
+  const Vec3& o = model_->origin();
+  double rel[3];
+  for (int a = 0; a < 3; ++a) rel[a] = p[a] - o[a];
+  write_real4(&State::wall_point, wall, rel[0], rel[1], rel[2], 0);
+  if (!model_->config().double_precision) {
+    const float lo[4] = {float_remainder(rel[0]), float_remainder(rel[1]),
+                         float_remainder(rel[2]), 0};
+    guard_->write(&State::wall_point_lo, wall * sizeof lo, lo, sizeof lo);
+  }
+  // a jump is no travel the broad phase can bound: the wall masks and slots
+  // are built anew at once (walls.cl); logged, so a replay does it too
+  guard_->rebuild_lists();
+}
+
+std::vector<Simulation::WallMean> Simulation::read_wall_means() {
+  std::vector<WallMean> out;
+  if (!model_->config().servo) return out;
+  const int nw = model_->walls();
+  guard_->before_reading();
+  const std::vector<double> sums = read_reals(*model_, state_->wall_mean, size_t(nw) * 4);
+  for (int w = 0; w < nw; ++w) {
+    const double* r = &sums[4 * size_t(w)];
+    WallMean m;
+    m.steps = static_cast<std::int64_t>(r[3]);
+    for (int k = 0; k < 3; ++k) m.force[k] = m.steps > 0 ? r[k] / r[3] : 0;
+    out.push_back(m);
+  }
+  std::vector<unsigned char> zero(state_->wall_mean.bytes, 0);
+  guard_->write(&State::wall_mean, 0, zero.data(), zero.size());
+  return out;
+}
+
+bool advance_through_contact(Simulation& sim, int i, std::int64_t max_steps) {
+  bool touched = false;
+  for (std::int64_t k = 0; k < max_steps; ++k) {
+    sim.advance(1);
+    const int c = sim.snapshot().contacts[i];
+    touched = touched || c > 0;
+    if (touched && c == 0) return true;
+  }
+  return false;
+}
+
+namespace {
+std::mutex default_mutex;
+std::shared_ptr<Device> default_dev;
+}  // namespace
+
+std::shared_ptr<Device> default_device() {
+  std::lock_guard lock(default_mutex);
+  if (!default_dev) default_dev = Device::open();
+  return default_dev;
+}
+
+void set_default_device(std::shared_ptr<Device> device) {
+  std::lock_guard lock(default_mutex);
+  default_dev = std::move(device);
+}
+
+}  // namespace simsols

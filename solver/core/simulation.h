@@ -1,0 +1,107 @@
+// Simulation: a Model and its State on one device, the unit tests and the
+// app drive. Thin by design: the physics is in the pipeline stages, the
+// measuring in observe.h, persistence in checkpoint.h.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "solver/core/guard.h"
+#include "solver/core/model.h"
+#include "solver/core/observe.h"
+#include "solver/core/pipeline.h"
+#include "solver/core/state.h"
+
+namespace simsols {
+
+class Simulation {
+ public:
+  Simulation(std::shared_ptr<Device> device, const Scene& scene);
+
+  const Model& model() const { return *model_; }
+  State& state() { return *state_; }
+  const Scene& scene() const { return model_->scene(); }
+
+  // Throws RunawayError when a step goes wrong; the simulation is then at
+  // the last good state, the step before (guard.h).
+  void advance(std::int64_t steps = 1);
+  double time() const { return state_->time; }
+  std::int64_t steps() const { return state_->step; }
+  double dt() const { return model_->dt(); }
+
+  // Run-time control of the walls (the loading program): a prescribed
+  // velocity, and a servo's settings (switching it on or off, retargeting).
+  void set_wall_velocity(int wall, const Vec3& velocity);
+  void set_servo(int wall, const WallServo& servo);
+  // What the servo of `wall` measured: the reaction of the last step and its
+  // mean over the steps since the previous call (which restarts the mean).
+  struct ServoReading {
+    double last = 0, mean = 0;
+    std::int64_t steps = 0;
+  };
+  ServoReading read_servo(int wall);
+  Vec3 wall_point(int wall);  // current reference point, absolute
+  Vec3 wall_velocity(int wall);  // m/s, prescribed or set by its force control
+  // Moves a wall at once (no sweep: the caller makes sure it lands clear of
+  // the particles, e.g. a platen lowered onto a specimen).
+  void set_wall_point(int wall, const Vec3& point);
+  // Moves the particle in state slot `slot` by dx at once (the accuracy
+  // study's round-off twin at the start of shearing).
+  void nudge_particle(size_t slot, const Vec3& dx);
+  // Mean force the particles exerted on each wall over the steps since the
+  // previous call (which restarts the means); needs a servo wall in the
+  // scene (the servo stage keeps the sums). Empty when there is none.
+  struct WallMean {
+    Vec3 force{};
+    std::int64_t steps = 0;
+  };
+  std::vector<WallMean> read_wall_means();
+
+  // Readings first make sure no step since the guard's last look went wrong
+  // (they throw RunawayError otherwise), so no output holds a bad value.
+  Observables observe() {
+    guard_->before_reading();
+    return simsols::observe(*model_, *state_);
+  }
+  std::vector<WallReaction> wall_reactions() {
+    guard_->before_reading();
+    return simsols::wall_reactions(*model_, *state_);
+  }
+  ParticleSnapshot snapshot() {
+    guard_->before_reading();
+    return download(*model_, *state_);
+  }
+  std::vector<ContactForce> contacts() {
+    guard_->before_reading();
+    return contact_list(*model_, *state_);
+  }
+  // The state as it is (no guard look: also for a state being diagnosed).
+  std::uint64_t hash() { return state_hash(*model_, *state_); }
+
+  // The runaway guard (guard.h). check() reads the mark now.
+  Guard& guard() { return *guard_; }
+  void check() { guard_->before_reading(); }
+  // After the state buffers were written wholesale (a checkpoint loaded).
+  void state_replaced() { guard_->reset(); }
+
+ private:
+  void write_real4(Buffer State::*buffer, size_t index, double a, double b, double c, double d);
+
+  std::unique_ptr<Model> model_;
+  std::unique_ptr<State> state_;
+  std::unique_ptr<Guard> guard_;
+};
+
+// Advances one step at a time until particle `i` has touched something and
+// separated again (an impact), at most `max_steps` steps; false when the
+// contact never ended. Used by impact checks (tests, the accuracy study).
+bool advance_through_contact(Simulation& sim, int i, std::int64_t max_steps);
+
+// The process-wide OpenCL device (opened on first use).
+std::shared_ptr<Device> default_device();
+// Makes `device` the process-wide default from now on (e.g. one whose
+// context shares an OpenGL context, opened by the frame exporter).
+void set_default_device(std::shared_ptr<Device> device);
+
+}  // namespace simsols

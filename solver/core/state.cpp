@@ -1,0 +1,249 @@
+#include "solver/core/state.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+
+#include "solver/core/pipeline.h"
+#include "solver/core/real_packer.h"
+
+namespace simsols {
+
+std::array<double, 8> servo_record(const WallServo& c) {
+  return {c.target_force, c.gain, c.max_speed, c.enabled ? 1.0 : 0.0,
+          c.integral_time > 0 ? 1 / c.integral_time : 0, c.mass > 0 ? 1 / c.mass : 0, 0, 0};
+}
+
+namespace {
+
+// List slots reserved per part at the start: numerics.neighbor_capacity
+// (slots per particle, both parts) when set, else none; the first rebuild
+// allocates what the lists need (pipeline.cpp).
+int initial_slots(const Scene& scene, int n) {
+  return scene.numerics.neighbor_capacity > 0 ? n * scene.numerics.neighbor_capacity / 2 : 0;
+}
+
+std::uint32_t next_pow2(std::uint64_t v) {
+  std::uint32_t p = 1;
+  while (p < v) p <<= 1;
+  return p;
+}
+
+}  // namespace
+
+Buffer State::make(Device& d, size_t bytes, const void* init) {
+  Buffer b;
+  b.mem = d.alloc(bytes, init);
+  b.bytes = bytes;
+  return b;
+}
+
+State::State(const Model& model) {
+  Device& d = model.device();
+  const Scene& s = model.scene();
+  const bool dbl = model.config().double_precision;
+  const size_t r4 = 4 * model.real_size();
+  n = model.particles();
+  slices = (n + model.config().slice - 1) / model.config().slice;
+  table = next_pow2(n);  // ~1-2 buckets per particle (one cell holds about one)
+  chunk_len = (table + chunks - 1) / chunks;
+
+  RealPacker p(dbl), lo(false), v(dbl), w(dbl);
+  const Vec3& o = model.origin();
+  float v2_start = 0;  // the largest |v|^2 at the start: the first list check's interval
+  for (const Particle& q : s.particles) {
+    v2_start = std::max(v2_start, static_cast<float>(q.velocity[0] * q.velocity[0] +
+                                                     q.velocity[1] * q.velocity[1] +
+                                                     q.velocity[2] * q.velocity[2]));
+    const Material& m = s.materials[q.material];
+    const double mass = m.density * 4.0 / 3.0 * std::numbers::pi * q.radius * q.radius * q.radius;
+    double rel[3];
+    for (int a = 0; a < 3; ++a) rel[a] = q.position[a] - o[a];
+    p.put4(rel[0], rel[1], rel[2], q.radius);
+    if (!dbl) {  // compensation: what the float position could not hold
+      lo.put_float4(float_remainder(rel[0]), float_remainder(rel[1]), float_remainder(rel[2]), 0);
+    }
+    v.put4(q.velocity[0], q.velocity[1], q.velocity[2], mass);
+    w.put4(q.angular_velocity[0], q.angular_velocity[1], q.angular_velocity[2], q.material);
+  }
+  pos = make(d, n * r4, p.data());
+  pos_lo = make(d, dbl ? 16 : n * 16, dbl ? nullptr : lo.data());
+  vel = make(d, n * r4, v.data());
+  omega = make(d, n * r4, w.data());
+  force = make(d, n * r4);
+  torque = make(d, n * r4);
+  pos_build = make(d, n * 16);  // float4 in every precision (integrate.cl)
+
+  nbr_count = make(d, n * sizeof(int));
+  nbr_upper = make(d, n * sizeof(int));
+  old_upper = make(d, n * sizeof(int));
+  up_off = make(d, (slices + 1) * sizeof(std::uint32_t));
+  lo_off = make(d, (slices + 1) * sizeof(std::uint32_t));
+  old_up_off = make(d, (slices + 1) * sizeof(std::uint32_t));
+  resize_lists(model, initial_slots(s, n), initial_slots(s, n));
+
+  bucket = make(d, n * sizeof(std::uint32_t));
+  slot = make(d, n * sizeof(std::uint32_t));
+  cell_count = make(d, table * sizeof(std::uint32_t));
+  cell_start = make(d, table * sizeof(std::uint32_t));
+  sorted = make(d, n * sizeof(int));
+  chunk_sum = make(d, chunks * sizeof(std::uint32_t));
+
+  const int nw = model.walls();
+  RealPacker wp(dbl), wlo(false), wv(dbl);
+  for (const Wall& wall : s.walls) {
+    double rel[3];
+    for (int a = 0; a < 3; ++a) rel[a] = wall.point[a] - o[a];
+    wp.put4(rel[0], rel[1], rel[2], 0);
+    wlo.put_float4(float_remainder(rel[0]), float_remainder(rel[1]), float_remainder(rel[2]), 0);
+    wv.put4(wall.velocity[0], wall.velocity[1], wall.velocity[2], 0);
+  }
+  wall_point = make(d, nw * r4, wp.data());
+  wall_point_lo = make(d, nw * 16, dbl ? nullptr : wlo.data());
+  wall_vel = make(d, nw * r4, wv.data());
+  wall_touch = make(d, n * sizeof(int));
+  // no wall near any particle and no slot until the first list build (the
+  // first step's: flags[0] below)
+  wall_near = make(d, nw ? n * sizeof(int) : 16);
+  old_wall_near = make(d, nw ? n * sizeof(int) : 16);
+  wall_off = make(d, (slices + 1) * sizeof(std::uint32_t));
+  old_wall_off = make(d, (slices + 1) * sizeof(std::uint32_t));
+  resize_walls(model, 0);
+  wall_reaction = make(d, std::max(1, nw) * r4);
+  wall_mean = make(d, std::max(1, nw) * r4);
+  RealPacker sv(dbl);
+  for (const Wall& wall : s.walls) {
+    const std::array<double, 8> c = servo_record(wall.servo);
+    sv.put4(c[0], c[1], c[2], c[3]);
+    sv.put4(c[4], c[5], c[6], c[7]);
+  }
+  servo = make(d, std::max(1, nw) * 2 * r4, nw ? sv.data() : nullptr);
+
+  // the first step builds the lists, and sets the next check from the
+  // fastest particle's start speed (flags[2], float bits), so a scene that
+  // starts fast is checked as often as one that became fast; no runaway mark
+  int v2_bits = 0;
+  std::memcpy(&v2_bits, &v2_start, sizeof v2_bits);
+  const int init_flags[8] = {1, 0, v2_bits, 0, kNoRunaway, 0, 0, 0};
+  flags = make(d, sizeof init_flags, init_flags);
+  // only the constant rolling torque shares its cap (forces.cl)
+  const bool shared_cap = model.config().rolling && !model.config().rolling_spring;
+  touching = make(d, shared_cap ? n * sizeof(int) : 16);
+  const size_t groups = model.global_size(n) / model.local_size();
+  obs_partial = make(d, groups * 12 * model.real_size());
+  const size_t wall_chunks = std::max<size_t>(1, (n + kWallChunk - 1) / kWallChunk);
+  wall_partial = make(d, std::max(1, nw) * wall_chunks * r4);
+}
+
+std::vector<std::pair<std::string, const Buffer*>> State::all_buffers() const {
+  return {{"pos", &pos},
+          {"pos_lo", &pos_lo},
+          {"vel", &vel},
+          {"omega", &omega},
+          {"force", &force},
+          {"torque", &torque},
+          {"pos_build", &pos_build},
+          {"nbr_count", &nbr_count},
+          {"nbr_upper", &nbr_upper},
+          {"up_off", &up_off},
+          {"lo_off", &lo_off},
+          {"nbr", &nbr},
+          {"spring", &spring},
+          {"share", &share},
+          {"mirror", &mirror},
+          {"old_upper", &old_upper},
+          {"old_up_off", &old_up_off},
+          {"old_nbr", &old_nbr},
+          {"bucket", &bucket},
+          {"slot", &slot},
+          {"cell_count", &cell_count},
+          {"cell_start", &cell_start},
+          {"sorted", &sorted},
+          {"chunk_sum", &chunk_sum},
+          {"wall_point", &wall_point},
+          {"wall_point_lo", &wall_point_lo},
+          {"wall_vel", &wall_vel},
+          {"wall_touch", &wall_touch},
+          {"wall_near", &wall_near},
+          {"wall_off", &wall_off},
+          {"wall_spring", &wall_spring},
+          {"wall_force", &wall_force},
+          {"old_wall_near", &old_wall_near},
+          {"old_wall_off", &old_wall_off},
+          {"old_wall_spring", &old_wall_spring},
+          {"old_wall_force", &old_wall_force},
+          {"wall_reaction", &wall_reaction},
+          {"wall_mean", &wall_mean},
+          {"servo", &servo},
+          {"flags", &flags},
+          {"obs_partial", &obs_partial},
+          {"wall_partial", &wall_partial},
+          {"touching", &touching}};
+}
+
+size_t State::device_bytes() const {
+  size_t total = 0;
+  for (const auto& [name, b] : all_buffers()) total += b->bytes;
+  return total;
+}
+
+std::vector<std::pair<std::string, Buffer*>> State::dynamic_buffers() {
+  // Grid buffers are rebuilt from positions before use and are not state.
+  return {{"pos", &pos},           {"pos_lo", &pos_lo},         {"vel", &vel},
+          {"omega", &omega},       {"force", &force},           {"torque", &torque},
+          {"pos_build", &pos_build}, {"nbr_count", &nbr_count}, {"nbr_upper", &nbr_upper},
+          {"up_off", &up_off},     {"lo_off", &lo_off},       {"nbr", &nbr},
+          {"spring", &spring},     {"mirror", &mirror},
+          {"wall_point", &wall_point}, {"wall_point_lo", &wall_point_lo},
+          {"wall_vel", &wall_vel}, {"wall_near", &wall_near}, {"wall_off", &wall_off},
+          {"wall_spring", &wall_spring}, {"wall_force", &wall_force},
+          {"wall_touch", &wall_touch}, {"wall_reaction", &wall_reaction}, {"wall_mean", &wall_mean}, {"servo", &servo},
+          {"flags", &flags}};
+}
+
+void State::grow_walls(const Model& model, int slots) {
+  Device& d = model.device();
+  wall_slots = slots;
+  wall_spring = make(d, std::max<size_t>(16, size_t(slots) * model.config().history_bytes_per_contact()));
+  wall_force = make(d, std::max<size_t>(16, size_t(slots) * 4 * model.real_size()));
+}
+
+void State::wall_scratch(const Model& model) {
+  Device& d = model.device();
+  old_wall_spring = make(d, wall_spring.bytes);
+  old_wall_force = make(d, wall_force.bytes);
+}
+
+void State::grow_upper(const Model& model, int slots) {
+  Device& d = model.device();
+  up_slots = slots;
+  nbr = make(d, std::max<size_t>(16, size_t(up_slots) * sizeof(int)));
+  spring = make(d, spring_bytes(model));
+}
+
+void State::upper_scratch(const Model& model) {
+  Device& d = model.device();
+  old_nbr = make(d, std::max<size_t>(16, size_t(up_slots) * sizeof(int)));
+  share = make(d, std::max<size_t>(16, size_t(up_slots) * 2 * 4 * model.real_size()));
+}
+
+void State::grow_lower(const Model& model, int slots) {
+  Device& d = model.device();
+  lo_slots = slots;
+  mirror = make(d, std::max<size_t>(16, size_t(lo_slots) * sizeof(int)));
+}
+
+void State::resize_lists(const Model& model, int up, int lo) {
+  grow_upper(model, up);
+  upper_scratch(model);
+  grow_lower(model, lo);
+}
+
+// Per-contact history of the list slots (the planes the compiled slots
+// declare, cl_program.h); a 16-byte stand-in when there is none.
+size_t State::spring_bytes(const Model& model) const {
+  return std::max<size_t>(16, size_t(up_slots) * model.config().history_bytes_per_contact());
+}
+
+}  // namespace simsols

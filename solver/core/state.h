@@ -1,0 +1,150 @@
+// State: everything that changes during a run, as device buffers.
+//
+// MuJoCo's mjData to the Model's mjModel. Struct of arrays, split into hot
+// per-particle records read every step (pos, vel, omega, force, torque) and
+// colder ones (neighbour lists, grid, wall slots, reduction scratch).
+// Records pack a constant into the spare 4th lane so one load serves the
+// contact loop: pos = (x, radius), vel = (v, mass), omega = (w, material).
+// pos_lo is the float-run compensation term (see kernels/common.cl).
+//
+// Memory is linear in N: per particle a fixed number of records, per
+// listed pair one upper and one lower list slot (neighbors.cl, sliced
+// lists) and per wall near a particle one wall slot (walls.cl), both grown
+// when a rebuild needs more, with 1/16 to spare; the grid hash table has
+// N to 2N buckets.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "solver/core/cl_device.h"
+#include "solver/core/model.h"
+
+namespace simsols {
+
+struct Buffer {
+  ClMem mem;
+  size_t bytes = 0;
+  cl_mem get() const { return mem.get(); }
+};
+
+// A wall's force control as the servo_walls kernel reads it (walls.cl):
+// (target, gain, max_speed, on) and (1/T_i, 1/mass, 0, 0).
+std::array<double, 8> servo_record(const WallServo& servo);
+
+class State {
+ public:
+  explicit State(const Model& model);
+
+  // hot, per particle
+  Buffer pos, pos_lo, vel, omega, force, torque;
+  // neighbour lists, sliced (neighbors.cl). Per particle: the list length
+  // (nbr_count) and its upper part's (nbr_upper, partners above its index);
+  // per slice, where its upper and lower blocks start (up_off, lo_off, one
+  // more entry: the totals). Per upper slot (up_slots of them): the partner
+  // (nbr), the contact's history (spring, HIST planes of up_slots records)
+  // and the partner's share of the last step (share: a force record and a
+  // torque record side by side; it holds the previous history during a
+  // rebuild). Per lower slot (lo_slots): the upper slot where the partner's
+  // share waits (mirror; the rebuild puts the partner's id there first).
+  // old_*: the previous upper lists, which a rebuild carries the history
+  // over from.
+  Buffer pos_build, nbr_count, nbr_upper, up_off, lo_off, nbr, spring, share, mirror;
+  Buffer old_upper, old_up_off, old_nbr;
+  // grid
+  Buffer bucket, slot, cell_count, cell_start, sorted, chunk_sum;
+  // walls: current reference point (+ float compensation; point.w: travel
+  // since the last list build), velocity; per particle the walls it touched
+  // last step (bit w of wall_touch) and the walls within radius + skin at
+  // the last list build (bit w of wall_near: the broad phase, walls.cl); a
+  // slot per (particle, near wall), sliced as the lists are (wall_off, per
+  // slice and the total): its history (wall_spring, HIST planes of
+  // wall_slots records) and the force on the wall (wall_force). old_wall_*:
+  // the previous layout, which a rebuild carries the slots over from.
+  Buffer wall_point, wall_point_lo, wall_vel, wall_touch, wall_near, wall_off, wall_spring,
+      wall_force;
+  Buffer old_wall_near, old_wall_off, old_wall_spring, old_wall_force;
+  // servo walls: per wall servo_record() (below), set by the scene and changed at run time (set_servo); and what the servo saw:
+  // (F last step, sum of F since the last read, integral velocity, steps)
+  // wall_mean: per wall the force summed over steps (xyz) and the steps (w),
+  // kept when the kernels have servo walls (read_wall_means)
+  Buffer servo, wall_reaction, wall_mean;
+  // flags[0]: list rebuild needed, flags[1]: longest list asked for,
+  // flags[2]: max |v|^2 since the last check, flags[3]: late, flags[4..6]:
+  // the runaway mark (see integrate.cl and guard.h), flags[7] spare
+  Buffer flags, obs_partial, wall_partial;
+  static constexpr int kNoRunaway = 0x7fffffff;  // flags[4] when no particle is marked
+  // contacts of each particle in the last step (force.w, kept by integrate):
+  // the rolling cap's divisor (forces.cl). Derived from `force`, so not
+  // saved: derive_state() rebuilds it after a load.
+  Buffer touching;
+
+  int n = 0;             // particles
+  int slices = 0;        // list slices of KernelConfig::slice particles
+  int up_slots = 0;      // allocated upper list slots (the history planes' stride)
+  int lo_slots = 0;      // allocated lower list slots
+  int wall_slots = 0;    // allocated wall slots (the wall history planes' stride)
+  std::uint32_t table = 0;   // grid hash buckets (power of two)
+  std::uint32_t chunks = 256, chunk_len = 0;
+
+  std::int64_t step = 0;
+  double time = 0;
+  std::int64_t list_builds = 0;
+  std::int64_t next_check = 0;   // step at which detect_contacts next reads the flags
+  std::int64_t late_builds = 0;  // checks that found a particle beyond skin/2 (should stay 0)
+  bool fault_seen = false;       // a list check found the runaway mark set (guard.h)
+
+  size_t device_bytes() const;
+  // Every buffer, named (device_bytes() is their sum).
+  std::vector<std::pair<std::string, const Buffer*>> all_buffers() const;
+
+  // Named dynamic buffers and their sizes, for checkpoints (fixed order).
+  std::vector<std::pair<std::string, Buffer*>> dynamic_buffers();
+
+  // Reallocates the current upper lists (nbr, spring) with `slots` slots;
+  // the previous lists and the history held in `share` are kept for the
+  // rebuild, which then calls upper_scratch().
+  void grow_upper(const Model& model, int slots);
+  // share and old_nbr sized for up_slots.
+  void upper_scratch(const Model& model);
+  // Reallocates the lower lists (mirror) with `slots` slots.
+  void grow_lower(const Model& model, int slots);
+  // Reallocates all slot buffers, zeroed, with the given capacities.
+  void resize_lists(const Model& model, int up, int lo);
+  size_t spring_bytes(const Model& model) const;
+  // Reallocates the current wall slots (wall_spring, wall_force) with
+  // `slots` slots, keeping the previous layout (old_wall_*) for the rebuild,
+  // which then calls wall_scratch().
+  void grow_walls(const Model& model, int slots);
+  // old_wall_spring and old_wall_force sized for wall_slots.
+  void wall_scratch(const Model& model);
+  // Reallocates all wall-slot buffers, zeroed, with `slots` slots.
+  void resize_walls(const Model& model, int slots) {
+    grow_walls(model, slots);
+    wall_scratch(model);
+  }
+  // The list and wall capacities of a saved state (a checkpoint, the
+  // guard's copy): reallocates, zeroed, the buffers whose capacity differs.
+  void resize_slots(const Model& model, int up, int lo, int walls) {
+    if (up != up_slots || lo != lo_slots) resize_lists(model, up, lo);
+    if (walls != wall_slots) resize_walls(model, walls);
+  }
+
+ private:
+  Buffer make(Device& d, size_t bytes, const void* init = nullptr);
+};
+
+// Slot k of particle i's list given its slice offsets: SLOT in common.cl.
+inline size_t list_slot(const std::vector<std::uint32_t>& off, int slice, int i, int k) {
+  return off[i / slice] + size_t(k) * slice + i % slice;
+}
+
+// Component c (0..3) of slot `slot`'s record in a plane of list-slot records
+// (spring): SLOT_REAL in common.cl (a slice's records by component).
+inline size_t slot_real(size_t slot, int slice, int c) {
+  return slot / slice * 4 * slice + size_t(c) * slice + slot % slice;
+}
+
+}  // namespace simsols

@@ -1,0 +1,42 @@
+#include "solver/core/stress.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace simsols {
+namespace {
+
+
+// Fraction of the segment from z0 to z0 + lz inside [lo, hi].
+double inside_fraction(double z0, double lz, double lo, double hi) {
+  if (lz == 0) return z0 >= lo && z0 <= hi ? 1 : 0;
+  const double a = std::min(z0, z0 + lz), b = std::max(z0, z0 + lz);
+  const double overlap = std::max(0.0, std::min(b, hi) - std::max(a, lo));
+  return overlap / (b - a);
+}
+
+}  // namespace
+
+Tensor3 love_weber_slab(Simulation& sim, double z_lo, double z_hi, double area) {
+  const ParticleSnapshot snap = sim.snapshot();
+  const std::vector<ContactForce> contacts = sim.contacts();
+  const std::vector<Vec3> points = wall_points(sim.model(), sim.state());
+  const std::vector<Wall>& walls = sim.scene().walls;
+  Tensor3 s{};
+  for (const ContactForce& c : contacts) {
+    const Vec3& xa = snap.position[c.a];
+    const Vec3 xb = c.b >= 0 ? snap.position[c.b]
+                             : wall_closest_point(walls[-1 - c.b], points[-1 - c.b], xa);
+    const Vec3 l{xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]};
+    const double w = inside_fraction(xa[2], l[2], z_lo, z_hi);
+    if (w == 0) continue;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) s[i][j] -= w * c.force[i] * l[j];
+  }
+  const double volume = area * (z_hi - z_lo);
+  for (auto& row : s)
+    for (double& v : row) v /= volume;
+  return s;
+}
+
+}  // namespace simsols

@@ -1,0 +1,59 @@
+// Scene helpers: material lookup, effect slot names, the capillary bridge's
+// reach and the distance from a point to a wall.
+#include "solver/scene/scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace simsols {
+
+int Scene::material_index(const std::string& material_name) const {
+  for (size_t i = 0; i < materials.size(); ++i)
+    if (materials[i].name == material_name) return static_cast<int>(i);
+  return -1;
+}
+
+bool Scene::has_gravity() const {
+  return effects.gravity[0] != 0 || effects.gravity[1] != 0 || effects.gravity[2] != 0;
+}
+
+const char* slot_name(DampingModel m) { return m == DampingModel::Viscous ? "viscous" : "none"; }
+const char* slot_name(TangentialModel m) { return m == TangentialModel::Mindlin ? "mindlin" : "none"; }
+const char* slot_name(RollingModel m) {
+  return m == RollingModel::ConstantTorque  ? "constant_torque"
+         : m == RollingModel::SpringDashpot ? "spring_dashpot"
+                                            : "none";
+}
+const char* slot_name(CohesionModel m) { return m == CohesionModel::Capillary ? "capillary" : "none"; }
+const char* slot_name(FluidModel m) { return m == FluidModel::Drag ? "drag" : "none"; }
+
+double capillary_rupture_distance(double liquid_volume, double contact_angle) {
+  return (1 + 0.5 * contact_angle) * std::cbrt(liquid_volume);
+}
+
+double Scene::rupture_distance() const {
+  if (effects.cohesion != CohesionModel::Capillary) return 0;
+  const Capillary& c = effects.capillary;
+  double s = capillary_rupture_distance(c.liquid_volume, c.contact_angle);
+  for (const PairOverride& o : pair_overrides)
+    s = std::max(s, capillary_rupture_distance(o.liquid_volume.value_or(c.liquid_volume),
+                                               o.contact_angle.value_or(c.contact_angle)));
+  return s;
+}
+
+
+Vec3 wall_closest_point(const Wall& w, const Vec3& p, const Vec3& x) {
+  const Vec3 d = sub(x, p);
+  if (w.shape == WallShape::Plane) return sub(x, scale(dot(d, w.normal), w.normal));
+  const Vec3& u = w.axis_u;
+  const Vec3 v = cross(w.normal, u);
+  const double a = std::clamp(dot(d, u), -w.half_u, w.half_u);
+  const double b = std::clamp(dot(d, v), -w.half_v, w.half_v);
+  return {p[0] + a * u[0] + b * v[0], p[1] + a * u[1] + b * v[1], p[2] + a * u[2] + b * v[2]};
+}
+
+double wall_distance(const Wall& w, const Vec3& p, const Vec3& x) {
+  if (w.shape == WallShape::Plane) return dot(sub(x, p), w.normal);
+  return norm(sub(x, wall_closest_point(w, p, x)));
+}
+}  // namespace simsols

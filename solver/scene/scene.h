@@ -1,0 +1,281 @@
+// Scene: the static, read-only description of one experiment.
+//
+// A Scene is what MuJoCo calls the model (mjModel): materials, particles,
+// walls, the effects switched on, numerics and outputs. It never changes
+// while a simulation runs; everything that evolves lives in State (device
+// buffers, see state.h). A Scene is plain data in SI units (metres, seconds,
+// kilograms, pascals), built either in code (tests) or by load_scene()
+// (scene_toml.h) from a TOML file. validate_scene() checks the semantic rules
+// shared by both paths; contact_model.h derives the per-pair coefficients and
+// the stable time step from it.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "solver/common/vec3.h"
+
+namespace simsols {
+
+
+// One bulk material. Units: Pa, -, kg/m^3, -, -, m.
+struct Material {
+  std::string name;
+  double young_modulus = 0;      // E, Pa, > 0
+  double poisson_ratio = 0;      // nu, in [0, 0.5)
+  double density = 0;            // rho, kg/m^3, > 0
+  double restitution = 1;        // normal coefficient of restitution, [kMinRestitution = 0.01, 1]
+  double sliding_friction = 0;   // mu_s, >= 0
+  double rolling_friction = 0;   // mu_r, metres (a lever arm), >= 0
+};
+
+// Optional override of the pair properties between two materials. When no
+// override exists, a pair uses the mean restitution, the smaller sliding
+// friction and the smaller rolling friction of its two materials.
+struct PairOverride {
+  int material_a = 0;
+  int material_b = 0;
+  std::optional<double> restitution;
+  std::optional<double> sliding_friction;
+  std::optional<double> rolling_friction;
+  std::optional<double> liquid_volume;  // capillary cohesion, m^3
+  std::optional<double> contact_angle;  // capillary cohesion, rad
+};
+
+// The glass beads of the reference paper, its Table 2: E = 62.784 GPa,
+// nu = 0.2, rho = 2230 kg/m^3, e = 0.87, mu_s = 0.02, mu_r = 5e-5 m.
+inline Material paper_glass() {
+  return {"glass", 62.784e9, 0.2, 2230, 0.87, 0.02, 5e-5};
+}
+
+struct Particle {
+  int material = 0;   // index into Scene::materials
+  double radius = 0;  // m
+  Vec3 position{};    // m
+  Vec3 velocity{};    // m/s
+  Vec3 angular_velocity{};  // rad/s
+};
+
+enum class WallShape : std::uint8_t { Plane, Rectangle };
+
+// Force control of a wall: it moves along its normal so that the force the
+// particles exert on it, F = -(force on the wall) . normal, tends to
+// target_force, in one of two ways.
+//   servo (mass = 0): a proportional-integral law on e = target_force - F,
+//     v = clamp(gain e + v_i, -max_speed, max_speed) normal,
+//     dv_i/dt = gain e / integral_time   (off when integral_time = 0);
+//   dead weight (mass > 0): the wall is a rigid body of that mass pushed
+//     along its normal by the constant force target_force (a hanger's
+//     weight), so M du/dt = target_force - F; gain, max_speed and
+//     integral_time are unused.
+// A force-controlled wall has no prescribed velocity.
+struct WallServo {
+  bool enabled = false;
+  double target_force = 0;   // N, > 0
+  double gain = 0;           // m/(s N), > 0 (servo)
+  double max_speed = 0;      // m/s, > 0 (servo)
+  double integral_time = 0;  // s, >= 0; 0 = proportional only (servo)
+  double mass = 0;           // kg, >= 0; > 0 = dead weight
+};
+
+// A rigid wall moving with a prescribed constant velocity, or servo-controlled.
+// Plane: infinite, one-sided; particles live on the side `normal` points to.
+// Rectangle: finite, two-sided thin plate centred at `point`, spanned by
+//   axis_u (unit) and axis_v = normal x axis_u, half sizes half_u, half_v.
+struct Wall {
+  std::string name;
+  WallShape shape = WallShape::Plane;
+  int material = 0;
+  Vec3 point{};        // a point on the plane / the rectangle centre, m
+  Vec3 normal{0, 0, 1};  // unit normal
+  Vec3 axis_u{1, 0, 0};  // rectangle only: unit in-plane axis, normal to `normal`
+  double half_u = 0;   // rectangle only, m
+  double half_v = 0;   // rectangle only, m
+  Vec3 velocity{};     // m/s, prescribed
+  WallServo servo;     // when enabled, moves to hold a normal force instead
+};
+
+// Wall geometry on the host, with the wall's reference point at `point`
+// (its current position, or Wall::point): the closest point of the wall to
+// x, and the distance from x to the wall. Planes are one-sided, as in the
+// solver: the distance to a plane is signed, negative behind it (such a
+// bead is ignored); a rectangle is a two-sided plate (distance >= 0).
+Vec3 wall_closest_point(const Wall& w, const Vec3& point, const Vec3& x);
+double wall_distance(const Wall& w, const Vec3& point, const Vec3& x);
+
+// The contact and body-force model as named slots, each with a `none`
+// choice (docs/model.md, "Effects as slots"). Every slot becomes a kernel
+// build option (cl_program.h): a slot set to none leaves no code and no
+// per-contact memory in the kernels. The normal law (Hertz) is always on.
+enum class DampingModel : std::uint8_t { None, Viscous };
+enum class TangentialModel : std::uint8_t { None, Mindlin };
+enum class RollingModel : std::uint8_t { None, ConstantTorque, SpringDashpot };
+enum class CohesionModel : std::uint8_t { None, Capillary };
+enum class FluidModel : std::uint8_t { None, Drag };
+
+// Capillary liquid bridge between two beads (Rabinovich et al. 2005 force,
+// Lian et al. 1993 rupture distance; docs/model.md). Per material pair:
+// [[interactions]] may override liquid_volume and contact_angle.
+struct Capillary {
+  double surface_tension = 0.072;  // gamma, N/m, > 0 (water at 25 C)
+  double contact_angle = 0;        // theta, rad, [0, pi/2)
+  double liquid_volume = 0;        // V per bridge, m^3, > 0
+};
+
+// A still or uniformly moving Newtonian fluid around the beads: drag force
+// (Schiller-Naumann), drag moment and buoyancy (docs/model.md).
+struct Fluid {
+  double density = 1000;     // rho_f, kg/m^3, >= 0
+  double viscosity = 1e-3;   // mu_f, Pa s, > 0
+  Vec3 velocity{};           // u, m/s, uniform
+};
+
+struct Effects {
+  Vec3 gravity{0, 0, -9.81};     // m/s^2; all zero switches gravity off
+  DampingModel damping = DampingModel::Viscous;          // normal + tangential dashpots
+  TangentialModel tangential = TangentialModel::Mindlin; // spring with history + Coulomb
+  RollingModel rolling = RollingModel::ConstantTorque;
+  double rolling_damping = 0.3;  // spring_dashpot: eta_r, fraction of critical, [0, 1]
+  CohesionModel cohesion = CohesionModel::None;
+  Capillary capillary;           // when cohesion = Capillary
+  FluidModel fluid = FluidModel::None;
+  Fluid fluid_params;            // when fluid = Drag
+};
+
+// Slot names as in the scene file ("viscous", "none", ...).
+const char* slot_name(DampingModel m);
+const char* slot_name(TangentialModel m);
+const char* slot_name(RollingModel m);
+const char* slot_name(CohesionModel m);
+const char* slot_name(FluidModel m);
+
+// Lian et al. (1993) rupture distance of a liquid bridge, m.
+double capillary_rupture_distance(double liquid_volume, double contact_angle);
+
+enum class Precision : std::uint8_t { Float, Double };
+
+struct Numerics {
+  Precision precision = Precision::Double;
+  double dt = 0;               // s; 0 = automatic (dt_fraction x Rayleigh step)
+  double dt_fraction = 0.15;   // of the Rayleigh time step, in (0, max_dt_fraction]
+  bool force_dt = false;       // accept a dt above the stability limit
+  double duration = 0;         // simulated time, s, > 0
+  double skin = 0;             // neighbour-list skin, m; 0 = 0.1 x largest diameter
+  int neighbor_capacity = 0;   // neighbours per particle; 0 = automatic
+};
+
+// Walls per scene (each particle keeps a bitmask of the walls it touches).
+inline constexpr size_t kMaxWalls = 32;
+
+// Limit on dt: a requested step larger than this fraction of the Rayleigh
+// step is refused unless Numerics::force_dt is set.
+inline constexpr double kMaxDtFraction = 0.5;
+
+// Optional [view]: how frames of this scene are drawn by default (`simsols
+// snapshot`, `run --frames`, the lab); command-line flags override. Kept as
+// given; the app checks the values (allowed ones in docs/rendering.md) and
+// reports a bad one with the file and field.
+struct ViewHints {
+  std::string view;      // camera preset; empty = default
+  std::string color_by;  // bead colour field
+  std::string mode;      // opaque, transparent, chains
+  std::string size;      // WxH
+  std::optional<bool> chains;
+  std::optional<double> threshold;
+  bool empty() const {
+    return view.empty() && color_by.empty() && mode.empty() && size.empty() && !chains &&
+           !threshold;
+  }
+};
+
+struct Outputs {
+  double series_interval = 0;      // s between time-series rows; 0 = duration/1000
+  double dump_interval = 0;        // s between particle dumps; 0 = only the last state
+  double checkpoint_interval = 0;  // s between checkpoints; 0 = only at the end
+  bool dump_csv = true;
+  bool dump_vtk = true;
+};
+
+// The direct shear apparatus of the reference paper (its section 5) and its
+// loading program. The box is x in [0, length] (the shear direction),
+// y in [0, width], floor at z = 0, split at z = split_height into a lower and
+// an upper half with `gap` between them. The lower half (floor and four side
+// plates) moves in +x at the shear speed; the upper half and the platen are
+// held horizontally; the platen is servo-controlled to the normal stress.
+// build_shear_box() (shear_box.h) turns this into twelve walls (and particles) and
+// resolves the automatic values (0 below) into numbers.
+struct ShearSpecimen {
+  enum class Method : std::uint8_t { Layers, Pour, Given };
+  enum class Clearance : std::uint8_t { Shift, Spread };
+  Method method = Method::Layers;  // Table 1 layers / random pour / the scene's particles
+  int material = 0;                // the beads' material
+  double diameter = 0;             // m (Layers, Pour)
+  int layers = 0;                  // Layers: layers; Pour: beads for that many layers
+  Clearance clearance = Clearance::Shift;  // Layers: how the row-wall clearance is used
+  std::int64_t seed = 1;
+};
+
+struct ShearBox {
+  double length = 60.23e-3;        // m, inside, along the shear direction x
+  double width = 60.07e-3;         // m, inside, along y
+  double split_height = 0;         // m; 0 = mid-height of the specimen (see shear_box.h)
+  double gap = 0;                  // m between the halves; 0 = 0.2 x smallest diameter
+  int wall_material = -1;          // the box's material; -1 = "steel" (added when absent)
+  double normal_stress = 160e3;    // Pa, the platen's target
+  double shear_speed = 0;          // m/s; 0 = from inertial_number
+  double inertial_number = 8e-4;   // target I = (v/H) d sqrt(rho/sigma) for the automatic speed
+  double shear_displacement = 6e-3;  // m of horizontal displacement to shear
+  // How the platen carries the normal load (docs/shear-box.md): a dead
+  // weight (a rigid platen of platen_mass under the constant force
+  // sigma x area, as a hanger loads a real box) or a servo (PI on the
+  // reaction, servo_* below). Consolidation is servo-controlled in both.
+  enum class Loading : std::uint8_t { DeadWeight, Servo };
+  Loading loading = Loading::DeadWeight;
+  double platen_mass = 0;          // kg; 0 = automatic (a quarter layer of beads, pi rho d A / 24)
+  double servo_gain = 0;           // m/(s N); 0 = automatic (from the Hertz stiffness)
+  double servo_max_speed = 0.5;    // m/s, the platen's speed cap
+  double servo_integral_time = 0;  // s; 0 = automatic
+  double settle_time = 0.01;       // s, longest settling under gravity
+  double consolidate_time = 0.1;   // s, longest consolidation under the platen
+  int rows = 400;                  // output rows over the shear displacement
+  ShearSpecimen specimen;
+  int first_wall = 0;  // set by build_shear_box: its 12 walls (ShearBoxWall order)
+};
+
+// The apparatus walls, in this order from ShearBox::first_wall: the lower
+// half [kFloor, kLowerLast], the upper half and platen [kUpperX0, kPlaten].
+// The frames are the top face of the lower half's x0 wall and the bottom
+// face of the upper half's x1 wall (see shear_box.h).
+enum ShearBoxWall : int {
+  kFloor = 0, kLowerX0, kLowerX1, kLowerY0, kLowerY1, kLowerFrame,
+  kUpperX0, kUpperX1, kUpperY0, kUpperY1, kUpperFrame, kPlaten, kShearBoxWalls,
+  kLowerLast = kLowerFrame
+};
+
+struct Scene {
+  std::string name = "unnamed";
+  std::string description;
+  std::vector<Material> materials;
+  std::vector<PairOverride> pair_overrides;
+  std::vector<Particle> particles;
+  std::vector<Wall> walls;
+  Effects effects;
+  Numerics numerics;
+  Outputs outputs;
+  ViewHints view;
+  std::optional<ShearBox> shear_box;  // a direct shear test (walls included in `walls`)
+
+  // Where it came from (empty for scenes built in code).
+  std::string source_path;
+  std::string source_text;
+
+  int material_index(const std::string& name) const;  // -1 when absent
+  bool has_gravity() const;
+  // Largest capillary rupture distance of any pair (0 without cohesion), m.
+  double rupture_distance() const;
+};
+
+}  // namespace simsols

@@ -1,0 +1,477 @@
+// The simsols executable end to end: a bad scene writes nothing and exits
+// with status 2; a run stopped at a checkpoint and resumed with --resume ends
+// with the same state hash as the uninterrupted run; outputs exist.
+#include <unistd.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "tests/support/cli_support.h"
+#include "render/plot/png.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+using Result = simsols::testing::CliResult;
+
+Result run(const std::string& args) {
+  return simsols::testing::shell(std::string(SIMSOLS_EXE) + " " + args);
+}
+
+std::string hash_of(const std::string& out) {
+  const auto at = out.find("state hash ");
+  return at == std::string::npos ? "" : out.substr(at + 11, 16);
+}
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("simsols_cli_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  return d;
+}
+
+const std::string kScene = std::string(SIMSOLS_ASSETS_DIR) + "/scenes/example_minimal.toml";
+
+TEST(Cli, BadSceneWritesNothing) {
+  const fs::path out = fresh_dir("bad");
+  const Result r = run("run " + std::string(SIMSOLS_ASSETS_DIR) +
+                       "/tests/bad_scenes/negative_radius.toml --out " + out.string());
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("negative_radius.toml"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("radius"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(out)) << "nothing may be written on a failed load";
+}
+
+// Stability case 10 end to end: a forced time step runs away; the run
+// stops at the first bad step with status 4, names the step and the
+// particle, saves the state before it, and writes no NaN into its outputs.
+TEST(Cli, RunawayStopsWithTheStateBeforeIt) {
+  const fs::path out = fresh_dir("runaway");
+  const Result r = run("run " + std::string(SIMSOLS_ASSETS_DIR) + "/tests/runaway.toml --out " +
+                       out.string() + " -q");
+  EXPECT_EQ(r.status, 4) << r.out;
+  EXPECT_NE(r.out.find("runaway at step "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("particle "), std::string::npos) << r.out;
+  ASSERT_TRUE(fs::exists(out / "fault_checkpoint.bin"));
+  ASSERT_TRUE(fs::exists(out / "fault.txt"));
+  std::ifstream f(out / "series.csv");
+  const std::string series((std::istreambuf_iterator<char>(f)), {});
+  EXPECT_GT(std::count(series.begin(), series.end(), '\n'), 10) << "one row per step until the fault";
+  for (const char* bad : {"nan", "inf", "NaN", "Inf"})
+    EXPECT_EQ(series.find(bad), std::string::npos) << bad << " in series.csv";
+  // The saved state is the step before (tests/solver/kernels/test_stability.cpp checks
+  // that one step from it is the fault).
+  const auto at = r.out.find("runaway at step ");
+  const long fault_step = std::atol(r.out.c_str() + at + 16);
+  std::ifstream t(out / "fault.txt");
+  const std::string text((std::istreambuf_iterator<char>(t)), {});
+  EXPECT_NE(text.find("The state at step " + std::to_string(fault_step - 1)), std::string::npos)
+      << text;
+}
+
+// `run SCENE --explain`: the compiled slots, the -D options and the history
+// size, exit 0, nothing run; a slot set to none in the scene disappears.
+TEST(Cli, ExplainPrintsTheCompiledSlots) {
+  const Result r = run("run " + std::string(SIMSOLS_ASSETS_DIR) + "/scenes/shear_box.toml --explain");
+  EXPECT_EQ(r.status, 0) << r.out;
+  for (const char* s : {"tangential  mindlin", "compiled in", "-DHAS_FRICTION", "-DHIST_PLANES=1",
+                        "16 bytes per contact", "cohesion    none"})
+    EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
+  EXPECT_EQ(r.out.find("state hash"), std::string::npos) << "--explain must not run";
+  const fs::path dir = fresh_dir("explain");
+  fs::create_directories(dir);
+  std::string text;
+  {
+    std::ifstream in(std::string(SIMSOLS_ASSETS_DIR) + "/scenes/shear_box.toml");
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const auto at = text.find("[numerics]");
+  ASSERT_NE(at, std::string::npos);
+  // no friction, no rolling: the normal dashpot's record is the only history;
+  // without the damping too, there is none
+  auto explain = [&](const std::string& name, const std::string& effects) {
+    std::string scene = text;
+    scene.insert(at, "[effects]\n" + effects + "\n");
+    std::ofstream((dir / name).string()) << scene;
+    return run("run " + (dir / name).string() + " --explain");
+  };
+  const Result none =
+      explain("dry_frictionless.toml", "tangential = \"none\"\nrolling = \"none\"\n");
+  EXPECT_EQ(none.status, 0) << none.out;
+  EXPECT_EQ(none.out.find("-DHAS_FRICTION"), std::string::npos) << none.out;
+  EXPECT_EQ(none.out.find("-DHAS_ROLLING"), std::string::npos) << none.out;
+  EXPECT_NE(none.out.find("16 bytes per contact"), std::string::npos) << none.out;
+  const Result bare = explain("undamped.toml",
+                              "damping = \"none\"\ntangential = \"none\"\nrolling = \"none\"\n");
+  EXPECT_EQ(bare.status, 0) << bare.out;
+  EXPECT_EQ(bare.out.find("-DHAS_DAMPING"), std::string::npos) << bare.out;
+  EXPECT_NE(bare.out.find("0 bytes per contact"), std::string::npos) << bare.out;
+}
+
+TEST(Cli, BadFlagIsRefused) {
+  const fs::path out = fresh_dir("flag");
+  const Result r = run("run " + kScene + " --out " + out.string() + " --precision quad");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("--precision"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Cli, StopAndResumeIsBitForBit) {
+  const fs::path a = fresh_dir("straight"), b = fresh_dir("resumed");
+  const Result straight = run("run " + kScene + " --out " + a.string() + " -q --duration 0.002");
+  ASSERT_EQ(straight.status, 0) << straight.out;
+  const Result first = run("run " + kScene + " --out " + b.string() +
+                           " -q --duration 0.002 --stop-after 777");
+  ASSERT_EQ(first.status, 0) << first.out;
+  EXPECT_NE(first.out.find("stopped at step 777"), std::string::npos) << first.out;
+  const Result second = run("run --resume --out " + b.string() + " -q --duration 0.002");
+  ASSERT_EQ(second.status, 0) << second.out;
+  EXPECT_FALSE(hash_of(straight.out).empty()) << straight.out;
+  EXPECT_EQ(hash_of(second.out), hash_of(straight.out)) << second.out;
+  for (const char* f : {"series.csv", "scene.toml", "scene.resolved.toml", "checkpoint.bin"})
+    EXPECT_TRUE(fs::exists(b / f)) << f;
+  // the time series of the resumed run has no duplicate rows
+  std::ifstream sa(a / "series.csv"), sb(b / "series.csv");
+  const std::string ta((std::istreambuf_iterator<char>(sa)), {});
+  const std::string tb((std::istreambuf_iterator<char>(sb)), {});
+  EXPECT_EQ(ta, tb);
+}
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+const std::string kShear = std::string(SIMSOLS_ASSETS_DIR) + "/tests/shear_small.toml";
+
+// A shear test stopped in the middle of its loading program and resumed
+// writes the same rows as the uninterrupted one.
+TEST(Cli, ShearTestStopAndResumeGivesTheSameRows) {
+  const fs::path a = fresh_dir("shear_straight"), b = fresh_dir("shear_resumed");
+  const Result straight = run("run " + kShear + " --out " + a.string() + " -q");
+  ASSERT_EQ(straight.status, 0) << straight.out;
+  EXPECT_NE(straight.out.find("phi_peak"), std::string::npos) << straight.out;
+  const Result first = run("run " + kShear + " --out " + b.string() + " -q --stop-after 30000");
+  ASSERT_EQ(first.status, 0) << first.out;
+  EXPECT_NE(first.out.find("stopped"), std::string::npos) << first.out;
+  EXPECT_FALSE(fs::exists(b / "summary.txt"));
+  const Result second = run("run --resume --out " + b.string() + " -q");
+  ASSERT_EQ(second.status, 0) << second.out;
+  EXPECT_EQ(read(a / "shear.csv"), read(b / "shear.csv"));
+  // the summaries agree up to the wall time (the last line)
+  const std::string sa = read(a / "summary.txt"), sb = read(b / "summary.txt");
+  EXPECT_EQ(sa.substr(0, sa.find("wall_seconds")), sb.substr(0, sb.find("wall_seconds")));
+  EXPECT_NE(sa.find("wall_seconds"), std::string::npos);
+  for (const char* f : {"summary.txt", "shear.csv", "shear_stress.png", "shear_ratio.png",
+                        "dilation.png", "particles_final.vtk", "checkpoint.bin"})
+    EXPECT_TRUE(fs::exists(b / f)) << f;
+  EXPECT_EQ(read(a / "shear.csv").substr(0, 20), "time_s,step,displace");
+}
+
+TEST(Cli, ShearRunRefusesDuration) {
+  const fs::path out = fresh_dir("shear_duration");
+  const Result r = run("run " + kShear + " --out " + out.string() + " --duration 1");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("--duration"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Cli, CampaignBadInputWritesNothing) {
+  const fs::path out = fresh_dir("campaign_bad");
+  Result r = run("campaign " + kShear + " --out " + out.string() + " --sizes 7");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("--sizes"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Table 1"), std::string::npos) << r.out;
+  r = run("campaign " + kShear + " --out " + out.string() + " --stresses -50");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("--stresses"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// Two tests of a campaign, then the campaign again: nothing is rerun.
+TEST(Cli, CampaignWritesItsTablesAndResumes) {
+  const fs::path out = fresh_dir("campaign");
+  const std::string args = "campaign " + kShear + " --out " + out.string() +
+                           " --sizes 6.35 --stresses 100,300 --displacement 0.2 -q";
+  const Result first = run(args);
+  ASSERT_EQ(first.status, 0) << first.out;
+  EXPECT_NE(first.out.find("Mohr-Coulomb d = 6.35 mm"), std::string::npos) << first.out;
+  for (const char* f : {"summary.md", "summary.csv", "mohr_coulomb.png", "d6.35mm_stress.png",
+                        "d6.35mm_dilation.png", "d6.35mm_100kPa/shear.csv",
+                        "d6.35mm_300kPa/summary.txt"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  const std::string table = read(out / "summary.csv");
+  const Result again = run("campaign " + kShear + " --out " + out.string() +
+                           " --sizes 6.35 --stresses 100,300 --displacement 0.2");
+  ASSERT_EQ(again.status, 0) << again.out;
+  EXPECT_NE(again.out.find("finished earlier, kept"), std::string::npos) << again.out;
+  // the same numbers (wall times aside: they are kept from the first run too)
+  EXPECT_EQ(read(out / "summary.csv"), table);
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------ frames
+// `simsols snapshot` and `run --frames`: valid PNGs of the requested size
+// that show the beads; bad sizes, paths and names are refused with the flag
+// named and nothing written.
+namespace {
+
+const std::string kShearSmall = std::string(SIMSOLS_ASSETS_DIR) + "/tests/shear_small.toml";
+
+// Pixels in the middle half of the image that differ from the corner pixel
+// (the background).
+long foreground(const simsols::plot::Image& img) {
+  const auto bg = simsols::plot::pixel(img, 0, img.height - 1);
+  long n = 0;
+  for (int y = img.height / 4; y < 3 * img.height / 4; ++y)
+    for (int x = img.width / 4; x < 3 * img.width / 4; ++x) n += !(simsols::plot::pixel(img, x, y) == bg);
+  return n;
+}
+
+}  // namespace
+
+TEST(Cli, SnapshotWritesAPngOfTheRequestedSize) {
+  const fs::path dir = fresh_dir("snapshot");
+  fs::create_directories(dir);
+  for (const char* mode : {"opaque", "transparent", "chains"}) {
+    const fs::path png = dir / (std::string(mode) + ".png");
+    const Result r = run("snapshot " + kShearSmall + " --out " + png.string() +
+                         " --size 321x207 --view front --mode " + mode + " --steps 200");
+    ASSERT_EQ(r.status, 0) << r.out;
+    const simsols::plot::Image img = simsols::plot::read_png(png.string());
+    EXPECT_EQ(img.width, 321);
+    EXPECT_EQ(img.height, 207);
+    EXPECT_GT(foreground(img), 321 * 207 / 4 / 5) << mode << ": the specimen should fill the middle";
+    EXPECT_FALSE(fs::exists(png.string() + ".tmp"));
+  }
+}
+
+TEST(Cli, SnapshotRefusesBadSizePathAndNames) {
+  const fs::path dir = fresh_dir("snapshot_bad");
+  fs::create_directories(dir);
+  const std::string out = (dir / "f.png").string();
+  struct Case {
+    std::string args, flag, hint;
+  };
+  const Case cases[] = {
+      {"--out " + out + " --size 0x10", "--size", "[1, 16384]"},
+      {"--out " + out + " --size 20000x10", "--size", "[1, 16384]"},
+      {"--out " + out + " --size wide", "--size", "WIDTHxHEIGHT"},
+      {"--out " + (dir / "missing" / "f.png").string(), "--out", "does not exist"},
+      {"--out " + (dir / "f.jpg").string(), "--out", ".png"},
+      {"--out " + out + " --mode xray", "--mode", "opaque, transparent, chains"},
+      {"--out " + out + " --color-by mood", "--color-by", "speed"},
+      {"--out " + out + " --view below", "--view", "three-quarter"},
+      {"--out " + out + " --threshold -1", "--threshold", ">= 0"},
+      {"--out " + out + " --range 5:1", "--range", "MIN < MAX"},
+      {"--out " + out + " --gl vulkan", "--gl", "egl, osmesa"},
+  };
+  for (const Case& c : cases) {
+    const Result r = run("snapshot " + kShearSmall + " " + c.args);
+    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.out;
+    EXPECT_NE(r.out.find(c.flag), std::string::npos) << c.args << "\n" << r.out;
+    EXPECT_NE(r.out.find(c.hint), std::string::npos) << c.args << "\n" << r.out;
+  }
+  EXPECT_TRUE(fs::is_empty(dir)) << "a refused snapshot writes nothing";
+}
+
+TEST(Cli, RunWritesAFrameEveryNSteps) {
+  const fs::path out = fresh_dir("frames");
+  const fs::path frames = out / "frames";
+  const Result r = run("run " + kScene + " --out " + out.string() + " --frames " + frames.string() +
+                       " --every 250 --size 160x120 --color-by speed -q");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto at = r.out.find("finished at step ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const long steps = std::stol(r.out.substr(at + 17));
+  long count = 0;
+  for (const auto& e : fs::directory_iterator(frames)) {
+    ++count;
+    const simsols::plot::Image img = simsols::plot::read_png(e.path().string());
+    EXPECT_EQ(img.width, 160);
+    EXPECT_EQ(img.height, 120);
+    const long step = std::stol(e.path().stem().string().substr(6));
+    EXPECT_EQ(step % 250, 0) << e.path();
+  }
+  EXPECT_EQ(count, steps / 250 + 1) << "frames at step 0, 250, ...";
+  // a checkpoint renders too
+  const fs::path png = out / "checkpoint.png";
+  const Result s = run("snapshot " + (out / "checkpoint.bin").string() + " --out " + png.string() +
+                       " --size 100x80");
+  EXPECT_EQ(s.status, 0) << s.out;
+  EXPECT_TRUE(fs::exists(png));
+  // --frames and --every go together
+  const Result bad = run("run " + kScene + " --out " + fresh_dir("frames_bad").string() +
+                         " --frames " + frames.string());
+  EXPECT_EQ(bad.status, 2) << bad.out;
+  EXPECT_NE(bad.out.find("--every"), std::string::npos) << bad.out;
+}
+
+// A scene's [view] section sets the defaults; flags override; a bad value
+// names the file and the field.
+TEST(Cli, SceneViewHintsAndOverrides) {
+  const fs::path dir = fresh_dir("view_hints");
+  fs::create_directories(dir);
+  std::string text = read(kScene);
+  auto scene_with = [&](const std::string& name, const std::string& view) {
+    const fs::path p = dir / name;
+    std::ofstream(p) << text << "\n[view]\n" << view;
+    return p.string();
+  };
+  const std::string good = scene_with("good.toml", "size = \"90x70\"\nmode = \"transparent\"\n"
+                                                   "view = \"top\"\ncolor_by = \"speed\"\n");
+  Result r = run("snapshot " + good + " --out " + (dir / "a.png").string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(simsols::plot::read_png((dir / "a.png").string()).width, 90);
+  r = run("snapshot " + good + " --out " + (dir / "b.png").string() + " --size 100x50");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(simsols::plot::read_png((dir / "b.png").string()).height, 50);
+  const std::string bad = scene_with("bad.toml", "mode = \"xray\"\n");
+  r = run("snapshot " + bad + " --out " + (dir / "c.png").string());
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("bad.toml"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("view.mode"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir / "c.png"));
+  // refused by `run` as well, before anything is written
+  r = run("run " + bad + " --out " + (dir / "run").string());
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_FALSE(fs::exists(dir / "run"));
+}
+
+// `snapshot --stereo alioscopy`: the interleaved image at the display's
+// resolution, the eight views and the grid; a bad profile is named.
+TEST(Cli, SnapshotAlioscopyWritesTheInterleavedImageAndTheViews) {
+  const fs::path dir = fresh_dir("alioscopy");
+  fs::create_directories(dir);
+  const std::string profile = (dir / "small.toml").string();
+  std::ofstream(profile) << "[display]\nwidth = 320\nheight = 180\nphase = 1\n";
+  const fs::path png = dir / "a.png";
+  Result r = run("snapshot " + kShearSmall + " --out " + png.string() +
+                 " --stereo alioscopy --display " + profile + " --mode transparent");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const simsols::plot::Image inter = simsols::plot::read_png(png.string());
+  EXPECT_EQ(inter.width, 320);
+  EXPECT_EQ(inter.height, 180);
+  for (int k = 0; k < 8; ++k) {
+    const auto v = simsols::plot::read_png((dir / ("a_view" + std::to_string(k) + ".png")).string());
+    EXPECT_EQ(v.width, 160);
+    EXPECT_EQ(v.height, 90);
+  }
+  EXPECT_TRUE(fs::exists(dir / "a_grid.png"));
+  std::ofstream(profile) << "[display]\nphase = 12\n";
+  r = run("snapshot " + kShearSmall + " --out " + (dir / "b.png").string() +
+          " --stereo alioscopy --display " + profile);
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("display.phase"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("[0, 7]"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir / "b.png"));
+  r = run("snapshot " + kShearSmall + " --out " + (dir / "c.png").string() + " --stereo anaglyph");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("--stereo"), std::string::npos) << r.out;
+}
+
+// `simsols study accuracy --preset ci`: the reduced study. Errors fall as the
+// time step shrinks; float and double agree; a time step beyond the
+// stability limit is reported as failed, not as a number.
+namespace {
+
+std::vector<std::vector<std::string>> read_csv(const fs::path& p) {
+  std::vector<std::vector<std::string>> rows;
+  std::ifstream in(p);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f(1);
+    bool q = false;
+    for (char c : line) {
+      if (c == '"') q = !q;
+      else if (c == ',' && !q) f.emplace_back();
+      else f.back() += c;
+    }
+    rows.push_back(f);
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST(Cli, AccuracyStudyReducedForm) {
+  const fs::path out = fresh_dir("study");
+  const Result r = run("study accuracy --preset ci --out " + out.string() + " -q");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto rows = read_csv(out / "cases.csv");
+  ASSERT_EQ(rows.size(), 20u) << "header + layered 6 settings x 2 members + the reference's "
+                                 "round-off twin + poured 2 x 2 + its two twins";
+  const auto col = [&](const std::string& name) {
+    const auto it = std::find(rows[0].begin(), rows[0].end(), name);
+    EXPECT_NE(it, rows[0].end()) << name;
+    return static_cast<size_t>(it - rows[0].begin());
+  };
+  std::map<std::string, std::vector<std::string>> by;  // seed 1's, by specimen and label
+  for (size_t i = 1; i < rows.size(); ++i) by.emplace(rows[i][0] + " " + rows[i][2], rows[i]);
+  auto val = [&](const std::string& label, const std::string& column) {
+    return std::stod(by.at(label)[col(column)]);
+  };
+  for (const char* c : {"overlap_err_pct", "contact_time_err_pct", "restitution_err_pct"}) {
+    EXPECT_LT(val("layered dt 0.1", c), val("layered dt 0.2", c)) << c;
+    EXPECT_LT(val("layered dt 0.2", c), val("layered dt 0.4", c)) << c;
+  }
+  // float and double agree: peak angle within 0.5 %, contact errors both small
+  EXPECT_NEAR(val("layered dt 0.2", "peak_deg") / val("layered double dt 0.2", "peak_deg"), 1.0, 0.005);
+  EXPECT_LT(val("layered dt 0.2", "overlap_err_pct"), 0.1);
+  EXPECT_LT(val("layered double dt 0.2", "overlap_err_pct"), 0.1);
+  // beyond the stability limit: failed, no numbers
+  const auto& bad = by.at("layered dt 3.0 (forced)");
+  EXPECT_EQ(bad[col("shear_status")].rfind("failed", 0), 0u) << bad[col("shear_status")];
+  EXPECT_TRUE(bad[col("peak_deg")].empty());
+  EXPECT_TRUE(bad[col("peak_err_pct")].empty());
+  // the poured specimen runs through, compared with its own reference (in
+  // this reduced form its rain has not settled: its angles mean nothing)
+  for (const char* label : {"poured dt 0.4", "poured reference: dt 0.2 double",
+                            "poured reference: dt 0.2 double (round-off twin at shear)"}) {
+    EXPECT_EQ(by.at(label)[col("shear_status")], "ok") << label;
+    EXPECT_FALSE(by.at(label)[col("peak_err_pct")].empty()) << label;
+  }
+  for (const char* f : {"pareto.png", "summary.md", "error_vs_time_time_step.png",
+                        "poured_pareto.png", "poured_error_vs_time_time_step.png"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  // the ensembles: one row per setting, each member's seed in cases.csv
+  const auto ens = read_csv(out / "ensemble.csv");
+  ASSERT_EQ(ens.size(), 9u) << "header + 6 layered settings + 2 poured";
+  const size_t runs = static_cast<size_t>(
+      std::find(ens[0].begin(), ens[0].end(), "runs") - ens[0].begin());
+  ASSERT_LT(runs, ens[0].size());
+  EXPECT_EQ(ens[1][runs], "2");  // runs of the reference
+  EXPECT_EQ(ens[7][0], "poured");
+  EXPECT_EQ(rows[2][col("seed")], "2");  // the reference's second member: seed 2
+  std::ifstream md(out / "summary.md");
+  const std::string summary((std::istreambuf_iterator<char>(md)), {});
+  for (const char* h : {"## The layered specimen", "## The poured specimen", "### Chaos",
+                        "round-off twin", "### Recommendation"})
+    EXPECT_NE(summary.find(h), std::string::npos) << h << "\n" << summary;
+  const Result bad_ensemble = run("study accuracy --preset ci --ensemble 99 --out " + out.string());
+  EXPECT_EQ(bad_ensemble.status, 2) << bad_ensemble.out;
+  EXPECT_NE(bad_ensemble.out.find("--ensemble"), std::string::npos) << bad_ensemble.out;
+  const Result bad_preset = run("study accuracy --preset huge --out " + out.string());
+  EXPECT_EQ(bad_preset.status, 2) << bad_preset.out;
+  EXPECT_NE(bad_preset.out.find("--preset"), std::string::npos);
+  const Result bad_scale = run("study accuracy --preset ci --box-scale 9 --out " + out.string());
+  EXPECT_EQ(bad_scale.status, 2) << bad_scale.out;
+  EXPECT_NE(bad_scale.out.find("[1, 4]"), std::string::npos) << bad_scale.out;
+  const Result bad_jobs = run("study accuracy --preset ci --jobs 0 --out " + out.string());
+  EXPECT_EQ(bad_jobs.status, 2) << bad_jobs.out;
+  EXPECT_NE(bad_jobs.out.find("[1, 16]"), std::string::npos) << bad_jobs.out;
+  const Result bad_specimen = run("study accuracy --preset ci --specimen sand --out " + out.string());
+  EXPECT_EQ(bad_specimen.status, 2) << bad_specimen.out;
+  EXPECT_NE(bad_specimen.out.find("layered, poured"), std::string::npos) << bad_specimen.out;
+  // the tables of a finished study, one per specimen
+  const Result table = run("study table --from " + (out / "ensemble.csv").string());
+  EXPECT_EQ(table.status, 0) << table.out;
+  EXPECT_NE(table.out.find("poured specimen:"), std::string::npos) << table.out;
+}

@@ -1,0 +1,388 @@
+// Colour maps and the colour legend (render/plot/colormap.h): lightness ordering
+// of the sequential and force maps measured in CIELAB from the 8-bit output,
+// a neutral symmetric diverging map, distinct cycling categories, tables
+// equal to the per-value colours, and a legend that stays inside its
+// rectangle, shows the map on its bar and goes to the corner asked for.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "render/plot/colormap.h"
+
+namespace simsols::plot {
+namespace {
+
+constexpr ColorMap kAllMaps[] = {ColorMap::Sequential, ColorMap::Diverging, ColorMap::Categorical,
+                                 ColorMap::Force};
+
+struct Lab {
+  double L, a, b;
+};
+
+// CIELAB (D65) of an 8-bit sRGB colour, written out independently of the
+// library's own conversion.
+Lab to_lab(Color c) {
+  const auto lin = [](std::uint8_t v) {
+    const double s = v / 255.0;
+    return s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4);
+  };
+  const double r = lin(c.r), g = lin(c.g), b = lin(c.b);
+  const double X = (0.4124564 * r + 0.3575761 * g + 0.1804375 * b) / 0.95047;
+  const double Y = 0.2126729 * r + 0.7151522 * g + 0.0721750 * b;
+  const double Z = (0.0193339 * r + 0.1191920 * g + 0.9503041 * b) / 1.08883;
+  const auto f = [](double t) {
+    return t > 216.0 / 24389 ? std::cbrt(t) : (24389.0 / 27 * t + 16) / 116;
+  };
+  return {116 * f(Y) - 16, 500 * (f(X) - f(Y)), 200 * (f(Y) - f(Z))};
+}
+
+double chroma(const Lab& c) { return std::hypot(c.a, c.b); }
+double delta_e(const Lab& p, const Lab& q) { return std::hypot(p.L - q.L, p.a - q.a, p.b - q.b); }
+double lightness(ColorMap m, double t) { return to_lab(colormap_color(m, t)).L; }
+
+TEST(Colormap, SequentialLightnessStrictlyIncreasingOverWideRange) {
+  double prev = -1;
+  for (int i = 0; i < 256; ++i) {
+    const double L = lightness(ColorMap::Sequential, i / 255.0);
+    EXPECT_GT(L, prev) << "at entry " << i;
+    prev = L;
+  }
+  EXPECT_LT(lightness(ColorMap::Sequential, 0), 20);
+  EXPECT_GT(lightness(ColorMap::Sequential, 1), 85);
+}
+
+TEST(Colormap, SequentialEndpointsAndMiddleHaveTheIntendedHues) {
+  const Color lo = colormap_color(ColorMap::Sequential, 0);
+  EXPECT_GT(lo.b, lo.r + 40);  // dark blue-violet
+  EXPECT_GT(lo.b, lo.g + 40);
+  EXPECT_GT(lo.r, lo.g);  // violet side of blue
+  const Color mid = colormap_color(ColorMap::Sequential, 0.5);
+  EXPECT_GT(mid.g, mid.r + 60);  // teal
+  EXPECT_GT(mid.b, mid.r + 60);
+  const Color hi = colormap_color(ColorMap::Sequential, 1);
+  EXPECT_GT(hi.r, 220);  // yellow
+  EXPECT_GT(hi.g, 200);
+  EXPECT_LT(hi.b, 140);
+  const Color green = colormap_color(ColorMap::Sequential, 0.75);
+  EXPECT_GT(green.g, green.r + 60);
+  EXPECT_GT(green.g, green.b + 40);
+}
+
+TEST(Colormap, ForceGetsDarkerAndMoreSaturated) {
+  double prev = 101;
+  for (int i = 0; i < 256; ++i) {
+    const double L = lightness(ColorMap::Force, i / 255.0);
+    EXPECT_LT(L, prev) << "at entry " << i;
+    prev = L;
+  }
+  const Lab lo = to_lab(colormap_color(ColorMap::Force, 0));
+  const Lab hi = to_lab(colormap_color(ColorMap::Force, 1));
+  EXPECT_GT(lo.L, 80);
+  EXPECT_LT(chroma(lo), 25);  // greyish
+  EXPECT_GT(lo.b, 0);         // warm (orange side)
+  EXPECT_LT(hi.L, 35);
+  EXPECT_GT(chroma(hi) / hi.L, 3 * chroma(lo) / lo.L);  // saturation
+  const Color red = colormap_color(ColorMap::Force, 1);
+  EXPECT_GT(red.r, 2 * red.g);
+  EXPECT_GT(red.r, 2 * red.b);
+}
+
+TEST(Colormap, DivergingIsLightAndNeutralInTheMiddleAndSymmetric) {
+  const Lab mid = to_lab(colormap_color(ColorMap::Diverging, 0.5));
+  EXPECT_GT(mid.L, 90);
+  EXPECT_LT(chroma(mid), 6);
+  const Color blue = colormap_color(ColorMap::Diverging, 0), red = colormap_color(ColorMap::Diverging, 1);
+  EXPECT_GT(blue.b, blue.r + 80);
+  EXPECT_GT(red.r, red.b + 80);
+  EXPECT_LT(lightness(ColorMap::Diverging, 0), 50);
+  EXPECT_LT(lightness(ColorMap::Diverging, 1), 50);
+  for (int i = 0; i <= 100; ++i) {
+    const double t = i / 200.0;
+    EXPECT_NEAR(lightness(ColorMap::Diverging, t), lightness(ColorMap::Diverging, 1 - t), 1.0)
+        << "t = " << t;
+  }
+  // Lightness rises to the centre and falls after it.
+  for (int i = 1; i < 256; ++i) {
+    const double a = lightness(ColorMap::Diverging, (i - 1) / 255.0),
+                 b = lightness(ColorMap::Diverging, i / 255.0);
+    if (i <= 127) {
+      EXPECT_GT(b, a) << i;
+    } else if (i >= 129) {
+      EXPECT_LT(b, a) << i;
+    }
+  }
+}
+
+TEST(Colormap, CategoricalColoursAreDistinctAndCycle) {
+  for (int i = 0; i < 8; ++i)
+    for (int j = i + 1; j < 8; ++j)
+      EXPECT_GT(delta_e(to_lab(colormap_color(ColorMap::Categorical, i)),
+                        to_lab(colormap_color(ColorMap::Categorical, j))),
+                30)
+          << i << " vs " << j;
+  for (int k = -16; k < 24; ++k)
+    EXPECT_EQ(colormap_color(ColorMap::Categorical, k),
+              colormap_color(ColorMap::Categorical, ((k % 8) + 8) % 8))
+        << k;
+  EXPECT_EQ(colormap_color(ColorMap::Categorical, 2.9999999), colormap_color(ColorMap::Categorical, 3));
+  EXPECT_EQ(colormap_color(ColorMap::Categorical, 1e12 + 5), colormap_color(ColorMap::Categorical, 5));
+  EXPECT_EQ(colormap_color(ColorMap::Categorical, NAN), colormap_color(ColorMap::Categorical, 0));
+}
+
+TEST(Colormap, TClampedAndOpaque) {
+  for (ColorMap m : {ColorMap::Sequential, ColorMap::Diverging, ColorMap::Force}) {
+    EXPECT_EQ(colormap_color(m, -0.5), colormap_color(m, 0)) << to_string(m);
+    EXPECT_EQ(colormap_color(m, -1e300), colormap_color(m, 0)) << to_string(m);
+    EXPECT_EQ(colormap_color(m, 1.5), colormap_color(m, 1)) << to_string(m);
+    EXPECT_EQ(colormap_color(m, INFINITY), colormap_color(m, 1)) << to_string(m);
+    EXPECT_EQ(colormap_color(m, NAN), colormap_color(m, 0)) << to_string(m);
+    for (int i = 0; i <= 20; ++i) EXPECT_EQ(colormap_color(m, i / 20.0).a, 255);
+  }
+}
+
+TEST(Colormap, TablesMatchColoursAtTheirSamplePoints) {
+  for (ColorMap m : {ColorMap::Sequential, ColorMap::Diverging, ColorMap::Force})
+    for (int n : {256, 17, 2}) {
+      const std::vector<std::uint8_t> t = colormap_table(m, n);
+      ASSERT_EQ(t.size(), 4u * n) << to_string(m);
+      for (int i = 0; i < n; ++i) {
+        const Color c = colormap_color(m, double(i) / (n - 1));
+        EXPECT_EQ((Color{t[4 * i], t[4 * i + 1], t[4 * i + 2], t[4 * i + 3]}), c)
+            << to_string(m) << " entry " << i << " of " << n;
+      }
+    }
+  const std::vector<std::uint8_t> cat = colormap_table(ColorMap::Categorical);
+  ASSERT_EQ(cat.size(), 32u);
+  for (int k = 0; k < 8; ++k)
+    EXPECT_EQ((Color{cat[4 * k], cat[4 * k + 1], cat[4 * k + 2], cat[4 * k + 3]}),
+              colormap_color(ColorMap::Categorical, k));
+  EXPECT_EQ(colormap_table(ColorMap::Categorical, 256).size(), 32u);
+  EXPECT_TRUE(colormap_table(ColorMap::Sequential, 0).empty());
+  EXPECT_EQ(colormap_table(ColorMap::Sequential, 1).size(), 4u);
+}
+
+TEST(Colormap, NamesRoundTrip) {
+  for (ColorMap m : kAllMaps) {
+    EXPECT_EQ(parse_colormap(to_string(m)), m);
+    std::string upper = to_string(m);
+    for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    EXPECT_EQ(parse_colormap(upper), m);
+  }
+  EXPECT_EQ(parse_colormap("viridis"), std::nullopt);
+  EXPECT_EQ(parse_colormap(""), std::nullopt);
+}
+
+// ---- legend -----------------------------------------------------------------
+
+// A background where every pixel differs from its neighbours, so any stray
+// write shows.
+Image patterned(int w, int h) {
+  Image img = make_image(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      std::uint8_t* p = &img.rgba[(static_cast<std::size_t>(y) * w + x) * 4];
+      p[0] = static_cast<std::uint8_t>(x * 3 + y);
+      p[1] = static_cast<std::uint8_t>(y * 5 + x / 2);
+      p[2] = static_cast<std::uint8_t>((x ^ y) * 7);
+    }
+  return img;
+}
+
+bool inside(const Rect& r, int x, int y) { return x >= r.x0 && x < r.x1 && y >= r.y0 && y < r.y1; }
+
+// Checks r lies in the image and that only pixels inside r changed; returns
+// how many did.
+int changed_only_inside(const Image& before, const Image& after, const Rect& r) {
+  EXPECT_GE(r.x0, 0);
+  EXPECT_GE(r.y0, 0);
+  EXPECT_LE(r.x1, after.width);
+  EXPECT_LE(r.y1, after.height);
+  int changed = 0, stray = 0;
+  for (int y = 0; y < after.height; ++y)
+    for (int x = 0; x < after.width; ++x)
+      if (pixel(before, x, y) != pixel(after, x, y)) (inside(r, x, y) ? changed : stray)++;
+  EXPECT_EQ(stray, 0);
+  return changed;
+}
+
+Legend force_legend() {
+  Legend lg;
+  lg.title = "normal force (N)";
+  lg.map = ColorMap::Force;
+  lg.min = 0;
+  lg.max = 37.5;
+  lg.width_key = {{1, 1.5}, {2, 3}, {4, 6}};
+  lg.width_title = "force / mean";
+  return lg;
+}
+
+TEST(Legend, ChangesPixelsOnlyInsideItsRectangleInEveryCorner) {
+  for (auto corner : {Legend::Corner::TopLeft, Legend::Corner::TopRight,
+                      Legend::Corner::BottomLeft, Legend::Corner::BottomRight}) {
+    const Image before = patterned(640, 420);
+    Image img = before;
+    Legend lg = force_legend();
+    lg.corner = corner;
+    const Rect r = draw_legend(img, lg);
+    ASSERT_GT(r.x1, r.x0);
+    ASSERT_GT(r.y1, r.y0);
+    EXPECT_GT(changed_only_inside(before, img, r), (r.x1 - r.x0) * (r.y1 - r.y0) / 2);
+    const bool left = corner == Legend::Corner::TopLeft || corner == Legend::Corner::BottomLeft;
+    const bool top = corner == Legend::Corner::TopLeft || corner == Legend::Corner::TopRight;
+    if (left) {
+      EXPECT_LT(r.x0, 40);
+    } else {
+      EXPECT_GT(r.x1, img.width - 40);
+    }
+    if (top) {
+      EXPECT_LT(r.y0, 40);
+    } else {
+      EXPECT_GT(r.y1, img.height - 40);
+    }
+    EXPECT_LT(r.x1 - r.x0, img.width / 2);  // a corner, not the whole frame
+    const LegendLayout L = legend_layout(img.width, img.height, lg);
+    EXPECT_EQ(L.panel.x0, r.x0);
+    EXPECT_EQ(L.panel.y1, r.y1);
+  }
+}
+
+TEST(Legend, BarFollowsTheColourMap) {
+  for (ColorMap m : {ColorMap::Sequential, ColorMap::Diverging, ColorMap::Force}) {
+    Image img = make_image(900, 700, {30, 30, 30});
+    Legend lg;
+    lg.title = "speed (m/s)";
+    lg.map = m;
+    lg.min = -0.2;
+    lg.max = 1.7;
+    lg.corner = Legend::Corner::BottomLeft;
+    const Rect r = draw_legend(img, lg);
+    const LegendLayout L = legend_layout(img.width, img.height, lg);
+    const Rect b = L.bar;
+    ASSERT_GE(b.y1 - b.y0, 100) << to_string(m);  // a bar one can read
+    ASSERT_GE(b.x1 - b.x0, 8);
+    ASSERT_TRUE(inside(r, b.x0, b.y0) && inside(r, b.x1 - 1, b.y1 - 1));
+    const int x = (b.x0 + b.x1) / 2;
+    for (int y = b.y0; y < b.y1; y += 7) {
+      const double t = double(b.y1 - 1 - y) / (b.y1 - b.y0 - 1);
+      const Color want = colormap_color(m, t), got = pixel(img, x, y);
+      EXPECT_NEAR(got.r, want.r, 2) << to_string(m) << " row " << y;
+      EXPECT_NEAR(got.g, want.g, 2) << to_string(m) << " row " << y;
+      EXPECT_NEAR(got.b, want.b, 2) << to_string(m) << " row " << y;
+    }
+    EXPECT_EQ(pixel(img, x, b.y0), colormap_color(m, 1));  // max at the top
+    EXPECT_EQ(pixel(img, x, b.y1 - 1), colormap_color(m, 0));
+  }
+}
+
+TEST(Legend, CategoricalSwatchesShowTheCategories) {
+  Image img = make_image(800, 600);
+  Legend lg;
+  lg.title = "species";
+  lg.map = ColorMap::Categorical;
+  lg.min = 3;
+  lg.max = 7;
+  lg.category_labels = {"sand", "gravel"};
+  lg.dark = true;
+  const Rect r = draw_legend(img, lg);
+  const LegendLayout L = legend_layout(img.width, img.height, lg);
+  ASSERT_EQ(L.swatches.size(), 5u);
+  for (std::size_t k = 0; k < L.swatches.size(); ++k) {
+    const Rect& s = L.swatches[k];
+    ASSERT_TRUE(inside(r, s.x0, s.y0) && inside(r, s.x1 - 1, s.y1 - 1));
+    EXPECT_EQ(pixel(img, (s.x0 + s.x1) / 2, (s.y0 + s.y1) / 2),
+              colormap_color(ColorMap::Categorical, 3 + k));
+    if (k > 0) {
+      EXPECT_GT(s.y0, L.swatches[k - 1].y1);  // top to bottom, apart
+    }
+  }
+}
+
+TEST(Legend, TinyImagesGetNothing) {
+  for (auto [w, h] : {std::pair{119, 119}, {100, 800}, {800, 100}, {1, 1}}) {
+    const Image before = patterned(w, h);
+    Image img = before;
+    const Rect r = draw_legend(img, force_legend());
+    EXPECT_EQ(r.x1 - r.x0, 0);
+    EXPECT_EQ(r.y1 - r.y0, 0);
+    EXPECT_EQ(img.rgba, before.rgba) << w << " x " << h;
+  }
+  Image empty;
+  const Rect r = draw_legend(empty, force_legend());
+  EXPECT_EQ(r.x1 - r.x0, 0);
+  EXPECT_TRUE(empty.rgba.empty());
+}
+
+TEST(Legend, SmallImagesAndLongTitlesStayInside) {
+  for (auto [w, h] : {std::pair{120, 120}, {160, 400}, {400, 130}, {1920, 1080}}) {
+    Legend lg = force_legend();
+    lg.title = "a very long title that would never fit into a small frame at all";
+    for (auto corner : {Legend::Corner::TopLeft, Legend::Corner::BottomRight}) {
+      lg.corner = corner;
+      const Image before = patterned(w, h);
+      Image img = before;
+      const Rect r = draw_legend(img, lg);
+      ASSERT_GT(r.x1, r.x0) << w << " x " << h;
+      EXPECT_GT(changed_only_inside(before, img, r), 0);
+    }
+  }
+}
+
+TEST(Legend, ScalesWithTheImageAndTheScaleFactor) {
+  const Legend lg = force_legend();
+  const LegendLayout small = legend_layout(1200, 1000, lg), big = legend_layout(2400, 2000, lg);
+  EXPECT_NEAR(double(big.bar.y1 - big.bar.y0) / (small.bar.y1 - small.bar.y0), 2.0, 0.05);
+  Legend half = lg;
+  half.scale = 0.5;
+  const LegendLayout h = legend_layout(1200, 1000, half);
+  EXPECT_NEAR(double(h.bar.y1 - h.bar.y0) / (small.bar.y1 - small.bar.y0), 0.5, 0.05);
+}
+
+TEST(Legend, WidthKeyDrawsThreeLinesOfTheGivenWidths) {
+  Legend plain = force_legend();
+  plain.width_key.clear();
+  const Legend keyed = force_legend();
+  const LegendLayout a = legend_layout(1000, 1000, plain), b = legend_layout(1000, 1000, keyed);
+  EXPECT_GT(b.panel.y1 - b.panel.y0, a.panel.y1 - a.panel.y0 + 60);
+
+  Legend untitled = keyed;  // no key title: the column below the bar crosses only the lines
+  untitled.width_title.clear();
+  Image img = make_image(1000, 1000);
+  const Rect r = draw_legend(img, untitled);
+  // Below the bar, the dark runs down a column through the key's lines are
+  // about as thick as the widths asked for, in order.
+  std::vector<int> runs;
+  const int x = b.bar.x0 + 10;
+  int run = 0;
+  for (int y = b.bar.y1 + 2; y < r.y1; ++y) {
+    const Color c = pixel(img, x, y);
+    if (c.r < 128 && c.g < 128 && c.b < 128) {
+      ++run;
+    } else if (run > 0) {
+      runs.push_back(run);
+      run = 0;
+    }
+  }
+  ASSERT_EQ(runs.size(), 3u);
+  EXPECT_NEAR(runs[0], 1.5, 1.01);
+  EXPECT_NEAR(runs[1], 3, 1.01);
+  EXPECT_NEAR(runs[2], 6, 1.01);
+}
+
+TEST(Legend, DegenerateRangesStillDraw) {
+  for (auto [lo, hi] : {std::pair{2.0, 2.0}, {5.0, -5.0}, {NAN, 1.0}, {0.0, 1e-12}, {-1e9, 3e9}}) {
+    Legend lg;
+    lg.title = "value";
+    lg.min = lo;
+    lg.max = hi;
+    const Image before = patterned(500, 500);
+    Image img = before;
+    const Rect r = draw_legend(img, lg);
+    ASSERT_GT(r.x1, r.x0);
+    EXPECT_GT(changed_only_inside(before, img, r), 0);
+  }
+}
+
+}  // namespace
+}  // namespace simsols::plot

@@ -1,0 +1,796 @@
+// Tests of the TOML scene loader, the generators, the writer and
+// validate_scene(). Malformed scenes live in assets/tests/bad_scenes/, one
+// case per file, each starting with "# expect: <code> [<field>]".
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+#include "solver/common/number_text.h"
+#include "solver/scene/contact_model.h"
+#include "solver/common/errors.h"
+#include "solver/io/scene_toml.h"
+
+namespace simsols {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path assets_dir() {
+  if (const char* env = std::getenv("SIMSOLS_ASSETS"); env && *env) return env;
+  return fs::path(__FILE__).parent_path().parent_path() / "assets";
+}
+
+const char* kGlass = R"(
+[[materials]]
+name = "glass"
+young_modulus = 6.3e10
+poisson_ratio = 0.23
+density = 2500
+restitution = 0.9
+)";
+
+const char* kOneParticle = R"(
+[[particles]]
+material = "glass"
+radius = 0.001
+position = [0, 0, 0.005]
+)";
+
+const char* kDuration = R"(
+[numerics]
+duration = 0.01
+)";
+
+// Runs `f`, expecting a SceneError; returns it.
+template <class F>
+SceneError expect_error(F&& f) {
+  try {
+    f();
+  } catch (const SceneError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no SceneError thrown";
+  return SceneError("none", "", 0, "", "");
+}
+
+bool same_bits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+
+void expect_same(const Vec3& a, const Vec3& b, const std::string& what) {
+  for (int k = 0; k < 3; ++k)
+    EXPECT_TRUE(same_bits(a[k], b[k])) << what << "[" << k << "]: " << a[k] << " vs " << b[k];
+}
+
+void expect_same(double a, double b, const std::string& what) {
+  EXPECT_TRUE(same_bits(a, b)) << what << ": " << a << " vs " << b;
+}
+
+void expect_same(const std::optional<double>& a, const std::optional<double>& b,
+                 const std::string& what) {
+  ASSERT_EQ(a.has_value(), b.has_value()) << what;
+  if (a) expect_same(*a, *b, what);
+}
+
+// Bit-exact comparison of everything but source_path / source_text.
+void expect_same_scene(const Scene& a, const Scene& b) {
+  EXPECT_EQ(a.name, b.name);
+  EXPECT_EQ(a.description, b.description);
+  ASSERT_EQ(a.materials.size(), b.materials.size());
+  for (size_t i = 0; i < a.materials.size(); ++i) {
+    const Material &x = a.materials[i], &y = b.materials[i];
+    EXPECT_EQ(x.name, y.name);
+    expect_same(x.young_modulus, y.young_modulus, "young_modulus");
+    expect_same(x.poisson_ratio, y.poisson_ratio, "poisson_ratio");
+    expect_same(x.density, y.density, "density");
+    expect_same(x.restitution, y.restitution, "restitution");
+    expect_same(x.sliding_friction, y.sliding_friction, "sliding_friction");
+    expect_same(x.rolling_friction, y.rolling_friction, "rolling_friction");
+  }
+  ASSERT_EQ(a.pair_overrides.size(), b.pair_overrides.size());
+  for (size_t i = 0; i < a.pair_overrides.size(); ++i) {
+    const PairOverride &x = a.pair_overrides[i], &y = b.pair_overrides[i];
+    EXPECT_EQ(x.material_a, y.material_a);
+    EXPECT_EQ(x.material_b, y.material_b);
+    expect_same(x.restitution, y.restitution, "pair restitution");
+    expect_same(x.sliding_friction, y.sliding_friction, "pair sliding_friction");
+    expect_same(x.rolling_friction, y.rolling_friction, "pair rolling_friction");
+    expect_same(x.liquid_volume, y.liquid_volume, "pair liquid_volume");
+    expect_same(x.contact_angle, y.contact_angle, "pair contact_angle");
+  }
+  ASSERT_EQ(a.particles.size(), b.particles.size());
+  for (size_t i = 0; i < a.particles.size(); ++i) {
+    const Particle &x = a.particles[i], &y = b.particles[i];
+    EXPECT_EQ(x.material, y.material);
+    expect_same(x.radius, y.radius, "radius");
+    expect_same(x.position, y.position, "position");
+    expect_same(x.velocity, y.velocity, "velocity");
+    expect_same(x.angular_velocity, y.angular_velocity, "angular_velocity");
+  }
+  ASSERT_EQ(a.walls.size(), b.walls.size());
+  for (size_t i = 0; i < a.walls.size(); ++i) {
+    const Wall &x = a.walls[i], &y = b.walls[i];
+    EXPECT_EQ(x.name, y.name);
+    EXPECT_EQ(x.shape, y.shape);
+    EXPECT_EQ(x.material, y.material);
+    expect_same(x.point, y.point, "point");
+    expect_same(x.normal, y.normal, "normal");
+    expect_same(x.velocity, y.velocity, "wall velocity");
+    if (x.shape == WallShape::Rectangle) {
+      expect_same(x.axis_u, y.axis_u, "axis_u");
+      expect_same(x.half_u, y.half_u, "half_u");
+      expect_same(x.half_v, y.half_v, "half_v");
+    }
+  }
+  expect_same(a.effects.gravity, b.effects.gravity, "gravity");
+  EXPECT_EQ(a.effects.damping, b.effects.damping);
+  EXPECT_EQ(a.effects.tangential, b.effects.tangential);
+  EXPECT_EQ(a.effects.rolling, b.effects.rolling);
+  expect_same(a.effects.rolling_damping, b.effects.rolling_damping, "rolling_damping");
+  EXPECT_EQ(a.effects.cohesion, b.effects.cohesion);
+  expect_same(a.effects.capillary.liquid_volume, b.effects.capillary.liquid_volume, "liquid_volume");
+  expect_same(a.effects.capillary.contact_angle, b.effects.capillary.contact_angle, "contact_angle");
+  expect_same(a.effects.capillary.surface_tension, b.effects.capillary.surface_tension,
+              "surface_tension");
+  EXPECT_EQ(a.effects.fluid, b.effects.fluid);
+  expect_same(a.effects.fluid_params.density, b.effects.fluid_params.density, "fluid density");
+  expect_same(a.effects.fluid_params.viscosity, b.effects.fluid_params.viscosity, "viscosity");
+  expect_same(a.effects.fluid_params.velocity, b.effects.fluid_params.velocity, "fluid velocity");
+  EXPECT_EQ(a.numerics.precision, b.numerics.precision);
+  expect_same(a.numerics.dt, b.numerics.dt, "dt");
+  expect_same(a.numerics.dt_fraction, b.numerics.dt_fraction, "dt_fraction");
+  EXPECT_EQ(a.numerics.force_dt, b.numerics.force_dt);
+  expect_same(a.numerics.duration, b.numerics.duration, "duration");
+  expect_same(a.numerics.skin, b.numerics.skin, "skin");
+  EXPECT_EQ(a.numerics.neighbor_capacity, b.numerics.neighbor_capacity);
+  expect_same(a.outputs.series_interval, b.outputs.series_interval, "series_interval");
+  expect_same(a.outputs.dump_interval, b.outputs.dump_interval, "dump_interval");
+  expect_same(a.outputs.checkpoint_interval, b.outputs.checkpoint_interval, "checkpoint_interval");
+  EXPECT_EQ(a.outputs.dump_csv, b.outputs.dump_csv);
+  EXPECT_EQ(a.outputs.dump_vtk, b.outputs.dump_vtk);
+}
+
+// ---------------------------------------------------------------------------
+// Valid scenes.
+
+TEST(SceneToml, MinimalExampleGetsDefaults) {
+  const fs::path path = assets_dir() / "scenes" / "example_minimal.toml";
+  const Scene s = load_scene(path.string());
+  EXPECT_EQ(s.name, "example_minimal");
+  EXPECT_EQ(s.description, "");
+  EXPECT_EQ(s.source_path, path.string());
+  EXPECT_NE(s.source_text.find("example_minimal"), std::string::npos);
+
+  ASSERT_EQ(s.materials.size(), 1u);
+  EXPECT_EQ(s.materials[0].name, "glass");
+  EXPECT_EQ(s.materials[0].young_modulus, 6.3e10);
+  EXPECT_EQ(s.materials[0].density, 2500.0);
+  EXPECT_EQ(s.materials[0].sliding_friction, 0.0);
+  EXPECT_EQ(s.materials[0].rolling_friction, 0.0);
+  EXPECT_TRUE(s.pair_overrides.empty());
+
+  ASSERT_EQ(s.particles.size(), 2u);
+  EXPECT_EQ(s.particles[1].position, (Vec3{0.003, 0, 0.005}));
+  EXPECT_EQ(s.particles[1].velocity, (Vec3{0, 0, 0}));
+  EXPECT_EQ(s.particles[1].angular_velocity, (Vec3{0, 0, 0}));
+
+  ASSERT_EQ(s.walls.size(), 1u);
+  EXPECT_EQ(s.walls[0].name, "wall0");
+  EXPECT_EQ(s.walls[0].shape, WallShape::Plane);
+  EXPECT_EQ(s.walls[0].velocity, (Vec3{0, 0, 0}));
+
+  EXPECT_EQ(s.effects.gravity, (Vec3{0, 0, -9.81}));
+  EXPECT_TRUE(s.has_gravity());
+  EXPECT_EQ(s.effects.damping, DampingModel::Viscous);
+  EXPECT_EQ(s.effects.tangential, TangentialModel::Mindlin);
+  EXPECT_EQ(s.effects.rolling, RollingModel::ConstantTorque);
+  EXPECT_EQ(s.effects.cohesion, CohesionModel::None);
+  EXPECT_EQ(s.effects.fluid, FluidModel::None);
+
+  EXPECT_EQ(s.numerics.precision, Precision::Double);
+  EXPECT_EQ(s.numerics.dt, 0.0);
+  EXPECT_EQ(s.numerics.dt_fraction, 0.15);
+  EXPECT_FALSE(s.numerics.force_dt);
+  EXPECT_EQ(s.numerics.duration, 0.01);
+  EXPECT_EQ(s.numerics.skin, 0.0);
+  EXPECT_EQ(s.numerics.neighbor_capacity, 0);
+
+  EXPECT_EQ(s.outputs.series_interval, 0.0);
+  EXPECT_EQ(s.outputs.dump_interval, 0.0);
+  EXPECT_EQ(s.outputs.checkpoint_interval, 0.0);
+  EXPECT_TRUE(s.outputs.dump_csv && s.outputs.dump_vtk);
+}
+
+const char* kFullScene = R"(# Every field set.
+[scene]
+name = "full"
+description = "all \"fields\"\nset"
+
+[[materials]]
+name = "glass"
+young_modulus = 63000000000        # an integer where a float is expected
+poisson_ratio = 0.23
+density = 2500.5
+restitution = 0.9
+sliding_friction = 0.3
+rolling_friction = 1e-5
+
+[[materials]]
+name = "steel"
+young_modulus = 2.1e11
+poisson_ratio = 0.3
+density = 7800
+restitution = 0.8
+sliding_friction = 0.2
+rolling_friction = 0
+
+[[interactions]]
+materials = ["glass", "steel"]
+restitution = 0.7
+sliding_friction = 0.25
+
+[[particles]]
+material = "steel"
+radius = 0.002
+position = [0.1, 0.2, 0.3]
+velocity = [1, -2, 3.5]
+angular_velocity = [0, 10, 0]
+
+[[walls]]
+name = "floor"
+type = "plane"
+material = "steel"
+point = [0, 0, 0]
+normal = [0, 0, 2]                 # normalised on load
+velocity = [0, 0, 0.1]
+
+[[walls]]
+name = "plate"
+type = "rectangle"
+material = "glass"
+point = [0, 0, 1]
+normal = [0, 0, -1]
+axis_u = [0, 3, 0]
+half_u = 0.5
+half_v = 0.25
+
+[effects]
+gravity = [0, -9.81, 0]
+damping = false
+tangential_friction = false
+rolling_friction = false
+
+[numerics]
+precision = "float"
+dt = 1e-7
+dt_fraction = 0.2
+force_dt = false
+duration = 2
+skin = 0.0001
+neighbor_capacity = 64
+
+[output]
+series_interval = 0.001
+dump_interval = 0.1
+checkpoint_interval = 0.5
+dump_csv = false
+dump_vtk = false
+)";
+
+TEST(SceneToml, FullSceneReadsEveryField) {
+  const Scene s = parse_scene(kFullScene, "full.toml");
+  EXPECT_EQ(s.name, "full");
+  EXPECT_EQ(s.description, "all \"fields\"\nset");
+  ASSERT_EQ(s.materials.size(), 2u);
+  EXPECT_EQ(s.materials[0].young_modulus, 6.3e10);
+  EXPECT_EQ(s.materials[0].density, 2500.5);
+  EXPECT_EQ(s.materials[0].sliding_friction, 0.3);
+  EXPECT_EQ(s.materials[0].rolling_friction, 1e-5);
+  EXPECT_EQ(s.material_index("steel"), 1);
+  EXPECT_EQ(s.material_index("wood"), -1);
+
+  ASSERT_EQ(s.pair_overrides.size(), 1u);
+  EXPECT_EQ(s.pair_overrides[0].material_a, 0);
+  EXPECT_EQ(s.pair_overrides[0].material_b, 1);
+  EXPECT_EQ(s.pair_overrides[0].restitution, 0.7);
+  EXPECT_EQ(s.pair_overrides[0].sliding_friction, 0.25);
+  EXPECT_FALSE(s.pair_overrides[0].rolling_friction.has_value());
+
+  ASSERT_EQ(s.particles.size(), 1u);
+  EXPECT_EQ(s.particles[0].material, 1);
+  EXPECT_EQ(s.particles[0].radius, 0.002);
+  EXPECT_EQ(s.particles[0].velocity, (Vec3{1, -2, 3.5}));
+  EXPECT_EQ(s.particles[0].angular_velocity, (Vec3{0, 10, 0}));
+
+  ASSERT_EQ(s.walls.size(), 2u);
+  EXPECT_EQ(s.walls[0].name, "floor");
+  EXPECT_EQ(s.walls[0].normal, (Vec3{0, 0, 1}));
+  EXPECT_EQ(s.walls[0].velocity, (Vec3{0, 0, 0.1}));
+  EXPECT_EQ(s.walls[1].shape, WallShape::Rectangle);
+  EXPECT_EQ(s.walls[1].material, 0);
+  EXPECT_EQ(s.walls[1].axis_u, (Vec3{0, 1, 0}));
+  EXPECT_EQ(s.walls[1].half_u, 0.5);
+  EXPECT_EQ(s.walls[1].half_v, 0.25);
+
+  EXPECT_EQ(s.effects.gravity, (Vec3{0, -9.81, 0}));
+  // the older boolean keys: false means "none"
+  EXPECT_EQ(s.effects.damping, DampingModel::None);
+  EXPECT_EQ(s.effects.tangential, TangentialModel::None);
+  EXPECT_EQ(s.effects.rolling, RollingModel::None);
+
+  EXPECT_EQ(s.numerics.precision, Precision::Float);
+  EXPECT_EQ(s.numerics.dt, 1e-7);
+  EXPECT_EQ(s.numerics.dt_fraction, 0.2);
+  EXPECT_EQ(s.numerics.duration, 2.0);
+  EXPECT_EQ(s.numerics.skin, 1e-4);
+  EXPECT_EQ(s.numerics.neighbor_capacity, 64);
+
+  EXPECT_EQ(s.outputs.series_interval, 0.001);
+  EXPECT_EQ(s.outputs.dump_interval, 0.1);
+  EXPECT_EQ(s.outputs.checkpoint_interval, 0.5);
+  EXPECT_FALSE(s.outputs.dump_csv || s.outputs.dump_vtk);
+}
+
+// The complete example of docs/scene-format.md (its first ```toml block).
+TEST(SceneToml, DocumentationExampleIsValid) {
+  const fs::path doc = assets_dir().parent_path() / "docs" / "scene-format.md";
+  std::ifstream in(doc);
+  ASSERT_TRUE(in) << doc;
+  std::stringstream all;
+  all << in.rdbuf();
+  const std::string text = all.str();
+  const size_t begin = text.find("```toml\n");
+  ASSERT_NE(begin, std::string::npos);
+  const size_t end = text.find("```", begin + 8);
+  const Scene s = parse_scene(text.substr(begin + 8, end - begin - 8), doc.string());
+  EXPECT_EQ(s.name, "drop");
+  EXPECT_GT(s.particles.size(), 200u);
+  EXPECT_EQ(s.walls.size(), 2u);
+}
+
+TEST(SceneToml, ZeroGravityMeansNoGravity) {
+  const Scene s = parse_scene(
+      std::string(kGlass) + kOneParticle + kDuration + "[effects]\ngravity = [0, 0, 0]\n",
+      "g.toml");
+  EXPECT_FALSE(s.has_gravity());
+}
+
+TEST(SceneToml, ForceDtAcceptsLargeStep) {
+  const std::string base = std::string(kGlass) + kOneParticle;
+  const Scene s =
+      parse_scene(base + "[numerics]\nduration = 0.01\ndt = 1e-3\nforce_dt = true\n", "f.toml");
+  EXPECT_EQ(s.numerics.dt, 1e-3);
+  EXPECT_GT(s.numerics.dt, kMaxDtFraction * rayleigh_time_step(s));
+  const SceneError e = expect_error(
+      [&] { parse_scene(base + "[numerics]\nduration = 0.01\ndt = 1e-3\n", "f.toml"); });
+  EXPECT_EQ(e.code, "dt_above_limit");
+  EXPECT_NE(
+      std::string(e.what()).find(shortest_number(kMaxDtFraction * rayleigh_time_step(s))),
+      std::string::npos)
+      << e.what();
+}
+
+TEST(SceneToml, InlineTablesAreArraysOfTables) {
+  // Root keys come before the first [table] header.
+  const Scene s = parse_scene(
+      std::string(
+          "particles = [{material = \"glass\", radius = 0.001, position = [0, 0, 0]},\n"
+          "             {material = \"glass\", radius = 0.001, position = [0.01, 0, 0]}]\n") +
+          kGlass + kDuration,
+      "inline.toml");
+  EXPECT_EQ(s.particles.size(), 2u);
+}
+
+// ---------------------------------------------------------------------------
+// Errors: locations and messages.
+
+TEST(SceneToml, ErrorMessageNamesFileLineFieldAndRange) {
+  const std::string text = std::string("# line 1\n") + R"([[materials]]
+name = "glass"
+young_modulus = 6.3e10
+poisson_ratio = 0.7
+density = 2500
+restitution = 0.9
+)" + kOneParticle + kDuration;
+  const SceneError e = expect_error([&] { parse_scene(text, "scene.toml"); });
+  EXPECT_EQ(e.code, "out_of_range");
+  EXPECT_EQ(e.file, "scene.toml");
+  EXPECT_EQ(e.line, 5);
+  EXPECT_EQ(e.field, "materials[0].poisson_ratio");
+  EXPECT_STREQ(
+      e.what(),
+      "scene.toml:5: field 'materials[0].poisson_ratio': 0.7 is out of range, allowed [0, 0.5)");
+}
+
+// e = 0 cannot be simulated (docs/model.md, "Normal force"): the message
+// names the file, the line, the field and the allowed range, and says why.
+TEST(SceneToml, RestitutionBelowTheMinimumIsRefusedWithTheReason) {
+  for (const char* e : {"0", "0.005"}) {
+    const std::string text = std::string(R"([[materials]]
+name = "glass"
+young_modulus = 6.3e10
+poisson_ratio = 0.2
+density = 2500
+restitution = )") + e + "\n" + kOneParticle + kDuration;
+    const SceneError err = expect_error([&] { parse_scene(text, "scene.toml"); });
+    EXPECT_EQ(err.code, "out_of_range");
+    EXPECT_EQ(err.line, 6);
+    EXPECT_EQ(err.field, "materials[0].restitution");
+    EXPECT_STREQ(err.what(),
+                 (std::string("scene.toml:6: field 'materials[0].restitution': ") + e +
+                  " is out of range, allowed [0.01, 1] (the Hertz contact with its d^{1/4} "
+                  "dashpot always rebounds: e = 0 would need infinite damping, and below 0.01 a "
+                  "fast contact lasts too few time steps for e to come out as asked)")
+                     .c_str());
+  }
+  const std::string lowest = std::string(R"([[materials]]
+name = "glass"
+young_modulus = 6.3e10
+poisson_ratio = 0.2
+density = 2500
+restitution = 0.01
+)") + kOneParticle + kDuration;
+  EXPECT_EQ(parse_scene(lowest, "scene.toml").materials[0].restitution, 0.01);
+}
+
+TEST(SceneToml, UnknownKeySuggestsAndListsAllowedKeys) {
+  const std::string text =
+      std::string(kGlass) + kOneParticle + "[numerics]\nduration = 1\ndt_fractoin = 0.1\n";
+  const SceneError e = expect_error([&] { parse_scene(text, "typo.toml"); });
+  EXPECT_EQ(e.code, "unknown_key");
+  EXPECT_EQ(e.field, "numerics.dt_fractoin");
+  EXPECT_GT(e.line, 0);
+  const std::string what = e.what();
+  EXPECT_NE(what.find("did you mean 'dt_fraction'"), std::string::npos) << what;
+  EXPECT_NE(what.find("neighbor_capacity"), std::string::npos) << what;
+}
+
+TEST(SceneToml, SyntaxErrorHasLine) {
+  const SceneError e =
+      expect_error([] { parse_scene("[numerics]\nduration = 1\nskin = = 2\n", "bad.toml"); });
+  EXPECT_EQ(e.code, "syntax");
+  EXPECT_EQ(e.line, 3);
+  EXPECT_EQ(e.field, "");
+}
+
+TEST(SceneToml, GeneratedParticleErrorsPointAtTheGenerator) {
+  const std::string text = std::string(kGlass) + kOneParticle + R"(
+[[generators]]
+type = "lattice"
+material = "glass"
+radius = 0.001
+min = [-0.004, -0.004, 0]
+max = [0.004, 0.004, 0.008]
+)" + kDuration;
+  const SceneError e = expect_error([&] { parse_scene(text, "gen.toml"); });
+  EXPECT_EQ(e.code, "overlapping_particles");
+  EXPECT_EQ(e.field, "generators[0]");
+  EXPECT_EQ(e.line, 14);  // the [[generators]] header
+  EXPECT_NE(std::string(e.what()).find("generated particle"), std::string::npos) << e.what();
+}
+
+TEST(SceneToml, MissingFileIsAnIoError) {
+  const SceneError e = expect_error([] { load_scene("/nonexistent/dir/scene.toml"); });
+  EXPECT_EQ(e.code, "io");
+  EXPECT_EQ(e.file, "/nonexistent/dir/scene.toml");
+}
+
+// Reads "# expect: <code> [<field>]" from the first line.
+std::pair<std::string, std::string> expectation(const fs::path& file) {
+  std::ifstream in(file);
+  std::string first;
+  std::getline(in, first);
+  std::istringstream words(first);
+  std::string hash, tag, code, field;
+  words >> hash >> tag >> code >> field;
+  EXPECT_EQ(hash + " " + tag, "# expect:") << file;
+  return {code, field};
+}
+
+TEST(SceneToml, BadScenesFailWithTheExpectedCodeAndField) {
+  const fs::path dir = assets_dir() / "tests" / "bad_scenes";
+  ASSERT_TRUE(fs::is_directory(dir)) << dir;
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.path().extension() == ".toml") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  EXPECT_GE(files.size(), 18u);
+  for (const fs::path& file : files) {
+    SCOPED_TRACE(file.filename().string());
+    const auto [code, field] = expectation(file);
+    const SceneError e = expect_error([&] { load_scene(file.string()); });
+    EXPECT_EQ(e.code, code) << e.what();
+    EXPECT_EQ(e.field, field) << e.what();
+    EXPECT_NE(std::string(e.what()).find(file.filename().string()), std::string::npos) << e.what();
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Generators.
+
+std::string lattice(const std::string& extra) {
+  return std::string(kGlass) + R"(
+[[generators]]
+type = "lattice"
+material = "glass"
+radius = 0.001
+min = [0, 0, 0]
+max = [0.006, 0.006, 0.006]
+)" + extra +
+         kDuration;
+}
+
+double min_distance(const Scene& s) {
+  double d = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < s.particles.size(); ++i)
+    for (size_t j = 0; j < i; ++j) {
+      const Vec3 &a = s.particles[i].position, &b = s.particles[j].position;
+      d = std::min(d, std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]));
+    }
+  return d;
+}
+
+TEST(SceneGenerators, CubicLatticeFillsTheBox) {
+  const Scene s = parse_scene(lattice("velocity = [0, 0, -1]\n"), "l.toml");
+  ASSERT_EQ(s.particles.size(), 27u);  // centres at 1, 3, 5 mm on each axis
+  EXPECT_EQ(s.particles[0].position, (Vec3{0.001, 0.001, 0.001}));
+  EXPECT_NEAR(s.particles[26].position[0], 0.005, 1e-15);
+  EXPECT_EQ(s.particles[5].velocity, (Vec3{0, 0, -1}));
+  EXPECT_NEAR(min_distance(s), 0.002, 1e-12);
+}
+
+TEST(SceneGenerators, CountLimitsTheLattice) {
+  EXPECT_EQ(parse_scene(lattice("count = 10\n"), "l.toml").particles.size(), 10u);
+}
+
+TEST(SceneGenerators, HexagonalLatticeIsCloserPackedThanCubic) {
+  const std::string box = R"(
+[[generators]]
+type = "lattice"
+material = "glass"
+radius = 0.001
+min = [0, 0, 0]
+max = [0.02, 0.02, 0.02]
+)";
+  const Scene cubic = parse_scene(std::string(kGlass) + box + kDuration, "c.toml");
+  const Scene hex = parse_scene(
+      std::string(kGlass) + box + "arrangement = \"hexagonal\"\n" + kDuration, "h.toml");
+  EXPECT_EQ(cubic.particles.size(), 1000u);
+  EXPECT_GT(hex.particles.size(), cubic.particles.size() * 11 / 10);  // 1.41 in an infinite box
+  EXPECT_NEAR(min_distance(hex), 0.002, 1e-12);
+  for (const Particle& p : hex.particles)
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_GE(p.position[k], 0.001 - 1e-12);
+      EXPECT_LE(p.position[k], 0.019 + 1e-12);
+    }
+}
+
+TEST(SceneGenerators, JitterIsDeterministicAndBounded) {
+  const std::string text = lattice("spacing = 0.0025\njitter = 0.0002\nseed = 7\n");
+  const Scene a = parse_scene(text, "j.toml"), b = parse_scene(text, "j.toml");
+  expect_same_scene(a, b);
+  const Scene other =
+      parse_scene(lattice("spacing = 0.0025\njitter = 0.0002\nseed = 8\n"), "j.toml");
+  EXPECT_NE(a.particles[0].position, other.particles[0].position);
+  EXPECT_GE(min_distance(a), 0.0025 - 2 * std::sqrt(3.0) * 0.0002);
+}
+
+std::string random_generator(const std::string& radius, int count, int seed) {
+  return std::string(kGlass) + kOneParticle + R"(
+[[generators]]
+type = "random"
+material = "glass"
+)" + radius +
+         "\nmin = [-0.01, -0.01, 0]\nmax = [0.01, 0.01, 0.02]\ncount = " + std::to_string(count) +
+         "\nseed = " + std::to_string(seed) + "\n" + kDuration;
+}
+
+TEST(SceneGenerators, RandomInsertionPlacesNonOverlappingSpheres) {
+  const Scene s =
+      parse_scene(random_generator("radius_min = 0.0005\nradius_max = 0.001", 500, 3), "r.toml");
+  ASSERT_EQ(s.particles.size(), 501u);
+  for (size_t i = 1; i < s.particles.size(); ++i) {
+    const Particle& p = s.particles[i];
+    EXPECT_GE(p.radius, 0.0005);
+    EXPECT_LE(p.radius, 0.001);
+    EXPECT_GE(p.position[0] - p.radius, -0.01);
+    EXPECT_LE(p.position[2] + p.radius, 0.02);
+  }
+  for (size_t i = 0; i < s.particles.size(); ++i)
+    for (size_t j = 0; j < i; ++j) {
+      const Particle &a = s.particles[i], &b = s.particles[j];
+      const double d = std::hypot(a.position[0] - b.position[0], a.position[1] - b.position[1],
+                                  a.position[2] - b.position[2]);
+      ASSERT_GE(d, a.radius + b.radius) << i << " " << j;
+    }
+}
+
+TEST(SceneGenerators, RandomInsertionIsDeterministic) {
+  const std::string text = random_generator("radius = 0.0007", 200, 42);
+  expect_same_scene(parse_scene(text, "r.toml"), parse_scene(text, "r.toml"));
+  const Scene other = parse_scene(random_generator("radius = 0.0007", 200, 43), "r.toml");
+  EXPECT_NE(parse_scene(text, "r.toml").particles[1].position, other.particles[1].position);
+}
+
+// ---------------------------------------------------------------------------
+// Round trip.
+
+Scene awkward_scene() {
+  Scene s;
+  s.name = "round \"trip\"\t\\ é";
+  s.description = "line one\nline two";
+  s.materials.push_back({"glass", 6.3e10, 0.23, 2500.0 / 3.0, 0.1 + 0.2, 1.0 / 3.0, 1e-300});
+  s.materials.push_back({"steel", 2.0000000000000004e11, 0.29999999999999999, 7800, 1, 0, 5e-324});
+  PairOverride o;
+  o.material_a = 1;
+  o.material_b = 0;
+  o.rolling_friction = std::numbers::pi * 1e-6;
+  o.liquid_volume = 1e-15 / 3;
+  o.contact_angle = 0.7;
+  s.pair_overrides.push_back(o);
+  for (int i = 0; i < 20; ++i) {
+    Particle p;
+    p.material = i % 2;
+    p.radius = 0.001 * (1 + i / 7.0);
+    p.position = {i * 0.01 + 0.1, -0.0, std::sqrt(2.0) * i};
+    p.velocity = {i % 3 == 0 ? -0.0 : 1.0 / (i + 1), 0, 1e20};
+    p.angular_velocity = {0, i * std::numbers::e, 0};
+    s.particles.push_back(p);
+  }
+  Wall plane;
+  plane.name = "tilted";
+  plane.normal = {0, 0.6, 0.8};
+  plane.point = {0.1, 0.2, -1.0 / 3.0};
+  s.walls.push_back(plane);
+  Wall rect;
+  rect.name = "lid";
+  rect.shape = WallShape::Rectangle;
+  rect.material = 1;
+  const double c = 1 / std::sqrt(2.0);
+  rect.normal = {c, 0, -c};
+  rect.axis_u = {c, 0, c};
+  rect.point = {0, 0, 10};
+  rect.half_u = 0.1;
+  rect.half_v = 1.0 / 7.0;
+  rect.velocity = {0, 0, -0.01};
+  s.walls.push_back(rect);
+  s.effects.gravity = {0.1, -0.2, -9.80665};
+  s.effects.damping = DampingModel::None;
+  s.effects.tangential = TangentialModel::Mindlin;
+  s.effects.rolling = RollingModel::SpringDashpot;
+  s.effects.rolling_damping = 1.0 / 3.0;
+  s.effects.cohesion = CohesionModel::Capillary;
+  s.effects.capillary = {0.0728, 0.1 / 3, 1e-15 / 7};
+  s.effects.fluid = FluidModel::Drag;
+  s.effects.fluid_params = {1260, 1.412, {0.01 / 3, 0, -1e-3}};
+  s.numerics = {Precision::Float, 1.0 / 3.0 * 1e-7, 0.123456789, true, 12.5, 1e-4 / 3, 48};
+  s.outputs = {1.0 / 300, 0.1, 0.7, false, true};
+  return s;
+}
+
+TEST(SceneToml, RoundTripIsBitExact) {
+  const Scene s = awkward_scene();
+  ASSERT_NO_THROW(validate_scene(s, "code"));
+  const std::string text = to_toml(s);
+  Scene back;
+  ASSERT_NO_THROW(back = parse_scene(text, "roundtrip.toml")) << text;
+  expect_same_scene(s, back);
+  EXPECT_EQ(back.source_text, text);
+  EXPECT_EQ(to_toml(back), text);
+}
+
+TEST(SceneToml, RoundTripOfLoadedAndGeneratedScenes) {
+  for (const std::string& text :
+       {std::string(kFullScene),
+        random_generator("radius_min = 0.0005\nradius_max = 0.001", 300, 5)}) {
+    const Scene s = parse_scene(text, "in.toml");
+    expect_same_scene(s, parse_scene(to_toml(s), "out.toml"));
+  }
+}
+
+// ---------------------------------------------------------------------------
+// validate_scene on scenes built in code.
+
+TEST(ValidateScene, AcceptsAValidSceneAndReportsTheFirstProblem) {
+  Scene s = awkward_scene();
+  EXPECT_NO_THROW(validate_scene(s, "code"));
+
+  s.walls[0].normal = {0, 0, 2};  // not unit: code-built scenes are not normalised
+  SceneError e = expect_error([&] { validate_scene(s, "code"); });
+  EXPECT_EQ(e.code, "bad_vector");
+  EXPECT_EQ(e.field, "walls[0].normal");
+  EXPECT_EQ(e.file, "code");
+  EXPECT_EQ(e.line, 0);
+
+  s = awkward_scene();
+  s.particles[3].material = 5;
+  e = expect_error([&] { validate_scene(s, "code"); });
+  EXPECT_EQ(e.code, "unknown_material");
+  EXPECT_EQ(e.field, "particles[3].material");
+
+  s = awkward_scene();
+  s.particles[4].position = s.particles[2].position;
+  e = expect_error([&] { validate_scene(s, "code"); });
+  EXPECT_EQ(e.code, "overlapping_particles");
+  EXPECT_EQ(e.field, "particles[4]");
+
+  s = awkward_scene();
+  s.numerics.duration = std::numeric_limits<double>::quiet_NaN();
+  e = expect_error([&] { validate_scene(s, "code"); });
+  EXPECT_EQ(e.code, "not_finite");
+  EXPECT_EQ(e.field, "numerics.duration");
+}
+
+TEST(ValidateScene, WallsFacingEachOtherNeedRoomForAParticle) {
+  Scene s = awkward_scene();
+  Wall floor, ceiling;
+  floor.name = "floor";
+  ceiling.name = "ceiling";
+  ceiling.normal = {0, 0, -1};
+  ceiling.point = {0, 0, 0.0025};  // smallest particle diameter is 0.002
+  s.walls = {floor, ceiling};
+  s.particles[0].position[2] = 0.0012;  // between the two (not inside the floor)
+  EXPECT_NO_THROW(validate_scene(s, "code"));
+  s.walls[1].point[2] = 0.0015;
+  const SceneError e = expect_error([&] { validate_scene(s, "code"); });
+  EXPECT_EQ(e.code, "overlapping_walls");
+  EXPECT_EQ(e.field, "walls[1]");
+}
+
+TEST(ValidateScene, TouchingParticlesWithinOnePercentAreAccepted) {
+  Scene s = awkward_scene();
+  s.particles.resize(2);
+  s.particles[0].radius = s.particles[1].radius = 0.001;
+  s.particles[0].position = {0, 0, 0};
+  s.particles[1].position = {0.002 - 0.009e-3, 0, 0};  // overlap 0.9% of the radius
+  EXPECT_NO_THROW(validate_scene(s, "code"));
+  s.particles[1].position = {0.002 - 0.011e-3, 0, 0};
+  EXPECT_EQ(expect_error([&] { validate_scene(s, "code"); }).code, "overlapping_particles");
+}
+
+TEST(SceneToml, ServoWallReadsAndRoundTrips) {
+  const std::string text = R"(
+[[materials]]
+name = "glass"
+young_modulus = 6e10
+poisson_ratio = 0.2
+density = 2500
+restitution = 0.9
+
+[[particles]]
+material = "glass"
+radius = 0.001
+position = [0, 0, 0.001]
+
+[[walls]]
+name = "platen"
+material = "glass"
+point = [0, 0, 0.01]
+normal = [0, 0, -1]
+servo = { target_force = 2.5, gain = 0.01, max_speed = 0.02 }
+
+[numerics]
+duration = 0.01
+)";
+  const Scene a = parse_scene(text, "servo.toml");
+  ASSERT_EQ(a.walls.size(), 1u);
+  EXPECT_TRUE(a.walls[0].servo.enabled);
+  EXPECT_EQ(a.walls[0].servo.target_force, 2.5);
+  EXPECT_EQ(a.walls[0].servo.gain, 0.01);
+  EXPECT_EQ(a.walls[0].servo.max_speed, 0.02);
+  const Scene b = parse_scene(to_toml(a), "round_trip.toml");
+  EXPECT_TRUE(b.walls[0].servo.enabled);
+  EXPECT_EQ(b.walls[0].servo.target_force, 2.5);
+  EXPECT_EQ(b.walls[0].servo.gain, 0.01);
+  EXPECT_EQ(b.walls[0].servo.max_speed, 0.02);
+}
+
+}  // namespace
+}  // namespace simsols

@@ -1,0 +1,130 @@
+// Walls and positions: finite rectangles act like planes inside their edges
+// and not beyond; walls move with their prescribed velocity; float runs keep
+// slow motions far from the origin (compensated positions).
+#include <cmath>
+#include <algorithm>
+#include <cstdio>
+#include <vector>
+
+#include "tests/support/test_support.h"
+
+namespace simsols::testing {
+namespace {
+
+Wall rectangle(Vec3 centre, double half_u, double half_v) {
+  Wall w;
+  w.name = "plate";
+  w.shape = WallShape::Rectangle;
+  w.point = centre;
+  w.normal = {0, 0, 1};
+  w.axis_u = {1, 0, 0};
+  w.half_u = half_u;
+  w.half_v = half_v;
+  return w;
+}
+
+// Peak force of a 1 m/s frictionless drop on the given wall.
+double peak_force(Precision p, const Wall& wall, double x) {
+  Scene s = empty_scene(p, glass(0.87));
+  const double R = 1e-3;
+  s.particles = {sphere(R, {x, 0, R + 1e-7}, {0, 0, -1})};
+  s.walls = {wall};
+  Simulation sim(default_device(), s);
+  double peak = 0;
+  for (int i = 0; i < 2000; ++i) {
+    sim.advance(1);
+    peak = std::max(peak, std::fabs(sim.snapshot().force[0][2]));
+  }
+  return peak;
+}
+
+class Walls : public PrecisionTest {};
+
+TEST_P(Walls, RectangleActsLikeAPlaneInsideItsEdges) {
+  const double flat = peak_force(GetParam(), plane("floor", {0, 0, 0}, {0, 0, 1}), 0);
+  const double inside = peak_force(GetParam(), rectangle({0, 0, 0}, 0.01, 0.01), 0.005);
+  const double beyond = peak_force(GetParam(), rectangle({0, 0, 0}, 0.01, 0.01), 0.0115);
+  std::printf("[measure] %s peak force: plane %.6g N, rectangle %.6g N, past the edge %.3g N\n",
+              precision_name(GetParam()), flat, inside, beyond);
+  EXPECT_GT(flat, 0);
+  EXPECT_NEAR(inside / flat, 1.0, 1e-6);
+  EXPECT_EQ(beyond, 0.0) << "a sphere 0.5 mm past the edge must miss the plate";
+}
+
+TEST_P(Walls, MovingWallFollowsItsVelocity) {
+  // A floor rising at 1 mm/s carries a resting sphere with it.
+  Scene s = empty_scene(GetParam(), glass(0.5, 0.3));
+  s.effects.gravity = {0, 0, -9.81};
+  const double R = 1e-3;
+  s.particles = {sphere(R, {0, 0, R}, {0, 0, 0})};
+  Wall floor = plane("floor", {0, 0, 0}, {0, 0, 1});
+  floor.velocity = {0, 0, 1e-3};
+  s.walls = {floor};
+  Simulation sim(default_device(), s);
+  sim.advance(20000);
+  const double t = sim.time();
+  const double wall_z = wall_points(sim.model(), sim.state())[0][2];
+  const ParticleSnapshot p = sim.snapshot();
+  report("wall height (m)", wall_z, 1e-3 * t);
+  EXPECT_NEAR(wall_z, 1e-3 * t, 1e-6 * 1e-3 * t);
+  EXPECT_NEAR(p.velocity[0][2], 1e-3, 2e-5) << "the sphere rides on the rising floor";
+  EXPECT_NEAR(p.position[0][2] - wall_z, R, 1e-3 * R);
+}
+
+TEST_P(Walls, SlowMotionFarFromTheOriginIsNotLost) {
+  // Two spheres 0.2 m apart, so each sits 0.1 m from the float frame's
+  // origin, where a float step is 7.5e-9 m. One drifts at 1 mm/s, i.e.
+  // 1e-10 m per step: without compensation it would not move at all.
+  Scene s = empty_scene(GetParam(), glass());
+  const double R = 1e-3;
+  s.particles = {sphere(R, {-0.1, 0, 0}), sphere(R, {0.1, 0, 0}, {1e-3, 0, 0})};
+  s.numerics.dt = 1e-7;
+  Simulation sim(default_device(), s);
+  const double x0 = sim.snapshot().position[1][0];
+  sim.advance(10000);
+  const double moved = sim.snapshot().position[1][0] - x0;
+  report("drift over 1e4 steps of 1e-10 m (m)", moved, 1e-6);
+  EXPECT_NEAR(moved, 1e-6, 1e-6 * 1e-4);
+}
+
+TEST_P(Walls, ServoPlatenHoldsItsTargetForce) {
+  // A platen above a sphere resting on a floor, asked for 1 N: it comes down
+  // at its speed cap, then holds 1 N; the floor carries 1 N + the weight.
+  const Material m = soft(0.5, 0.3, 0.0);
+  Scene s = empty_scene(GetParam(), m);
+  s.effects.gravity = {0, 0, -9.81};
+  const double R = 5e-3, target = 1.0;
+  s.particles = {sphere(R, {0, 0, R})};
+  Wall platen = plane("platen", {0, 0, 2 * R + 1e-4}, {0, 0, -1});
+  platen.servo.enabled = true;
+  platen.servo.target_force = target;
+  platen.servo.gain = 0.015;  // m/(s N): ~1 ms response on this contact
+  platen.servo.max_speed = 0.05;
+  s.walls = {plane("floor", {0, 0, 0}, {0, 0, 1}), platen};
+  Simulation sim(default_device(), s);
+  EXPECT_TRUE(sim.model().config().servo);
+  sim.advance(6000);
+  double f_min = 1e9, f_max = 0, floor_sum = 0;
+  const int samples = 100;
+  for (int i = 0; i < samples; ++i) {
+    sim.advance(20);
+    const std::vector<WallReaction> w = sim.wall_reactions();
+    const double f = w[1].force[2];  // the particle pushes the platen up
+    f_min = std::min(f_min, f);
+    f_max = std::max(f_max, f);
+    floor_sum += -w[0].force[2];
+  }
+  const double weight = mass(s, s.particles[0]) * 9.81;
+  report("platen force, min (N)", f_min, target);
+  report("platen force, max (N)", f_max, target);
+  report("floor force, mean (N)", floor_sum / samples, target + weight);
+  EXPECT_NEAR(f_min / target, 1.0, 0.01);
+  EXPECT_NEAR(f_max / target, 1.0, 0.01);
+  EXPECT_NEAR(floor_sum / samples / (target + weight), 1.0, 0.01);
+  EXPECT_LT(wall_points(sim.model(), sim.state())[1][2], 2 * R) << "the platen came down";
+}
+
+SIMSOLS_BOTH_PRECISIONS(Walls);
+
+}  // namespace
+}  // namespace simsols::testing

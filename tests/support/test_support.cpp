@@ -1,0 +1,111 @@
+#include "tests/support/test_support.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+namespace simsols::testing {
+
+void report(const std::string& what, double measured, double theory) {
+  const ::testing::TestInfo* t = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::printf("[measure] %s.%s %s: measured %.6g, theory %.6g, error %+.3f%%\n",
+              t ? t->test_suite_name() : "", t ? t->name() : "", what.c_str(), measured, theory,
+              theory != 0 ? 100.0 * (measured / theory - 1.0) : 0.0);
+}
+
+Scene small_shear_box(const std::string& name, double sigma, double displacement, Precision p,
+                      ShearSpecimen::Method method) {
+  const double d = 6.35e-3;
+  Scene s;
+  s.name = name;
+  s.materials.push_back(paper_glass());
+  s.numerics.precision = p;
+  s.numerics.duration = 1;
+  ShearBox b;
+  b.length = 5.27 * d;
+  b.width = 5.26 * d;
+  b.normal_stress = sigma;
+  b.shear_displacement = displacement;
+  b.rows = 100;
+  b.settle_time = method == ShearSpecimen::Method::Pour ? 0.1 : 0.005;
+  b.specimen.material = 0;
+  b.specimen.diameter = d;
+  b.specimen.layers = 4;
+  b.specimen.seed = 5;
+  b.specimen.method = method;
+  s.shear_box = b;
+  if (auto issue = build_shear_box(s)) ADD_FAILURE() << issue->field << ": " << issue->message;
+  return s;
+}
+
+bool all_finite(const ParticleSnapshot& q) {
+  for (size_t i = 0; i < q.position.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      if (!std::isfinite(q.position[i][c]) || !std::isfinite(q.velocity[i][c]) ||
+          !std::isfinite(q.angular_velocity[i][c]))
+        return false;
+  return true;
+}
+
+bool stability_full_form() {
+  const char* v = std::getenv("SIMSOLS_STABILITY_FULL");
+  return v && std::atoi(v) != 0;
+}
+
+Material glass(double restitution, double mu_s, double mu_r) {
+  Material m = paper_glass();
+  m.restitution = restitution;
+  m.sliding_friction = mu_s;
+  m.rolling_friction = mu_r;
+  return m;
+}
+
+Material soft(double restitution, double mu_s, double mu_r) {
+  Material m;
+  m.name = "soft";
+  m.young_modulus = 0.5e9;
+  m.poisson_ratio = 0.3;
+  m.density = 1200;
+  m.restitution = restitution;
+  m.sliding_friction = mu_s;
+  m.rolling_friction = mu_r;
+  return m;
+}
+
+Scene empty_scene(Precision p, const Material& m) {
+  Scene s;
+  s.name = "test";
+  s.materials = {m};
+  s.effects.gravity = {0, 0, 0};
+  s.numerics.precision = p;
+  s.numerics.duration = 1;
+  return s;
+}
+
+Particle sphere(double radius, Vec3 position, Vec3 velocity, Vec3 omega) {
+  Particle p;
+  p.radius = radius;
+  p.position = position;
+  p.velocity = velocity;
+  p.angular_velocity = omega;
+  return p;
+}
+
+Wall plane(const std::string& name, Vec3 point, Vec3 normal) {
+  Wall w;
+  w.name = name;
+  w.shape = WallShape::Plane;
+  w.point = point;
+  w.normal = normal;
+  return w;
+}
+
+double mass(const Scene& s, const Particle& p) {
+  return s.materials[p.material].density * 4.0 / 3.0 * std::numbers::pi * std::pow(p.radius, 3);
+}
+
+double e_star(const Material& m) {
+  return m.young_modulus / (2 * (1 - m.poisson_ratio * m.poisson_ratio));
+}
+
+}  // namespace simsols::testing

@@ -1,0 +1,66 @@
+// Helpers shared by the tests: scenes built in code, and the precisions
+// every physics test runs in.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "solver/scene/scene.h"
+#include "solver/apparatus/shear_box.h"
+#include "solver/core/simulation.h"
+
+namespace simsols::testing {
+
+// Glass of the reference paper (its Table 2), with chosen e and friction.
+Material glass(double restitution = 0.87, double mu_s = 0.0, double mu_r = 0.0);
+// A soft polymer (E = 0.5 GPa): larger stable steps for long-duration tests.
+Material soft(double restitution, double mu_s, double mu_r);
+
+Scene empty_scene(Precision p, const Material& m);
+Particle sphere(double radius, Vec3 position, Vec3 velocity = {}, Vec3 omega = {});
+Wall plane(const std::string& name, Vec3 point, Vec3 normal);
+
+double mass(const Scene& s, const Particle& p);
+
+// The suite's reduced direct shear specimen: the paper's 6.35 mm glass
+// beads, 5 x 5 per layer in a box with the paper's relative clearance,
+// 4 layers (seed 5), 100 rows, float. Built (build_shear_box), not yet
+// validated: callers may change effects or rows and then validate_scene.
+Scene small_shear_box(const std::string& name, double sigma, double displacement,
+                      Precision p = Precision::Float,
+                      ShearSpecimen::Method method = ShearSpecimen::Method::Layers);
+
+// No NaN or infinity in positions, velocities or spins.
+bool all_finite(const ParticleSnapshot& q);
+
+// The stability suite's full forms (SIMSOLS_STABILITY_FULL=1, docs/stability.md).
+bool stability_full_form();
+
+// Equivalent Young modulus of a material with itself, and with a rigid-free
+// same-material wall (identical).
+double e_star(const Material& m);
+
+// Prints "[measure] what: measured M, theory T, error E%" so the test log
+// doubles as the validation record (docs/validation.md).
+void report(const std::string& what, double measured, double theory);
+
+inline const char* precision_name(Precision p) {
+  return p == Precision::Float ? "float" : "double";
+}
+
+// Parameterised fixture base: every physics test runs in float and double.
+class PrecisionTest : public ::testing::TestWithParam<Precision> {};
+
+#define SIMSOLS_BOTH_PRECISIONS(Suite)                                                \
+  INSTANTIATE_TEST_SUITE_P(, Suite,                                                   \
+                           ::testing::Values(::simsols::Precision::Float,             \
+                                             ::simsols::Precision::Double),           \
+                           [](const auto& info) {                                     \
+                             return std::string(::simsols::testing::precision_name(   \
+                                 info.param));                                        \
+                           })
+
+}  // namespace simsols::testing
