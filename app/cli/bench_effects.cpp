@@ -1,5 +1,8 @@
 #include "app/cli/bench_effects.h"
 
+#include "app/cli/commands.h"
+#include "solver/core/cl_device.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -9,6 +12,7 @@
 
 #include "solver/core/simulation.h"
 #include "solver/core/slots.h"
+#include "solver/scene/choices.h"
 
 namespace simsols {
 
@@ -53,13 +57,13 @@ std::vector<Case> cases() {
 }  // namespace
 
 int bench_effects(const EffectsBenchOptions& opt) {
-  auto device = default_device();
+  auto device = open_command_device();
   std::printf("device: %s\npacking: %s; median of %d\n", device->description().c_str(),
               opt.fcc ? "fcc" : "cubic", opt.repeat);
   std::printf("%-26s %9s %9s %12s %16s %10s %12s %11s\n", "case", "particles", "precision",
               "us/step", "particle-steps/s", "hist B/ct", "slot B/ct", "B/particle");
   for (const std::string& prec : opt.precisions) {
-    const Precision p = prec == "float" ? Precision::Float : Precision::Double;
+    const Precision p = *parse_choice<Precision>(prec);
     if (p == Precision::Double && !device->has_double()) continue;
     for (int n : opt.sizes) {
       for (const Case& c : cases()) {

@@ -20,6 +20,8 @@
 #include "render/gl/gl_context.h"
 #include "render/gl/renderer.h"
 #include "render/view/sim_view.h"
+#include "solver/common/errors.h"
+#include "solver/core/engine_options.h"
 #include "solver/core/simulation.h"
 
 namespace simsols {
@@ -44,20 +46,54 @@ double time_median(int frames, F f) {
 
 }  // namespace
 
-int bench_render(const RenderBenchOptions& opt) {
-  auto backend = render::parse_gl_backend(opt.gl);
-  if (!backend) throw std::invalid_argument("--gl must be auto, egl or osmesa");
-  auto ctx = render::create_headless_context(*backend);
-  auto device = Device::open(render::cl_share_properties(ctx->share_handles()));
-  const render::Gl& gl = ctx->gl();
-  render::Renderer renderer(gl);
+namespace {
+
+// One size in the 8-view Alioscopy form: the views (opaque, transparent)
+// and the interleave, in ms.
+void time_stereo(const RenderBenchOptions& opt, const render::Gl& gl,
+                 render::AlioscopyOutput& alioscopy, render::Renderer& renderer,
+                 const render::Camera& cam, const render::FrameGeometry& g,
+                 render::ViewSettings s, int n) {
+  render::StereoRig rig;
+  double views[2];
+  for (int m = 0; m < 2; ++m) {
+    s.mode = m == 0 ? render::ViewMode::Opaque : render::ViewMode::Transparent;
+    alioscopy.render_views(renderer, rig, cam, g, s);  // warm-up
+    gl.Finish();
+    views[m] = time_median(opt.frames, [&] {
+      alioscopy.render_views(renderer, rig, cam, g, s);
+      gl.Finish();
+    });
+  }
+  const double inter = time_median(opt.frames, [&] {
+    alioscopy.compose(render::AlioscopyOutput::Mode::Interleaved);
+    gl.Finish();
+  });
+  std::printf("%10d %16.2f %14.2f %18.2f %14.2f\n", n, views[0], inter, views[1],
+              views[0] + inter);
+  std::fflush(stdout);
   renderer.resize(opt.width, opt.height);
-  std::printf("GL: %s\nOpenCL: %s\nframe %dx%d, median of %d\n", ctx->description().c_str(),
-              device->description().c_str(), opt.width, opt.height, opt.frames);
-  render::DisplayProfile profile;
-  std::unique_ptr<render::AlioscopyOutput> alioscopy;
+}
+
+// One size in the flat views: opaque, transparent and chains frames, in ms.
+void time_flat(const RenderBenchOptions& opt, const render::Gl& gl, render::Renderer& renderer,
+               const render::Camera& cam, const render::FrameGeometry& g, render::ViewSettings s,
+               double out[3]) {
+  int k = 0;
+  for (render::ViewMode m :
+       {render::ViewMode::Opaque, render::ViewMode::Transparent, render::ViewMode::Chains}) {
+    s.mode = m;
+    renderer.draw(cam, g, s);  // warm-up (shader variants, first upload)
+    gl.Finish();
+    out[k++] = time_median(opt.frames, [&] {
+      renderer.draw(cam, g, s);
+      gl.Finish();
+    });
+  }
+}
+
+void print_header(const RenderBenchOptions& opt, const render::DisplayProfile& profile) {
   if (opt.stereo) {
-    alioscopy = std::make_unique<render::AlioscopyOutput>(gl, profile);
     std::printf("Alioscopy: %d views of %dx%d, interleaved at %dx%d\n", profile.views,
                 profile.view_width(), profile.view_height(), profile.width, profile.height);
     std::printf("%10s %16s %14s %18s %14s\n", "beads", "8 views opaque", "interleave",
@@ -66,6 +102,25 @@ int bench_render(const RenderBenchOptions& opt) {
     std::printf("%10s %10s %12s %10s %12s %10s %9s  %s\n", "beads", "contacts", "pack (ms)",
                 "chains(ms)", "opaque (ms)", "transp(ms)", "chains", "buffers");
   }
+}
+
+}  // namespace
+
+int bench_render(const RenderBenchOptions& opt) {
+  auto backend = render::parse_gl_backend(opt.gl);
+  if (!backend) throw UsageError("bad_enum", "--gl", "'" + opt.gl + "' is not one of: auto, egl, osmesa");
+  auto ctx = render::create_headless_context(*backend);
+  auto device = Device::open(engine_options_from_environment(),
+                             render::cl_share_properties(ctx->share_handles()));
+  const render::Gl& gl = ctx->gl();
+  render::Renderer renderer(gl);
+  renderer.resize(opt.width, opt.height);
+  std::printf("GL: %s\nOpenCL: %s\nframe %dx%d, median of %d\n", ctx->description().c_str(),
+              device->description().c_str(), opt.width, opt.height, opt.frames);
+  render::DisplayProfile profile;
+  std::unique_ptr<render::AlioscopyOutput> alioscopy;
+  if (opt.stereo) alioscopy = std::make_unique<render::AlioscopyOutput>(gl, profile);
+  print_header(opt, profile);
   for (int n : opt.sizes) {
     Simulation sim(device, bench_scene(n, Precision::Float, false));
     sim.advance(2);
@@ -87,41 +142,12 @@ int bench_render(const RenderBenchOptions& opt) {
     s.bead_map = render::colormap_for(ColorField::Contacts);
     s.value_min = range.min;
     s.value_max = range.max;
-    const render::FrameGeometry g = view.geometry();
     if (opt.stereo) {
-      render::StereoRig rig;
-      double views[2];
-      for (int m = 0; m < 2; ++m) {
-        s.mode = m == 0 ? render::ViewMode::Opaque : render::ViewMode::Transparent;
-        alioscopy->render_views(renderer, rig, cam, g, s);  // warm-up
-        gl.Finish();
-        views[m] = time_median(opt.frames, [&] {
-          alioscopy->render_views(renderer, rig, cam, g, s);
-          gl.Finish();
-        });
-      }
-      const double inter = time_median(opt.frames, [&] {
-        alioscopy->compose(render::AlioscopyOutput::Mode::Interleaved);
-        gl.Finish();
-      });
-      std::printf("%10d %16.2f %14.2f %18.2f %14.2f\n", n, views[0], inter, views[1],
-                  views[0] + inter);
-      std::fflush(stdout);
-      renderer.resize(opt.width, opt.height);
+      time_stereo(opt, gl, *alioscopy, renderer, cam, view.geometry(), s, n);
       continue;
     }
     double ms[3];
-    int k = 0;
-    for (render::ViewMode m :
-         {render::ViewMode::Opaque, render::ViewMode::Transparent, render::ViewMode::Chains}) {
-      s.mode = m;
-      renderer.draw(cam, g, s);  // warm-up (shader variants, first upload)
-      gl.Finish();
-      ms[k++] = time_median(opt.frames, [&] {
-        renderer.draw(cam, g, s);
-        gl.Finish();
-      });
-    }
+    time_flat(opt, gl, renderer, cam, view.geometry(), s, ms);
     std::printf("%10d %10zu %12.2f %10.2f %12.2f %10.2f %9.2f  %s\n", n, stats.total, pack,
                 contacts, ms[0], ms[1], ms[2], view.bridge().path().c_str());
     std::fflush(stdout);

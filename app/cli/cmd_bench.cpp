@@ -12,9 +12,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <sstream>
 #include <vector>
 
+#include "solver/scene/choices.h"
 #include "app/cli/bench_effects.h"
 #include "app/cli/bench_render.h"
 #include "app/cli/commands.h"
@@ -99,13 +101,13 @@ void print_buffers(const State& state, int n) {
 }
 
 int bench(const BenchOptions& opt) {
-  auto device = default_device();
+  auto device = open_command_device();
   std::printf("device: %s\npacking: %s\n", device->description().c_str(), opt.packing.c_str());
   std::printf("%10s %9s %8s %16s %20s %14s %10s %7s %11s\n", "particles", "precision", "steps",
               "particle-steps/s", "(min..max)", "bytes/particle", "build (s)", "lists",
               "contacts/p");
   for (const std::string& prec : opt.precisions) {
-    const Precision p = prec == "float" ? Precision::Float : Precision::Double;
+    const Precision p = *parse_choice<Precision>(prec);
     if (p == Precision::Double && !device->has_double()) {
       std::printf("(no double precision on this device)\n");
       continue;
@@ -168,7 +170,7 @@ CommandRunner add_bench_command(CLI::App& app) {
   cmd->add_option("--sizes", opt->sizes, "Particle counts (default 5000 50000 500000)")
       ->check(CLI::Range(1, 50000000));
   cmd->add_option("--precision", opt->precisions, "float and/or double")
-      ->check(CLI::IsMember({"float", "double"}));
+      ->check(CLI::IsMember(choice_names<Precision>()));
   cmd->add_option("--packing", opt->packing, "cubic (6 contacts per bead, default) or fcc (12)")
       ->check(CLI::IsMember({"cubic", "fcc"}));
   cmd->add_option("--budget", opt->budget, "Particle-steps per timed repetition (default 3e7)")
@@ -181,7 +183,8 @@ CommandRunner add_bench_command(CLI::App& app) {
   cmd->add_option("--frame-size", opt->frame_size, "--render: frame size WxH (default 1280x720)");
   cmd->add_flag("--stereo", opt->render_opt.stereo,
                 "--render: the eight Alioscopy views and the interleaving (1920x1080 panel)");
-  cmd->add_option("--gl", opt->render_opt.gl, "--render: headless OpenGL auto, egl or osmesa")
+  CLI::Option* gl =
+      cmd->add_option("--gl", opt->render_opt.gl, "--render: headless OpenGL auto, egl or osmesa")
       ->check(CLI::IsMember({"auto", "egl", "osmesa"}));
   cmd->add_flag("--buffers", opt->buffers,
                 "Also print the device memory buffer by buffer (bytes per particle)");
@@ -191,7 +194,7 @@ CommandRunner add_bench_command(CLI::App& app) {
   CLI::Option* sizes = cmd->get_option("--sizes");
   CLI::Option* repeat = cmd->get_option("--repeat");
   CLI::Option* precision = cmd->get_option("--precision");
-  return [opt, sizes, repeat, precision] {
+  return [opt, sizes, repeat, precision, gl] {
     if (opt->effects) {
       EffectsBenchOptions e;
       if (sizes->count() > 0) e.sizes = opt->sizes;
@@ -206,6 +209,7 @@ CommandRunner add_bench_command(CLI::App& app) {
     if (sizes->count() > 0) r.sizes = opt->sizes;
     if (repeat->count() > 0) r.frames = opt->repeat;
     std::tie(r.width, r.height) = parse_frame_size(opt->frame_size, "--frame-size");
+    if (const char* v = std::getenv("SIMSOLS_GL"); v && *v && gl->count() == 0) r.gl = v;
     return bench_render(r);
   };
 }

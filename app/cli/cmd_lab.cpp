@@ -12,7 +12,7 @@ namespace simsols {
 
 int run_lab(const LabOptions& options) {
   if (!LabWindow::display_available())
-    throw SceneError("io", "", 0, "DISPLAY",
+    throw UsageError("io", "", 0, "DISPLAY",
                      "no display: the lab needs a window (use `simsols run` headless, or "
                      "xvfb-run for scripted sessions)");
   LabApp app(options);

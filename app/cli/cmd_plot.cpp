@@ -84,13 +84,13 @@ ShearCurve read_curve(const std::string& input, const std::string& label) {
 
 int plot(const PlotOptions& o) {
   if (!o.labels.empty() && o.labels.size() != o.inputs.size())
-    throw SceneError("bad_flag", "command line", 0, "--label",
+    throw UsageError("bad_flag", "--label",
                      "give one --label per input (" + std::to_string(o.inputs.size()) +
                          " inputs, " + std::to_string(o.labels.size()) + " labels)");
   const fs::path prefix(o.out);
   const fs::path dir = prefix.parent_path().empty() ? fs::path(".") : prefix.parent_path();
   if (!fs::is_directory(dir))
-    throw SceneError("io", o.out, 0, "--out", "the folder '" + dir.string() + "' does not exist");
+    throw UsageError("io", o.out, 0, "--out", "the folder '" + dir.string() + "' does not exist");
   std::vector<ShearCurve> curves;
   for (size_t i = 0; i < o.inputs.size(); ++i) {
     curves.push_back(read_curve(o.inputs[i], o.labels.empty() ? "" : o.labels[i]));

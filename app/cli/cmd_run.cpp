@@ -14,6 +14,7 @@
 #include <memory>
 #include <optional>
 
+#include "solver/core/engine_options.h"
 #include "solver/io/checkpoint.h"
 #include "app/cli/commands.h"
 #include "solver/scene/contact_model.h"
@@ -49,9 +50,11 @@ struct RunOptions {
 // shear test the displacement field counts from the start of shearing.
 class FrameSeries {
  public:
-  FrameSeries(const RunOptions& opt)
-      : flags_(opt.frame), dir_(opt.frames_dir), every_(opt.frames_every),
-        exporter_(FrameOptions::resolve(opt.frame)) {}
+  FrameSeries(const RunOptions& opt, const EngineOptions& engine)
+      : flags_(flags_with_environment(opt.frame)), dir_(opt.frames_dir), every_(opt.frames_every),
+        exporter_(FrameOptions::resolve(flags_), engine) {}
+  // The device that shares the exporter's GL context: the run's.
+  const std::shared_ptr<Device>& device() const { return exporter_.device(); }
   void after_steps(Simulation& sim, bool shearing) {
     if (!attached_) {
       exporter_.attach(sim, flags_);
@@ -72,6 +75,11 @@ class FrameSeries {
   long long every() const { return every_; }
 
  private:
+  static FrameFlags flags_with_environment(FrameFlags f) {
+    gl_from_environment(f);
+    return f;
+  }
+
   FrameFlags flags_;
   std::string dir_;
   long long every_;
@@ -133,20 +141,16 @@ void print_summary(const ShearRunResult& r, const std::string& dir) {
 
 // --precision overrides numerics.precision.
 void apply_precision(const RunOptions& opt, Scene& scene) {
-  if (opt.precision.empty()) return;
-  if (opt.precision != "float" && opt.precision != "double")
-    throw SceneError("bad_enum", "command line", 0, "--precision",
-                     "'" + opt.precision + "' is not one of: float, double");
-  scene.numerics.precision = opt.precision == "float" ? Precision::Float : Precision::Double;
+  if (const auto p = precision_flag(opt.precision)) scene.numerics.precision = *p;
 }
 
 // `run SCENE --explain`: the slots the scene compiles, no run, no output folder.
 int explain(const RunOptions& opt) {
   if (opt.scene_path.empty())
-    throw SceneError("missing_field", "", 0, "SCENE", "--explain needs a scene file");
+    throw UsageError("missing_field", "", 0, "SCENE", "--explain needs a scene file");
   Scene scene = load_scene(opt.scene_path);
   apply_precision(opt, scene);
-  const KernelConfig config = make_kernel_config(scene, *default_device());
+  const KernelConfig config = make_kernel_config(scene, *open_command_device());
   std::printf("%s", explain_effects(scene, config).c_str());
   return 0;
 }
@@ -253,36 +257,37 @@ int run_plain(Simulation& sim, const RunOptions& opt, FrameSeries* frames,
 
 void check_flags(const RunOptions& opt) {
   if (opt.out_dir.empty())
-    throw SceneError("missing_field", "command line", 0, "--out",
+    throw UsageError("missing_field", "--out",
                      "--out DIR is required (the folder for the results)");
   if (!opt.frames_dir.empty() && opt.frames_every <= 0)
-    throw SceneError("missing_field", "command line", 0, "--every",
+    throw UsageError("missing_field", "--every",
                      "--frames needs --every N (steps between frames, > 0)");
   if (opt.frames_dir.empty() && opt.frames_every > 0)
-    throw SceneError("missing_field", "command line", 0, "--frames",
+    throw UsageError("missing_field", "--frames",
                      "--every needs --frames DIR (the folder for the PNG frames)");
   if (opt.duration != 0 && !(opt.duration > 0 && std::isfinite(opt.duration)))
-    throw SceneError("out_of_range", "command line", 0, "--duration", "must be a finite time > 0 s");
+    throw UsageError("out_of_range", "--duration", "must be a finite time > 0 s");
 }
 
 // The scene of a new run, with the command line's overrides, validated.
 Scene load_run_scene(const RunOptions& opt) {
   if (opt.scene_path.empty())
-    throw SceneError("missing_field", "", 0, "SCENE", "a scene file is required (or --resume)");
+    throw UsageError("missing_field", "", 0, "SCENE", "a scene file is required (or --resume)");
   Scene scene = load_scene(opt.scene_path);
   apply_precision(opt, scene);
   if (opt.duration != 0) scene.numerics.duration = opt.duration;
   validate_scene(scene, scene.source_path);
   FrameOptions::resolve(opt.frame, &scene);  // a bad [view] is refused even without --frames
   if (scene.shear_box && opt.duration != 0)
-    throw SceneError("conflicting_keys", "command line", 0, "--duration",
+    throw UsageError("conflicting_keys", "--duration",
                      "a shear test's loading program sets its duration "
                      "(shear_box.shear_displacement)");
   return scene;
 }
 
 // --resume: the checkpoint in DIR, verified, with the driver state it carries.
-std::unique_ptr<Simulation> load_resume(const std::filesystem::path& dir, std::string* extra) {
+std::unique_ptr<Simulation> load_resume(const std::filesystem::path& dir,
+                                        const std::shared_ptr<Device>& device, std::string* extra) {
   const auto ck = dir / "checkpoint.bin";
   if (!std::filesystem::exists(ck)) {
     std::string hint = "no checkpoint to resume from. A shear test writes one every minute of wall "
@@ -293,12 +298,13 @@ std::unique_ptr<Simulation> load_resume(const std::filesystem::path& dir, std::s
               (dir / "scene.toml").string() + " --out " + dir.string() + "'";
     throw SceneError("io", ck.string(), 0, "--resume", hint);
   }
-  return load_checkpoint(default_device(), ck.string(), extra);
+  return load_checkpoint(device, ck.string(), extra);
 }
 
-ShearRunOptions shear_options(const RunOptions& opt, FrameSeries* frames,
-                              const InterruptScope& interrupt) {
+ShearRunOptions shear_options(const RunOptions& opt, const std::shared_ptr<Device>& device,
+                              FrameSeries* frames, const InterruptScope& interrupt) {
   ShearRunOptions shear;
+  shear.device = device;
   shear.out_dir = opt.out_dir;
   shear.quiet = opt.quiet;
   shear.stop_after = opt.stop_after;
@@ -319,31 +325,30 @@ int finish_shear(const ShearRunResult& r, const RunOptions& opt, const Interrupt
 int run(const RunOptions& opt) {
   if (opt.explain) return explain(opt);
   check_flags(opt);
+  if (opt.resume && shear_finished(opt.out_dir)) {
+    std::printf("the shear test in %s finished already (summary.txt): nothing to resume\n",
+                opt.out_dir.c_str());
+    return 0;
+  }
+  std::optional<Scene> scene;
+  if (!opt.resume) scene = load_run_scene(opt);  // a bad scene before any device or GL work
+  // With --frames the exporter opens the device, sharing its GL context
+  // where it can.
+  const EngineOptions engine = engine_options_from_environment();
+  std::unique_ptr<FrameSeries> frames;
+  if (!opt.frames_dir.empty()) frames = std::make_unique<FrameSeries>(opt, engine);
+  const std::shared_ptr<Device> device = frames ? frames->device() : Device::open(engine);
   const std::filesystem::path dir = opt.out_dir;
   InterruptScope interrupt;
   std::unique_ptr<Simulation> sim;
   std::string extra;
-  std::optional<Scene> scene;
-  if (opt.resume) {
-    if (shear_finished(opt.out_dir)) {
-      std::printf("the shear test in %s finished already (summary.txt): nothing to resume\n",
-                  opt.out_dir.c_str());
-      return 0;
-    }
-    sim = load_resume(dir, &extra);
-  } else {
-    scene = load_run_scene(opt);
-  }
-  // Before any simulation: the exporter picks the OpenCL device (sharing
-  // its GL context where possible).
-  std::unique_ptr<FrameSeries> frames;
-  if (!opt.frames_dir.empty()) frames = std::make_unique<FrameSeries>(opt);
-  const ShearRunOptions shear = shear_options(opt, frames.get(), interrupt);
+  if (opt.resume) sim = load_resume(dir, device, &extra);
+  const ShearRunOptions shear = shear_options(opt, device, frames.get(), interrupt);
   if (sim && sim->scene().shear_box)
     return finish_shear(resume_shear(std::move(sim), extra, shear), opt, interrupt);
   if (scene && scene->shear_box) return finish_shear(run_shear(*scene, shear), opt, interrupt);
   if (!sim) {
-    sim = std::make_unique<Simulation>(default_device(), *scene);
+    sim = std::make_unique<Simulation>(device, *scene);
     std::filesystem::create_directories(dir);
     write_file_atomic((dir / "scene.toml").string(), scene->source_text);
     write_file_atomic((dir / "scene.resolved.toml").string(), to_toml(*scene));

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "solver/core/engine_options.h"
 #include "solver/io/checkpoint.h"
 #include "solver/common/input_file.h"
 #include "app/cli/commands.h"
@@ -35,14 +36,16 @@ void check_output_path(const std::string& out, const char* flag) {
   namespace fs = std::filesystem;
   const fs::path p(out);
   if (p.extension() != ".png")
-    throw SceneError("bad_flag", "command line", 0, flag, "'" + out + "' must end in .png");
+    throw UsageError("bad_flag", flag, "'" + out + "' must end in .png");
   const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
   if (!fs::is_directory(dir))
-    throw SceneError("io", out, 0, flag, "the folder '" + dir.string() + "' does not exist");
+    throw UsageError("io", out, 0, flag, "the folder '" + dir.string() + "' does not exist");
 }
 
 int snapshot(const SnapshotOptions& opt) {
-  FrameOptions frame = FrameOptions::resolve(opt.frame);
+  FrameFlags flags = opt.frame;
+  gl_from_environment(flags);
+  FrameOptions frame = FrameOptions::resolve(flags);
   check_output_path(opt.out, "--out");
   if (!std::filesystem::exists(opt.input))
     throw SceneError("io", opt.input, 0, "SCENE_OR_CHECKPOINT", "no such file");
@@ -52,16 +55,17 @@ int snapshot(const SnapshotOptions& opt) {
   Scene scene;
   if (!checkpoint) {
     scene = load_scene(opt.input);  // errors before any GL work
-    frame = FrameOptions::resolve(opt.frame, &scene);
+    frame = FrameOptions::resolve(flags, &scene);
   }
 
-  FrameExporter exporter(frame);  // before the simulation: it picks the device
+  // Before the simulation: it opens the device that shares its GL context.
+  FrameExporter exporter(frame, engine_options_from_environment());
   std::unique_ptr<Simulation> sim =
-      checkpoint ? load_checkpoint(default_device(), opt.input)
-                 : std::make_unique<Simulation>(default_device(), scene);
+      checkpoint ? load_checkpoint(exporter.device(), opt.input)
+                 : std::make_unique<Simulation>(exporter.device(), scene);
   if (opt.steps > 0) sim->advance(opt.steps);
-  exporter.attach(*sim, opt.frame);
-  frame = FrameOptions::resolve(opt.frame, &sim->scene());  // as attach() applied it
+  exporter.attach(*sim, flags);
+  frame = FrameOptions::resolve(flags, &sim->scene());  // as attach() applied it
   exporter.write(opt.out);
   std::fprintf(stderr, "[snapshot] %s\n", exporter.describe().c_str());
   std::printf("wrote %s (%dx%d, %d beads, step %lld)\n", opt.out.c_str(), frame.width,

@@ -58,7 +58,7 @@ std::optional<StudySpecimen> selected_specimen(const StudyOptions& opt) {
   if (opt.specimen.empty()) return std::nullopt;
   const std::optional<StudySpecimen> s = parse_specimen(opt.specimen);
   if (!s)
-    throw SceneError("bad_enum", "command line", 0, "--specimen",
+    throw UsageError("bad_enum", "--specimen",
                      "'" + opt.specimen + "' is not one of: layered, poured");
   return s;
 }
@@ -134,7 +134,7 @@ std::string resume_command(const StudyOptions& opt) {
 // finished study, as markdown (docs/accuracy.md holds the shipped one's).
 int print_table(const StudyOptions& opt) {
   if (opt.from.empty())
-    throw SceneError("missing_field", "command line", 0, "--from", "give the study's ensemble.csv");
+    throw UsageError("missing_field", "--from", "give the study's ensemble.csv");
   if (!fs::exists(opt.from)) throw SceneError("io", opt.from, 0, "--from", "no such file");
   const std::optional<StudySpecimen> only = selected_specimen(opt);
   try {
@@ -183,7 +183,7 @@ class StudyRun {
     // one context and queue per worker, opened here, one after the other
     std::vector<std::shared_ptr<Device>> devices(static_cast<size_t>(jobs));
     if (jobs > 1)
-      for (auto& d : devices) d = Device::open();
+      for (auto& d : devices) d = open_command_device();
     {
       std::vector<std::jthread> workers;  // joined when the scope ends, also on a throw
       for (int k = 1; k < jobs; ++k) workers.emplace_back([this, d = devices[k]] { work(d); });
@@ -305,25 +305,25 @@ class StudyRun {
 int study(const StudyOptions& opt) {
   if (opt.what == "table") return print_table(opt);
   if (opt.what != "accuracy")
-    throw SceneError("bad_enum", "command line", 0, "STUDY",
+    throw UsageError("bad_enum", "STUDY",
                      "'" + opt.what + "' is not one of: accuracy, table");
-  if (opt.out.empty()) throw SceneError("missing_field", "command line", 0, "--out", "give an output folder");
+  if (opt.out.empty()) throw UsageError("missing_field", "--out", "give an output folder");
   if (opt.ensemble < 0 || opt.ensemble > 50)
-    throw SceneError("out_of_range", "command line", 0, "--ensemble",
+    throw UsageError("out_of_range", "--ensemble",
                      std::to_string(opt.ensemble) +
                          " is out of range, allowed [1, 50] members per setting (0 = the preset's)");
   auto preset = study_preset(opt.preset, opt.ensemble);
   if (!preset)
-    throw SceneError("bad_enum", "command line", 0, "--preset",
+    throw UsageError("bad_enum", "--preset",
                      "'" + opt.preset + "' is not one of: quick, full, ci");
   if (opt.box_scale != 0 && !(opt.box_scale >= 1 && opt.box_scale <= 4))
-    throw SceneError("out_of_range", "command line", 0, "--box-scale",
+    throw UsageError("out_of_range", "--box-scale",
                      format_number("%g", opt.box_scale) +
                          " is out of range, allowed [1, 4] (the poured specimen's box against the "
                          "paper's; 0 = the preset's)");
   if (opt.box_scale > 0) preset->poured_box_scale = opt.box_scale;
   if (opt.jobs < 1 || opt.jobs > 16)
-    throw SceneError("out_of_range", "command line", 0, "--jobs",
+    throw UsageError("out_of_range", "--jobs",
                      std::to_string(opt.jobs) + " is out of range, allowed [1, 16] cases at once");
   if (opt.no_shear) preset->shear = false;
   const std::vector<StudySettings> cases = study_runs(*preset, selected_cases(*preset, opt));

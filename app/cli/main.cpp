@@ -44,12 +44,15 @@ int main(int argc, char** argv) {
     if (!sub->parsed()) continue;
     try {
       return run();
-    } catch (const simsols::SceneError& e) {
+    } catch (const simsols::InputError& e) {  // UsageError, SceneError
       std::fprintf(stderr, "error: %s\n", e.what());
       return 2;
     } catch (const simsols::RunawayError& e) {
       std::fprintf(stderr, "error: %s\n", e.what());
       return 4;
+    } catch (const simsols::IoError& e) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      return 5;
     } catch (const std::exception& e) {
       std::fprintf(stderr, "error: %s\n", e.what());
       return 3;

@@ -27,19 +27,20 @@ double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
-// The test's progress and an ETA over its whole loading programme (and the
+// A test's progress and an ETA over its whole loading programme (and the
 // work after it, later_particle_steps), at the rate measured in this
-// invocation. No ETA until that rate means something.
+// invocation. No ETA until that rate means something. Any apparatus'
+// programme (apparatus.h).
 class ProgressLine {
  public:
   ProgressLine(std::string label, bool quiet, double later)
       : label_(std::move(label)), quiet_(quiet), later_(later), tty_(isatty(fileno(stderr)) != 0) {}
-  void start(const ShearTest& test) { first_done_ = test.step_count().done; }
-  void show(const ShearTest& test, const Simulation& sim, double wall, bool force) {
+  void start(const LoadingProgramme& test) { first_done_ = test.step_count().done; }
+  void show(const LoadingProgramme& test, const Simulation& sim, double wall, bool force) {
     if (quiet_) return;
     if (!force && seconds_since(last_) < (tty_ ? 0.5 : 10.0)) return;
     last_ = Clock::now();
-    const ShearTest::StepCount c = test.step_count();
+    const LoadingProgramme::StepCount c = test.step_count();
     const double ran = c.done - first_done_;
     char eta[96] = "ETA --";
     if (ran > 0 && wall > 2) {
@@ -59,7 +60,7 @@ class ProgressLine {
     std::fflush(stderr);
   }
   // The last line: where the test ended and the wall time it took.
-  void end(const ShearTest& test, const Simulation& sim, double wall) {
+  void end(const LoadingProgramme& test, const Simulation& sim, double wall) {
     if (quiet_) return;
     std::fprintf(stderr, tty_ ? "\r[%s] %5.1f%%  %s  step %lld  t = %.4f s  in %s\033[K\n"
                               : "[%s] %5.1f%%  %s  step %lld  t = %.4f s  in %s\n",
@@ -92,7 +93,7 @@ void print_header(const ShearRunOptions& opt, Simulation& sim, const ShearTest& 
                sim.model().config().double_precision ? "double" : "float",
                sim.model().device().description().c_str(), test.servo_gain(),
                test.servo_integral_time());
-  const ShearTest::StepCount c = test.step_count();
+  const LoadingProgramme::StepCount c = test.step_count();
   print_cost(opt.label, run_cost(sim, c.total - c.done));
 }
 
@@ -238,10 +239,10 @@ ShearRunResult run_shear(const Scene& scene_in, const ShearRunOptions& opt) {
     if (!fs::exists(ck))
       throw SceneError("io", ck.string(), 0, "--resume", "no checkpoint to resume from");
     std::string state;
-    auto sim = load_checkpoint(default_device(), ck.string(), &state);
+    auto sim = load_checkpoint(opt.device, ck.string(), &state);
     return resume_shear(std::move(sim), state, opt);
   }
-  Simulation sim(default_device(), scene_in);
+  Simulation sim(opt.device, scene_in);
   ShearTest test(sim);
   fs::create_directories(dir);
   fs::remove(dir / "summary.txt");

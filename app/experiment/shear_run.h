@@ -18,12 +18,14 @@
 #include <memory>
 #include <string>
 
+#include "solver/core/cl_device.h"
 #include "solver/scene/scene.h"
 #include "solver/apparatus/shear_test.h"
 
 namespace simsols {
 
 struct ShearRunOptions {
+  std::shared_ptr<Device> device;  // where the test runs (required)
   std::string out_dir;
   std::string label;           // progress-line prefix
   bool resume = false;         // continue from out_dir/checkpoint.bin

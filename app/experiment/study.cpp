@@ -200,106 +200,125 @@ std::vector<StudySettings> study_runs(const StudyPreset& preset,
   return runs;
 }
 
+namespace {
+
+constexpr double kCheckRadius = 6.35e-3 / 2;  // the paper's largest beads
+
+// A Hertz impact on a wall, elastic and frictionless, at 0.1 m/s: overlap,
+// force and duration against Hertz's theory.
+void check_hertz_impact(const StudySettings& s, const std::shared_ptr<Device>& device,
+                        ContactErrors& e) {
+  const double R = kCheckRadius;
+  Material m = glass_scaled(s.stiffness_scale);
+  m.restitution = 1;
+  m.sliding_friction = 0;
+  m.rolling_friction = 0;
+  Scene sc = contact_scene(s, m);
+  const double v = 0.1;
+  Particle p;
+  p.radius = R;
+  p.position = {0, 0, R + 1e-7};
+  p.velocity = {0, 0, -v};
+  sc.particles = {p};
+  const double mass = m.density * 4.0 / 3 * std::numbers::pi * R * R * R;
+  const double es = m.young_modulus / (2 * (1 - m.poisson_ratio * m.poisson_ratio));
+  const double dmax = std::pow(15 * mass * v * v / (16 * es * std::sqrt(R)), 0.4);
+  const double fmax = 4.0 / 3 * es * std::sqrt(R) * std::pow(dmax, 1.5);
+  const double tc = 2 * std::sqrt(std::numbers::pi) * std::tgamma(1.4) / std::tgamma(0.9) * dmax / v;
+  Simulation sim(device, sc);
+  // contact time: the zero crossings of the overlap, interpolated
+  // linearly between steps (not a count of whole steps)
+  double overlap = 0, force = 0, t_in = -1, t_out = -1, prev = R - sc.particles[0].position[2];
+  double prev_t = 0;
+  for (int i = 0; i < 200000 && t_out < 0; ++i) {
+    sim.advance(1);
+    const ParticleSnapshot q = sim.snapshot();
+    if (!std::isfinite(q.position[0][2])) throw std::runtime_error("NaN in the impact");
+    const double d = R - q.position[0][2];
+    if (t_in < 0 && d > 0) t_in = prev_t + (0 - prev) / (d - prev) * (sim.time() - prev_t);
+    if (t_in >= 0 && d <= 0 && prev > 0)
+      t_out = prev_t + (0 - prev) / (d - prev) * (sim.time() - prev_t);
+    overlap = std::max(overlap, d);
+    force = std::max(force, norm(q.force[0]));
+    prev = d;
+    prev_t = sim.time();
+  }
+  if (t_out < 0) throw std::runtime_error("the impact never ended");
+  const double duration = t_out - t_in;
+  e.overlap = pct(overlap, dmax);
+  e.force = pct(force, fmax);
+  e.duration = pct(duration, tc);
+}
+
+// The restitution of a damped impact on a wall at 0.1 m/s, against the
+// material's coefficient.
+void check_restitution(const StudySettings& s, const std::shared_ptr<Device>& device,
+                       ContactErrors& e) {
+  const double R = kCheckRadius;
+  Material m = glass_scaled(s.stiffness_scale);
+  m.sliding_friction = 0;
+  m.rolling_friction = 0;
+  Scene sc = contact_scene(s, m);
+  Particle p;
+  p.radius = R;
+  p.position = {0, 0, R + 1e-7};
+  p.velocity = {0, 0, -0.1};
+  sc.particles = {p};
+  Simulation sim(device, sc);
+  if (!advance_through_contact(sim, 0, 200000))
+    throw std::runtime_error("the damped impact never ended");
+  const double out = sim.snapshot().velocity[0][2] / 0.1;
+  if (!std::isfinite(out) || out > 1.0001)
+    throw std::runtime_error("the impact created energy (e = " + std::to_string(out) + ")");
+  e.restitution = pct(out, s.damping ? m.restitution : 1.0);
+}
+
+// Sliding to rolling on a floor (mu = 0.5, v0 = 0.05 m/s): the time to pure
+// rolling against 2 v0 / (7 mu g).
+void check_rolling_onset(const StudySettings& s, const std::shared_ptr<Device>& device,
+                         ContactErrors& e) {
+  const double R = kCheckRadius;
+  Material m = glass_scaled(s.stiffness_scale);
+  m.sliding_friction = 0.5;
+  m.rolling_friction = 0;
+  Scene sc = contact_scene(s, m);
+  const double g = 9.81, v0 = 0.05, mu = 0.5;
+  sc.effects.gravity = {0, 0, -g};
+  Particle p;
+  p.radius = R;
+  const double mass = m.density * 4.0 / 3 * std::numbers::pi * R * R * R;
+  const double es = m.young_modulus / (2 * (1 - m.poisson_ratio * m.poisson_ratio));
+  p.position = {0, 0, R - std::pow(mass * g / (4.0 / 3 * es * std::sqrt(R)), 2.0 / 3)};
+  p.velocity = {v0, 0, 0};
+  sc.particles = {p};
+  Simulation sim(device, sc);
+  const double t_theory = 2 * v0 / (7 * mu * g);
+  double t_roll = -1, prev_slip = v0, prev_t = 0;
+  while (sim.time() < 3 * t_theory) {
+    sim.advance(1);
+    const ParticleSnapshot q = sim.snapshot();
+    const double slip = q.velocity[0][0] - q.angular_velocity[0][1] * R;
+    if (!std::isfinite(slip)) throw std::runtime_error("NaN while rolling");
+    if (slip <= 1e-3 * v0) {
+      const double f = (prev_slip - 1e-3 * v0) / (prev_slip - slip);
+      t_roll = prev_t + f * (sim.time() - prev_t);
+      break;
+    }
+    prev_slip = slip;
+    prev_t = sim.time();
+  }
+  if (t_roll < 0) throw std::runtime_error("never reached rolling");
+  e.rolling = pct(t_roll, t_theory);
+}
+
+}  // namespace
+
 ContactErrors run_contact_checks(const StudySettings& s, std::shared_ptr<Device> device) {
-  if (!device) device = default_device();
   ContactErrors e;
-  const double R = 6.35e-3 / 2;
   try {
-    // 1. Hertz impact on a wall, elastic and frictionless, 0.1 m/s
-    {
-      Material m = glass_scaled(s.stiffness_scale);
-      m.restitution = 1;
-      m.sliding_friction = 0;
-      m.rolling_friction = 0;
-      Scene sc = contact_scene(s, m);
-      const double v = 0.1;
-      Particle p;
-      p.radius = R;
-      p.position = {0, 0, R + 1e-7};
-      p.velocity = {0, 0, -v};
-      sc.particles = {p};
-      const double mass = m.density * 4.0 / 3 * std::numbers::pi * R * R * R;
-      const double es = m.young_modulus / (2 * (1 - m.poisson_ratio * m.poisson_ratio));
-      const double dmax = std::pow(15 * mass * v * v / (16 * es * std::sqrt(R)), 0.4);
-      const double fmax = 4.0 / 3 * es * std::sqrt(R) * std::pow(dmax, 1.5);
-      const double tc = 2 * std::sqrt(std::numbers::pi) * std::tgamma(1.4) / std::tgamma(0.9) * dmax / v;
-      Simulation sim(device, sc);
-      // contact time: the zero crossings of the overlap, interpolated
-      // linearly between steps (not a count of whole steps)
-      double overlap = 0, force = 0, t_in = -1, t_out = -1, prev = R - sc.particles[0].position[2];
-      double prev_t = 0;
-      for (int i = 0; i < 200000 && t_out < 0; ++i) {
-        sim.advance(1);
-        const ParticleSnapshot q = sim.snapshot();
-        if (!std::isfinite(q.position[0][2])) throw std::runtime_error("NaN in the impact");
-        const double d = R - q.position[0][2];
-        if (t_in < 0 && d > 0) t_in = prev_t + (0 - prev) / (d - prev) * (sim.time() - prev_t);
-        if (t_in >= 0 && d <= 0 && prev > 0)
-          t_out = prev_t + (0 - prev) / (d - prev) * (sim.time() - prev_t);
-        overlap = std::max(overlap, d);
-        force = std::max(force, norm(q.force[0]));
-        prev = d;
-        prev_t = sim.time();
-      }
-      if (t_out < 0) throw std::runtime_error("the impact never ended");
-      const double duration = t_out - t_in;
-      e.overlap = pct(overlap, dmax);
-      e.force = pct(force, fmax);
-      e.duration = pct(duration, tc);
-    }
-    // 2. restitution of a damped impact on a wall, 0.1 m/s
-    {
-      Material m = glass_scaled(s.stiffness_scale);
-      m.sliding_friction = 0;
-      m.rolling_friction = 0;
-      Scene sc = contact_scene(s, m);
-      Particle p;
-      p.radius = R;
-      p.position = {0, 0, R + 1e-7};
-      p.velocity = {0, 0, -0.1};
-      sc.particles = {p};
-      Simulation sim(device, sc);
-      if (!advance_through_contact(sim, 0, 200000))
-        throw std::runtime_error("the damped impact never ended");
-      const double out = sim.snapshot().velocity[0][2] / 0.1;
-      if (!std::isfinite(out) || out > 1.0001)
-        throw std::runtime_error("the impact created energy (e = " + std::to_string(out) + ")");
-      e.restitution = pct(out, s.damping ? m.restitution : 1.0);
-    }
-    // 3. sliding to rolling on a floor: mu = 0.5, v0 = 0.05 m/s
-    {
-      Material m = glass_scaled(s.stiffness_scale);
-      m.sliding_friction = 0.5;
-      m.rolling_friction = 0;
-      Scene sc = contact_scene(s, m);
-      const double g = 9.81, v0 = 0.05, mu = 0.5;
-      sc.effects.gravity = {0, 0, -g};
-      Particle p;
-      p.radius = R;
-      const double mass = m.density * 4.0 / 3 * std::numbers::pi * R * R * R;
-      const double es = m.young_modulus / (2 * (1 - m.poisson_ratio * m.poisson_ratio));
-      p.position = {0, 0, R - std::pow(mass * g / (4.0 / 3 * es * std::sqrt(R)), 2.0 / 3)};
-      p.velocity = {v0, 0, 0};
-      sc.particles = {p};
-      Simulation sim(device, sc);
-      const double t_theory = 2 * v0 / (7 * mu * g);
-      double t_roll = -1, prev_slip = v0, prev_t = 0;
-      while (sim.time() < 3 * t_theory) {
-        sim.advance(1);
-        const ParticleSnapshot q = sim.snapshot();
-        const double slip = q.velocity[0][0] - q.angular_velocity[0][1] * R;
-        if (!std::isfinite(slip)) throw std::runtime_error("NaN while rolling");
-        if (slip <= 1e-3 * v0) {
-          const double f = (prev_slip - 1e-3 * v0) / (prev_slip - slip);
-          t_roll = prev_t + f * (sim.time() - prev_t);
-          break;
-        }
-        prev_slip = slip;
-        prev_t = sim.time();
-      }
-      if (t_roll < 0) throw std::runtime_error("never reached rolling");
-      e.rolling = pct(t_roll, t_theory);
-    }
+    check_hertz_impact(s, device, e);
+    check_restitution(s, device, e);
+    check_rolling_onset(s, device, e);
     e.ok = true;
   } catch (const std::exception& x) {
     e.ok = false;
@@ -358,7 +377,7 @@ void check_case(Simulation& sim, const ShearTest& test) {
 
 ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s,
                            const ShearCaseControl& control) {
-  const std::shared_ptr<Device> device = control.device ? control.device : default_device();
+  const std::shared_ptr<Device> device = control.device;
   ShearResult r;
   try {
     std::unique_ptr<Simulation> sim;

@@ -141,9 +141,9 @@ constexpr const char* kShearTwinKnob = "round-off at shear";
 std::vector<StudySettings> study_runs(const StudyPreset& preset,
                                       const std::vector<StudySettings>& settings);
 
-// On `device` (null: the process's default device, simulation.h); the
+// On `device`; the
 // study's workers (--jobs) each pass their own context and queue.
-ContactErrors run_contact_checks(const StudySettings& s, std::shared_ptr<Device> device = nullptr);
+ContactErrors run_contact_checks(const StudySettings& s, std::shared_ptr<Device> device);
 // Where a shear case may be stopped and continued (study_state.h): polled
 // between chunks; when it answers true the case's state goes to
 // `checkpoint` and the result comes back with `interrupted`. A case whose
@@ -151,7 +151,7 @@ ContactErrors run_contact_checks(const StudySettings& s, std::shared_ptr<Device>
 struct ShearCaseControl {
   std::function<bool()> stop_requested;
   std::string checkpoint;
-  std::shared_ptr<Device> device;  // null: the default device
+  std::shared_ptr<Device> device;  // where the case runs (required)
 };
 ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s,
                            const ShearCaseControl& control = {});

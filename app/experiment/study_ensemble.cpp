@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "solver/io/output.h"
+#include "solver/scene/choices.h"
 
 namespace simsols {
 namespace {
@@ -191,7 +192,7 @@ std::vector<SettingSummary> parse_ensemble_csv(const std::string& text) {
     s.settings.knob = f[knob];
     s.settings.label = f[label];
     s.settings.dt_fraction = number(f[dt], "dt_fraction");
-    s.settings.precision = f[precision] == "double" ? Precision::Double : Precision::Float;
+    s.settings.precision = parse_choice<Precision>(f[precision]).value_or(Precision::Float);
     s.settings.stiffness_scale = number(f[stiffness], "stiffness_scale");
     s.settings.inertial_number = number(f[inertial], "inertial_number");
     s.runs = static_cast<int>(number(f[runs], "runs"));
@@ -224,7 +225,7 @@ std::string settings_csv_cells(const StudySettings& k) {
   const auto num = [](double v) { return format_number("%.6g", v); };
   return std::string(specimen_name(k.specimen)) + "," + csv_quoted(k.knob) + "," +
          csv_quoted(k.label) + "," + num(k.dt_fraction) + "," +
-         (k.precision == Precision::Float ? "float" : "double") + "," + num(k.stiffness_scale) +
+         choice_name(k.precision) + "," + num(k.stiffness_scale) +
          "," + num(k.inertial_number) + "," + num(k.skin_factor) + "," + (k.rolling ? "1" : "0") +
          "," + (k.damping ? "1" : "0");
 }

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "solver/core/engine_options.h"
 #include "solver/common/errors.h"
 #include "app/lab/lab_script.h"
 #include "render/view/particle_bridge.h"
@@ -37,7 +38,8 @@ LabApp::LabApp(const LabOptions& options) : opt_(options) {
   ImGui_ImplGlfw_InitForOpenGL(window_->handle(), true);
   ImGui_ImplOpenGL3_Init("#version 330");
   // The OpenCL device shares the window's GL context where it can.
-  device_ = Device::open(render::cl_share_properties(window_->share_handles()));
+  device_ = Device::open(engine_options_from_environment(),
+                         render::cl_share_properties(window_->share_handles()));
   renderer_ = std::make_unique<render::Renderer>(window_->gl());
   exp_ = std::make_unique<LabExperiment>(device_);
   exp_->set_precision(Precision::Float);

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "app/lab/lab_app.h"
+#include "solver/scene/choices.h"
 
 namespace simsols {
 
@@ -17,9 +18,9 @@ template <typename E>
 bool slot_combo(const char* label, E& value, std::initializer_list<E> choices) {
   bool changed = false;
   ImGui::SetNextItemWidth(160);
-  if (ImGui::BeginCombo(label, slot_name(value))) {
+  if (ImGui::BeginCombo(label, choice_name(value))) {
     for (E c : choices)
-      if (ImGui::Selectable(slot_name(c), c == value)) value = c, changed = true;
+      if (ImGui::Selectable(choice_name(c), c == value)) value = c, changed = true;
     ImGui::EndCombo();
   }
   return changed;

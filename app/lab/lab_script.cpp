@@ -38,6 +38,7 @@
 #include <sstream>
 
 #include "solver/common/did_you_mean.h"
+#include "solver/scene/choices.h"
 #include "app/lab/lab_script.h"
 #include "solver/io/output.h"
 #include "app/experiment/paper_tests.h"
@@ -59,7 +60,7 @@ namespace {
 template <typename E>
 bool pick(E& field, const std::string& choice, std::initializer_list<E> all) {
   for (E c : all)
-    if (choice == slot_name(c)) return field = c, true;
+    if (choice == choice_name(c)) return field = c, true;
   return false;
 }
 
@@ -107,7 +108,7 @@ std::string unknown_command(const std::string& cmd) {
 std::string effect_choices() {
   auto names = [](auto... c) {
     std::string s;
-    ((s += (s.empty() ? "" : "|") + std::string(slot_name(c))), ...);
+    ((s += (s.empty() ? "" : "|") + std::string(choice_name(c))), ...);
     return s;
   };
   using R = RollingModel;

@@ -27,13 +27,6 @@ std::optional<GlBackend> parse_gl_backend(std::string_view s) {
   return std::nullopt;
 }
 
-GlBackend backend_from_environment() {
-  const char* v = std::getenv("SIMSOLS_GL");
-  if (!v || !*v) return GlBackend::Auto;
-  if (auto b = parse_gl_backend(v)) return *b;
-  throw RenderError(std::string("SIMSOLS_GL='") + v + "': allowed values are auto, egl, osmesa");
-}
-
 void GlContext::init_gl(const std::function<void*(const char*)>& get) {
   gl_.load(get);
   GLint major = 0, minor = 0;
@@ -367,7 +360,6 @@ std::unique_ptr<GlContext> create_headless_context(GlBackend backend) {
 
 std::unique_ptr<GlContext> create_headless_context(const HeadlessOptions& options) {
   GlBackend backend = options.backend;
-  if (backend == GlBackend::Auto) backend = backend_from_environment();
   std::string errors;
   if (backend == GlBackend::Auto || backend == GlBackend::Egl) {
     std::string why;
@@ -383,8 +375,8 @@ std::unique_ptr<GlContext> create_headless_context(const HeadlessOptions& option
   }
   throw RenderError(std::string("no headless OpenGL 3.3 context (backend ") + to_string(backend) +
                     "):" + errors +
-                    "\n  install Mesa's EGL (libegl1-mesa) or OSMesa (libosmesa6), or set "
-                    "SIMSOLS_GL=egl|osmesa");
+                    "\n  install Mesa's EGL (libegl1-mesa) or OSMesa (libosmesa6), or choose one "
+                    "with --gl egl|osmesa (SIMSOLS_GL)");
 }
 
 }  // namespace simsols::render

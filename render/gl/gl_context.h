@@ -23,8 +23,8 @@
 //   OSMesa  Mesa's off-screen library, loaded with dlopen when chosen, so a
 //           machine without it still runs the EGL path.
 //
-// Auto tries EGL, then OSMesa; SIMSOLS_GL=egl|osmesa (or the --gl flag)
-// forces one. When none works the error lists why each attempt failed, and
+// Auto tries EGL, then OSMesa; Egl or OSMesa (the --gl flag, or SIMSOLS_GL
+// read by the commands) forces one. When none works the error lists why each attempt failed, and
 // description() names the display that was used ("EGL device 0 (...)",
 // "EGL surfaceless", "EGL default display").
 #pragma once
@@ -73,7 +73,7 @@ class GlContext {
 enum class EglPreference { Hardware, Surfaceless };
 
 struct HeadlessOptions {
-  GlBackend backend = GlBackend::Auto;  // Auto: SIMSOLS_GL, else EGL then OSMesa
+  GlBackend backend = GlBackend::Auto;  // Auto: EGL, then OSMesa
   EglPreference egl = EglPreference::Hardware;
 };
 
@@ -110,8 +110,5 @@ std::vector<EglDisplayChoice> egl_display_order(const EglInventory& inventory,
 // "EGL default display": the start of GlContext::description().
 std::string egl_display_label(const EglDisplayChoice& choice, const EglInventory& inventory);
 
-// The backend `Auto` resolves to from the environment (SIMSOLS_GL), or Auto.
-// Throws RenderError for an unknown value, naming the variable.
-GlBackend backend_from_environment();
 
 }  // namespace simsols::render

@@ -1,5 +1,7 @@
 #include "render/plot/png.h"
 
+#include "solver/common/errors.h"
+
 #include <zlib.h>
 
 #include <array>
@@ -219,7 +221,7 @@ void write_png(const Image& img, const std::string& path) {
   }
   if (!why.empty()) {
     std::filesystem::remove(tmp, ec);
-    throw std::runtime_error("cannot write PNG '" + path + "': " + why);
+    throw IoError("cannot write PNG '" + path + "': " + why);
   }
 }
 

@@ -171,12 +171,13 @@ struct FrameExporter::Attached {
   std::unique_ptr<render::SimulationView> view;
 };
 
-FrameExporter::FrameExporter(const FrameOptions& options) : opt_(options) {
+FrameExporter::FrameExporter(const FrameOptions& options, const EngineOptions& engine)
+    : opt_(options) {
   context_ = render::create_headless_context(opt_.backend);
   renderer_ = std::make_unique<render::Renderer>(context_->gl());
   renderer_->resize(opt_.width, opt_.height);
   // The OpenCL device shares this GL context where it can.
-  set_default_device(Device::open(render::cl_share_properties(context_->share_handles())));
+  device_ = Device::open(engine, render::cl_share_properties(context_->share_handles()));
 }
 
 FrameExporter::~FrameExporter() = default;
@@ -258,8 +259,8 @@ void FrameExporter::write_alioscopy(const std::string& path) {
     for (int k = 0; k < 8; ++k) plot::write_png(alioscopy_->read_view(k), files[1 + k]);
     alioscopy_->compose(render::AlioscopyOutput::Mode::Grid);
     plot::write_png(alioscopy_->read_pixels(), files[9]);
-  } catch (const std::exception& e) {
-    throw render::RenderError(std::string("cannot write the frame: ") + e.what());
+  } catch (const IoError& e) {
+    throw IoError(std::string("cannot write the frame: ") + e.what());
   }
   renderer_->resize(opt_.width, opt_.height);
 }
@@ -269,8 +270,8 @@ void FrameExporter::write(const std::string& path) {
   const plot::Image img = render();
   try {
     plot::write_png(img, path);
-  } catch (const std::exception& e) {
-    throw render::RenderError(std::string("cannot write the frame: ") + e.what());
+  } catch (const IoError& e) {
+    throw IoError(std::string("cannot write the frame: ") + e.what());
   }
 }
 

@@ -86,8 +86,11 @@ std::pair<int, int> parse_frame_size(const std::string& text, const std::string&
 
 class FrameExporter {
  public:
-  explicit FrameExporter(const FrameOptions& options);
+  // Opens a headless GL context and an OpenCL device (`engine`) sharing it
+  // where the device can: the simulations it draws run on device().
+  FrameExporter(const FrameOptions& options, const EngineOptions& engine);
   ~FrameExporter();
+  const std::shared_ptr<Device>& device() const { return device_; }
 
   // Starts drawing `sim` (fits the camera to the specimen and its box),
   // with the options resolved again against its scene's [view] hints.
@@ -113,6 +116,7 @@ class FrameExporter {
 
   FrameOptions opt_;
   std::unique_ptr<render::GlContext> context_;
+  std::shared_ptr<Device> device_;
   std::unique_ptr<render::Renderer> renderer_;
   std::unique_ptr<render::AlioscopyOutput> alioscopy_;
   struct Attached;

@@ -371,11 +371,6 @@ ShearTest::StepCount ShearTest::step_count() const {
   return c;
 }
 
-double ShearTest::progress() const {
-  const StepCount c = step_count();
-  return c.total > 0 ? std::min(1.0, c.done / c.total) : 0;
-}
-
 std::string ShearTest::status() const {
   char buf[200];
   if (phase_ == ShearPhase::Shear && !rows_.empty()) {

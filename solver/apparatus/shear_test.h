@@ -35,6 +35,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/apparatus/apparatus.h"
 #include "solver/apparatus/shear_analysis.h"
 #include "solver/core/simulation.h"
 
@@ -43,15 +44,22 @@ namespace simsols {
 enum class ShearPhase : int { Settle = 0, Consolidate = 1, Shear = 2, Done = 3 };
 const char* phase_name(ShearPhase p);
 
-class ShearTest {
+// The direct shear test's loading programme (apparatus.h).
+class ShearTest : public LoadingProgramme {
  public:
   // `sim` must hold a scene with a shear box; it is not owned.
   explicit ShearTest(Simulation& sim);
 
-  // Runs at most `max_steps` steps, stopping early at a phase change or a
-  // new row; returns true when a new row was measured.
-  bool advance(std::int64_t max_steps);
-  bool done() const { return phase_ == ShearPhase::Done; }
+  // LoadingProgramme: the stages are the phases (settle, consolidate,
+  // shear, done); a row is measured every shear_displacement / rows.
+  bool advance(std::int64_t max_steps) override;
+  bool done() const override { return phase_ == ShearPhase::Done; }
+  const char* stage_name() const override { return phase_name(phase_); }
+  StepCount step_count() const override;
+  std::string status() const override;
+  std::string save_state() const override;
+  void restore_state(const std::string& text) override;  // throws std::runtime_error when malformed
+
   ShearPhase phase() const { return phase_; }
 
   const std::vector<ShearRow>& rows() const { return rows_; }
@@ -62,16 +70,6 @@ class ShearTest {
   double inertial_number() const;
   double servo_gain() const { return gain_; }
   double servo_integral_time() const { return integral_time_; }
-  // Steps of the whole loading programme (settle, consolidate, shear):
-  // done so far, and done plus an estimate of those left (exact once the
-  // shear has begun). progress() = done / total.
-  struct StepCount {
-    double done = 0, total = 0;
-  };
-  StepCount step_count() const;
-  double progress() const;
-  // A one-line description of where the test is, for progress lines.
-  std::string status() const;
 
   // The target normal stress can change while shearing (the platen
   // follows). With an automatic shear speed (from the inertial number and
@@ -93,8 +91,6 @@ class ShearTest {
   // shearing; the remaining displacement is shared among the remaining rows.
   void set_shear_speed(double metres_per_second);
 
-  std::string save_state() const;
-  void restore_state(const std::string& text);  // throws std::runtime_error when malformed
 
  private:
   bool dead_weight() const { return box_.loading == ShearBox::Loading::DeadWeight; }

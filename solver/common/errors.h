@@ -1,13 +1,22 @@
-// Errors raised while turning user input into a Scene.
+// The errors of SimSols, one type for each kind of failure, so a caller (and
+// the exit status) can tell what failed:
 //
-// A SceneError always names where the problem is (file, line when known,
-// field as a dotted TOML path such as "materials[0].poisson_ratio") and what
-// would be accepted. `code` is a short stable identifier (e.g. "out_of_range",
-// "unknown_key") so tests and tools can tell errors apart without parsing the
-// message.
+//   UsageError   a command-line flag or argument         exit 2
+//   SceneError   a scene, profile, checkpoint or other    exit 2
+//                file the user handed in
+//   IoError      a file that could not be written        exit 5
+//   DeviceError  the OpenCL runtime or a kernel build    exit 3
+//   RunawayError (core/guard.h) the run blew up           exit 4
+//
+// UsageError and SceneError are InputErrors: they always name where the
+// problem is (file or "command line", line when known, field as a dotted
+// TOML path such as "materials[0].poisson_ratio" or the flag, "--sizes") and
+// what would be accepted. `code` is a short stable identifier (e.g.
+// "out_of_range", "unknown_key") so tests and tools can tell errors apart
+// without parsing the message.
 //
 // One pass over a file may find several problems (every unknown key, every
-// value out of range): one SceneError then carries them all in `problems`,
+// value out of range): one InputError then carries them all in `problems`,
 // code, line, field and message being the first's, and what() names the
 // file once and lists them, one a line.
 #pragma once
@@ -23,13 +32,13 @@ namespace simsols {
 // One problem at one place of a file (common/problems.h).
 using SceneProblem = FileProblem;
 
-struct SceneError : std::runtime_error {
-  SceneError(std::string code, std::string file, int line, std::string field,
+struct InputError : std::runtime_error {
+  InputError(std::string code, std::string file, int line, std::string field,
              const std::string& what)
-      : SceneError(std::move(file), {{std::move(code), line, std::move(field), what}}) {}
+      : InputError(std::move(file), {{std::move(code), line, std::move(field), what}}) {}
 
   // Every problem found in `file`, in the order found (at least one).
-  SceneError(std::string file, std::vector<SceneProblem> all)
+  InputError(std::string file, std::vector<SceneProblem> all)
       : std::runtime_error(describe_problems(file, all)),
         code(all.at(0).code), file(std::move(file)), line(all[0].line), field(all[0].field),
         message(all[0].message), problems(std::move(all)) {}
@@ -42,8 +51,29 @@ struct SceneError : std::runtime_error {
   std::vector<SceneProblem> problems;  // all of them, this one first
 };
 
+// A problem in a file the user handed in: a scene, a display profile, a
+// checkpoint, a study's state or results.
+struct SceneError : InputError {
+  using InputError::InputError;
+};
+
+// A problem with a command-line flag or argument; `file` is "command line"
+// (or empty when an argument is missing altogether).
+struct UsageError : InputError {
+  using InputError::InputError;
+  UsageError(std::string code, std::string flag, const std::string& what)
+      : InputError(std::move(code), "command line", 0, std::move(flag), what) {}
+};
+
 // Failures of the OpenCL runtime or of a kernel build (with its build log).
 struct DeviceError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// A file that could not be written (a missing folder, permissions, a full
+// disk). Whatever was being written is left under its temporary name or
+// removed; the previous file of that name is untouched.
+struct IoError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 

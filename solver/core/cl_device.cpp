@@ -124,14 +124,15 @@ std::vector<Candidate>::const_iterator gl_context_device(
   return all.end();
 }
 
-// The GL context's device `gl` (all.end(): unknown) unless SIMSOLS_CL_DEVICE
-// names another; else SIMSOLS_CL_DEVICE's choice, else the first GPU, else
-// the first device. *how says which rule chose.
+// The GL context's device `gl` (all.end(): unknown) unless `wanted_device`
+// (EngineOptions::device, SIMSOLS_CL_DEVICE) names another; else its
+// choice, else the first GPU, else the first device. *how says which rule
+// chose.
 std::vector<Candidate>::const_iterator choose_device(const std::vector<Candidate>& all,
                                                      std::vector<Candidate>::const_iterator gl,
+                                                     const std::string& wanted_device,
                                                      std::string* how) {
-  const char* want_env = std::getenv("SIMSOLS_CL_DEVICE");
-  const std::string want = want_env ? lower(want_env) : "";
+  const std::string want = lower(wanted_device);
   auto wanted = [&](const Candidate& c) {
     if (want == "gpu") return c.gpu;
     if (want == "cpu") return !c.gpu;
@@ -156,18 +157,22 @@ std::vector<Candidate>::const_iterator choose_device(const std::vector<Candidate
 
 }  // namespace
 
-std::shared_ptr<Device> Device::open() { return open(std::vector<cl_context_properties>{}); }
+std::shared_ptr<Device> Device::open(const EngineOptions& options) {
+  return open(options, std::vector<cl_context_properties>{});
+}
 
-std::shared_ptr<Device> Device::open(const std::vector<cl_context_properties>& gl_properties) {
+std::shared_ptr<Device> Device::open(const EngineOptions& options,
+                                     const std::vector<cl_context_properties>& gl_properties) {
   const std::vector<cl_platform_id> platforms = list_platforms();
   const std::vector<Candidate> all = list_devices(platforms);
   std::string asked;  // what clGetGLContextInfoKHR answered, where it failed
   auto gl = all.end();
   if (!gl_properties.empty()) gl = gl_context_device(all, platforms, gl_properties, &asked);
   std::string how;
-  const auto pick = choose_device(all, gl, &how);
+  const auto pick = choose_device(all, gl, options.device, &how);
 
   std::shared_ptr<Device> dev(new Device());
+  dev->options_ = options;
   dev->platform_ = pick->p;
   dev->device_ = pick->d;
   dev->gpu_ = pick->gpu;

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "solver/common/errors.h"
+#include "solver/core/engine_options.h"
 
 namespace simsols {
 
@@ -56,8 +57,9 @@ using ClContext = ClHandle<cl_context, clReleaseContext>;
 
 class Device {
  public:
-  // Opens the device selected as described above. Throws DeviceError.
-  static std::shared_ptr<Device> open();
+  // Opens the device `options.device` selects, as described above; the
+  // options travel with it (options()). Throws DeviceError.
+  static std::shared_ptr<Device> open(const EngineOptions& options);
   // The GL context's device where a platform names it (else the same
   // choice as open()), its context shared with the OpenGL context when the
   // device offers cl_khr_gl_sharing: `gl_properties` are the property pairs
@@ -65,7 +67,9 @@ class Device {
   // CL_GLX_DISPLAY_KHR, without the terminating 0; the platform is added).
   // When sharing is impossible the context is a plain one: gl_sharing()
   // says which, sharing_note() why.
-  static std::shared_ptr<Device> open(const std::vector<cl_context_properties>& gl_properties);
+  static std::shared_ptr<Device> open(const EngineOptions& options,
+                                      const std::vector<cl_context_properties>& gl_properties);
+  const EngineOptions& options() const { return options_; }
   bool gl_sharing() const { return gl_sharing_; }
   // "cl_khr_gl_sharing; device: the GL context's device (clGetGLContextInfoKHR)",
   // "the OpenCL device has no cl_khr_gl_sharing", "clCreateContext with the
@@ -94,6 +98,7 @@ class Device {
   Device() = default;
   // The context: shared with the GL context when the device can, else plain.
   void open_context(const std::vector<cl_context_properties>& gl_properties);
+  EngineOptions options_;
   cl_platform_id platform_ = nullptr;
   cl_device_id device_ = nullptr;
   ClContext context_;

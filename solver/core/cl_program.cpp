@@ -62,15 +62,15 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
   // registers; measured fastest with PoCL 3.1 on AVX-512, docs/performance.md).
   // GPUs already run one particle per SIMD lane.
   c.lanes = device.is_gpu() ? 1 : (c.double_precision ? 4 : 8);
-  if (const char* l = std::getenv("SIMSOLS_LANES")) c.lanes = std::atoi(l);
+  if (device.options().lanes != 0) c.lanes = device.options().lanes;
   if (c.lanes != 1 && c.lanes != 2 && c.lanes != 4 && c.lanes != 8 && c.lanes != 16)
-    throw DeviceError("SIMSOLS_LANES must be 1, 2, 4, 8 or 16");
+    throw DeviceError("EngineOptions::lanes (SIMSOLS_LANES) must be 1, 2, 4, 8 or 16, not " +
+                      std::to_string(c.lanes));
   // List slices (neighbors.cl): a work item's lanes are one slice, so they
   // read consecutive slots; one particle per work item (GPUs) slices by 32,
   // a warp, so neighbouring threads do. SLICE must be a multiple of LANES.
   c.slice = c.lanes > 1 ? c.lanes : 32;
-  // extra OpenCL build options for experiments, e.g. "-cl-fast-relaxed-math"
-  if (const char* x = std::getenv("SIMSOLS_CL_OPTIONS")) c.extra_options = x;
+  c.extra_options = device.options().cl_options;
   return c;
 }
 

@@ -80,8 +80,7 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
     wk.put4(v[0], v[1], v[2], w.half_v);
   }
   wall_buf_ = device_->alloc(wk.bytes().size(), wk.bytes().data());
-  local_size_ = 64;
-  if (const char* ls = std::getenv("SIMSOLS_LOCAL_SIZE")) local_size_ = std::max(1, std::atoi(ls));
+  local_size_ = std::max(1, device_->options().local_size);
 }
 
 size_t Model::device_bytes() const {

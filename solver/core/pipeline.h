@@ -11,10 +11,12 @@
 //                     kick-drift                forces.cl, walls.cl, integrate.cl
 //   move_walls        servo walls set their velocity from the summed wall
 //                     reaction, every wall advances; returns early when the
-//                     scene has no walls                    reduce.cl, walls.cl
+//                     scene has no walls, and on CPUs, where the last work
+//                     item of finish_particles does it
+//                     (KernelConfig::servo_in_finish)       reduce.cl, walls.cl
 //
-// step() runs the four in this order: three kernel launches per step
-// without servo walls, four with them (plus a list build now and then).
+// step() runs the four in this order: two kernel launches per step on CPUs,
+// three or four on GPUs (plus a list build now and then).
 // Stages only enqueue kernels on the device's in-order queue;
 // detect_contacts reads the flags back every few steps (check_interval).
 // Reductions for observables are in observe.h.

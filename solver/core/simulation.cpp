@@ -1,7 +1,6 @@
 #include "solver/core/simulation.h"
 
 #include <array>
-#include <mutex>
 #include <stdexcept>
 
 #include "solver/core/real_packer.h"
@@ -152,22 +151,6 @@ bool advance_through_contact(Simulation& sim, int i, std::int64_t max_steps) {
     if (touched && c == 0) return true;
   }
   return false;
-}
-
-namespace {
-std::mutex default_mutex;
-std::shared_ptr<Device> default_dev;
-}  // namespace
-
-std::shared_ptr<Device> default_device() {
-  std::lock_guard lock(default_mutex);
-  if (!default_dev) default_dev = Device::open();
-  return default_dev;
-}
-
-void set_default_device(std::shared_ptr<Device> device) {
-  std::lock_guard lock(default_mutex);
-  default_dev = std::move(device);
 }
 
 }  // namespace simsols

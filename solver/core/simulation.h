@@ -98,10 +98,5 @@ class Simulation {
 // contact never ended. Used by impact checks (tests, the accuracy study).
 bool advance_through_contact(Simulation& sim, int i, std::int64_t max_steps);
 
-// The process-wide OpenCL device (opened on first use).
-std::shared_ptr<Device> default_device();
-// Makes `device` the process-wide default from now on (e.g. one whose
-// context shares an OpenGL context, opened by the frame exporter).
-void set_default_device(std::shared_ptr<Device> device);
 
 }  // namespace simsols

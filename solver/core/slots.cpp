@@ -1,4 +1,5 @@
 #include "solver/core/slots.h"
+#include "solver/scene/choices.h"
 
 #include <cstdio>
 #include <sstream>
@@ -9,19 +10,19 @@ std::vector<SlotReport> slot_reports(const Scene& s, const KernelConfig& c) {
   const Effects& e = s.effects;
   std::vector<SlotReport> r;
   r.push_back({"normal", "hertz", true, "", 0});
-  r.push_back({"damping", slot_name(e.damping), c.damping,
+  r.push_back({"damping", choice_name(e.damping), c.damping,
                e.damping != DampingModel::None && !c.damping ? "every restitution is 1" : "",
                c.damping ? 1 : 0});
-  r.push_back({"tangential", slot_name(e.tangential), c.friction,
+  r.push_back({"tangential", choice_name(e.tangential), c.friction,
                e.tangential != TangentialModel::None && !c.friction ? "every sliding_friction is 0"
                                                                     : "",
                c.friction ? 3 : 0});
-  r.push_back({"rolling", slot_name(e.rolling), c.rolling,
+  r.push_back({"rolling", choice_name(e.rolling), c.rolling,
                e.rolling != RollingModel::None && !c.rolling ? "every rolling_friction is 0" : "",
                c.rolling_spring ? 3 : 0});
-  r.push_back({"cohesion", slot_name(e.cohesion), c.capillary, "", 0});
+  r.push_back({"cohesion", choice_name(e.cohesion), c.capillary, "", 0});
   r.push_back({"gravity", s.has_gravity() ? "on" : "none", c.gravity, "", 0});
-  r.push_back({"fluid", slot_name(e.fluid), c.fluid, "", 0});
+  r.push_back({"fluid", choice_name(e.fluid), c.fluid, "", 0});
   return r;
 }
 

@@ -185,7 +185,7 @@ void save_checkpoint(Simulation& sim, const std::string& path, const std::string
   const std::string tmp = path + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw DeviceError("cannot write checkpoint " + tmp);
+    if (!out) throw IoError("cannot write checkpoint " + tmp);
     out.write(kCheckpointMagic, sizeof kCheckpointMagic);
     out.write(reinterpret_cast<const char*>(&kCheckpointVersion), 4);
     const char placeholder[12] = {};
@@ -201,7 +201,7 @@ void save_checkpoint(Simulation& sim, const std::string& path, const std::string
     if (!out) {
       out.close();
       std::filesystem::remove(tmp);
-      throw DeviceError("failed writing checkpoint " + tmp + " (disk full?)");
+      throw IoError("failed writing checkpoint " + tmp + " (disk full?)");
     }
   }
   std::filesystem::rename(tmp, path);

@@ -56,13 +56,13 @@ void write_file_atomic(const std::string& path, const std::string& content) {
   const std::string tmp = path + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw DeviceError("cannot write " + tmp);
+    if (!out) throw IoError("cannot write " + tmp);
     out.write(content.data(), static_cast<std::streamsize>(content.size()));
     out.flush();
     if (!out) {
       out.close();
       std::filesystem::remove(tmp);
-      throw DeviceError("failed writing " + tmp + " (disk full?)");
+      throw IoError("failed writing " + tmp + " (disk full?)");
     }
   }
   std::filesystem::rename(tmp, path);

@@ -17,16 +17,6 @@ bool Scene::has_gravity() const {
   return effects.gravity[0] != 0 || effects.gravity[1] != 0 || effects.gravity[2] != 0;
 }
 
-const char* slot_name(DampingModel m) { return m == DampingModel::Viscous ? "viscous" : "none"; }
-const char* slot_name(TangentialModel m) { return m == TangentialModel::Mindlin ? "mindlin" : "none"; }
-const char* slot_name(RollingModel m) {
-  return m == RollingModel::ConstantTorque  ? "constant_torque"
-         : m == RollingModel::SpringDashpot ? "spring_dashpot"
-                                            : "none";
-}
-const char* slot_name(CohesionModel m) { return m == CohesionModel::Capillary ? "capillary" : "none"; }
-const char* slot_name(FluidModel m) { return m == FluidModel::Drag ? "drag" : "none"; }
-
 double capillary_rupture_distance(double liquid_volume, double contact_angle) {
   return (1 + 0.5 * contact_angle) * std::cbrt(liquid_volume);
 }

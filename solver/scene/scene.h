@@ -145,12 +145,7 @@ struct Effects {
   Fluid fluid_params;            // when fluid = Drag
 };
 
-// Slot names as in the scene file ("viscous", "none", ...).
-const char* slot_name(DampingModel m);
-const char* slot_name(TangentialModel m);
-const char* slot_name(RollingModel m);
-const char* slot_name(CohesionModel m);
-const char* slot_name(FluidModel m);
+// The names of the slots' choices ("viscous", "none", ...): choices.h.
 
 // Lian et al. (1993) rupture distance of a liquid bridge, m.
 double capillary_rupture_distance(double liquid_volume, double contact_angle);

@@ -3,6 +3,20 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <mutex>
+
+#include "solver/core/engine_options.h"
+
+namespace simsols {
+
+std::shared_ptr<Device> default_device() {
+  static std::once_flag once;
+  static std::shared_ptr<Device> device;
+  std::call_once(once, [] { device = Device::open(engine_options_from_environment()); });
+  return device;
+}
+
+}  // namespace simsols
 
 namespace simsols::testing {
 

@@ -12,6 +12,15 @@
 #include "solver/apparatus/shear_box.h"
 #include "solver/core/simulation.h"
 
+namespace simsols {
+
+// The tests' OpenCL device, opened once with the options the environment
+// asks for (engine_options_from_environment: the gpu_form label sets
+// SIMSOLS_LANES=1).
+std::shared_ptr<Device> default_device();
+
+}  // namespace simsols
+
 namespace simsols::testing {
 
 // Glass of the reference paper (its Table 2), with chosen e and friction.

@@ -108,6 +108,27 @@ TEST(CliErrors, PlotDrawsCurvesAndNamesBadInputs) {
   EXPECT_FALSE(fs::exists(d / "g_stress.png") || fs::exists(d / "h_stress.png"));
 }
 
+// Each kind of failure has its own status (solver/common/errors.h): a flag
+// out of range is a usage error (2); a figure that cannot be written is an
+// I/O error (5), and the write leaves no temporary file behind. The figure's
+// name is taken by a folder, so the rename fails even as root.
+TEST(CliErrors, UsageAndWriteFailuresHaveTheirOwnStatus) {
+  const fs::path d = fresh_dir("io_status");
+  std::vector<simsols::ShearRow> rows(3);
+  for (int i = 0; i < 3; ++i) rows[i].displacement = i * 1e-4, rows[i].sigma = 1e5, rows[i].tau = 3e4;
+  std::ofstream(d / "t.csv") << simsols::shear_rows_csv(rows);
+  fs::create_directories(d / "fig_stress.png/inside");
+  const Result io = run_in(d, "plot t.csv --out fig");
+  EXPECT_EQ(io.status, 5) << io.out;
+  EXPECT_NE(io.out.find("cannot write PNG"), std::string::npos) << io.out;
+  EXPECT_TRUE(fs::is_directory(d / "fig_stress.png/inside"));
+  for (const auto& e : fs::directory_iterator(d))
+    EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+  const Result usage = run_in(d, "campaign --out c --stresses -5");
+  EXPECT_EQ(usage.status, 2) << usage.out;
+  EXPECT_NE(usage.out.find("command line: field '--stresses'"), std::string::npos) << usage.out;
+}
+
 TEST(CliErrors, CampaignChecksItsFlagsAfterLoadingTheBuiltInScene) {
   const fs::path d = fresh_dir("campaign_flag");
   const Result r = run_in(d, "campaign --out c --layers -3");

@@ -25,6 +25,7 @@
 
 #include "solver/io/checkpoint.h"
 #include "solver/core/simulation.h"
+#include "tests/support/test_support.h"
 
 namespace {
 

@@ -12,6 +12,7 @@
 #include <cstring>
 
 #include "render/gl/gl_context.h"
+#include "solver/core/engine_options.h"
 #include "render/view/particle_bridge.h"
 #include "render/view/sim_view.h"
 #include "solver/core/simulation.h"
@@ -56,7 +57,7 @@ Scene pile(Precision p) {
 TEST(ParticleBridge, GlBuffersHoldWhatThePackerWrites) {
   auto ctx = create_headless_context();
   const Gl& gl = ctx->gl();
-  auto device = Device::open(cl_share_properties(ctx->share_handles()));
+  auto device = Device::open(engine_options_from_environment(), cl_share_properties(ctx->share_handles()));
   // A device that offers cl_khr_gl_sharing must share with this context (a
   // host copy there means the GL context is not on the OpenCL device, e.g.
   // llvmpipe beside a GPU); one that does not offers the host copy and says

@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 
 fs::path assets_dir() {
   if (const char* env = std::getenv("SIMSOLS_ASSETS"); env && *env) return env;
-  return fs::path(__FILE__).parent_path().parent_path() / "assets";
+  return fs::path(SIMSOLS_SOURCE_DIR) / "assets";
 }
 
 const char* kGlass = R"(

@@ -1,0 +1,176 @@
+#include "app/experiment/campaign.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "app/experiment/campaign_report.h"
+#include "app/experiment/paper_tests.h"
+#include "app/experiment/run_cost.h"
+#include "app/experiment/shear_plots.h"
+#include "solver/apparatus/shear_box.h"
+#include "solver/common/errors.h"
+#include "solver/io/output.h"
+#include "solver/io/scene_toml.h"
+#include "solver/scene/contact_model.h"
+
+namespace simsols {
+namespace {
+
+constexpr auto fmt = format_number;  // printf conversion of one number (output.h)
+
+namespace fs = std::filesystem;
+
+// A test finished earlier: its summary as today's analysis reads its rows
+// (the apparatus' fields from its summary.txt), rewritten with its plots
+// when that differs from the file.
+ShearSummary reanalysed(const fs::path& dir, const std::string& name,
+                        const std::vector<ShearRow>& rows) {
+  const std::string text = read_text(dir / "summary.txt");
+  ShearSummary s = parse_shear_summary(text);
+  analyse_shear_rows(rows, s);
+  if (const std::string now = shear_summary_text(s); now != text) {
+    write_shear_plots(dir.string(), name, rows, s);
+    write_file_atomic((dir / "summary.txt").string(), now);
+  }
+  return s;
+}
+
+// Particle-steps the test will take: preparation (~60 ms simulated) and the
+// shear at the speed the inertial number sets (height ~ layers x 0.8 d).
+double estimated_cost(const Scene& s) {
+  const ShearBox& b = *s.shear_box;
+  const double dt = effective_time_step(s);
+  const double d = 2 * s.particles[0].radius;
+  const double rho = s.materials[s.particles[0].material].density;
+  const double height = 0.8 * d * std::max(1, b.specimen.layers);
+  const double v = b.shear_speed > 0 ? b.shear_speed
+                                     : speed_for_inertial_number(b.inertial_number, height, d, rho,
+                                                                 b.normal_stress);
+  return s.particles.size() * (0.06 + b.shear_displacement / v) / dt;
+}
+
+void check_spec(const Scene& base, const std::string& base_name, const CampaignSpec& spec) {
+  if (!base.shear_box)
+    throw SceneError("missing_field", base_name, 0, "shear_box",
+                     "the campaign's base scene must describe a shear box");
+  for (double d : spec.sizes_mm)
+    if (!(d > 0 && d < 60))
+      throw UsageError("out_of_range", "--sizes",
+                       fmt("%g", d) + " mm is out of range, allowed (0, 60) mm");
+  for (double s : spec.stresses_kpa)
+    if (!(s > 0 && s <= 1e6))
+      throw UsageError("out_of_range", "--stresses",
+                       fmt("%g", s) + " kPa is out of range, allowed (0, 1e6] kPa");
+  if (spec.layers < 0 || spec.layers > 200)
+    throw UsageError("out_of_range", "--layers",
+                     std::to_string(spec.layers) + " is out of range, allowed [1, 200] (0 = Table 1)");
+  if (spec.displacement_mm < 0)
+    throw UsageError("out_of_range", "--displacement", "must be > 0 mm");
+}
+
+// Keeps a test finished earlier; false when it still has to run.
+bool keep_finished(CampaignTest& t, const std::string& label, bool quiet) {
+  if (!shear_finished(t.dir.string())) return false;
+  t.result.rows = parse_shear_rows_csv(read_text(t.dir / "shear.csv"));
+  t.result.summary = reanalysed(t.dir, t.scene.name, t.result.rows);
+  t.result.finished = true;
+  if (!quiet) std::fprintf(stderr, "[%s] finished earlier, kept\n", label.c_str());
+  return true;
+}
+
+void print_result(const CampaignTest& t, bool quiet) {
+  const ShearSummary& s = t.result.summary;
+  std::printf("%-22s peak tau/sigma %.3f (phi %.2f deg), residual %.3f (phi %.2f deg), "
+              "max dilatancy %.2f deg, %.0f s\n",
+              t.scene.name.c_str(), s.peak_ratio, s.peak_angle, s.residual_ratio,
+              s.residual_angle, s.max_dilatancy_angle, s.wall_seconds);
+  std::fflush(stdout);
+}
+
+void write_report(const std::vector<CampaignTest>& tests, const std::string& base_name,
+                  const CampaignSpec& spec, const std::string& out_dir, double seconds) {
+  std::vector<CampaignEntry> entries;
+  for (const CampaignTest& t : tests)
+    entries.push_back({t.d_mm, t.s_kpa, t.scene.shear_box->specimen.layers,
+                       static_cast<int>(t.scene.particles.size()), t.result.rows,
+                       t.result.summary});
+  write_campaign_report(out_dir, base_name, spec.sizes_mm, entries, seconds);
+}
+
+}  // namespace
+
+std::vector<CampaignTest> plan_campaign(const Scene& base, const std::string& base_name,
+                                        const CampaignSpec& spec, const std::string& out_dir) {
+  check_spec(base, base_name, spec);
+  std::vector<CampaignTest> tests;
+  for (double d : spec.sizes_mm) {
+    const int layers = spec.layers > 0 ? spec.layers : table1_layers(d);
+    if (layers == 0)
+      throw UsageError("out_of_range", "--sizes",
+                       fmt("%g", d) +
+                           " mm is not a Table 1 size (2.38125, 3.175, 3.96875, 4.7625, 6.35); "
+                           "give --layers for other sizes");
+    for (double s : spec.stresses_kpa) {
+      CampaignTest t;
+      t.d_mm = d;
+      t.s_kpa = s;
+      Scene sc = paper_test_scene(base, base_name, d, s, spec.layers, [&](Scene& x) {
+        if (spec.displacement_mm > 0) x.shear_box->shear_displacement = spec.displacement_mm * 1e-3;
+        if (spec.precision) x.numerics.precision = *spec.precision;
+      });
+      validate_scene(sc, base_name + " (" + sc.name + ")");
+      t.scene = std::move(sc);
+      t.dir = fs::path(out_dir) / t.scene.name;
+      t.cost = estimated_cost(t.scene);
+      tests.push_back(std::move(t));
+    }
+  }
+  return tests;
+}
+
+CampaignOutcome run_campaign(std::vector<CampaignTest>& tests, const std::string& base_name,
+                             const CampaignSpec& spec, const std::string& out_dir,
+                             const CampaignRun& run) {
+  fs::create_directories(out_dir);
+  CampaignOutcome outcome;
+  double total_cost = 0, done_cost = 0;
+  for (const CampaignTest& t : tests)
+    if (!shear_finished(t.dir.string())) total_cost += t.cost;
+  if (!run.quiet)
+    std::fprintf(stderr, "[campaign] %zu tests, ~%.3g particle-steps to run, ~%s at %.0e "
+                 "particle-steps/s\n", tests.size(), total_cost,
+                 human_seconds(total_cost / kAssumedRate).c_str(), kAssumedRate);
+  for (size_t k = 0; k < tests.size(); ++k) {
+    CampaignTest& t = tests[k];
+    const std::string label = "campaign " + std::to_string(k + 1) + "/" +
+                              std::to_string(tests.size()) + " " + t.scene.name;
+    if (keep_finished(t, label, run.quiet)) continue;
+    if (!run.quiet && done_cost > 0)
+      std::fprintf(stderr, "[campaign] %zu/%zu tests, %.0f s so far, ETA %.0f s\n", k,
+                   tests.size(), outcome.seconds,
+                   outcome.seconds / done_cost * (total_cost - done_cost));
+    ShearRunOptions o;
+    o.device = run.device;
+    o.out_dir = t.dir.string();
+    o.label = label;
+    o.quiet = run.quiet;
+    o.resume = fs::exists(t.dir / "checkpoint.bin") && fs::exists(t.dir / "shear.csv");
+    o.stop_requested = run.stop_requested;
+    o.later_particle_steps = total_cost - done_cost - t.cost;
+    const auto t0 = std::chrono::steady_clock::now();
+    t.result = run_shear(t.scene, o);
+    if (t.result.interrupted) {
+      outcome.interrupted = true;
+      outcome.interrupted_test = k;
+      return outcome;
+    }
+    outcome.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    done_cost += t.cost;
+    print_result(t, run.quiet);
+  }
+  write_report(tests, base_name, spec, out_dir, outcome.seconds);
+  return outcome;
+}
+
+}  // namespace simsols

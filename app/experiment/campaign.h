@@ -1,0 +1,73 @@
+// A campaign: the reference paper's programme of direct shear tests, bead
+// sizes (its Table 1) x normal stresses, or any subset, any sizes and
+// stresses, run one after the other into one folder.
+//
+// Every test runs from a base scene with specimen.diameter, specimen.layers
+// (Table 1, or a given count) and normal_stress replaced, in
+// OUT/d<size>mm_<stress>kPa/ (shear_run.h). Resumable: a test whose
+// summary.txt exists is not rerun (its rows are analysed again), an
+// interrupted one continues from its checkpoint. Afterwards, per bead size,
+// the curves of its stresses on common axes (the paper's Figures 3-7), the
+// Mohr-Coulomb envelopes of the peak and residual strengths, and
+// OUT/summary.csv / .md (campaign_report.h).
+//
+// plan_campaign() checks everything and builds every scene before anything
+// runs; run_campaign() runs what is left, with progress over the whole
+// programme.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/experiment/shear_run.h"
+#include "solver/core/cl_device.h"
+#include "solver/scene/scene.h"
+
+namespace simsols {
+
+struct CampaignSpec {
+  std::vector<double> sizes_mm{2.38125, 3.175, 3.96875, 4.7625, 6.35};
+  std::vector<double> stresses_kpa{50, 160, 280, 400};
+  int layers = 0;                        // 0 = Table 1
+  std::optional<Precision> precision;    // nullopt = the base scene's
+  double displacement_mm = 0;            // 0 = the base scene's
+};
+
+struct CampaignTest {
+  double d_mm = 0, s_kpa = 0;
+  Scene scene;
+  std::filesystem::path dir;
+  double cost = 0;  // estimated particle-steps
+  ShearRunResult result;
+};
+
+// The tests of `spec` from `base` (named `base_name` in messages), in
+// OUT/<scene name>/. Throws UsageError naming the flag (--sizes,
+// --stresses, --layers, --displacement) or SceneError naming the base.
+std::vector<CampaignTest> plan_campaign(const Scene& base, const std::string& base_name,
+                                        const CampaignSpec& spec, const std::string& out_dir);
+
+struct CampaignRun {
+  std::shared_ptr<Device> device;
+  std::function<bool()> stop_requested;  // checked between steps
+  bool quiet = false;
+};
+
+struct CampaignOutcome {
+  bool interrupted = false;
+  size_t interrupted_test = 0;  // index of the test that was stopped
+  double seconds = 0;           // wall time of the tests run now
+};
+
+// Runs the tests not finished yet (keeping the results of those that are),
+// printing one line per test; then writes the report into `out_dir`
+// unless interrupted.
+CampaignOutcome run_campaign(std::vector<CampaignTest>& tests, const std::string& base_name,
+                             const CampaignSpec& spec, const std::string& out_dir,
+                             const CampaignRun& run);
+
+}  // namespace simsols

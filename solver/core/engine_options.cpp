@@ -1,0 +1,47 @@
+#include "solver/core/engine_options.h"
+
+#include <cstdlib>
+#include <string>
+
+#include "solver/common/errors.h"
+
+namespace simsols {
+namespace {
+
+std::string variable(const char* name) {
+  const char* v = std::getenv(name);
+  return v ? v : "";
+}
+
+// A whole positive number, or a UsageError naming the variable.
+int positive(const char* name, const std::string& text, const char* allowed) {
+  size_t used = 0;
+  int v = 0;
+  try {
+    v = std::stoi(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || v < 1)
+    throw UsageError("out_of_range", "environment", 0, name, "'" + text + "': allowed " + allowed);
+  return v;
+}
+
+}  // namespace
+
+EngineOptions engine_options_from_environment() {
+  EngineOptions o;
+  o.device = variable("SIMSOLS_CL_DEVICE");
+  o.cl_options = variable("SIMSOLS_CL_OPTIONS");
+  if (const std::string l = variable("SIMSOLS_LANES"); !l.empty()) {
+    o.lanes = positive("SIMSOLS_LANES", l, "1, 2, 4, 8 or 16");
+    if (o.lanes != 1 && o.lanes != 2 && o.lanes != 4 && o.lanes != 8 && o.lanes != 16)
+      throw UsageError("out_of_range", "environment", 0, "SIMSOLS_LANES",
+                       "'" + l + "': allowed 1, 2, 4, 8 or 16");
+  }
+  if (const std::string s = variable("SIMSOLS_LOCAL_SIZE"); !s.empty())
+    o.local_size = positive("SIMSOLS_LOCAL_SIZE", s, "a whole number >= 1");
+  return o;
+}
+
+}  // namespace simsols

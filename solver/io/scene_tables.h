@@ -1,0 +1,41 @@
+// The scene file's tables, one reader each (docs/scene-format.md).
+//
+// Each function reads its table(s) from the document's top-level Reader
+// into the Scene, noting what lets the reading go on and failing at what
+// does not (toml_reader.h). scene_toml.cpp calls them in the order the
+// format needs: materials before the particles, walls and apparatus that
+// name them; particles before the generators that avoid them. A new table
+// (a new apparatus) is a new scene_tables_*.cpp and one line here.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "solver/io/toml_reader.h"
+#include "solver/scene/scene.h"
+#include "solver/scene/scene_check.h"
+
+namespace simsols::scene_toml {
+
+// scene_tables_bodies.cpp
+void read_info(const Reader& root, Scene& scene);          // [scene]
+void read_materials(const Reader& root, Scene& scene);     // [[materials]]
+void read_interactions(const Reader& root, Scene& scene);  // [[interactions]]
+void read_particles(const Reader& root, Scene& scene);     // [[particles]]
+void read_walls(const Reader& root, Scene& scene);         // [[walls]]
+
+// scene_tables_generators.cpp: [[generators]], appended to the particles;
+// returns the generator of each generated particle.
+std::vector<size_t> read_generators(const Reader& root, Scene& scene);
+
+// scene_tables_shear_box.cpp: [shear_box], built into walls and a specimen;
+// the first problem of the build, if any.
+std::optional<SceneIssue> read_shear_box(const Reader& root, Scene& scene);
+
+// scene_tables_settings.cpp
+void read_effects(const Reader& root, Scene& scene);   // [effects]
+void read_numerics(const Reader& root, Scene& scene);  // [numerics]
+void read_outputs(const Reader& root, Scene& scene);   // [output]
+void read_view(const Reader& root, Scene& scene);      // [view]
+
+}  // namespace simsols::scene_toml

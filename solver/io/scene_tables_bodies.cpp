@@ -1,0 +1,102 @@
+// [scene], [[materials]], [[interactions]], [[particles]], [[walls]]: what
+// a scene is made of, read table by table (docs/scene-format.md).
+#include "solver/io/scene_tables.h"
+
+namespace simsols::scene_toml {
+
+void read_info(const Reader& root, Scene& scene) {
+  Reader r = root.sub("scene", {"name", "description"});
+  scene.name = r.string("name", scene.name);
+  scene.description = r.string("description", "");
+}
+
+void read_materials(const Reader& root, Scene& scene) {
+  const auto tables = root.tables("materials");
+  for (size_t i = 0; i < tables.size(); ++i) {
+    Reader r(*tables[i], item("materials", i), root.context(),
+             {"name", "young_modulus", "poisson_ratio", "density", "restitution",
+              "sliding_friction", "rolling_friction"});
+    Material m;
+    m.name = r.string("name");
+    m.young_modulus = r.number("young_modulus");
+    m.poisson_ratio = r.number("poisson_ratio");
+    m.density = r.number("density");
+    m.restitution = r.number("restitution");
+    m.sliding_friction = r.number("sliding_friction", 0);
+    m.rolling_friction = r.number("rolling_friction", 0);
+    scene.materials.push_back(m);
+  }
+}
+
+void read_interactions(const Reader& root, Scene& scene) {
+  const auto tables = root.tables("interactions");
+  for (size_t i = 0; i < tables.size(); ++i) {
+    Reader r(*tables[i], item("interactions", i), root.context(),
+             {"materials", "restitution", "sliding_friction", "rolling_friction", "liquid_volume",
+              "contact_angle"});
+    PairOverride o;
+    std::tie(o.material_a, o.material_b) = r.material_pair("materials", scene);
+    o.restitution = r.optional_number("restitution");
+    o.sliding_friction = r.optional_number("sliding_friction");
+    o.rolling_friction = r.optional_number("rolling_friction");
+    o.liquid_volume = r.optional_number("liquid_volume");
+    o.contact_angle = r.optional_number("contact_angle");
+    scene.pair_overrides.push_back(o);
+  }
+}
+
+void read_particles(const Reader& root, Scene& scene) {
+  const auto tables = root.tables("particles");
+  for (size_t i = 0; i < tables.size(); ++i) {
+    Reader r(*tables[i], item("particles", i), root.context(),
+             {"material", "radius", "position", "velocity", "angular_velocity"});
+    Particle p;
+    p.material = r.material("material", scene);
+    p.radius = r.number("radius");
+    p.position = r.vec3("position");
+    p.velocity = r.vec3("velocity", {});
+    p.angular_velocity = r.vec3("angular_velocity", {});
+    scene.particles.push_back(p);
+  }
+}
+
+void read_walls(const Reader& root, Scene& scene) {
+  const auto tables = root.tables("walls");
+  for (size_t i = 0; i < tables.size(); ++i) {
+    Reader r(*tables[i], item("walls", i), root.context(),
+             {"name", "type", "material", "point", "normal", "axis_u", "half_u", "half_v",
+              "velocity", "servo"});
+    Wall w;
+    w.name = r.string("name", "wall" + std::to_string(i));
+    const bool rectangle = r.choice("type", WallShape::Plane) == WallShape::Rectangle;
+    if (!rectangle)
+      r.forbid({"axis_u", "half_u", "half_v"}, "only allowed when type = \"rectangle\"");
+    w.material = r.material("material", scene);
+    w.point = r.vec3("point");
+    w.normal = normalized(r.vec3("normal"));
+    w.velocity = r.vec3("velocity", {});
+    if (r.has("servo")) {
+      Reader sv = r.sub("servo", {"target_force", "gain", "max_speed", "integral_time", "mass"});
+      w.servo.enabled = true;
+      w.servo.target_force = sv.number("target_force");
+      w.servo.mass = sv.number("mass", 0);
+      if (w.servo.mass > 0) {
+        sv.forbid({"gain", "max_speed", "integral_time"},
+                  "a dead-weight wall (mass > 0) has no servo settings");
+      } else {
+        w.servo.gain = sv.number("gain");
+        w.servo.max_speed = sv.number("max_speed");
+        w.servo.integral_time = sv.number("integral_time", 0);
+      }
+    }
+    if (rectangle) {
+      w.shape = WallShape::Rectangle;
+      w.axis_u = normalized(r.vec3("axis_u"));
+      w.half_u = r.number("half_u");
+      w.half_v = r.number("half_v");
+    }
+    scene.walls.push_back(w);
+  }
+}
+
+}  // namespace simsols::scene_toml

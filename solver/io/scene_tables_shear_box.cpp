@@ -1,0 +1,69 @@
+// [shear_box]: the direct shear apparatus and its specimen
+// (docs/shear-box.md), expanded into walls and beads by build_shear_box().
+#include "solver/apparatus/shear_box.h"
+#include "solver/io/scene_tables.h"
+
+namespace simsols::scene_toml {
+
+std::optional<SceneIssue> read_shear_box(const Reader& root, Scene& scene) {
+  if (!root.has("shear_box")) return std::nullopt;
+  Reader r = root.sub("shear_box",
+                      {"length", "width", "split_height", "gap", "wall_material", "normal_stress",
+                       "shear_speed", "inertial_number", "shear_displacement", "loading",
+                       "platen_mass", "servo_gain", "servo_max_speed", "servo_integral_time",
+                       "settle_time", "consolidate_time", "rows", "specimen"});
+  ShearBox b;
+  b.length = r.number("length", b.length);
+  b.width = r.number("width", b.width);
+  b.split_height = r.number("split_height", b.split_height);
+  b.gap = r.number("gap", b.gap);
+  if (r.has("wall_material")) {
+    const std::string name = r.string("wall_material");
+    // "steel" is built in (default_box_steel) unless the scene defines it
+    if (name != "steel" || scene.material_index(name) >= 0)
+      b.wall_material = r.material("wall_material", scene);
+  }
+  b.normal_stress = r.number("normal_stress", b.normal_stress);
+  b.shear_speed = r.number("shear_speed", b.shear_speed);
+  b.inertial_number = r.number("inertial_number", b.inertial_number);
+  b.shear_displacement = r.number("shear_displacement", b.shear_displacement);
+  b.loading = r.choice("loading", ShearBox::Loading::DeadWeight);
+  b.platen_mass = r.number("platen_mass", b.platen_mass);
+  b.servo_gain = r.number("servo_gain", b.servo_gain);
+  b.servo_max_speed = r.number("servo_max_speed", b.servo_max_speed);
+  b.servo_integral_time = r.number("servo_integral_time", b.servo_integral_time);
+  b.settle_time = r.number("settle_time", b.settle_time);
+  b.consolidate_time = r.number("consolidate_time", b.consolidate_time);
+  const std::int64_t rows = r.optional_integer("rows").value_or(b.rows);
+  if (rows < 10 || rows > 1000000)
+    r.fail("out_of_range", "rows",
+           std::to_string(rows) + " is out of range, allowed [10, 1000000]");
+  b.rows = static_cast<int>(rows);
+
+  Reader sp = r.sub("specimen", {"method", "material", "diameter", "layers", "clearance", "seed"});
+  ShearSpecimen& s = b.specimen;
+  s.method = sp.choice("method", ShearSpecimen::Method::Layers);
+  if (s.method == ShearSpecimen::Method::Given) {
+    sp.forbid({"material", "diameter", "layers", "clearance", "seed"},
+              "only allowed when method = \"layers\" or \"pour\"");
+  } else {
+    s.material = sp.material("material", scene);
+    s.diameter = sp.number("diameter");
+    const std::int64_t layers = sp.integer("layers");
+    if (layers < 1 || layers > 200)
+      sp.fail("out_of_range", "layers",
+              std::to_string(layers) + " is out of range, allowed [1, 200]");
+    s.layers = static_cast<int>(layers);
+    if (s.method == ShearSpecimen::Method::Pour)
+      sp.forbid({"clearance"}, "only allowed when method = \"layers\"");
+    s.clearance = sp.choice("clearance", ShearSpecimen::Clearance::Shift);
+    const std::int64_t seed = sp.optional_integer("seed").value_or(1);
+    if (seed < 0)
+      sp.fail("out_of_range", "seed", std::to_string(seed) + " is out of range, allowed [0, 2^63)");
+    s.seed = seed;
+  }
+  scene.shear_box = b;
+  return build_shear_box(scene);
+}
+
+}  // namespace simsols::scene_toml

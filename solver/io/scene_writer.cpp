@@ -1,0 +1,259 @@
+// Scene -> TOML: every particle explicit, every double in its shortest
+// round-trip form, so parse_scene(to_toml(s)) reproduces s bit for bit.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "solver/io/scene_toml.h"
+#include "solver/io/toml_reader.h"
+
+namespace simsols {
+namespace {
+
+using scene_toml::item;
+using scene_toml::num;
+
+std::string toml_string(std::string_view s) {
+  std::string out = "\"";
+  for (const char ch : s) {
+    const auto c = static_cast<unsigned char>(ch);
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      default:
+        if (c < 0x20 || c == 0x7f) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04X", c);
+          out += buf;
+        } else {
+          out += ch;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+// Shortest round-trip text, always a TOML float ("1.0", not "1").
+std::string toml_float(double v) {
+  std::string s = num(v);
+  if (s.find_first_of(".en") == std::string::npos) s += ".0";
+  return s;
+}
+
+std::string toml_vec3(const Vec3& v) {
+  return "[" + toml_float(v[0]) + ", " + toml_float(v[1]) + ", " + toml_float(v[2]) + "]";
+}
+
+bool is_default_zero(const Vec3& v) {
+  return std::all_of(v.begin(), v.end(), [](double x) { return x == 0 && !std::signbit(x); });
+}
+
+const std::string& material_name(const Scene& s, int index, const std::string& field) {
+  if (index < 0 || index >= static_cast<int>(s.materials.size()))
+    throw SceneError("unknown_material", s.source_path, 0, field,
+                     "material index " + std::to_string(index) + " does not exist");
+  return s.materials[index].name;
+}
+
+class Writer {
+ public:
+  explicit Writer(const Scene& s) : s_(s) {}
+
+  std::string write() {
+    out_ << "# SimSols scene (written by to_toml; all particles explicit)\n";
+    header("[scene]");
+    line("name", toml_string(s_.name));
+    if (!s_.description.empty()) line("description", toml_string(s_.description));
+    for (const Material& m : s_.materials) write(m);
+    for (size_t i = 0; i < s_.pair_overrides.size(); ++i) write(s_.pair_overrides[i], i);
+    for (size_t i = 0; i < s_.walls.size(); ++i)
+      if (!is_box_wall(i)) write(s_.walls[i], i);
+    if (s_.shear_box) write_shear_box(*s_.shear_box);
+    write_effects();
+    write_numerics();
+    write_outputs();
+    write_view();
+    for (size_t i = 0; i < s_.particles.size(); ++i) write(s_.particles[i], i);
+    return out_.str();
+  }
+
+ private:
+  void header(std::string_view h) { out_ << "\n" << h << "\n"; }
+  void line(std::string_view key, const std::string& value) {
+    out_ << key << " = " << value << "\n";
+  }
+  void line(std::string_view key, double value) { line(key, toml_float(value)); }
+  void line(std::string_view key, bool value) { line(key, std::string(value ? "true" : "false")); }
+  void line(std::string_view key, const Vec3& value) { line(key, toml_vec3(value)); }
+
+  void write(const Material& m) {
+    header("[[materials]]");
+    line("name", toml_string(m.name));
+    line("young_modulus", m.young_modulus);
+    line("poisson_ratio", m.poisson_ratio);
+    line("density", m.density);
+    line("restitution", m.restitution);
+    line("sliding_friction", m.sliding_friction);
+    line("rolling_friction", m.rolling_friction);
+  }
+
+  void write(const PairOverride& o, size_t i) {
+    const std::string f = item("interactions", i) + ".materials";
+    header("[[interactions]]");
+    line("materials", "[" + toml_string(material_name(s_, o.material_a, f)) + ", " +
+                          toml_string(material_name(s_, o.material_b, f)) + "]");
+    if (o.restitution) line("restitution", *o.restitution);
+    if (o.sliding_friction) line("sliding_friction", *o.sliding_friction);
+    if (o.rolling_friction) line("rolling_friction", *o.rolling_friction);
+    if (o.liquid_volume) line("liquid_volume", *o.liquid_volume);
+    if (o.contact_angle) line("contact_angle", *o.contact_angle);
+  }
+
+  void write(const Wall& w, size_t i) {
+    header("[[walls]]");
+    line("name", toml_string(w.name));
+    line("type", toml_string(choice_name(w.shape)));
+    line("material", toml_string(material_name(s_, w.material, item("walls", i) + ".material")));
+    line("point", w.point);
+    line("normal", w.normal);
+    if (w.shape == WallShape::Rectangle) {
+      line("axis_u", w.axis_u);
+      line("half_u", w.half_u);
+      line("half_v", w.half_v);
+    }
+    if (!is_default_zero(w.velocity)) line("velocity", w.velocity);
+    if (w.servo.enabled && w.servo.mass > 0)
+      line("servo", "{ target_force = " + toml_float(w.servo.target_force) +
+                        ", mass = " + toml_float(w.servo.mass) + " }");
+    else if (w.servo.enabled)
+      line("servo", "{ target_force = " + toml_float(w.servo.target_force) +
+                        ", gain = " + toml_float(w.servo.gain) +
+                        ", max_speed = " + toml_float(w.servo.max_speed) +
+                        (w.servo.integral_time > 0
+                             ? ", integral_time = " + toml_float(w.servo.integral_time)
+                             : std::string()) +
+                        " }");
+  }
+
+  bool is_box_wall(size_t i) const {
+    return s_.shear_box && static_cast<int>(i) >= s_.shear_box->first_wall &&
+           static_cast<int>(i) < s_.shear_box->first_wall + kShearBoxWalls;
+  }
+
+  // The apparatus with its resolved values; its specimen is the explicit
+  // particles below, so reading it back rebuilds the same walls.
+  void write_shear_box(const ShearBox& b) {
+    header("[shear_box]");
+    line("length", b.length);
+    line("width", b.width);
+    line("split_height", b.split_height);
+    line("gap", b.gap);
+    line("wall_material", toml_string(material_name(s_, b.wall_material, "shear_box.wall_material")));
+    line("normal_stress", b.normal_stress);
+    line("shear_speed", b.shear_speed);
+    line("inertial_number", b.inertial_number);
+    line("shear_displacement", b.shear_displacement);
+    line("loading", toml_string(choice_name(b.loading)));
+    line("platen_mass", b.platen_mass);
+    line("servo_gain", b.servo_gain);
+    line("servo_max_speed", b.servo_max_speed);
+    line("servo_integral_time", b.servo_integral_time);
+    line("settle_time", b.settle_time);
+    line("consolidate_time", b.consolidate_time);
+    line("rows", std::to_string(b.rows));
+    header("[shear_box.specimen]");
+    line("method", toml_string(choice_name(ShearSpecimen::Method::Given)));
+  }
+
+  void write_effects() {
+    const Effects& e = s_.effects;
+    header("[effects]");
+    line("gravity", e.gravity);
+    line("normal", toml_string("hertz"));
+    line("damping", toml_string(choice_name(e.damping)));
+    line("tangential", toml_string(choice_name(e.tangential)));
+    line("rolling", toml_string(choice_name(e.rolling)));
+    if (e.rolling == RollingModel::SpringDashpot) line("rolling_damping", e.rolling_damping);
+    line("cohesion", toml_string(choice_name(e.cohesion)));
+    if (e.cohesion == CohesionModel::Capillary) {
+      const Capillary& c = e.capillary;
+      line("capillary", "{ surface_tension = " + toml_float(c.surface_tension) +
+                            ", contact_angle = " + toml_float(c.contact_angle) +
+                            ", liquid_volume = " + toml_float(c.liquid_volume) + " }");
+    }
+    if (e.fluid == FluidModel::Drag) {
+      const Fluid& f = e.fluid_params;
+      line("fluid", toml_string(choice_name(e.fluid)));
+      line("drag", "{ density = " + toml_float(f.density) +
+                        ", viscosity = " + toml_float(f.viscosity) +
+                        ", velocity = " + toml_vec3(f.velocity) + " }");
+    }
+  }
+
+  void write_numerics() {
+    const Numerics& n = s_.numerics;
+    header("[numerics]");
+    line("precision", toml_string(choice_name(n.precision)));
+    if (n.dt != 0 || std::signbit(n.dt)) line("dt", n.dt);
+    line("dt_fraction", n.dt_fraction);
+    line("force_dt", n.force_dt);
+    line("duration", n.duration);
+    line("skin", n.skin);
+    line("neighbor_capacity", std::to_string(n.neighbor_capacity));
+  }
+
+  void write_outputs() {
+    const Outputs& o = s_.outputs;
+    header("[output]");
+    line("series_interval", o.series_interval);
+    line("dump_interval", o.dump_interval);
+    line("checkpoint_interval", o.checkpoint_interval);
+    line("dump_csv", o.dump_csv);
+    line("dump_vtk", o.dump_vtk);
+  }
+
+  void write_view() {
+    const ViewHints& v = s_.view;
+    if (v.empty()) return;
+    header("[view]");
+    if (!v.view.empty()) line("view", toml_string(v.view));
+    if (!v.color_by.empty()) line("color_by", toml_string(v.color_by));
+    if (!v.mode.empty()) line("mode", toml_string(v.mode));
+    if (!v.size.empty()) line("size", toml_string(v.size));
+    if (v.chains) line("chains", *v.chains);
+    if (v.threshold) line("threshold", *v.threshold);
+  }
+
+  void write(const Particle& p, size_t i) {
+    header("[[particles]]");
+    line("material",
+         toml_string(material_name(s_, p.material, item("particles", i) + ".material")));
+    line("radius", p.radius);
+    line("position", p.position);
+    if (!is_default_zero(p.velocity)) line("velocity", p.velocity);
+    if (!is_default_zero(p.angular_velocity)) line("angular_velocity", p.angular_velocity);
+  }
+
+  const Scene& s_;
+  std::ostringstream out_;
+};
+
+}  // namespace
+
+std::string to_toml(const Scene& scene) { return Writer(scene).write(); }
+
+}  // namespace simsols

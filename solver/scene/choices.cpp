@@ -1,0 +1,34 @@
+#include "solver/scene/choices.h"
+
+namespace simsols {
+
+#define SIMSOLS_CHOICES(E, ...)                         \
+  template <>                                           \
+  std::span<const Named<E>> choices() {                 \
+    static const Named<E> table[] = {__VA_ARGS__};      \
+    return table;                                       \
+  }
+
+// [effects] slots: the default model first, then the others, "none" last
+// where "none" is not the default.
+SIMSOLS_CHOICES(DampingModel, {DampingModel::Viscous, "viscous"}, {DampingModel::None, "none"})
+SIMSOLS_CHOICES(TangentialModel, {TangentialModel::Mindlin, "mindlin"},
+                {TangentialModel::None, "none"})
+SIMSOLS_CHOICES(RollingModel, {RollingModel::ConstantTorque, "constant_torque"},
+                {RollingModel::SpringDashpot, "spring_dashpot"}, {RollingModel::None, "none"})
+SIMSOLS_CHOICES(CohesionModel, {CohesionModel::None, "none"}, {CohesionModel::Capillary, "capillary"})
+SIMSOLS_CHOICES(FluidModel, {FluidModel::None, "none"}, {FluidModel::Drag, "drag"})
+// [numerics] precision, [[walls]] type
+SIMSOLS_CHOICES(Precision, {Precision::Float, "float"}, {Precision::Double, "double"})
+SIMSOLS_CHOICES(WallShape, {WallShape::Plane, "plane"}, {WallShape::Rectangle, "rectangle"})
+// [shear_box] loading, [shear_box.specimen] method and clearance
+SIMSOLS_CHOICES(ShearBox::Loading, {ShearBox::Loading::DeadWeight, "dead_weight"},
+                {ShearBox::Loading::Servo, "servo"})
+SIMSOLS_CHOICES(ShearSpecimen::Method, {ShearSpecimen::Method::Layers, "layers"},
+                {ShearSpecimen::Method::Pour, "pour"}, {ShearSpecimen::Method::Given, "given"})
+SIMSOLS_CHOICES(ShearSpecimen::Clearance, {ShearSpecimen::Clearance::Shift, "shift"},
+                {ShearSpecimen::Clearance::Spread, "spread"})
+
+#undef SIMSOLS_CHOICES
+
+}  // namespace simsols

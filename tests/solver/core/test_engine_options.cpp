@@ -1,0 +1,102 @@
+// Engine options (solver/core/engine_options.h): set in code, they reach the
+// kernels' configuration and the model through the device that carries
+// them; read from the environment, a bad value is a UsageError naming the
+// variable and what is allowed.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <string>
+
+#include "solver/common/errors.h"
+#include "solver/core/cl_program.h"
+#include "solver/core/engine_options.h"
+#include "solver/core/simulation.h"
+#include "tests/support/test_support.h"
+
+namespace simsols {
+namespace {
+
+using testing::empty_scene;
+using testing::glass;
+using testing::sphere;
+
+Scene two_beads(Precision p) {
+  Scene s = empty_scene(p, glass(0.9, 0.3, 0.0));
+  s.particles = {sphere(1e-3, {0, 0, 0}), sphere(1e-3, {3e-3, 0, 0})};
+  return s;
+}
+
+TEST(EngineOptions, LanesAndLocalSizeSetInCodeReachTheModel) {
+  EngineOptions o;
+  o.lanes = 2;
+  o.local_size = 16;
+  o.cl_options = "-cl-mad-enable";
+  auto device = Device::open(o);
+  EXPECT_EQ(device->options().lanes, 2);
+  const KernelConfig c = make_kernel_config(two_beads(Precision::Float), *device);
+  EXPECT_EQ(c.lanes, 2);
+  EXPECT_EQ(c.extra_options, "-cl-mad-enable");
+  Simulation sim(device, two_beads(Precision::Float));
+  EXPECT_EQ(sim.model().local_size(), 16u);
+  EXPECT_EQ(sim.model().config().lanes, 2);
+}
+
+TEST(EngineOptions, DefaultLanesFollowTheDeviceAndPrecision) {
+  auto device = Device::open(EngineOptions{});
+  const int f = make_kernel_config(two_beads(Precision::Float), *device).lanes;
+  const int d = make_kernel_config(two_beads(Precision::Double), *device).lanes;
+  EXPECT_EQ(f, device->is_gpu() ? 1 : 8);
+  EXPECT_EQ(d, device->is_gpu() ? 1 : 4);
+}
+
+TEST(EngineOptions, LanesOutsideTheAllowedSetAreRefusedByTheConfig) {
+  EngineOptions o;
+  o.lanes = 3;
+  auto device = Device::open(o);
+  EXPECT_THROW(make_kernel_config(two_beads(Precision::Float), *device), DeviceError);
+}
+
+// Restores one environment variable when it goes out of scope.
+class ScopedVariable {
+ public:
+  ScopedVariable(const char* name, const char* value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old, had_ = true;
+    ::setenv(name, value, 1);
+  }
+  ~ScopedVariable() { had_ ? ::setenv(name_, old_.c_str(), 1) : ::unsetenv(name_); }
+
+ private:
+  const char* name_;
+  std::string old_;
+  bool had_ = false;
+};
+
+TEST(EngineOptions, TheEnvironmentIsReadIntoOptions) {
+  ScopedVariable lanes("SIMSOLS_LANES", "4");
+  ScopedVariable local("SIMSOLS_LOCAL_SIZE", "32");
+  ScopedVariable device("SIMSOLS_CL_DEVICE", "cpu");
+  ScopedVariable extra("SIMSOLS_CL_OPTIONS", "-cl-fast-relaxed-math");
+  const EngineOptions o = engine_options_from_environment();
+  EXPECT_EQ(o.lanes, 4);
+  EXPECT_EQ(o.local_size, 32);
+  EXPECT_EQ(o.device, "cpu");
+  EXPECT_EQ(o.cl_options, "-cl-fast-relaxed-math");
+}
+
+TEST(EngineOptions, BadVariablesAreUsageErrorsNamingThem) {
+  for (const char* bad : {"3", "8x", "-4", "0"}) {
+    ScopedVariable lanes("SIMSOLS_LANES", bad);
+    try {
+      engine_options_from_environment();
+      FAIL() << "SIMSOLS_LANES=" << bad << " accepted";
+    } catch (const UsageError& e) {
+      EXPECT_EQ(e.field, "SIMSOLS_LANES");
+      EXPECT_NE(std::string(e.what()).find("1, 2, 4, 8 or 16"), std::string::npos) << e.what();
+    }
+  }
+  ScopedVariable local("SIMSOLS_LOCAL_SIZE", "zero");
+  EXPECT_THROW(engine_options_from_environment(), UsageError);
+}
+
+}  // namespace
+}  // namespace simsols
