@@ -55,7 +55,7 @@ LabApp::LabApp(const LabOptions& options) : opt_(options) {
   }
   std::ifstream in(opt_.script);
   if (!in) throw SceneError("io", opt_.script, 0, "--script", "cannot read the script");
-  script_ = std::make_unique<Script>();
+  script_ = std::make_unique<Script>(*this);
   script_->file = opt_.script;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {

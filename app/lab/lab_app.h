@@ -67,7 +67,14 @@ class LabApp {
   void attach_view();
   void draw_view(int x, int y, int w, int h);
   void draw_panel(int panel_width);
-  void draw_controls();
+  void draw_controls();  // the panel's sections, one function each (lab_panel.cpp):
+  void draw_stage_and_message(LabStage stage);
+  void draw_specimen(LabStage stage);
+  void draw_preset_and_scene_file();
+  void draw_precision_and_time_step();
+  void draw_loading_and_shear(LabStage stage);
+  void draw_view_settings();
+  void draw_save();
   bool draw_effect_slots();  // lab_effects.cpp; true when a slot changed
   void draw_plots();
   void draw_status(int panel_width);

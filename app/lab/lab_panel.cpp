@@ -50,8 +50,21 @@ void LabApp::draw_panel(int panel_width) {
   if (close_asked_) draw_close_dialog();
 }
 
+// The panel's sections, in the order of a bench test (docs/lab.md). The
+// stage is read once per frame: a button that changes it takes effect in the
+// other sections at the next frame.
 void LabApp::draw_controls() {
   const LabStage stage = exp_->stage();
+  draw_stage_and_message(stage);
+  if (ImGui::CollapsingHeader("Specimen", ImGuiTreeNodeFlags_DefaultOpen)) draw_specimen(stage);
+  if (ImGui::CollapsingHeader("Loading and shear", ImGuiTreeNodeFlags_DefaultOpen))
+    draw_loading_and_shear(stage);
+  if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) draw_view_settings();
+  if (ImGui::CollapsingHeader("Save")) draw_save();
+}
+
+// The scene, the stage, and the last error or note with a button to dismiss it.
+void LabApp::draw_stage_and_message(LabStage stage) {
   ImGui::TextColored({0.55f, 0.8f, 1, 1}, "%s", exp_->scene_label().c_str());
   ImGui::Text("stage: %s%s", to_string(stage),
               exp_->paused() && (stage == LabStage::Loading || stage == LabStage::Shearing) ? " (paused)" : "");
@@ -61,152 +74,170 @@ void LabApp::draw_controls() {
     ImGui::PopTextWrapPos();
     if (ImGui::SmallButton("dismiss")) message_.clear();
   }
+}
 
-  if (ImGui::CollapsingHeader("Specimen", ImGuiTreeNodeFlags_DefaultOpen)) {
-    static const char* sizes[] = {"2.38 mm (8 layers)", "3.18 mm (6)", "3.97 mm (5)", "4.76 mm (4)",
-                                  "6.35 mm (4)"};
-    static const char* stresses[] = {"50 kPa", "160 kPa", "280 kPa", "400 kPa"};
-    ImGui::SetNextItemWidth(150);
-    ImGui::Combo("##size", &preset_size_, sizes, 5);
-    ImGui::SameLine();
-    ImGui::SetNextItemWidth(100);
-    ImGui::Combo("##stress", &preset_stress_, stresses, 4);
-    ImGui::SameLine();
-    if (ImGui::Button("Preset")) {
-      message_.clear();
-      const std::string err = exp_->load_preset(kTable1SizesMm[preset_size_], kPaperStressesKpa[preset_stress_]);
-      act(err);
-      if (err.empty()) {
-        sigma_kpa_ = float(kPaperStressesKpa[preset_stress_]);
-        act(exp_->prepare());
-      }
-    }
-    ImGui::SetNextItemWidth(300);
-    ImGui::InputText("##scene", scene_path_, sizeof scene_path_);
-    ImGui::SameLine();
-    if (ImGui::Button("Open")) {
-      message_.clear();
-      const std::string err = exp_->load_scene_file(scene_path_);
-      act(err);  // a failed load keeps the current experiment
-      if (err.empty()) act(exp_->prepare());
-    }
-    int precision = exp_->scene().numerics.precision == Precision::Float ? 0 : 1;
-    ImGui::Text("precision");
-    ImGui::SameLine();
-    bool changed = ImGui::RadioButton("float", &precision, 0);
-    ImGui::SameLine();
-    changed |= ImGui::RadioButton("double", &precision, 1);
-    if (changed) exp_->set_precision(precision == 0 ? Precision::Float : Precision::Double);
-    float dt_fraction = float(exp_->scene().numerics.dt_fraction);
-    ImGui::SetNextItemWidth(200);
-    if (ImGui::SliderFloat("time step (x Rayleigh)", &dt_fraction, 0.05f, 0.5f, "%.2f"))
-      exp_->set_dt_fraction(dt_fraction);
-    // what the accuracy study measured for these settings on the specimen
-    // most like this one (docs/accuracy.md)
-    const auto& box = exp_->scene().shear_box;
-    const StudySpecimen kind = box && box->specimen.method == ShearSpecimen::Method::Layers
-                                   ? StudySpecimen::Layered
-                                   : StudySpecimen::Poured;
-    if (const SettingSummary* a =
-            expected_accuracy(dt_fraction, exp_->scene().numerics.precision, kind)) {
-      ImGui::PushTextWrapPos(0);
-      const ImVec4 grey = ImGui::GetStyle().Colors[ImGuiCol_TextDisabled];
-      ImGui::TextColored(grey, "%s", expected_accuracy_text(*a).c_str());
-      ImGui::PopTextWrapPos();
-    }
-    if (draw_effect_slots()) {
-      message_ = "effects and precision apply when the specimen is prepared again (Reset): the "
-                 "kernels are rebuilt in the background";
-    }
-    ImGui::BeginDisabled(stage == LabStage::Building);
-    if (ImGui::Button("Prepare / Reset (R)")) act(exp_->reset());
-    ImGui::EndDisabled();
+// Step 1 of a test: a preset or a scene file, the precision, the time step
+// and the effect slots, then Prepare / Reset.
+void LabApp::draw_specimen(LabStage stage) {
+  draw_preset_and_scene_file();
+  draw_precision_and_time_step();
+  if (draw_effect_slots()) {
+    message_ = "effects and precision apply when the specimen is prepared again (Reset): the "
+               "kernels are rebuilt in the background";
   }
+  ImGui::BeginDisabled(stage == LabStage::Building);
+  if (ImGui::Button("Prepare / Reset (R)")) act(exp_->reset());
+  ImGui::EndDisabled();
+}
 
-  if (ImGui::CollapsingHeader("Loading and shear", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ImGui::BeginDisabled(stage != LabStage::Prepared);
-    if (ImGui::Button("Apply normal stress")) act(exp_->apply_normal_stress());
-    ImGui::EndDisabled();
-    ImGui::SameLine();
-    ImGui::BeginDisabled(stage != LabStage::Loaded && stage != LabStage::Loading);
-    if (ImGui::Button("Start shear")) act(exp_->start_shear());
-    ImGui::EndDisabled();
-    if (ImGui::Button(exp_->paused() ? "Resume (space)" : "Pause (space)"))
-      exp_->paused() ? exp_->resume() : exp_->pause();
-    ImGui::SameLine();
-    if (ImGui::Button("Step (S)")) act(exp_->step());
-    ImGui::SetNextItemWidth(160);
-    if (ImGui::InputFloat("normal stress (kPa)", &sigma_kpa_, 10, 50, "%.0f",
-                          ImGuiInputTextFlags_EnterReturnsTrue))
-      act(exp_->set_normal_stress(double(sigma_kpa_) * 1e3));
-    if (ShearTest* t = exp_->test(); t && speed_mm_s_ == 0 && t->shear_speed() > 0)
-      speed_mm_s_ = float(t->shear_speed() * 1e3);
-    ImGui::SetNextItemWidth(160);
-    if (ImGui::InputFloat("shear speed (mm/s)", &speed_mm_s_, 0, 0, "%.4g",
-                          ImGuiInputTextFlags_EnterReturnsTrue))
-      act(exp_->set_shear_speed(double(speed_mm_s_) * 1e-3));
+// A Table 1 size and a paper stress (Preset), or the scene file typed in the
+// field (Open); either prepares the specimen at once.
+void LabApp::draw_preset_and_scene_file() {
+  static const char* sizes[] = {"2.38 mm (8 layers)", "3.18 mm (6)", "3.97 mm (5)", "4.76 mm (4)",
+                                "6.35 mm (4)"};
+  static const char* stresses[] = {"50 kPa", "160 kPa", "280 kPa", "400 kPa"};
+  ImGui::SetNextItemWidth(150);
+  ImGui::Combo("##size", &preset_size_, sizes, 5);
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(100);
+  ImGui::Combo("##stress", &preset_stress_, stresses, 4);
+  ImGui::SameLine();
+  if (ImGui::Button("Preset")) {
+    message_.clear();
+    const std::string err = exp_->load_preset(kTable1SizesMm[preset_size_], kPaperStressesKpa[preset_stress_]);
+    act(err);
+    if (err.empty()) {
+      sigma_kpa_ = float(kPaperStressesKpa[preset_stress_]);
+      act(exp_->prepare());
+    }
   }
+  ImGui::SetNextItemWidth(300);
+  ImGui::InputText("##scene", scene_path_, sizeof scene_path_);
+  ImGui::SameLine();
+  if (ImGui::Button("Open")) {
+    message_.clear();
+    const std::string err = exp_->load_scene_file(scene_path_);
+    act(err);  // a failed load keeps the current experiment
+    if (err.empty()) act(exp_->prepare());
+  }
+}
 
-  if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
-    int v = int(view);
-    ImGui::SetNextItemWidth(200);
-    if (ImGui::Combo("view", &v, kViews, 6)) view = LabView(v);
-    if (view == LabView::Single) {
-      ImGui::SetNextItemWidth(200);
-      ImGui::SliderInt("view index", &single_view, 0, 7);
-    }
-    int f = int(field);
-    ImGui::SetNextItemWidth(200);
-    if (ImGui::Combo("colour by", &f, kFields, 6)) field = ColorField(f);
-    ImGui::SetNextItemWidth(200);
-    ImGui::SliderFloat("chain threshold (F/F mean)", &threshold, 0, 4, "%.2f");
-    ImGui::Checkbox("force chains over the beads", &chains_overlay);
-    int p = int(preset_);
-    ImGui::SetNextItemWidth(200);
-    if (ImGui::Combo("camera", &p, kPresets, 4)) {
-      preset_ = render::ViewPreset(p);
-      fit_view();
-    }
-    ImGui::SameLine();
-    if (ImGui::Button("Fit (F)")) fit_view();
+// Float or double, the time step as a fraction of the Rayleigh time, and
+// what the accuracy study measured for these settings on the specimen most
+// like this one (docs/accuracy.md).
+void LabApp::draw_precision_and_time_step() {
+  int precision = exp_->scene().numerics.precision == Precision::Float ? 0 : 1;
+  ImGui::Text("precision");
+  ImGui::SameLine();
+  bool changed = ImGui::RadioButton("float", &precision, 0);
+  ImGui::SameLine();
+  changed |= ImGui::RadioButton("double", &precision, 1);
+  if (changed) exp_->set_precision(precision == 0 ? Precision::Float : Precision::Double);
+  float dt_fraction = float(exp_->scene().numerics.dt_fraction);
+  ImGui::SetNextItemWidth(200);
+  if (ImGui::SliderFloat("time step (x Rayleigh)", &dt_fraction, 0.05f, 0.5f, "%.2f"))
+    exp_->set_dt_fraction(dt_fraction);
+  const auto& box = exp_->scene().shear_box;
+  const StudySpecimen kind = box && box->specimen.method == ShearSpecimen::Method::Layers
+                                 ? StudySpecimen::Layered
+                                 : StudySpecimen::Poured;
+  if (const SettingSummary* a =
+          expected_accuracy(dt_fraction, exp_->scene().numerics.precision, kind)) {
+    ImGui::PushTextWrapPos(0);
+    const ImVec4 grey = ImGui::GetStyle().Colors[ImGuiCol_TextDisabled];
+    ImGui::TextColored(grey, "%s", expected_accuracy_text(*a).c_str());
+    ImGui::PopTextWrapPos();
   }
+}
 
-  if (ImGui::CollapsingHeader("Save")) {
-    ImGui::SetNextItemWidth(300);
-    ImGui::InputText("folder", out_path_, sizeof out_path_);
-    const std::string dir = out_path_;
-    auto stamp = [&](const char* stem, const char* ext) {
-      std::filesystem::create_directories(dir);
-      const long long step = exp_->simulation() ? exp_->simulation()->steps() : 0;
-      return dir + "/" + stem + "_" + std::to_string(step) + ext;
-    };
-    if (ImGui::Button("Frame (PNG)")) {
-      const std::string f = stamp(view == LabView::Alioscopy ? "alioscopy" : "frame", ".png");
-      save_frame(f);
-      message_ = "saved " + f;
-    }
-    ImGui::SameLine();
-    ImGui::Checkbox("record frames", &record_);
-    ImGui::SameLine();
-    ImGui::SetNextItemWidth(80);
-    ImGui::InputInt("every", &record_every_);
-    if (ImGui::Button("Save checkpoint")) {
-      const std::string f = stamp("checkpoint", ".bin");
-      const std::string err = exp_->save_checkpoint(f);
-      message_ = err.empty() ? "saved " + f : err;
-    }
-    ImGui::SameLine();
-    if (ImGui::Button("Load checkpoint")) {
-      const std::string err = exp_->load_checkpoint(scene_path_);
-      message_ = err.empty() ? std::string("loaded ") + scene_path_ : err;
-    }
-    ImGui::SameLine();
-    if (ImGui::Button("Export CSV + plots")) {
-      const std::string err = exp_->export_results(dir);
-      message_ = err.empty() ? "exported into " + dir : err;
-    }
-    ImGui::TextDisabled("Load checkpoint reads the path in the scene field.");
+// Steps 2 to 4: apply the normal stress, start the shear, pause or step it,
+// and change the target stress or the shear speed while it runs.
+void LabApp::draw_loading_and_shear(LabStage stage) {
+  ImGui::BeginDisabled(stage != LabStage::Prepared);
+  if (ImGui::Button("Apply normal stress")) act(exp_->apply_normal_stress());
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::BeginDisabled(stage != LabStage::Loaded && stage != LabStage::Loading);
+  if (ImGui::Button("Start shear")) act(exp_->start_shear());
+  ImGui::EndDisabled();
+  if (ImGui::Button(exp_->paused() ? "Resume (space)" : "Pause (space)"))
+    exp_->paused() ? exp_->resume() : exp_->pause();
+  ImGui::SameLine();
+  if (ImGui::Button("Step (S)")) act(exp_->step());
+  ImGui::SetNextItemWidth(160);
+  if (ImGui::InputFloat("normal stress (kPa)", &sigma_kpa_, 10, 50, "%.0f",
+                        ImGuiInputTextFlags_EnterReturnsTrue))
+    act(exp_->set_normal_stress(double(sigma_kpa_) * 1e3));
+  if (ShearTest* t = exp_->test(); t && speed_mm_s_ == 0 && t->shear_speed() > 0)
+    speed_mm_s_ = float(t->shear_speed() * 1e3);
+  ImGui::SetNextItemWidth(160);
+  if (ImGui::InputFloat("shear speed (mm/s)", &speed_mm_s_, 0, 0, "%.4g",
+                        ImGuiInputTextFlags_EnterReturnsTrue))
+    act(exp_->set_shear_speed(double(speed_mm_s_) * 1e-3));
+}
+
+// The view, the beads' colour, the chain threshold and overlay, the camera.
+void LabApp::draw_view_settings() {
+  int v = int(view);
+  ImGui::SetNextItemWidth(200);
+  if (ImGui::Combo("view", &v, kViews, 6)) view = LabView(v);
+  if (view == LabView::Single) {
+    ImGui::SetNextItemWidth(200);
+    ImGui::SliderInt("view index", &single_view, 0, 7);
   }
+  int f = int(field);
+  ImGui::SetNextItemWidth(200);
+  if (ImGui::Combo("colour by", &f, kFields, 6)) field = ColorField(f);
+  ImGui::SetNextItemWidth(200);
+  ImGui::SliderFloat("chain threshold (F/F mean)", &threshold, 0, 4, "%.2f");
+  ImGui::Checkbox("force chains over the beads", &chains_overlay);
+  int p = int(preset_);
+  ImGui::SetNextItemWidth(200);
+  if (ImGui::Combo("camera", &p, kPresets, 4)) {
+    preset_ = render::ViewPreset(p);
+    fit_view();
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Fit (F)")) fit_view();
+}
+
+// Saving into the folder field: a frame, a frame sequence, a checkpoint,
+// the results; loading a checkpoint from the scene field.
+void LabApp::draw_save() {
+  ImGui::SetNextItemWidth(300);
+  ImGui::InputText("folder", out_path_, sizeof out_path_);
+  const std::string dir = out_path_;
+  auto stamp = [&](const char* stem, const char* ext) {
+    std::filesystem::create_directories(dir);
+    const long long step = exp_->simulation() ? exp_->simulation()->steps() : 0;
+    return dir + "/" + stem + "_" + std::to_string(step) + ext;
+  };
+  if (ImGui::Button("Frame (PNG)")) {
+    const std::string f = stamp(view == LabView::Alioscopy ? "alioscopy" : "frame", ".png");
+    save_frame(f);
+    message_ = "saved " + f;
+  }
+  ImGui::SameLine();
+  ImGui::Checkbox("record frames", &record_);
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(80);
+  ImGui::InputInt("every", &record_every_);
+  if (ImGui::Button("Save checkpoint")) {
+    const std::string f = stamp("checkpoint", ".bin");
+    const std::string err = exp_->save_checkpoint(f);
+    message_ = err.empty() ? "saved " + f : err;
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Load checkpoint")) {
+    const std::string err = exp_->load_checkpoint(scene_path_);
+    message_ = err.empty() ? std::string("loaded ") + scene_path_ : err;
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Export CSV + plots")) {
+    const std::string err = exp_->export_results(dir);
+    message_ = err.empty() ? "exported into " + dir : err;
+  }
+  ImGui::TextDisabled("Load checkpoint reads the path in the scene field.");
 }
 
 void LabApp::draw_plots() {

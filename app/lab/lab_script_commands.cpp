@@ -1,0 +1,209 @@
+// The lab script's commands, one handler each (docs/lab.md, "Scripts"):
+// each parses its own argument and calls the same action as the panel.
+// A handler that starts something sets the script's end condition (`until`),
+// so the next command waits until it is there. kCommands (lab_script.cpp)
+// maps the names to these handlers.
+#include <cmath>
+#include <cstdio>
+#include <functional>
+
+#include "app/lab/lab_script.h"
+#include "solver/io/output.h"
+#include "app/experiment/paper_tests.h"
+#include "solver/core/slots.h"
+#include "solver/scene/choices.h"
+
+namespace simsols {
+
+namespace {
+
+// A slot's choice by name (choices.h); false when the name is unknown.
+template <typename E>
+bool pick(E& field, const std::string& choice) {
+  const std::optional<E> v = parse_choice<E>(choice);
+  if (v) field = *v;
+  return v.has_value();
+}
+
+template <typename E>
+std::string names() {
+  std::string s;
+  for (const std::string& n : choice_names<E>()) s += (s.empty() ? "" : "|") + n;
+  return s;
+}
+
+// "damping viscous|none; tangential mindlin|none; ...": what `effect` takes.
+std::string effect_choices() {
+  return "damping " + names<DampingModel>() + "; tangential " + names<TangentialModel>() +
+         "; rolling " + names<RollingModel>() + "; cohesion " + names<CohesionModel>() +
+         "; fluid " + names<FluidModel>();
+}
+
+bool set_slot(Effects& e, const std::string& slot, const std::string& choice) {
+  if (slot == "damping") return pick(e.damping, choice);
+  if (slot == "tangential") return pick(e.tangential, choice);
+  if (slot == "rolling") return pick(e.rolling, choice);
+  if (slot == "cohesion") return pick(e.cohesion, choice);
+  if (slot == "fluid") return pick(e.fluid, choice);
+  return false;
+}
+
+}  // namespace
+
+// ------------------------------------------------------------ the specimen
+
+void LabApp::Script::choose_preset(const Line& line) {
+  double d = 0, kpa = 0;
+  if (std::sscanf(line.argument.c_str(), "%lf %lf", &d, &kpa) != 2)
+    return fail(line, "preset D_MM S_KPA", 2);
+  if (!succeeded(line, experiment().load_preset(d, kpa))) return;
+  lab.sigma_kpa_ = float(kpa);
+  const double size = nearest_table1_size(d).value_or(d);
+  for (int k = 0; k < 5; ++k)  // the panel's combo boxes follow
+    if (kTable1SizesMm[k] == size) lab.preset_size_ = k;
+  for (int k = 0; k < 4; ++k)
+    if (std::fabs(kPaperStressesKpa[k] - kpa) < 1e-9) lab.preset_stress_ = k;
+}
+
+void LabApp::Script::open_scene(const Line& line) {
+  succeeded(line, experiment().load_scene_file(line.argument));
+}
+
+void LabApp::Script::choose_precision(const Line& line) {
+  const std::optional<Precision> p = parse_choice<Precision>(line.argument);
+  if (!p) return fail(line, "precision " + names<Precision>(), 2);
+  experiment().set_precision(*p);
+}
+
+// the panel's slot choices: effect SLOT CHOICE (applies at the next prepare)
+void LabApp::Script::choose_effect(const Line& line) {
+  char slot[32] = {0}, choice[32] = {0};
+  if (std::sscanf(line.argument.c_str(), "%31s %31s", slot, choice) != 2)
+    return fail(line, "effect SLOT CHOICE, one of: " + effect_choices(), 2);
+  Effects e = experiment().scene().effects;
+  if (!set_slot(e, slot, choice))
+    return fail(line,
+                "effect " + line.argument + ": unknown slot or choice; allowed: " + effect_choices(),
+                2);
+  experiment().set_effects(e);
+}
+
+void LabApp::Script::prepare(const Line& line) {
+  LabExperiment& exp = experiment();
+  if (succeeded(line, exp.prepare())) until = [&exp] { return exp.stage() == LabStage::Prepared; };
+}
+
+// ------------------------------------------------------- loading and shear
+
+void LabApp::Script::apply_normal_stress(const Line& line) {
+  LabExperiment& exp = experiment();
+  if (succeeded(line, exp.apply_normal_stress()))
+    until = [&exp] { return exp.stage() == LabStage::Loaded; };
+}
+
+// Shearing starts at once from Loaded; scripts then move on with `rows` or
+// `steps` (paused until then, so a session is the same every time).
+void LabApp::Script::start_shear(const Line& line) {
+  LabExperiment& exp = experiment();
+  if (!succeeded(line, exp.start_shear())) return;
+  exp.pause();
+  until = [&exp] { return exp.stage() == LabStage::Shearing || exp.stage() == LabStage::Done; };
+}
+
+void LabApp::Script::run_rows(const Line& line) {
+  const std::optional<double> v = number(line);
+  if (!v) return;
+  LabExperiment& exp = experiment();
+  const std::size_t n = std::size_t(*v);
+  exp.pause_at(n, 0);
+  exp.resume();
+  until = [&exp, n] {
+    return !exp.test() || exp.test()->done() || (exp.test()->rows().size() >= n && exp.paused());
+  };
+}
+
+void LabApp::Script::run_steps(const Line& line) {
+  LabExperiment& exp = experiment();
+  const std::optional<double> v = number(line);
+  if (!v || !exp.simulation()) return;
+  const std::int64_t target = exp.simulation()->steps() + std::int64_t(*v);
+  exp.pause_at(0, target);
+  exp.resume();
+  until = [&exp, target] {
+    return !exp.simulation() || (exp.simulation()->steps() >= target && exp.paused());
+  };
+}
+
+void LabApp::Script::set_stress(const Line& line) {
+  const std::optional<double> kpa = number(line);
+  if (kpa && succeeded(line, experiment().set_normal_stress(*kpa * 1e3)))
+    lab.sigma_kpa_ = float(*kpa);
+}
+
+void LabApp::Script::set_speed(const Line& line) {
+  if (const std::optional<double> mm_s = number(line))
+    succeeded(line, experiment().set_shear_speed(*mm_s * 1e-3));
+}
+
+void LabApp::Script::pause(const Line&) { experiment().pause(); }
+
+void LabApp::Script::resume(const Line&) { experiment().resume(); }
+
+void LabApp::Script::step(const Line& line) { succeeded(line, experiment().step()); }
+
+// ---------------------------------------------------------------- the view
+
+void LabApp::Script::choose_view(const Line& line) {
+  const std::pair<const char*, LabView> views[] = {
+      {"opaque", LabView::Opaque},       {"transparent", LabView::Transparent},
+      {"chains", LabView::Chains},       {"alioscopy", LabView::Alioscopy},
+      {"grid", LabView::Grid},           {"single", LabView::Single}};
+  for (auto [name, view] : views)
+    if (line.argument == name) {
+      lab.view = view;
+      return;
+    }
+  fail(line, "view opaque|transparent|chains|alioscopy|grid|single", 2);
+}
+
+void LabApp::Script::choose_color(const Line& line) {
+  if (auto f = parse_color_field(line.argument)) lab.field = *f;
+  else fail(line, "color size|layer|speed|displacement|contacts|rotation", 2);
+}
+
+void LabApp::Script::choose_camera(const Line& line) {
+  const auto preset = render::parse_view_preset(line.argument);
+  if (!preset) return fail(line, "camera front|side|top|three-quarter", 2);
+  lab.preset_ = *preset;
+  lab.fit_view();
+}
+
+void LabApp::Script::wait_for_frames(const Line& line) {
+  if (const std::optional<double> n = number(line)) wait_frames = int(*n);
+}
+
+// ------------------------------------------------------------------ saving
+
+void LabApp::Script::take_screenshot(const Line& line) { screenshot = line.argument; }
+
+void LabApp::Script::save_frame(const Line& line) { lab.save_frame(line.argument); }
+
+void LabApp::Script::save_checkpoint(const Line& line) {
+  succeeded(line, experiment().save_checkpoint(line.argument));
+}
+
+void LabApp::Script::load_checkpoint(const Line& line) {
+  succeeded(line, experiment().load_checkpoint(line.argument));
+}
+
+void LabApp::Script::export_results(const Line& line) {
+  succeeded(line, experiment().export_results(line.argument));
+}
+
+void LabApp::Script::write_state(const Line& line) {
+  write_file_atomic(line.argument, lab.state_text());
+}
+
+void LabApp::Script::quit(const Line&) { lab.quit_ = true; }
+
+}  // namespace simsols
