@@ -9,12 +9,13 @@
 namespace simsols {
 
 Progress::Progress(std::string label, std::int64_t total_steps, double dt, std::int64_t particles,
-                   bool quiet)
+                   bool quiet, Clock clock, std::FILE* out)
     : label_(std::move(label)), total_(total_steps), particles_(particles), dt_(dt), quiet_(quiet),
-      tty_(isatty(fileno(stderr)) != 0), start_(std::chrono::steady_clock::now()), last_(start_) {}
+      clock_(std::move(clock)), out_(out), tty_(isatty(fileno(out)) != 0), start_(clock_()),
+      last_(start_) {}
 
 std::string Progress::line(std::int64_t step, bool final) const {
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const double wall = std::chrono::duration<double>(clock_() - start_).count();
   const double done = static_cast<double>(step - first_step_);
   const double rate = wall > 0 ? done / wall : 0;
   // No ETA until the rate means something (2 s of stepping); the last line
@@ -32,21 +33,21 @@ std::string Progress::line(std::int64_t step, bool final) const {
 }
 
 void Progress::update(std::int64_t step, bool force) {
-  if (first_step_ < 0) { first_step_ = step; start_ = std::chrono::steady_clock::now(); }
+  if (first_step_ < 0) { first_step_ = step; start_ = clock_(); }
   if (quiet_) return;
-  const auto now = std::chrono::steady_clock::now();
+  const auto now = clock_();
   const double since = std::chrono::duration<double>(now - last_).count();
   if (!force && since < (tty_ ? 0.5 : 5.0)) return;
   last_ = now;
-  if (tty_) std::fprintf(stderr, "\r%s\033[K", line(step, false).c_str());
-  else std::fprintf(stderr, "%s\n", line(step, false).c_str());
-  std::fflush(stderr);
+  if (tty_) std::fprintf(out_, "\r%s\033[K", line(step, false).c_str());
+  else std::fprintf(out_, "%s\n", line(step, false).c_str());
+  std::fflush(out_);
 }
 
 void Progress::finish(std::int64_t step) {
   if (quiet_) return;
   if (first_step_ < 0) first_step_ = step;
-  std::fprintf(stderr, tty_ ? "\r%s\033[K\n" : "%s\n", line(step, true).c_str());
+  std::fprintf(out_, tty_ ? "\r%s\033[K\n" : "%s\n", line(step, true).c_str());
 }
 
 }  // namespace simsols

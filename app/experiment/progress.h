@@ -5,14 +5,19 @@
 
 #include <chrono>
 #include <cstdint>
+#include <cstdio>
+#include <functional>
 #include <string>
 
 namespace simsols {
 
 class Progress {
  public:
+  using Clock = std::function<std::chrono::steady_clock::time_point()>;
+  // `clock` (wall time for the rate and ETA) and `out` (where the lines go;
+  // a terminal gets the redrawn line) are seams for tests.
   Progress(std::string label, std::int64_t total_steps, double dt, std::int64_t particles,
-           bool quiet);
+           bool quiet, Clock clock = std::chrono::steady_clock::now, std::FILE* out = stderr);
   void update(std::int64_t step, bool force = false);
   void finish(std::int64_t step);
 
@@ -21,7 +26,10 @@ class Progress {
   std::string label_;
   std::int64_t total_, first_step_ = -1, particles_;
   double dt_;
-  bool quiet_, tty_;
+  bool quiet_;
+  Clock clock_;
+  std::FILE* out_;
+  bool tty_;
   std::chrono::steady_clock::time_point start_, last_;
 };
 
