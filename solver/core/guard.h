@@ -6,9 +6,10 @@
 // times the 1 % a resolved contact reaches), so the run is no longer a DEM
 // computation but a runaway. A time step forced far above the limit does
 // this within a few hundred steps; a 10 m/s impact at the default step
-// moves a 2.38 mm bead by 0.3 % of its radius per step. (A bead outrunning
-// its neighbour list, moved beyond skin/2, is a different check: it is
-// counted in State::late_builds and reported as a warning.) The mark is the lowest such index and what was wrong
+// moves a bead by 0.15 % of its radius per step (test_guard.cpp). (A bead
+// outrunning its neighbour list, moved beyond skin/2, is a different
+// check: it is counted in State::late_builds and reported as a warning.)
+// The mark is the lowest such index and what was wrong
 // (flags[4], flags[5]).
 //
 // The host does not read the mark every step, which would stall a GPU.

@@ -1,6 +1,7 @@
 #include "solver/core/observe.h"
 
 #include <cstring>
+#include <numbers>
 
 #include "solver/core/kernel_args.h"
 #include "solver/core/pipeline.h"
@@ -29,6 +30,30 @@ std::vector<double> read_reals(const Model& m, const Buffer& b, size_t count, si
   return out;
 }
 
+namespace {
+
+double total_mass(const Scene& scene) {
+  double mass = 0;
+  for (const Particle& p : scene.particles)
+    mass += scene.materials[p.material].density * 4.0 / 3.0 * std::numbers::pi * p.radius *
+            p.radius * p.radius;
+  return mass;
+}
+
+// The device measures positions from the model's float frame (Model::
+// origin); moments about the scene origin add origin x P, and the
+// gravitational energy relative to it -M g.origin.
+void refer_to_scene_origin(const Model& m, Observables& o) {
+  const Vec3& c = m.origin();
+  if (c[0] == 0 && c[1] == 0 && c[2] == 0) return;
+  const Vec3 shift = cross(c, o.momentum);
+  for (int a = 0; a < 3; ++a) o.angular_momentum[a] += shift[a];
+  if (m.config().gravity)
+    o.gravitational_energy -= total_mass(m.scene()) * dot(m.scene().effects.gravity, c);
+}
+
+}  // namespace
+
 Observables observe(const Model& m, State& s) {
   constexpr int kObs = 12;  // NOBS in reduce.cl
   const Kernels& k = m.kernels();
@@ -51,6 +76,7 @@ Observables observe(const Model& m, State& s) {
   o.angular_momentum = {sum[7], sum[8], sum[9]};
   o.gravitational_energy = sum[10];
   o.particles = sum[11];
+  refer_to_scene_origin(m, o);
   return o;
 }
 

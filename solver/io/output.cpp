@@ -65,7 +65,12 @@ void write_file_atomic(const std::string& path, const std::string& content) {
       throw IoError("failed writing " + tmp + " (disk full?)");
     }
   }
-  std::filesystem::rename(tmp, path);
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    throw IoError("cannot write " + path + ": " + ec.message());
+  }
 }
 
 void write_particles_csv(const std::string& path, const ParticleSnapshot& p) {

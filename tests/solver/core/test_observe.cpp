@@ -154,11 +154,10 @@ TEST_P(Observe, MomentsAboutTheSceneOrigin) {
   check_moments(sim, {0, 0, 0});
 }
 
-// The same off the scene origin. Disabled: the device measures x from its
-// float frame's origin (reduce.cl's x_n is relative to Model::origin), so
-// both differ from observe.h's "about / relative to the scene origin" by
-// origin x p and -M g.origin.
-TEST_P(Observe, DISABLED_MomentsAboutTheSceneOriginOffCentre) {
+// The same off the scene origin: the device measures x from its float
+// frame's origin (Model::origin), and observe() adds origin x P and
+// -M g.origin so both are about / relative to the scene origin.
+TEST_P(Observe, MomentsAboutTheSceneOriginOffCentre) {
   Simulation sim(default_device(), observed_scene(GetParam(), kOffCentre));
   ASSERT_NE(sim.model().origin(), (Vec3{0, 0, 0}));
   sim.advance(3);
