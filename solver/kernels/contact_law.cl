@@ -41,6 +41,23 @@ typedef struct {
   lane energy;     // elastic normal energy 2/5 K_n d^{5/2}
 } ContactResult;
 
+// A particle's contacts summed (pair_forces, wall_contacts): force, torque,
+// energy (half of each pair contact's, all of a wall contact's) and the
+// number of contacts.
+typedef struct {
+  v3 f, t;
+  lane e, touching;
+} ContactSums;
+
+INLINE ContactSums no_contacts() {
+  ContactSums s;
+  s.f = v_zero();
+  s.t = v_zero();
+  s.e = (lane)0;
+  s.touching = (lane)0;
+  return s;
+}
+
 // Coefficients of each lane's material pair (kt_ratio = sqrt(6 G*/E*)).
 typedef struct {
   lane estar, gstar, gamma, mu_s, mu_r, kt_ratio;
