@@ -60,7 +60,8 @@ INLINE int own_lanes(int base, int n, __global const int* restrict nbr_upper, in
   return longest;
 }
 
-// What every pair of a lane's particle (i) needs of it.
+// What every contact of a lane's particle (i) needs of it (pair_forces,
+// wall_contacts).
 typedef struct {
   LanePos p;
   lane r, m, inertia;
@@ -71,21 +72,29 @@ typedef struct {
 #endif
 } Owner;
 
+// Each lane's particle's velocities, mass, inertia and material (and its
+// part of the rolling cap's divisor), o->r already gathered.
+INLINE void gather_motion(Owner* o, __global const real* restrict vel,
+                          __global const real* restrict omega,
+                          __global const int* restrict contacts_last, const int* ii) {
+  const Lane4 vmi = gather4(vel, ii), wmi = gather4(omega, ii);
+  o->v = vmi.xyz;
+  o->w = wmi.xyz;
+  o->m = vmi.w;
+  o->inertia = (real)0.4 * o->m * o->r * o->r;
+  LANE_STORE(wmi.w, o->row);
+#if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
+  o->cap = cap_count(contacts_last, ii);
+#endif
+}
+
 INLINE Owner gather_owner(__global const real* restrict pos POS_LO_SARG_FN,
                           __global const real* restrict vel, __global const real* restrict omega,
                           __global const int* restrict contacts_last, const int* ii) {
   Owner o;
   o.p = gather_pos(pos POS_LO_PASS, ii);
   o.r = gather(pos, ii, 3);
-  const Lane4 vmi = gather4(vel, ii), wmi = gather4(omega, ii);
-  o.v = vmi.xyz;
-  o.w = wmi.xyz;
-  o.m = vmi.w;
-  o.inertia = (real)0.4 * o.m * o.r * o.r;
-  LANE_STORE(wmi.w, o.row);
-#if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
-  o.cap = cap_count(contacts_last, ii);
-#endif
+  gather_motion(&o, vel, omega, contacts_last, ii);
   return o;
 }
 
