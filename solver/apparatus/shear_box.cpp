@@ -146,38 +146,45 @@ void place_pour(Scene& scene, const ShearBox& b) {
   }
 }
 
-void build(Scene& scene) {
-  ShearBox& b = *scene.shear_box;
-  check_box(b, scene);
-  ShearSpecimen& s = b.specimen;
-  if (s.method != ShearSpecimen::Method::Given) {
-    if (s.material < 0 || s.material >= static_cast<int>(scene.materials.size()))
-      fail("unknown_material", "specimen.material", "the specimen's material does not exist");
-    const double side = std::min(b.length, b.width);
-    require(s.diameter > 0 && s.diameter <= side, "specimen.diameter", s.diameter,
-            "(0, " + num(side) + "] m");
-    require(s.layers >= 1 && s.layers <= 200, "specimen.layers", s.layers, "[1, 200]");
-    const double beads = double(beads_per_layer(b, s.diameter)) * s.layers;
-    if (beads > 2e7)
-      fail("out_of_range", "specimen.diameter",
-           "the specimen would hold " + num(beads) + " beads (limit 2e7)");
-    if (!scene.particles.empty())
-      fail("conflicting_keys", "specimen.method",
-           "the scene lists particles; use specimen.method = \"given\" to shear them");
-    if (s.method == ShearSpecimen::Method::Layers)
-      place_layers(scene, b);
-    else
-      place_pour(scene, b);
-  }
+// Checks the specimen's settings and places its beads (Layers, Pour); a
+// Given specimen is the scene's own particles.
+void place_specimen(Scene& scene, const ShearBox& b) {
+  const ShearSpecimen& s = b.specimen;
+  if (s.method == ShearSpecimen::Method::Given) return;
+  if (s.material < 0 || s.material >= static_cast<int>(scene.materials.size()))
+    fail("unknown_material", "specimen.material", "the specimen's material does not exist");
+  const double side = std::min(b.length, b.width);
+  require(s.diameter > 0 && s.diameter <= side, "specimen.diameter", s.diameter,
+          "(0, " + num(side) + "] m");
+  require(s.layers >= 1 && s.layers <= 200, "specimen.layers", s.layers, "[1, 200]");
+  const double beads = double(beads_per_layer(b, s.diameter)) * s.layers;
+  if (beads > 2e7)
+    fail("out_of_range", "specimen.diameter",
+         "the specimen would hold " + num(beads) + " beads (limit 2e7)");
+  if (!scene.particles.empty())
+    fail("conflicting_keys", "specimen.method",
+         "the scene lists particles; use specimen.method = \"given\" to shear them");
+  if (s.method == ShearSpecimen::Method::Layers)
+    place_layers(scene, b);
+  else
+    place_pour(scene, b);
+}
+
+// The specimen's smallest and largest radius and the heights its beads
+// reach; every bead must lie inside the box.
+struct SpecimenExtent {
+  double r_min, r_max, top, bottom;
+};
+
+SpecimenExtent measure_specimen(const Scene& scene, const ShearBox& b) {
   if (scene.particles.empty())
     fail("out_of_range", "specimen.method", "the specimen has no beads (the scene lists none)");
-
-  double r_min = scene.particles[0].radius, r_max = 0, top = 0, bottom = 1e300;
+  SpecimenExtent e{scene.particles[0].radius, 0, 0, 1e300};
   for (const Particle& p : scene.particles) {
-    r_min = std::min(r_min, p.radius);
-    r_max = std::max(r_max, p.radius);
-    top = std::max(top, p.position[2] + p.radius);
-    bottom = std::min(bottom, p.position[2] - p.radius);
+    e.r_min = std::min(e.r_min, p.radius);
+    e.r_max = std::max(e.r_max, p.radius);
+    e.top = std::max(e.top, p.position[2] + p.radius);
+    e.bottom = std::min(e.bottom, p.position[2] - p.radius);
     const bool inside = p.position[0] >= p.radius && p.position[0] <= b.length - p.radius &&
                         p.position[1] >= p.radius && p.position[1] <= b.width - p.radius &&
                         p.position[2] >= p.radius;
@@ -186,39 +193,41 @@ void build(Scene& scene) {
            "a bead at (" + num(p.position[0]) + ", " + num(p.position[1]) + ", " +
                num(p.position[2]) + ") is not inside the box [0, length] x [0, width] x [0, inf)");
   }
-  if (b.gap == 0) b.gap = 0.2 * 2 * r_min;
-  require(b.gap < r_min, "gap", b.gap, "[0, " + num(r_min) + ") m (below the smallest radius)");
-  if (b.split_height == 0) {
-    if (s.method == ShearSpecimen::Method::Layers) {
-      // Between the two layers nearest mid-height (the lower half holds
-      // floor(layers/2)), at the height they reach once every layer has
-      // nested into the one below as far as the row-wall clearance lets it
-      // shift (at most half a diameter each way: d/sqrt(2) apart).
-      const double d = s.diameter;
-      const LayerGrid grid = layer_grid(b, d);
-      const double cx = std::min(0.5 * d, b.length - grid.nx * d);
-      const double cy = std::min(0.5 * d, b.width - grid.ny * d);
-      const double spacing = s.clearance == ShearSpecimen::Clearance::Spread
-                                 ? d
-                                 : std::sqrt(d * d - cx * cx - cy * cy);
-      const int lower = std::max(1, s.layers / 2);
-      b.split_height = s.layers == 1 ? d / 2 : d / 2 + (lower - 0.5) * spacing;
-    } else {
-      // Mid-height of the given beads, or of a pour once settled (its
-      // volume at a solid fraction of 0.6).
-      double height = top - bottom;
-      if (s.method == ShearSpecimen::Method::Pour) {
-        double volume = 0;
-        for (const Particle& p : scene.particles)
-          volume += 4.0 / 3.0 * M_PI * std::pow(p.radius, 3);
-        height = volume / (0.6 * b.length * b.width);
-      }
-      b.split_height = bottom + 0.5 * height;
-    }
-  }
-  require(b.split_height > b.gap && b.split_height < top, "split_height", b.split_height,
-          "(" + num(b.gap) + ", " + num(top) + ") m (inside the specimen)");
+  return e;
+}
 
+// The automatic split height (split_height = 0).
+double default_split_height(const Scene& scene, const ShearBox& b, const SpecimenExtent& e) {
+  const ShearSpecimen& s = b.specimen;
+  if (s.method == ShearSpecimen::Method::Layers) {
+    // Between the two layers nearest mid-height (the lower half holds
+    // floor(layers/2)), at the height they reach once every layer has
+    // nested into the one below as far as the row-wall clearance lets it
+    // shift (at most half a diameter each way: d/sqrt(2) apart).
+    const double d = s.diameter;
+    const LayerGrid grid = layer_grid(b, d);
+    const double cx = std::min(0.5 * d, b.length - grid.nx * d);
+    const double cy = std::min(0.5 * d, b.width - grid.ny * d);
+    const double spacing = s.clearance == ShearSpecimen::Clearance::Spread
+                               ? d
+                               : std::sqrt(d * d - cx * cx - cy * cy);
+    const int lower = std::max(1, s.layers / 2);
+    return s.layers == 1 ? d / 2 : d / 2 + (lower - 0.5) * spacing;
+  }
+  // Mid-height of the given beads, or of a pour once settled (its
+  // volume at a solid fraction of 0.6).
+  double height = e.top - e.bottom;
+  if (s.method == ShearSpecimen::Method::Pour) {
+    double volume = 0;
+    for (const Particle& p : scene.particles) volume += 4.0 / 3.0 * M_PI * std::pow(p.radius, 3);
+    height = volume / (0.6 * b.length * b.width);
+  }
+  return e.bottom + 0.5 * height;
+}
+
+// The box's material: the scene's "steel" when none is named, added when
+// the scene has none.
+void resolve_wall_material(Scene& scene, ShearBox& b) {
   if (b.wall_material < 0) {
     b.wall_material = scene.material_index("steel");
     if (b.wall_material < 0) {
@@ -228,13 +237,16 @@ void build(Scene& scene) {
   }
   if (b.wall_material >= static_cast<int>(scene.materials.size()))
     fail("unknown_material", "wall_material", "the box material does not exist");
+}
 
+// The twelve walls (shear_box.h), from b.first_wall on.
+void add_walls(Scene& scene, ShearBox& b, const SpecimenExtent& e) {
   // Geometry: plates reach a little past the corners; the upper half is
   // tall enough for the platen's start and a generous dilation.
   const int m = b.wall_material;
   const double L = b.length, W = b.width, zs = b.split_height, g = b.gap;
-  const double platen_z = top + 0.1 * 2 * r_max;
-  const double upper_top = platen_z + 4 * r_max + 0.5 * b.shear_displacement;
+  const double platen_z = e.top + 0.1 * 2 * e.r_max;
+  const double upper_top = platen_z + 4 * e.r_max + 0.5 * b.shear_displacement;
   const double low_h = zs - g / 2, up_lo = zs + g / 2, up_h = upper_top - up_lo;
   const Vec3 ex{1, 0, 0}, ey{0, 1, 0}, ez{0, 0, 1};
   b.first_wall = static_cast<int>(scene.walls.size());
@@ -248,7 +260,7 @@ void build(Scene& scene) {
   // by dx, the top face of its x0 wall closes the opening x in [0, dx] under
   // the upper half, and the bottom face of the upper half's x1 wall closes
   // x in [L, L + dx] over the lower half. Plates as wide as the travel.
-  const double frame = b.shear_displacement + 2 * r_max;
+  const double frame = b.shear_displacement + 2 * e.r_max;
   w.push_back(rectangle("lower_frame", m, {-frame / 2, W / 2, zs - g / 2}, ez, ex, frame / 2,
                         W / 2));
   const double zu = up_lo + up_h / 2;
@@ -266,6 +278,20 @@ void build(Scene& scene) {
   platen.servo.gain = 1;
   platen.servo.max_speed = b.servo_max_speed;
   w.push_back(platen);
+}
+
+void build(Scene& scene) {
+  ShearBox& b = *scene.shear_box;
+  check_box(b, scene);
+  place_specimen(scene, b);
+  const SpecimenExtent e = measure_specimen(scene, b);
+  if (b.gap == 0) b.gap = 0.2 * 2 * e.r_min;
+  require(b.gap < e.r_min, "gap", b.gap, "[0, " + num(e.r_min) + ") m (below the smallest radius)");
+  if (b.split_height == 0) b.split_height = default_split_height(scene, b, e);
+  require(b.split_height > b.gap && b.split_height < e.top, "split_height", b.split_height,
+          "(" + num(b.gap) + ", " + num(e.top) + ") m (inside the specimen)");
+  resolve_wall_material(scene, b);
+  add_walls(scene, b, e);
 }
 
 }  // namespace

@@ -40,15 +40,24 @@ Buffer State::make(Device& d, size_t bytes, const void* init) {
 }
 
 State::State(const Model& model) {
-  Device& d = model.device();
-  const Scene& s = model.scene();
-  const bool dbl = model.config().double_precision;
-  const size_t r4 = 4 * model.real_size();
   n = model.particles();
   slices = (n + model.config().slice - 1) / model.config().slice;
   table = next_pow2(n);  // ~1-2 buckets per particle (one cell holds about one)
   chunk_len = (table + chunks - 1) / chunks;
+  const float v2_start = make_particles(model);
+  make_lists(model);
+  make_grid(model.device());
+  make_walls(model);
+  make_servo(model);
+  make_flags(model, v2_start);
+  make_step_scratch(model);
+}
 
+float State::make_particles(const Model& model) {
+  Device& d = model.device();
+  const Scene& s = model.scene();
+  const bool dbl = model.config().double_precision;
+  const size_t r4 = 4 * model.real_size();
   RealPacker p(dbl), lo(false), v(dbl), w(dbl);
   const Vec3& o = model.origin();
   float v2_start = 0;  // the largest |v|^2 at the start: the first list check's interval
@@ -74,25 +83,38 @@ State::State(const Model& model) {
   force = make(d, n * r4);
   torque = make(d, n * r4);
   pos_build = make(d, n * 16);  // float4 in every precision (integrate.cl)
+  return v2_start;
+}
 
+void State::make_lists(const Model& model) {
+  Device& d = model.device();
   nbr_count = make(d, n * sizeof(int));
   nbr_upper = make(d, n * sizeof(int));
   old_upper = make(d, n * sizeof(int));
   up_off = make(d, (slices + 1) * sizeof(std::uint32_t));
   lo_off = make(d, (slices + 1) * sizeof(std::uint32_t));
   old_up_off = make(d, (slices + 1) * sizeof(std::uint32_t));
-  resize_lists(model, initial_slots(s, n), initial_slots(s, n));
+  const int slots = initial_slots(model.scene(), n);
+  resize_lists(model, slots, slots);
+}
 
+void State::make_grid(Device& d) {
   bucket = make(d, n * sizeof(std::uint32_t));
   slot = make(d, n * sizeof(std::uint32_t));
   cell_count = make(d, table * sizeof(std::uint32_t));
   cell_start = make(d, table * sizeof(std::uint32_t));
   sorted = make(d, n * sizeof(int));
   chunk_sum = make(d, chunks * sizeof(std::uint32_t));
+}
 
+void State::make_walls(const Model& model) {
+  Device& d = model.device();
+  const bool dbl = model.config().double_precision;
+  const size_t r4 = 4 * model.real_size();
+  const Vec3& o = model.origin();
   const int nw = model.walls();
   RealPacker wp(dbl), wlo(false), wv(dbl);
-  for (const Wall& wall : s.walls) {
+  for (const Wall& wall : model.scene().walls) {
     double rel[3];
     for (int a = 0; a < 3; ++a) rel[a] = wall.point[a] - o[a];
     wp.put4(rel[0], rel[1], rel[2], 0);
@@ -104,29 +126,43 @@ State::State(const Model& model) {
   wall_vel = make(d, nw * r4, wv.data());
   wall_touch = make(d, n * sizeof(int));
   // no wall near any particle and no slot until the first list build (the
-  // first step's: flags[0] below)
+  // first step's: flags[0], make_flags)
   wall_near = make(d, nw ? n * sizeof(int) : 16);
   old_wall_near = make(d, nw ? n * sizeof(int) : 16);
   wall_off = make(d, (slices + 1) * sizeof(std::uint32_t));
   old_wall_off = make(d, (slices + 1) * sizeof(std::uint32_t));
   resize_walls(model, 0);
+}
+
+void State::make_servo(const Model& model) {
+  Device& d = model.device();
+  const size_t r4 = 4 * model.real_size();
+  const int nw = model.walls();
   wall_reaction = make(d, std::max(1, nw) * r4);
   wall_mean = make(d, std::max(1, nw) * r4);
-  RealPacker sv(dbl);
-  for (const Wall& wall : s.walls) {
+  RealPacker sv(model.config().double_precision);
+  for (const Wall& wall : model.scene().walls) {
     const std::array<double, 8> c = servo_record(wall.servo);
     sv.put4(c[0], c[1], c[2], c[3]);
     sv.put4(c[4], c[5], c[6], c[7]);
   }
   servo = make(d, std::max(1, nw) * 2 * r4, nw ? sv.data() : nullptr);
+}
 
+void State::make_flags(const Model& model, float v2_start) {
   // the first step builds the lists, and sets the next check from the
   // fastest particle's start speed (flags[2], float bits), so a scene that
   // starts fast is checked as often as one that became fast; no runaway mark
   int v2_bits = 0;
   std::memcpy(&v2_bits, &v2_start, sizeof v2_bits);
   const int init_flags[8] = {1, 0, v2_bits, 0, kNoRunaway, 0, 0, 0};
-  flags = make(d, sizeof init_flags, init_flags);
+  flags = make(model.device(), sizeof init_flags, init_flags);
+}
+
+void State::make_step_scratch(const Model& model) {
+  Device& d = model.device();
+  const size_t r4 = 4 * model.real_size();
+  const int nw = model.walls();
   // only the constant rolling torque shares its cap (forces.cl)
   const bool shared_cap = model.config().rolling && !model.config().rolling_spring;
   touching = make(d, shared_cap ? n * sizeof(int) : 16);

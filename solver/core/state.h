@@ -134,6 +134,19 @@ class State {
 
  private:
   Buffer make(Device& d, size_t bytes, const void* init = nullptr);
+  // The constructor's parts, in its order. The particle records from the
+  // scene; returns the largest |v|^2 at the start (the first list check's).
+  float make_particles(const Model& model);
+  // Empty lists: per-particle lengths, slice offsets, the initial slots.
+  void make_lists(const Model& model);
+  void make_grid(Device& d);
+  // The walls' points and velocities, their per-particle masks, no slots.
+  void make_walls(const Model& model);
+  // The servo records (servo_record) and the readings.
+  void make_servo(const Model& model);
+  void make_flags(const Model& model, float v2_start);
+  // touching, the observables' and the walls' reduction partials.
+  void make_step_scratch(const Model& model);
 };
 
 // Slot k of particle i's list given its slice offsets: SLOT in common.cl.

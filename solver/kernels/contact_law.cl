@@ -41,6 +41,23 @@ typedef struct {
   lane energy;     // elastic normal energy 2/5 K_n d^{5/2}
 } ContactResult;
 
+// A particle's contacts summed (pair_forces, wall_contacts): force, torque,
+// energy (half of each pair contact's, all of a wall contact's) and the
+// number of contacts.
+typedef struct {
+  v3 f, t;
+  lane e, touching;
+} ContactSums;
+
+INLINE ContactSums no_contacts() {
+  ContactSums s;
+  s.f = v_zero();
+  s.t = v_zero();
+  s.e = (lane)0;
+  s.touching = (lane)0;
+  return s;
+}
+
 // Coefficients of each lane's material pair (kt_ratio = sqrt(6 G*/E*)).
 typedef struct {
   lane estar, gstar, gamma, mu_s, mu_r, kt_ratio;
@@ -204,11 +221,81 @@ INLINE lane normal_force(lane fel, lane delta, lane qd, lane vn, lane cn, lane m
 }
 #endif
 
+// A stored spring (the tangential one, the elastic rolling torque) rotated
+// into the current tangent plane, keeping its length.
+INLINE v3 into_tangent_plane(v3 x, v3 n) {
+  const real tiny = (real)1e-30;
+  const lane x2 = v_dot(x, x);
+  const v3 xp = v_sub(x, v_mul(v_dot(x, n), n));
+  const lane p2 = v_dot(xp, xp);
+  return v_mul(SEL(p2 > tiny, sqrt(x2 / fmax(p2, tiny)), (lane)0), xp);
+}
+
+#ifdef HAS_FRICTION
+// The tangential force F_t on i from the tangential velocity vt, with the
+// spring xi (*spring) carried into this step; kt the spring's stiffness,
+// ct its dashpot's coefficient (0 without damping).
+INLINE v3 tangential_force(v3 n, v3 vt, lane fn, lane kt, lane ct, lane mu_s, real dt,
+                           v3* spring) {
+  const real tiny = (real)1e-30;
+  v3 xi = into_tangent_plane(*spring, n);
+  xi = v_add(xi, v_mul((lane)dt, vt));
+  v3 ft = v_mul(-kt, xi);
+#ifdef HAS_DAMPING
+  ft = v_sub(ft, v_mul(ct, vt));
+#endif
+  const lane ftmax = mu_s * fn;
+  const lane ft2 = v_dot(ft, ft);
+  const lmask sliding = ft2 > ftmax * ftmax;  // Coulomb limit: scale, make the spring consistent
+  ft = v_mul(SEL(sliding, ftmax * rsqrt(fmax(ft2, tiny)), (lane)1), ft);
+  xi = v_sel(sliding, v_mul(-1 / kt, v_add(ft, v_mul(ct, vt))), xi);
+  *spring = xi;
+  return ft;
+}
+#endif
+
+#ifdef HAS_ROLLING
+#ifdef HAS_ROLLING_SPRING
+// The rolling torque on i from the rolling velocity wr (wrel without its
+// component along n): Ai et al. (2011) model C, elastic-plastic
+// spring-dashpot; the elastic torque M_k in *roll_spring. sqrt_r sd is
+// sqrt(R* d).
+INLINE v3 rolling_torque(v3 n, v3 wr, lane fn, lane istar, PairLanes c, lane sqrt_r, lane sd,
+                         real dt, v3* roll_spring, real rolling_damping) {
+  const real tiny2 = (real)1e-36;  // representable in float
+  const lane mmax = c.mu_r * fn;
+  const lane kr = (real)2.25 * c.mu_r * c.mu_r * (real)2 * c.estar * sqrt_r * sd;
+  v3 mk = into_tangent_plane(*roll_spring, n);
+  mk = v_sub(mk, v_mul(kr * dt, wr));
+  const lane mk_len2 = v_dot(mk, mk);
+  const lmask plastic = mk_len2 >= mmax * mmax;
+  mk = v_mul(SEL(plastic, mmax * rsqrt(fmax(mk_len2, tiny2)), (lane)1), mk);
+  *roll_spring = mk;
+  const lane cr = SEL(plastic, (lane)0, rolling_damping * (real)2 * sqrt((real)3.5 * istar * kr));
+  v3 m = v_sub(mk, v_mul(cr, wr));
+  const lane m2 = v_dot(m, m);
+  return v_mul(SEL(m2 > mmax * mmax, mmax * rsqrt(fmax(m2, tiny2)), (lane)1), m);
+}
+#else
+// The rolling torque on i from the rolling velocity wr (wrel without its
+// component along n): constant torque mu_r F_n, but never more than what
+// stops the relative rolling within this step: no chatter around w_r = 0
+// and no creep. (The spring-dashpot's history and parameters are unused.)
+INLINE v3 rolling_torque(v3 n, v3 wr, lane fn, lane istar, PairLanes c, lane sqrt_r, lane sd,
+                         real dt, v3* roll_spring, real rolling_damping) {
+  const real tiny2 = (real)1e-36;  // representable in float
+  const lane wr2 = v_dot(wr, wr);
+  const lane inv_wm = rsqrt(fmax(wr2, tiny2));
+  const lane m = fmin(c.mu_r * fn, istar * (wr2 * inv_wm) * (1 / dt));
+  return v_mul(-SEL(wr2 > tiny2, m * inv_wm, (lane)0), wr);
+}
+#endif
+#endif
+
 INLINE ContactResult contact_law_h(lane delta, v3 n, v3 vrel, v3 wrel, lane rstar,
                                    lane mstar, lane istar, PairLanes c, real dt, v3* spring,
                                    lane* dashpot, v3* roll_spring, real rolling_damping) {
   ContactResult out;
-  const real tiny = (real)1e-30;
   const lane sd = sqrt(delta);
   const lane sqrt_r = sqrt(rstar);
   const lane kn = (real)(4.0 / 3.0) * c.estar * sqrt_r;
@@ -227,63 +314,21 @@ INLINE ContactResult contact_law_h(lane delta, v3 n, v3 vrel, v3 wrel, lane rsta
   out.rolling = v_zero();
 
 #ifdef HAS_FRICTION
-  const v3 vt = v_sub(vrel, v_mul(vn, n));
-  v3 xi = *spring;
-  // rotate the stored spring into the current tangent plane, keeping its length
-  const lane xi2 = v_dot(xi, xi);
-  const v3 xp = v_sub(xi, v_mul(v_dot(xi, n), n));
-  const lane p2 = v_dot(xp, xp);
-  xi = v_mul(SEL(p2 > tiny, sqrt(xi2 / fmax(p2, tiny)), (lane)0), xp);
-  xi = v_add(xi, v_mul((lane)dt, vt));
   const lane kt = (real)8 * c.gstar * sqrt_r * sd;
-  v3 ft = v_mul(-kt, xi);
 #ifdef HAS_DAMPING
   // gamma sqrt(m* k_t) = gamma sqrt(m* K_n) sqrt(k_t / K_n), k_t / K_n = 6 G*/E* sqrt(d)
   const lane ct = cn * c.kt_ratio * qd;
-  ft = v_sub(ft, v_mul(ct, vt));
 #else
   const lane ct = (lane)0;
 #endif
-  const lane ftmax = c.mu_s * fn;
-  const lane ft2 = v_dot(ft, ft);
-  const lmask sliding = ft2 > ftmax * ftmax;  // Coulomb limit: scale, make the spring consistent
-  ft = v_mul(SEL(sliding, ftmax * rsqrt(fmax(ft2, tiny)), (lane)1), ft);
-  xi = v_sel(sliding, v_mul(-1 / kt, v_add(ft, v_mul(ct, vt))), xi);
-  *spring = xi;
+  const v3 ft = tangential_force(n, v_sub(vrel, v_mul(vn, n)), fn, kt, ct, c.mu_s, dt, spring);
   out.force = v_add(out.force, ft);
   out.n_cross_ft = v_cross(n, ft);
 #endif
 
 #ifdef HAS_ROLLING
   const v3 wr = v_sub(wrel, v_mul(v_dot(wrel, n), n));
-  const lane wr2 = v_dot(wr, wr);
-  const real tiny2 = (real)1e-36;  // representable in float
-#ifdef HAS_ROLLING_SPRING
-  // Ai et al. (2011) model C: elastic-plastic spring-dashpot.
-  const lane mmax = c.mu_r * fn;
-  const lane kr = (real)2.25 * c.mu_r * c.mu_r * (real)2 * c.estar * sqrt_r * sd;
-  v3 mk = *roll_spring;
-  const lane mk2 = v_dot(mk, mk);
-  const v3 mp = v_sub(mk, v_mul(v_dot(mk, n), n));
-  const lane mp2 = v_dot(mp, mp);
-  mk = v_mul(SEL(mp2 > tiny, sqrt(mk2 / fmax(mp2, tiny)), (lane)0), mp);
-  mk = v_sub(mk, v_mul(kr * dt, wr));
-  const lane mk_len2 = v_dot(mk, mk);
-  const lmask plastic = mk_len2 >= mmax * mmax;
-  mk = v_mul(SEL(plastic, mmax * rsqrt(fmax(mk_len2, tiny2)), (lane)1), mk);
-  *roll_spring = mk;
-  const lane cr = SEL(plastic, (lane)0, rolling_damping * (real)2 * sqrt((real)3.5 * istar * kr));
-  v3 m = v_sub(mk, v_mul(cr, wr));
-  const lane m2 = v_dot(m, m);
-  m = v_mul(SEL(m2 > mmax * mmax, mmax * rsqrt(fmax(m2, tiny2)), (lane)1), m);
-  out.rolling = m;
-#else
-  // Constant torque mu_r F_n, but never more than what stops the relative
-  // rolling within this step: no chatter around w_r = 0 and no creep.
-  const lane inv_wm = rsqrt(fmax(wr2, tiny2));
-  const lane m = fmin(c.mu_r * fn, istar * (wr2 * inv_wm) * (1 / dt));
-  out.rolling = v_mul(-SEL(wr2 > tiny2, m * inv_wm, (lane)0), wr);
-#endif
+  out.rolling = rolling_torque(n, wr, fn, istar, c, sqrt_r, sd, dt, roll_spring, rolling_damping);
 #endif
   return out;
 }

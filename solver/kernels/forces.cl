@@ -30,8 +30,7 @@
 // every slot ends (zeros), the partners' shares are zero (the force as
 // -0, as the law's path leaves it), and the sums get the +0 that path adds.
 INLINE void apart(__global real* spring, __global real* share,
-                  int slot, size_t at, size_t plane, v3* f, v3* t, lane* e,
-                  lane* touching) {
+                  int slot, size_t at, size_t plane, ContactSums* sum) {
 #ifdef HAS_CONTACT_RECORD
   store_slots(spring, at, v_zero(), (lane)0);
 #endif
@@ -39,10 +38,216 @@ INLINE void apart(__global real* spring, __global real* share,
   store_slots(spring + 4 * HIST_ROLL * plane, at, v_zero(), (lane)0);
 #endif
   store_shares(share, slot, v_neg(v_zero()), (lane)0, v_zero(), (lane)0);
-  *f = v_add(*f, v_zero());
-  *t = v_add(*t, v_zero());
-  *e += (lane)0;
-  *touching += (lane)0;
+  sum->f = v_add(sum->f, v_zero());
+  sum->t = v_add(sum->t, v_zero());
+  sum->e += (lane)0;
+  sum->touching += (lane)0;
+}
+
+// The work item's particles, one per lane (past n, lanes stand in with the
+// last particle and own no pairs), and the pairs each owns (the upper part
+// of its list); returns the most pairs a lane owns.
+INLINE int own_lanes(int base, int n, __global const int* restrict nbr_upper, int* ii, int* valid,
+                     int* len) {
+  int longest = 0;
+#pragma unroll
+  for (int l = 0; l < LANES; ++l) {
+    valid[l] = base + l < n;
+    ii[l] = valid[l] ? base + l : n - 1;
+    len[l] = valid[l] ? nbr_upper[ii[l]] : 0;  // the pairs this particle owns
+    longest = max(longest, len[l]);
+  }
+  return longest;
+}
+
+// What every contact of a lane's particle (i) needs of it (pair_forces,
+// wall_contacts).
+typedef struct {
+  LanePos p;
+  lane r, m, inertia;
+  v3 v, w;
+  real row[LANES];  // material: the particle's row of the pair table
+#if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
+  lane cap;  // the bead's part of the rolling cap's divisor
+#endif
+} Owner;
+
+// Each lane's particle's velocities, mass, inertia and material (and its
+// part of the rolling cap's divisor), o->r already gathered.
+INLINE void gather_motion(Owner* o, __global const real* restrict vel,
+                          __global const real* restrict omega,
+                          __global const int* restrict contacts_last, const int* ii) {
+  const Lane4 vmi = gather4(vel, ii), wmi = gather4(omega, ii);
+  o->v = vmi.xyz;
+  o->w = wmi.xyz;
+  o->m = vmi.w;
+  o->inertia = (real)0.4 * o->m * o->r * o->r;
+  LANE_STORE(wmi.w, o->row);
+#if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
+  o->cap = cap_count(contacts_last, ii);
+#endif
+}
+
+INLINE Owner gather_owner(__global const real* restrict pos POS_LO_SARG_FN,
+                          __global const real* restrict vel, __global const real* restrict omega,
+                          __global const int* restrict contacts_last, const int* ii) {
+  Owner o;
+  o.p = gather_pos(pos POS_LO_PASS, ii);
+  o.r = gather(pos, ii, 3);
+  gather_motion(&o, vel, omega, contacts_last, ii);
+  return o;
+}
+
+// Each lane's partner in slot q of its list (the upper slots from `slot`
+// on, one per lane); a lane past its list stands in with its own particle.
+INLINE void list_partners(int q, int slot, const int* len, const int* ii,
+                          __global const int* restrict nbr, int* listed, int* jj) {
+#pragma unroll
+  for (int l = 0; l < LANES; ++l) {
+    listed[l] = q < len[l];  // a lane past n lists nothing
+    jj[l] = listed[l] ? nbr[slot + l] : ii[l];
+  }
+}
+
+// Where each lane's partner lies: the separation d from i to it, its radius
+// and the radii's sum, and whether the two touch (`on`).
+typedef struct {
+  v3 d;
+  lane rj, rsum, d2;
+  lmask on;
+} PairGap;
+
+INLINE PairGap pair_gap(__global const real* restrict pos POS_LO_SARG_FN, const Owner* o,
+                        const int* jj, const int* listed) {
+  const Lane4 pr = gather4(pos, jj);
+  LanePos pj;
+  pj.hi = pr.xyz;
+#ifdef POS_COMPENSATED
+  pj.lo = gather4((__global const real*)pos_lo, jj).xyz;
+#else
+  pj.lo = v_zero();
+#endif
+  PairGap g;
+  g.d = separation(o->p, pj);
+  g.rj = pr.w;
+  g.rsum = o->r + g.rj;
+  g.d2 = v_dot(g.d, g.d);
+  g.on = mask_of(listed) & (g.d2 < g.rsum * g.rsum) & (g.d2 > (real)0);
+  return g;
+}
+
+// The contact's normal (i towards its partner), overlap and lever arms from
+// the centres to the common contact point; lanes that do not touch get the
+// stand-in of half-overlapping spheres along x.
+typedef struct {
+  v3 nv;
+  lane delta, ai, aj;
+} PairContact;
+
+INLINE PairContact pair_contact(PairGap g, lane ri) {
+  const lane inv_dist = SEL(g.on, rsqrt(g.d2), 2 / g.rsum);
+  const lane dist = SEL(g.on, g.d2 * inv_dist, (real)0.5 * g.rsum);
+  PairContact k;
+  k.nv = v_sel(g.on, v_mul(inv_dist, g.d), V3((lane)1, (lane)0, (lane)0));
+  k.delta = g.rsum - dist;
+  k.ai = ri - (real)0.5 * k.delta;  // lever arms to the common contact point
+  k.aj = g.rj - (real)0.5 * k.delta;
+  return k;
+}
+
+// Each lane's row of the pair table (materials of i and its partner); with
+// one material the table has one row and `pair` is not read.
+INLINE void pair_rows(const Owner* o, lane mat_j_lanes, int nmat, int* pair) {
+  if (nmat > 1) {
+    real mat_j[LANES];
+    LANE_STORE(mat_j_lanes, mat_j);
+#pragma unroll
+    for (int l = 0; l < LANES; ++l) pair[l] = (int)o->row[l] * nmat + (int)mat_j[l];
+  }
+}
+
+// Velocity of i's contact point relative to its partner's.
+INLINE v3 contact_velocity(const Owner* o, v3 vj, v3 wj, PairContact k) {
+  return v_sub(v_add(o->v, v_cross(o->w, v_mul(k.ai, k.nv))),
+               v_add(vj, v_cross(wj, v_neg(v_mul(k.aj, k.nv)))));
+}
+
+// The pair's reduced moment of inertia, as the rolling cap sees it.
+INLINE lane pair_istar(const Owner* o, lane mj, lane rj,
+                       __global const int* restrict contacts_last, const int* jj) {
+  const lane inertia_j = (real)0.4 * mj * rj * rj;
+#if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
+  // the constant torque's cap is shared among the contacts (see above)
+  return o->inertia * inertia_j / (o->inertia + inertia_j) /
+         fmax(o->cap, cap_count(contacts_last, jj));
+#else
+  return o->inertia * inertia_j / (o->inertia + inertia_j);
+#endif
+}
+
+// Per-contact history: the planes the compiled slots declare (common.cl).
+typedef struct {
+  v3 sp;      // tangential spring (contact record xyz)
+  lane dash;  // normal dashpot's record (contact record w)
+  v3 rsp;     // elastic rolling torque
+} History;
+
+INLINE History load_history(__global const real* restrict spring, size_t at, size_t plane) {
+  History h;
+#ifdef HAS_CONTACT_RECORD
+  const Lane4 record = load_slots(spring, at);
+  h.sp = record.xyz;
+  h.dash = record.w;
+#else
+  h.sp = v_zero();
+  h.dash = (lane)0;
+#endif
+#ifdef HAS_ROLLING_SPRING
+  h.rsp = load_slots(spring + 4 * HIST_ROLL * plane, at).xyz;
+#else
+  h.rsp = v_zero();
+#endif
+  return h;
+}
+
+// Lost contacts end their history (lanes not listed: padding, zeros).
+INLINE void store_history(__global real* restrict spring, size_t at, size_t plane, lmask on,
+                          History h) {
+#ifdef HAS_CONTACT_RECORD
+  store_slots(spring, at, v_sel(on, h.sp, v_zero()), SEL(on, h.dash, (lane)0));
+#endif
+#ifdef HAS_ROLLING_SPRING
+  store_slots(spring + 4 * HIST_ROLL * plane, at, v_sel(on, h.rsp, v_zero()), (lane)0);
+#endif
+}
+
+#ifdef HAS_CAPILLARY
+// The liquid bridge's force on i, towards its partner: listed pairs closer
+// than the rupture distance, touching or not.
+INLINE v3 bridge_force(PairGap g, const int* listed, lane rstar, PairLanes coef) {
+  const lmask wet = mask_of(listed) & (g.d2 > (real)0) &
+                    (g.d2 < (g.rsum + coef.cap_rupture) * (g.rsum + coef.cap_rupture));
+  const lane inv_dw = rsqrt(fmax(g.d2, (real)1e-36));
+  const lane fcap = SEL(wet, capillary_force(g.d2 * inv_dw - g.rsum, rstar, coef), (lane)0);
+  return v_mul(fcap * inv_dw, g.d);
+}
+#endif
+
+// The pair's outcome: i's force fi and its torque, contact flag and half the
+// elastic energy into i's sums; the partner's share (-fi, its torque, the
+// flag and the other half) into the slot's share record.
+INLINE void add_pair(__global real* restrict share, int slot, lmask on, ContactResult c,
+                     PairContact k, v3 fi, ContactSums* sum) {
+  const lane half_e = SEL(on, (real)0.5 * c.energy, (lane)0);
+  const lane flag = SEL(on, (lane)1, (lane)0);
+  const v3 ti = v_sel(on, v_add(v_mul(k.ai, c.n_cross_ft), c.rolling), v_zero());
+  const v3 tj = v_sel(on, v_sub(v_mul(k.aj, c.n_cross_ft), c.rolling), v_zero());
+  // lanes not listed store zeros (fi, tj, flag and half_e are 0 there)
+  store_shares(share, slot, v_neg(fi), flag, tj, half_e);
+  sum->f = v_add(sum->f, fi);
+  sum->t = v_add(sum->t, ti);
+  sum->e += half_e;
+  sum->touching += flag;
 }
 
 __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
@@ -56,139 +261,45 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
   const int base = get_global_id(0) * LANES;
   if (base >= n) return;
   int ii[LANES], valid[LANES], len[LANES];
-  int longest = 0;
-#pragma unroll
-  for (int l = 0; l < LANES; ++l) {
-    valid[l] = base + l < n;
-    ii[l] = valid[l] ? base + l : n - 1;
-    len[l] = valid[l] ? nbr_upper[ii[l]] : 0;  // the pairs this particle owns
-    longest = max(longest, len[l]);
-  }
+  const int longest = own_lanes(base, n, nbr_upper, ii, valid, len);
   // the lanes lie in one slice (SLICE % LANES == 0), side by side; lanes
   // past n list nothing and store zeros into that slice's padding
   const int first = SLOT(up_off, base, 0);
-  const LanePos pi = gather_pos(pos POS_LO_PASS, ii);
-  const lane ri = gather(pos, ii, 3);
-  const Lane4 vmi = gather4(vel, ii), wmi = gather4(omega, ii);
-  const v3 vi = vmi.xyz, wi = wmi.xyz;
-  const lane mi = vmi.w;
-  const lane inertia_i = (real)0.4 * mi * ri * ri;
-  real row_t[LANES];
-  LANE_STORE(wmi.w, row_t);
-#if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
-  const lane cap_i = cap_count(contacts_last, ii);  // the bead's part of the divisor
-#endif
-
+  const Owner own = gather_owner(pos POS_LO_PASS, vel, omega, contacts_last, ii);
   const size_t plane = (size_t)stride;  // records per history plane
-  v3 f = v_zero();
-  v3 t = v_zero();
-  lane e = (lane)0;
-  lane touching = (lane)0;
+  ContactSums sum = no_contacts();
   for (int q = 0; q < longest; ++q) {
     int jj[LANES], listed[LANES], pair[LANES];
     const int slot = first + q * SLICE;  // lane l's: SLOT(up_off, base + l, q) = slot + l
     const size_t at = SLOT_REAL(slot, 0);  // its records' components (load_slots)
-#pragma unroll
-    for (int l = 0; l < LANES; ++l) {
-      listed[l] = q < len[l];  // a lane past n lists nothing
-      jj[l] = listed[l] ? nbr[slot + l] : ii[l];
-    }
-    const Lane4 pr = gather4(pos, jj);
-    LanePos pj;
-    pj.hi = pr.xyz;
-#ifdef POS_COMPENSATED
-    pj.lo = gather4((__global const real*)pos_lo, jj).xyz;
-#else
-    pj.lo = v_zero();
-#endif
-    const v3 d = separation(pi, pj);
-    const lane rj = pr.w;
-    const lane rsum = ri + rj;
-    const lane d2 = v_dot(d, d);
-    const lmask on = mask_of(listed) & (d2 < rsum * rsum) & (d2 > (real)0);
+    list_partners(q, slot, len, ii, nbr, listed, jj);
+    const PairGap g = pair_gap(pos POS_LO_PASS, &own, jj, listed);
 #ifndef HAS_CAPILLARY
-    if (!mask_any(on)) {  // no lane touches: what the law would leave, without it
-      apart(spring, share, slot, at, plane, &f, &t, &e, &touching);
+    if (!mask_any(g.on)) {  // no lane touches: what the law would leave, without it
+      apart(spring, share, slot, at, plane, &sum);
       continue;
     }
 #endif
-    const lane inv_dist = SEL(on, rsqrt(d2), 2 / rsum);
-    const lane dist = SEL(on, d2 * inv_dist, (real)0.5 * rsum);
-    const v3 nv = v_sel(on, v_mul(inv_dist, d), V3((lane)1, (lane)0, (lane)0));
-    const lane delta = rsum - dist;
+    const PairContact k = pair_contact(g, own.r);
     const Lane4 vmj = gather4(vel, jj), wmj = gather4(omega, jj);
-    const v3 vj = vmj.xyz, wj = wmj.xyz;
-    const lane mj = vmj.w;
-    if (nmat > 1) {
-      real mat_j[LANES];
-      LANE_STORE(wmj.w, mat_j);
-#pragma unroll
-      for (int l = 0; l < LANES; ++l) pair[l] = (int)row_t[l] * nmat + (int)mat_j[l];
-    }
-    const lane inertia_j = (real)0.4 * mj * rj * rj;
-    const lane ai = ri - (real)0.5 * delta;  // lever arms to the common contact point
-    const lane aj = rj - (real)0.5 * delta;
-    const v3 vrel = v_sub(v_add(vi, v_cross(wi, v_mul(ai, nv))),
-                          v_add(vj, v_cross(wj, v_neg(v_mul(aj, nv)))));
-    // per-contact history: the planes the compiled slots declare (common.cl)
-#ifdef HAS_CONTACT_RECORD
-    const Lane4 record = load_slots(spring, at);
-    v3 sp = record.xyz;
-    lane dash = record.w;
-#else
-    v3 sp = v_zero();
-    lane dash = (lane)0;
-#endif
-#ifdef HAS_ROLLING_SPRING
-    v3 rsp = load_slots(spring + 4 * HIST_ROLL * plane, at).xyz;
-#else
-    v3 rsp = v_zero();
-#endif
+    pair_rows(&own, wmj.w, nmat, pair);
     const PairLanes coef = gather_pairs(pairs, pair, nmat);
-    const lane rstar = ri * rj / rsum;
-#if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
-    // the constant torque's cap is shared among the contacts (see above)
-    const lane istar = inertia_i * inertia_j / (inertia_i + inertia_j) /
-                       fmax(cap_i, cap_count(contacts_last, jj));
-#else
-    const lane istar = inertia_i * inertia_j / (inertia_i + inertia_j);
-#endif
-    const ContactResult c = contact_law_h(delta, nv, vrel, v_sub(wi, wj), rstar,
-                                          mi * mj / (mi + mj), istar, coef, dt, &sp, &dash,
-                                          &rsp, rolling_damping);
-#ifdef HAS_CONTACT_RECORD
-    // lost contacts end their history (lanes not listed: padding, zeros)
-    store_slots(spring, at, v_sel(on, sp, v_zero()), SEL(on, dash, (lane)0));
-#endif
-#ifdef HAS_ROLLING_SPRING
-    store_slots(spring + 4 * HIST_ROLL * plane, at, v_sel(on, rsp, v_zero()), (lane)0);
-#endif
+    const lane rstar = own.r * g.rj / g.rsum;
+    History h = load_history(spring, at, plane);
+    const ContactResult c = contact_law_h(
+        k.delta, k.nv, contact_velocity(&own, vmj.xyz, wmj.xyz, k), v_sub(own.w, wmj.xyz), rstar,
+        own.m * vmj.w / (own.m + vmj.w), pair_istar(&own, vmj.w, g.rj, contacts_last, jj), coef,
+        dt, &h.sp, &h.dash, &h.rsp, rolling_damping);
+    store_history(spring, at, plane, g.on, h);
 #ifdef HAS_CAPILLARY
-    // liquid bridge: listed pairs closer than the rupture distance, touching or not
-    const lmask wet = mask_of(listed) & (d2 > (real)0) &
-                      (d2 < (rsum + coef.cap_rupture) * (rsum + coef.cap_rupture));
-    const lane inv_dw = rsqrt(fmax(d2, (real)1e-36));
-    const lane fcap = SEL(wet, capillary_force(d2 * inv_dw - rsum, rstar, coef), (lane)0);
-    const v3 fbridge = v_mul(fcap * inv_dw, d);  // on i, towards its partner
-#endif
-    const lane half_e = SEL(on, (real)0.5 * c.energy, (lane)0);
-    const lane flag = SEL(on, (lane)1, (lane)0);
-#ifdef HAS_CAPILLARY
-    const v3 fi = v_add(v_sel(on, c.force, v_zero()), fbridge);
+    const v3 fi = v_add(v_sel(g.on, c.force, v_zero()), bridge_force(g, listed, rstar, coef));
 #else
-    const v3 fi = v_sel(on, c.force, v_zero());
+    const v3 fi = v_sel(g.on, c.force, v_zero());
 #endif
-    const v3 ti = v_sel(on, v_add(v_mul(ai, c.n_cross_ft), c.rolling), v_zero());
-    const v3 tj = v_sel(on, v_sub(v_mul(aj, c.n_cross_ft), c.rolling), v_zero());
-    // lanes not listed store zeros (fi, tj, flag and half_e are 0 there)
-    store_shares(share, slot, v_neg(fi), flag, tj, half_e);
-    f = v_add(f, fi);
-    t = v_add(t, ti);
-    e += half_e;
-    touching += flag;
+    add_pair(share, slot, g.on, c, k, fi, &sum);
   }
-  scatter4(force, ii, valid, f, touching);
-  scatter4(torque, ii, valid, t, e);
+  scatter4(force, ii, valid, sum.f, sum.touching);
+  scatter4(torque, ii, valid, sum.t, sum.e);
 }
 
 INLINE void collect_one(int i, __global const int* restrict nbr_count,

@@ -155,6 +155,156 @@ __kernel void reset_wall_travel(__global real4* wall_point, int nwalls) {
   if (w < nwalls) wall_point[w].w = 0;
 }
 
+// The work item's particles, one per lane (past n, lanes stand in with the
+// last particle and have no walls), their near walls (mask, bit w) and the
+// walls they touched last step (was); returns the walls near any lane.
+INLINE int wall_lanes(int base, int n, __global const int* restrict wall_near,
+                      __global const int* restrict wall_touch, int* ii, int* valid, int* mask,
+                      int* was, int* now) {
+  int near = 0;  // walls near any lane (broad phase)
+#pragma unroll
+  for (int l = 0; l < LANES; ++l) {
+    valid[l] = base + l < n;
+    ii[l] = valid[l] ? base + l : n - 1;
+    mask[l] = valid[l] ? wall_near[ii[l]] : 0;  // a wall touched is near: was, now within mask
+    was[l] = valid[l] ? wall_touch[ii[l]] & mask[l] : 0;  // walls touched last step (bit w)
+    near |= mask[l];
+    now[l] = 0;
+  }
+  return near;
+}
+
+// Geometry of the near walls first: bit w of now[l] where lane l's
+// particle touches wall w. Returns whether any lane touches a wall now or
+// did last step.
+INLINE int touched_walls(__global const real* restrict walls,
+                         __global const real* restrict wall_point WALL_LO_ARG, int near,
+                         int nwalls, const Owner* o, const int* valid, const int* mask,
+                         const int* was, int* now) {
+  int busy = 0;
+  for (int w = 0; w < nwalls; ++w) {
+    if (!((near >> w) & 1)) continue;
+    v3 to_wall;
+    const lane dist2 = wall_gap(walls, wall_point WALL_LO_PASS, w, o->p, o->r, &to_wall);
+    int on[LANES];
+    lane_flags((dist2 < o->r * o->r) & (dist2 > (real)0), on);
+#pragma unroll
+    for (int l = 0; l < LANES; ++l) now[l] |= (on[l] << w) & mask[l];
+  }
+#pragma unroll
+  for (int l = 0; l < LANES; ++l) busy |= valid[l] && (now[l] | was[l]);
+  return busy;
+}
+
+// The lanes' slots of wall w where it is touched now or was last step
+// (keep); returns whether any lane keeps one. Slots are written only there:
+// a slot that stays out of contact keeps its zeros without memory traffic.
+INLINE int kept_wall_slots(int w, const int* ii, const int* valid, const int* mask,
+                           const int* now, const int* was, __global const uint* restrict wall_off,
+                           int* keep, int* slot) {
+  int any_keep = 0;
+#pragma unroll
+  for (int l = 0; l < LANES; ++l) {
+    keep[l] = valid[l] && (((now[l] | was[l]) >> w) & 1);
+    any_keep |= keep[l];
+    slot[l] = keep[l] ? WALL_SLOT(wall_off, ii[l], mask[l], w) : 0;
+  }
+  return any_keep;
+}
+
+// The contact with wall w: whether it touches (`on`), the normal towards the
+// wall, overlap and lever arm; lanes that do not touch get a stand-in
+// (half the radius along x).
+typedef struct {
+  lmask on;
+  v3 nv;
+  lane delta, a;
+} WallContact;
+
+INLINE WallContact wall_contact(__global const real* restrict walls,
+                                __global const real* restrict wall_point WALL_LO_ARG, int w,
+                                const Owner* o) {
+  v3 to_wall;
+  const lane dist2 = wall_gap(walls, wall_point WALL_LO_PASS, w, o->p, o->r, &to_wall);
+  WallContact k;
+  k.on = (dist2 < o->r * o->r) & (dist2 > (real)0);
+  const lane dist = SEL(k.on, sqrt(dist2), (real)0.5 * o->r);
+  k.nv = v_sel(k.on, v_mul(1 / dist, to_wall), V3((lane)1, (lane)0, (lane)0));
+  k.delta = o->r - dist;
+  k.a = o->r - (real)0.5 * k.delta;
+  return k;
+}
+
+// History planes of the (particle, wall) slots, as in forces.cl (plane p at
+// p * wall_stride records).
+INLINE History load_wall_history(__global const real* restrict wall_spring, int wall_stride,
+                                 const int* slot) {
+  History h;
+#ifdef HAS_CONTACT_RECORD
+  const Lane4 record = gather4(wall_spring, slot);
+  h.sp = record.xyz;
+  h.dash = record.w;
+#else
+  h.sp = v_zero();
+  h.dash = (lane)0;
+#endif
+#ifdef HAS_ROLLING_SPRING
+  h.rsp = gather3(wall_spring + 4 * HIST_ROLL * (size_t)wall_stride, slot);
+#else
+  h.rsp = v_zero();
+#endif
+  return h;
+}
+
+INLINE void store_wall_history(__global real* restrict wall_spring, int wall_stride,
+                               const int* slot, const int* keep, lmask on, History h) {
+#ifdef HAS_CONTACT_RECORD
+  scatter4(wall_spring, slot, keep, v_sel(on, h.sp, v_zero()), SEL(on, h.dash, (lane)0));
+#endif
+#ifdef HAS_ROLLING_SPRING
+  __global real* roll_plane = wall_spring + 4 * HIST_ROLL * (size_t)wall_stride;
+  scatter4(roll_plane, slot, keep, v_sel(on, h.rsp, v_zero()), (lane)0);
+#endif
+}
+
+// The law between each lane's particle and wall w moving at vw (R* = r_i,
+// m* = m_i; roll_inertia the I* of the rolling cap).
+INLINE ContactResult wall_law(const Owner* o, WallContact k, v3 vw, lane roll_inertia, int w,
+                              __global const real* restrict walls,
+                              __global const real* restrict pairs, int nmat, real dt,
+                              real rolling_damping, History* h) {
+  int pair[LANES];
+  const v3 vrel = v_sub(v_add(o->v, v_cross(o->w, v_mul(k.a, k.nv))), vw);
+  const int wall_mat = (int)walls[4 * WALL_RECORD * w + 7];
+#pragma unroll
+  for (int l = 0; l < LANES; ++l) pair[l] = (int)o->row[l] * nmat + wall_mat;
+  // The normal dashpot's record (contact_law.cl) extrapolates what the rest
+  // of the world did to the approach speed. A wall is no body pushed by
+  // forces: it keeps its velocity, and a servo's step-to-step changes are
+  // not to be extrapolated. So the record is kept in the particle's frame,
+  // shifted by the wall's normal momentum m_i v_w.n around the call (0
+  // stays "none").
+  const lane wall_vn = o->m * v_dot(vw, k.nv);
+  h->dash = SEL(h->dash != (real)0, h->dash - wall_vn, (lane)0);
+  const ContactResult c = contact_law_h(k.delta, k.nv, vrel, o->w, o->r, o->m, roll_inertia,
+                                        gather_pairs(pairs, pair, nmat), dt, &h->sp, &h->dash,
+                                        &h->rsp, rolling_damping);
+  h->dash += wall_vn;
+  return c;
+}
+
+// The contact's force on the wall (and a contact flag) into the slots kept;
+// the particle's force, torque, energy and contact count into its sums.
+INLINE void add_wall_contact(__global real* restrict wall_force, const int* slot,
+                             const int* keep, WallContact k, ContactResult c, ContactSums* sum) {
+  scatter4(wall_force, slot, keep, v_sel(k.on, v_neg(c.force), v_zero()),
+           SEL(k.on, (lane)1, (lane)0));
+  sum->f = v_add(sum->f, v_sel(k.on, c.force, v_zero()));
+  sum->t = v_add(sum->t, v_sel(k.on, v_add(v_mul(k.a, c.n_cross_ft), c.rolling), v_zero()));
+  sum->e += SEL(k.on, c.energy, (lane)0);
+  sum->touching += SEL(k.on, (lane)1, (lane)0);
+}
+
 // The wall contacts of the LANES particles from `base` on.
 INLINE void wall_contacts(int base, __global const real* restrict pos POS_LO_SARG_FN,
                           __global const real* restrict vel, __global const real* restrict omega,
@@ -169,117 +319,43 @@ INLINE void wall_contacts(int base, __global const real* restrict pos POS_LO_SAR
                           __global const int* restrict wall_near,
                           __global const int* restrict contacts_last, real dt,
                           real rolling_damping, int n, int nwalls, int nmat) {
-  int ii[LANES], valid[LANES], pair[LANES], was[LANES], now[LANES], mask[LANES];
-  int near = 0;  // walls near any lane (broad phase)
-#pragma unroll
-  for (int l = 0; l < LANES; ++l) {
-    valid[l] = base + l < n;
-    ii[l] = valid[l] ? base + l : n - 1;
-    mask[l] = valid[l] ? wall_near[ii[l]] : 0;  // a wall touched is near: was, now within mask
-    was[l] = valid[l] ? wall_touch[ii[l]] & mask[l] : 0;  // walls touched last step (bit w)
-    near |= mask[l];
-    now[l] = 0;
-  }
+  int ii[LANES], valid[LANES], was[LANES], now[LANES], mask[LANES];
+  const int near = wall_lanes(base, n, wall_near, wall_touch, ii, valid, mask, was, now);
   // Most particles are near no wall and leave at once.
   if (!near) return;
-  const LanePos pi = gather_pos(pos POS_LO_PASS, ii);
-  const lane ri = gather(pos, ii, 3);
+  Owner own;
+  own.p = gather_pos(pos POS_LO_PASS, ii);
+  own.r = gather(pos, ii, 3);
+  if (!touched_walls(walls, wall_point WALL_LO_PASS, near, nwalls, &own, valid, mask, was, now))
+    return;
 
-  // Geometry of the near walls first.
-  int busy = 0;
-  for (int w = 0; w < nwalls; ++w) {
-    if (!((near >> w) & 1)) continue;
-    v3 to_wall;
-    const lane dist2 = wall_gap(walls, wall_point WALL_LO_PASS, w, pi, ri, &to_wall);
-    int on[LANES];
-    lane_flags((dist2 < ri * ri) & (dist2 > (real)0), on);
-#pragma unroll
-    for (int l = 0; l < LANES; ++l) now[l] |= (on[l] << w) & mask[l];
-  }
-#pragma unroll
-  for (int l = 0; l < LANES; ++l) busy |= valid[l] && (now[l] | was[l]);
-  if (!busy) return;
-
-  const Lane4 vm = gather4(vel, ii), wm = gather4(omega, ii);
-  const v3 vi = vm.xyz, wi = wm.xyz;
-  const lane mi = vm.w;
-  real mat_i[LANES];
-  LANE_STORE(wm.w, mat_i);
-  const lane inertia = (real)0.4 * mi * ri * ri;
+  gather_motion(&own, vel, omega, contacts_last, ii);
   const Lane4 f0 = gather4(force, ii), t0 = gather4(torque, ii);
-  v3 f = f0.xyz, t = t0.xyz;
-  lane count = f0.w, e = t0.w;
+  ContactSums sum;  // the pair stage's, which the walls add to
+  sum.f = f0.xyz;
+  sum.t = t0.xyz;
+  sum.touching = f0.w;
+  sum.e = t0.w;
 #if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
   // the constant rolling torque's cap is shared among the contacts (forces.cl)
-  const lane roll_inertia = inertia / cap_count(contacts_last, ii);
+  const lane roll_inertia = own.inertia / own.cap;
 #else
-  const lane roll_inertia = inertia;
+  const lane roll_inertia = own.inertia;
 #endif
 
   for (int w = 0; w < nwalls; ++w) {
-    // Slots are written only where the wall is or was touched: a slot that
-    // stays out of contact keeps its zeros without memory traffic.
-    int keep[LANES], slot[LANES], any_keep = 0;
-#pragma unroll
-    for (int l = 0; l < LANES; ++l) {
-      keep[l] = valid[l] && (((now[l] | was[l]) >> w) & 1);
-      any_keep |= keep[l];
-      slot[l] = keep[l] ? WALL_SLOT(wall_off, ii[l], mask[l], w) : 0;
-    }
-    if (!any_keep) continue;
-    v3 to_wall;
-    const lane dist2 = wall_gap(walls, wall_point WALL_LO_PASS, w, pi, ri, &to_wall);
-    const lmask on = (dist2 < ri * ri) & (dist2 > (real)0);
-    const lane dist = SEL(on, sqrt(dist2), (real)0.5 * ri);
-    const v3 nv = v_sel(on, v_mul(1 / dist, to_wall), V3((lane)1, (lane)0, (lane)0));
-    const lane delta = ri - dist;
-    const lane a = ri - (real)0.5 * delta;
+    int keep[LANES], slot[LANES];
+    if (!kept_wall_slots(w, ii, valid, mask, now, was, wall_off, keep, slot)) continue;
+    const WallContact k = wall_contact(walls, wall_point WALL_LO_PASS, w, &own);
     const v3 vw = V3((lane)wall_vel[4 * w], (lane)wall_vel[4 * w + 1], (lane)wall_vel[4 * w + 2]);
-    const v3 vrel = v_sub(v_add(vi, v_cross(wi, v_mul(a, nv))), vw);
-    // history planes of the (wall, particle) slots, as in forces.cl
-#ifdef HAS_CONTACT_RECORD
-    const Lane4 record = gather4(wall_spring, slot);
-    v3 sp = record.xyz;
-    lane dash = record.w;
-#else
-    v3 sp = v_zero();
-    lane dash = (lane)0;
-#endif
-#ifdef HAS_ROLLING_SPRING
-    __global real* roll_plane = wall_spring + 4 * HIST_ROLL * (size_t)wall_stride;
-    v3 rsp = gather3(roll_plane, slot);
-#else
-    v3 rsp = v_zero();
-#endif
-    const int wall_mat = (int)walls[4 * WALL_RECORD * w + 7];
-#pragma unroll
-    for (int l = 0; l < LANES; ++l) pair[l] = (int)mat_i[l] * nmat + wall_mat;
-    // The normal dashpot's record (contact_law.cl) extrapolates what the rest
-    // of the world did to the approach speed. A wall is no body pushed by
-    // forces: it keeps its velocity, and a servo's step-to-step changes are
-    // not to be extrapolated. So the record is kept in the particle's frame,
-    // shifted by the wall's normal momentum m_i v_w.n around the call (0
-    // stays "none").
-    const lane wall_vn = mi * v_dot(vw, nv);
-    dash = SEL(dash != (real)0, dash - wall_vn, (lane)0);
-    const ContactResult c = contact_law_h(delta, nv, vrel, wi, ri, mi, roll_inertia,
-                                          gather_pairs(pairs, pair, nmat), dt, &sp, &dash,
-                                          &rsp, rolling_damping);
-    dash += wall_vn;
-#ifdef HAS_CONTACT_RECORD
-    scatter4(wall_spring, slot, keep, v_sel(on, sp, v_zero()), SEL(on, dash, (lane)0));
-#endif
-#ifdef HAS_ROLLING_SPRING
-    scatter4(roll_plane, slot, keep, v_sel(on, rsp, v_zero()), (lane)0);
-#endif
-    scatter4(wall_force, slot, keep, v_sel(on, v_neg(c.force), v_zero()), SEL(on, (lane)1, (lane)0));
-    f = v_add(f, v_sel(on, c.force, v_zero()));
-    t = v_add(t, v_sel(on, v_add(v_mul(a, c.n_cross_ft), c.rolling), v_zero()));
-    e += SEL(on, c.energy, (lane)0);
-    count += SEL(on, (lane)1, (lane)0);
+    History h = load_wall_history(wall_spring, wall_stride, slot);
+    const ContactResult c = wall_law(&own, k, vw, roll_inertia, w, walls, pairs, nmat, dt,
+                                     rolling_damping, &h);
+    store_wall_history(wall_spring, wall_stride, slot, keep, k.on, h);
+    add_wall_contact(wall_force, slot, keep, k, c, &sum);
   }
-  scatter4(force, ii, valid, f, count);
-  scatter4(torque, ii, valid, t, e);
+  scatter4(force, ii, valid, sum.f, sum.touching);
+  scatter4(torque, ii, valid, sum.t, sum.e);
 #pragma unroll
   for (int l = 0; l < LANES; ++l)
     if (valid[l]) wall_touch[ii[l]] = now[l];
