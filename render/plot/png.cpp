@@ -112,73 +112,42 @@ std::string encode_png(const Image& img, PngFilter filter) {
   return out;
 }
 
-Image decode_png(const std::string& in) {
-  if (in.size() < 8 || !std::equal(kSignature.begin(), kSignature.end(),
-                                   reinterpret_cast<const unsigned char*>(in.data())))
-    bad("not a PNG file (bad signature)");
-  std::size_t at = 8;
+namespace {
+
+struct PngHeader {
   std::uint32_t width = 0, height = 0;
-  int channels = 0;
-  std::string idat;
-  bool have_header = false, ended = false;
-  while (!ended) {
-    if (at + 12 > in.size()) bad("truncated chunk");
-    const std::uint32_t len = get_u32(in, at);
-    if (len > in.size() - at - 12) bad("truncated chunk");
-    const std::string type = in.substr(at + 4, 4);
-    const auto* p = reinterpret_cast<const Bytef*>(in.data() + at + 4);
-    if (crc32(0L, p, len + 4) != get_u32(in, at + 8 + len)) bad("CRC mismatch in " + type);
-    const std::size_t data = at + 8;
-    if (type == "IHDR") {
-      if (len != 13) bad("bad IHDR");
-      width = get_u32(in, data);
-      height = get_u32(in, data + 4);
-      const int depth = static_cast<unsigned char>(in[data + 8]);
-      const int color = static_cast<unsigned char>(in[data + 9]);
-      if (depth != 8) bad("only 8-bit samples are supported");
-      switch (color) {
-        case 0:
-          channels = 1;
-          break;
-        case 2:
-          channels = 3;
-          break;
-        case 4:
-          channels = 2;
-          break;
-        case 6:
-          channels = 4;
-          break;
-        default:
-          bad("palette images are not supported");
-      }
-      if (in[data + 10] != 0 || in[data + 11] != 0) bad("unknown compression or filter method");
-      if (in[data + 12] != 0) bad("interlaced images are not supported");
-      if (width == 0 || height == 0 || width > 32768 || height > 32768 ||
-          std::uint64_t{width} * height > (1u << 28))
-        bad("bad image size");
-      have_header = true;
-    } else if (type == "IDAT") {
-      idat.append(in, data, len);
-    } else if (type == "IEND") {
-      ended = true;
-    } else if (!(type[0] & 0x20)) {
-      bad("unknown critical chunk " + type);
-    }
-    at += 12 + len;
+  int channels = 0;  // 1 grey, 2 grey + alpha, 3 RGB, 4 RGBA
+};
+
+// The IHDR chunk's fields at `data` (8-bit, not interlaced, no palette).
+PngHeader read_header(const std::string& in, std::size_t data, std::uint32_t len) {
+  if (len != 13) bad("bad IHDR");
+  PngHeader h;
+  h.width = get_u32(in, data);
+  h.height = get_u32(in, data + 4);
+  const int depth = static_cast<unsigned char>(in[data + 8]);
+  const int color = static_cast<unsigned char>(in[data + 9]);
+  if (depth != 8) bad("only 8-bit samples are supported");
+  switch (color) {
+    case 0: h.channels = 1; break;
+    case 2: h.channels = 3; break;
+    case 4: h.channels = 2; break;
+    case 6: h.channels = 4; break;
+    default: bad("palette images are not supported");
   }
-  if (!have_header) bad("missing IHDR");
+  if (in[data + 10] != 0 || in[data + 11] != 0) bad("unknown compression or filter method");
+  if (in[data + 12] != 0) bad("interlaced images are not supported");
+  if (h.width == 0 || h.height == 0 || h.width > 32768 || h.height > 32768 ||
+      std::uint64_t{h.width} * h.height > (1u << 28))
+    bad("bad image size");
+  return h;
+}
 
-  const std::size_t bpp = channels, stride = width * bpp;
-  std::vector<unsigned char> raw((stride + 1) * height);
-  uLongf rawlen = static_cast<uLongf>(raw.size());
-  if (uncompress(raw.data(), &rawlen, reinterpret_cast<const Bytef*>(idat.data()),
-                 static_cast<uLong>(idat.size())) != Z_OK ||
-      rawlen != raw.size())
-    bad("corrupt or short image data");
-
+// Undoes the row filters of the inflated data and expands to RGBA.
+Image unfilter(std::vector<unsigned char>& raw, const PngHeader& h) {
+  const std::size_t width = h.width, height = h.height, bpp = h.channels, stride = width * bpp;
   Image img{static_cast<int>(width), static_cast<int>(height),
-            std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height * 4)};
+            std::vector<std::uint8_t>(width * height * 4)};
   const std::vector<unsigned char> zeros(stride, 0);
   for (std::size_t y = 0; y < height; ++y) {
     unsigned char* row = raw.data() + y * (stride + 1) + 1;
@@ -190,14 +159,54 @@ Image decode_png(const std::string& in) {
     for (std::size_t x = 0; x < width; ++x) {
       const unsigned char* s = row + x * bpp;
       std::uint8_t* d = &img.rgba[(y * width + x) * 4];
-      const bool grey = channels < 3;
+      const bool grey = h.channels < 3;
       d[0] = s[0];
       d[1] = grey ? s[0] : s[1];
       d[2] = grey ? s[0] : s[2];
-      d[3] = channels == 4 ? s[3] : channels == 2 ? s[1] : 255;
+      d[3] = h.channels == 4 ? s[3] : h.channels == 2 ? s[1] : 255;
     }
   }
   return img;
+}
+
+}  // namespace
+
+Image decode_png(const std::string& in) {
+  if (in.size() < 8 || !std::equal(kSignature.begin(), kSignature.end(),
+                                   reinterpret_cast<const unsigned char*>(in.data())))
+    bad("not a PNG file (bad signature)");
+  std::size_t at = 8;
+  PngHeader header;
+  std::string idat;
+  bool have_header = false, ended = false;
+  while (!ended) {
+    if (at + 12 > in.size()) bad("truncated chunk");
+    const std::uint32_t len = get_u32(in, at);
+    if (len > in.size() - at - 12) bad("truncated chunk");
+    const std::string type = in.substr(at + 4, 4);
+    const auto* p = reinterpret_cast<const Bytef*>(in.data() + at + 4);
+    if (crc32(0L, p, len + 4) != get_u32(in, at + 8 + len)) bad("CRC mismatch in " + type);
+    const std::size_t data = at + 8;
+    if (type == "IHDR") {
+      header = read_header(in, data, len);
+      have_header = true;
+    } else if (type == "IDAT") {
+      idat.append(in, data, len);
+    } else if (type == "IEND") {
+      ended = true;
+    } else if (!(type[0] & 0x20)) {
+      bad("unknown critical chunk " + type);
+    }
+    at += 12 + len;
+  }
+  if (!have_header) bad("missing IHDR");
+  std::vector<unsigned char> raw((std::size_t{header.width} * header.channels + 1) * header.height);
+  uLongf rawlen = static_cast<uLongf>(raw.size());
+  if (uncompress(raw.data(), &rawlen, reinterpret_cast<const Bytef*>(idat.data()),
+                 static_cast<uLong>(idat.size())) != Z_OK ||
+      rawlen != raw.size())
+    bad("corrupt or short image data");
+  return unfilter(raw, header);
 }
 
 void write_png(const Image& img, const std::string& path) {
