@@ -50,4 +50,53 @@ void Progress::finish(std::int64_t step) {
   std::fprintf(out_, tty_ ? "\r%s\033[K\n" : "%s\n", line(step, true).c_str());
 }
 
+ProgrammeProgress::ProgrammeProgress(std::string label, bool quiet, double later,
+                                     std::int64_t particles, Clock clock, std::FILE* out)
+    : label_(std::move(label)), quiet_(quiet), later_(later), particles_(particles),
+      clock_(std::move(clock)), out_(out), tty_(isatty(fileno(out)) != 0), start_(clock_()) {}
+
+void ProgrammeProgress::start(const LoadingProgramme& test) {
+  first_done_ = test.step_count().done;
+  start_ = clock_();
+}
+
+double ProgrammeProgress::seconds() const {
+  return std::chrono::duration<double>(clock_() - start_).count();
+}
+
+// At the rate of this invocation, once it means something (2 s of stepping).
+std::string ProgrammeProgress::eta(const LoadingProgramme& test) const {
+  const LoadingProgramme::StepCount c = test.step_count();
+  const double ran = c.done - first_done_, wall = seconds();
+  if (!(ran > 0 && wall > 2)) return "ETA --";
+  const double per_step = wall / ran;
+  const double left = (c.total - c.done) * per_step;
+  if (later_ <= 0) return "ETA " + human_seconds(left);
+  const double after = later_ * per_step / double(particles_);
+  return "ETA " + human_seconds(left + after) + " (this test " + human_seconds(left) + ")";
+}
+
+void ProgrammeProgress::show(const LoadingProgramme& test, std::int64_t step, double time,
+                             bool force) {
+  if (quiet_) return;
+  const auto now = clock_();
+  if (!force && last_ &&
+      std::chrono::duration<double>(now - *last_).count() < (tty_ ? 0.5 : 10.0))
+    return;
+  last_ = now;
+  std::fprintf(out_, tty_ ? "\r[%s] %5.1f%%  %s  step %lld  t = %.4f s  %s\033[K"
+                          : "[%s] %5.1f%%  %s  step %lld  t = %.4f s  %s\n",
+               label_.c_str(), 100 * test.progress(), test.status().c_str(),
+               static_cast<long long>(step), time, eta(test).c_str());
+  std::fflush(out_);
+}
+
+void ProgrammeProgress::end(const LoadingProgramme& test, std::int64_t step, double time) {
+  if (quiet_) return;
+  std::fprintf(out_, tty_ ? "\r[%s] %5.1f%%  %s  step %lld  t = %.4f s  in %s\033[K\n"
+                          : "[%s] %5.1f%%  %s  step %lld  t = %.4f s  in %s\n",
+               label_.c_str(), 100 * test.progress(), test.status().c_str(),
+               static_cast<long long>(step), time, human_seconds(seconds()).c_str());
+}
+
 }  // namespace simsols

@@ -12,6 +12,7 @@
 #include "solver/io/checkpoint.h"
 #include "solver/common/errors.h"
 #include "solver/io/output.h"
+#include "app/experiment/progress.h"
 #include "app/experiment/run_cost.h"
 #include "solver/io/scene_toml.h"
 #include "app/experiment/shear_plots.h"
@@ -26,56 +27,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
-
-// A test's progress and an ETA over its whole loading programme (and the
-// work after it, later_particle_steps), at the rate measured in this
-// invocation. No ETA until that rate means something. Any apparatus'
-// programme (apparatus.h).
-class ProgressLine {
- public:
-  ProgressLine(std::string label, bool quiet, double later)
-      : label_(std::move(label)), quiet_(quiet), later_(later), tty_(isatty(fileno(stderr)) != 0) {}
-  void start(const LoadingProgramme& test) { first_done_ = test.step_count().done; }
-  void show(const LoadingProgramme& test, const Simulation& sim, double wall, bool force) {
-    if (quiet_) return;
-    if (!force && seconds_since(last_) < (tty_ ? 0.5 : 10.0)) return;
-    last_ = Clock::now();
-    const LoadingProgramme::StepCount c = test.step_count();
-    const double ran = c.done - first_done_;
-    char eta[96] = "ETA --";
-    if (ran > 0 && wall > 2) {
-      const double per_step = wall / ran;
-      const double left = (c.total - c.done) * per_step;
-      const double after = later_ * per_step / sim.model().particles();
-      if (later_ > 0)
-        std::snprintf(eta, sizeof eta, "ETA %s (this test %s)", human_seconds(left + after).c_str(),
-                      human_seconds(left).c_str());
-      else
-        std::snprintf(eta, sizeof eta, "ETA %s", human_seconds(left).c_str());
-    }
-    std::fprintf(stderr, tty_ ? "\r[%s] %5.1f%%  %s  step %lld  t = %.4f s  %s\033[K"
-                              : "[%s] %5.1f%%  %s  step %lld  t = %.4f s  %s\n",
-                 label_.c_str(), 100 * test.progress(), test.status().c_str(),
-                 static_cast<long long>(sim.steps()), sim.time(), eta);
-    std::fflush(stderr);
-  }
-  // The last line: where the test ended and the wall time it took.
-  void end(const LoadingProgramme& test, const Simulation& sim, double wall) {
-    if (quiet_) return;
-    std::fprintf(stderr, tty_ ? "\r[%s] %5.1f%%  %s  step %lld  t = %.4f s  in %s\033[K\n"
-                              : "[%s] %5.1f%%  %s  step %lld  t = %.4f s  in %s\n",
-                 label_.c_str(), 100 * test.progress(), test.status().c_str(),
-                 static_cast<long long>(sim.steps()), sim.time(), human_seconds(wall).c_str());
-  }
-
- private:
-  std::string label_;
-  bool quiet_;
-  double later_;
-  bool tty_;
-  double first_done_ = 0;
-  Clock::time_point last_ = Clock::now() - std::chrono::hours(1);
-};
 
 void save(Simulation& sim, const ShearTest& test, const fs::path& dir, double wall) {
   write_file_atomic((dir / "shear.csv").string(), shear_rows_csv(test.rows()));
@@ -112,7 +63,8 @@ ShearRunResult drive(Simulation& sim, ShearTest& test, const ShearRunOptions& op
                      double wall_before) {
   const fs::path dir = opt.out_dir;
   print_header(opt, sim, test);
-  ProgressLine progress(opt.label, opt.quiet, opt.later_particle_steps);
+  ProgrammeProgress progress(opt.label, opt.quiet, opt.later_particle_steps,
+                             sim.model().particles());
   progress.start(test);
   const auto start = Clock::now();
   auto last_checkpoint = start;
@@ -132,7 +84,7 @@ ShearRunResult drive(Simulation& sim, ShearTest& test, const ShearRunOptions& op
     } catch (const RunawayError& e) {
       // The simulation is at the step before the fault; the driver's state
       // is the one it had then (it only acts at readings, which are guarded).
-      progress.end(test, sim, seconds_since(start));
+      progress.end(test, sim.steps(), sim.time());
       save_fault(sim, dir, e, shear_driver_state(test, wall_before + seconds_since(start)));
       write_file_atomic((dir / "shear.csv").string(), shear_rows_csv(test.rows()));
       throw;
@@ -142,13 +94,13 @@ ShearRunResult drive(Simulation& sim, ShearTest& test, const ShearRunOptions& op
       announced = true;
       announce_shear(opt, test);
     }
-    progress.show(test, sim, seconds_since(start), false);
+    progress.show(test, sim.steps(), sim.time());
     if (seconds_since(last_checkpoint) > opt.checkpoint_seconds) {
       save(sim, test, dir, wall_before + seconds_since(start));
       last_checkpoint = Clock::now();
     }
   }
-  progress.end(test, sim, seconds_since(start));
+  progress.end(test, sim.steps(), sim.time());
   save(sim, test, dir, wall_before + seconds_since(start));
   if (sim.state().late_builds > 0)
     std::fprintf(stderr,

@@ -164,5 +164,49 @@ TEST(Progress, TerminalRedrawsOneLine) {
   close(master);
 }
 
+// A loading programme the test sets by hand (apparatus.h).
+class FakeProgramme : public LoadingProgramme {
+ public:
+  StepCount count;
+  bool advance(std::int64_t) override { return false; }
+  bool done() const override { return false; }
+  const char* stage_name() const override { return "shear"; }
+  StepCount step_count() const override { return count; }
+  std::string status() const override { return "shear dx = 1.000/3.000 mm"; }
+  std::string save_state() const override { return ""; }
+  void restore_state(const std::string&) override {}
+};
+
+// A test resumed at 2000 of 10000 programme steps, with a campaign's
+// 1.0e6 particle-steps after it (100 beads: 10000 steps): 2000 steps in
+// 10 s are 5 ms a step, so 6000 left take 30 s and the campaign 50 s more.
+TEST(ProgrammeProgress, EtaCoversTheProgrammeAndTheWorkAfterIt) {
+  FakeClock c;
+  FileSink out;
+  FakeProgramme test;
+  test.count = {2000, 10000};
+  ProgrammeProgress p("campaign 1/2 d3mm", false, 1.0e6, 100, c.clock(), out.file());
+  p.start(test);
+  p.show(test, 2000, 0.01);
+  EXPECT_EQ(out.take(),
+            "[campaign 1/2 d3mm]  20.0%  shear dx = 1.000/3.000 mm  step 2000  t = 0.0100 s  "
+            "ETA --\n")
+      << "the first line at once, no ETA before a rate";
+  c.advance(10);
+  test.count = {4000, 10000};
+  p.show(test, 4000, 0.02);
+  EXPECT_EQ(out.take(),
+            "[campaign 1/2 d3mm]  40.0%  shear dx = 1.000/3.000 mm  step 4000  t = 0.0200 s  "
+            "ETA 80 s (this test 30 s)\n");
+  c.advance(5);
+  test.count = {5000, 10000};
+  p.show(test, 5000, 0.025);
+  EXPECT_EQ(out.take(), "") << "into a file, at most a line every 10 s";
+  p.end(test, 5000, 0.025);
+  EXPECT_EQ(out.take(),
+            "[campaign 1/2 d3mm]  50.0%  shear dx = 1.000/3.000 mm  step 5000  t = 0.0250 s  "
+            "in 15 s\n");
+}
+
 }  // namespace
 }  // namespace simsols
