@@ -182,8 +182,7 @@ class StudyRun {
     t0_ = std::chrono::steady_clock::now();
     // one context and queue per worker, opened here, one after the other
     std::vector<std::shared_ptr<Device>> devices(static_cast<size_t>(jobs));
-    if (jobs > 1)
-      for (auto& d : devices) d = open_command_device();
+    for (auto& d : devices) d = open_command_device();
     {
       std::vector<std::jthread> workers;  // joined when the scope ends, also on a throw
       for (int k = 1; k < jobs; ++k) workers.emplace_back([this, d = devices[k]] { work(d); });

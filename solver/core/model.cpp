@@ -11,6 +11,7 @@
 namespace simsols {
 Model::Model(std::shared_ptr<Device> device, const Scene& scene)
     : device_(std::move(device)), scene_(scene) {
+  if (!device_) throw DeviceError("Model: no OpenCL device given (Device::open opens one)");
   if (scene_.particles.empty())
     throw SceneError("no_particles", scene_.source_path, 0, "particles", "the scene has no particles");
   program_ = std::make_unique<Program>(*device_, make_kernel_config(scene_, *device_));
