@@ -1,11 +1,11 @@
 #include "solver/apparatus/shear_box.h"
 
+#include "solver/apparatus/specimen.h"
+
 #include <algorithm>
 #include <cmath>
-#include <random>
 
 #include "solver/common/number_text.h"
-#include "solver/scene/sphere_grid.h"
 
 namespace simsols {
 namespace {
@@ -25,18 +25,6 @@ void require(bool ok, const std::string& field, double v, const std::string& all
   if (!std::isfinite(v)) fail("not_finite", field, num(v) + " is not a finite number");
   if (!ok) fail("out_of_range", field, num(v) + " is out of range, allowed " + allowed);
 }
-
-// Seeded and identical on every platform (mt19937_64 is fully specified).
-class Prng {
- public:
-  explicit Prng(std::uint64_t seed) : engine_(seed) {}
-  double uniform(double a, double b) {
-    return a + (b - a) * (static_cast<double>(engine_() >> 11) * 0x1.0p-53);
-  }
-
- private:
-  std::mt19937_64 engine_;
-};
 
 Wall rectangle(const std::string& name, int material, const Vec3& centre, const Vec3& normal,
                const Vec3& axis_u, double half_u, double half_v) {
@@ -81,93 +69,6 @@ void check_box(const ShearBox& b, const Scene& scene) {
          "the shear box adds " + std::to_string(int(kShearBoxWalls)) + " walls to the scene's " +
              std::to_string(scene.walls.size()) + "; at most " + std::to_string(kMaxWalls) +
              " walls are allowed");
-}
-
-// The paper's preparation: square layers, clearance shifted or spread.
-void place_layers(Scene& scene, const ShearBox& b) {
-  const ShearSpecimen& s = b.specimen;
-  const double d = s.diameter, r = d / 2;
-  const LayerGrid grid = layer_grid(b, d);
-  const double pitch = grid.pitch;
-  const int nx = grid.nx, ny = grid.ny;
-  const double cx = b.length - nx * pitch, cy = b.width - ny * pitch;  // clearances
-  Prng prng(static_cast<std::uint64_t>(s.seed));
-  for (int k = 0; k < s.layers; ++k) {
-    const double z = r + k * d * 1.001;
-    double sx = 0, sy = 0, gx = 0, gy = 0;  // layer shift; gap between rows
-    if (s.clearance == ShearSpecimen::Clearance::Shift) {
-      sx = prng.uniform(0, cx);
-      sy = prng.uniform(0, cy);
-    } else {
-      gx = cx / (nx + 1);
-      gy = cy / (ny + 1);
-      sx = gx;
-      sy = gy;
-    }
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i)
-        scene.particles.push_back({s.material, r,
-                                   {sx + r + i * (pitch + gx), sy + r + j * (pitch + gy), z},
-                                   {},
-                                   {}});
-  }
-}
-
-// Random pour: as many beads as the layers would hold, in a tall column.
-void place_pour(Scene& scene, const ShearBox& b) {
-  const ShearSpecimen& s = b.specimen;
-  const double d = s.diameter, r = d / 2;
-  const int count = beads_per_layer(b, d) * s.layers;
-  const double top = 3.0 * s.layers * d;
-  Prng prng(static_cast<std::uint64_t>(s.seed));
-  SphereGrid grid(d, static_cast<size_t>(count));
-  const size_t first = scene.particles.size();
-  const std::int64_t budget = 1000 + 2000LL * count;
-  std::int64_t attempts = 0;
-  for (int placed = 0; placed < count; ++placed) {
-    Vec3 p{};
-    bool hit = true;
-    while (hit) {
-      if (attempts++ == budget)
-        fail("out_of_range", "specimen.layers",
-             "could place only " + std::to_string(placed) + " of " + std::to_string(count) +
-                 " beads in the pouring column; use fewer layers");
-      p = {prng.uniform(r, b.length - r), prng.uniform(r, b.width - r),
-           prng.uniform(r, top - r)};
-      hit = false;
-      grid.for_each_near(p, [&](int q) {
-        const Vec3& o = scene.particles[first + q].position;
-        const double dx = p[0] - o[0], dy = p[1] - o[1], dz = p[2] - o[2];
-        hit = hit || dx * dx + dy * dy + dz * dz < d * d;
-      });
-    }
-    grid.insert(placed, p);
-    scene.particles.push_back({s.material, r, p, {}, {}});
-  }
-}
-
-// Checks the specimen's settings and places its beads (Layers, Pour); a
-// Given specimen is the scene's own particles.
-void place_specimen(Scene& scene, const ShearBox& b) {
-  const ShearSpecimen& s = b.specimen;
-  if (s.method == ShearSpecimen::Method::Given) return;
-  if (s.material < 0 || s.material >= static_cast<int>(scene.materials.size()))
-    fail("unknown_material", "specimen.material", "the specimen's material does not exist");
-  const double side = std::min(b.length, b.width);
-  require(s.diameter > 0 && s.diameter <= side, "specimen.diameter", s.diameter,
-          "(0, " + num(side) + "] m");
-  require(s.layers >= 1 && s.layers <= 200, "specimen.layers", s.layers, "[1, 200]");
-  const double beads = double(beads_per_layer(b, s.diameter)) * s.layers;
-  if (beads > 2e7)
-    fail("out_of_range", "specimen.diameter",
-         "the specimen would hold " + num(beads) + " beads (limit 2e7)");
-  if (!scene.particles.empty())
-    fail("conflicting_keys", "specimen.method",
-         "the scene lists particles; use specimen.method = \"given\" to shear them");
-  if (s.method == ShearSpecimen::Method::Layers)
-    place_layers(scene, b);
-  else
-    place_pour(scene, b);
 }
 
 // The specimen's smallest and largest radius and the heights its beads
@@ -283,7 +184,8 @@ void add_walls(Scene& scene, ShearBox& b, const SpecimenExtent& e) {
 void build(Scene& scene) {
   ShearBox& b = *scene.shear_box;
   check_box(b, scene);
-  place_specimen(scene, b);
+  if (auto issue = place_specimen(scene, b.specimen, b.length, b.width, "shear_box"))
+    throw Problem{*issue};
   const SpecimenExtent e = measure_specimen(scene, b);
   if (b.gap == 0) b.gap = 0.2 * 2 * e.r_min;
   require(b.gap < e.r_min, "gap", b.gap, "[0, " + num(e.r_min) + ") m (below the smallest radius)");
@@ -314,17 +216,10 @@ double shear_area_corrected(const ShearBox& box, double dx) {
   return std::max(0.0, box.length - std::fabs(dx)) * box.width;
 }
 
-LayerGrid layer_grid(const ShearBox& box, double d) {
-  LayerGrid g;
-  g.pitch = d * (1 + 1e-6);
-  g.nx = static_cast<int>(std::floor(box.length / g.pitch));
-  g.ny = static_cast<int>(std::floor(box.width / g.pitch));
-  return g;
-}
+LayerGrid layer_grid(const ShearBox& box, double d) { return layer_grid(box.length, box.width, d); }
 
 int beads_per_layer(const ShearBox& box, double d) {
-  const LayerGrid g = layer_grid(box, d);
-  return g.nx * g.ny;
+  return beads_per_layer(box.length, box.width, d);
 }
 
 double inertial_number_of(double speed, double height, double d, double density, double sigma) {

@@ -8,16 +8,7 @@
 // a real box's walls: without them, shearing by dx opens a slot dx wide
 // under the upper half's x0 wall and over the lower half's x1 wall, and
 // beads smaller than dx pour out through it.
-// Specimens:
-//   Layers  the paper's preparation (its section 5 and Table 1): square
-//           layers of floor(length/d) x floor(width/d) touching beads, the
-//           row-to-wall clearance used either by shifting each layer as a
-//           whole by a seeded random amount within it (Shift) or by spreading
-//           it evenly between the rows (Spread); layers stacked 0.1% of d apart
-//           so nothing overlaps before settling under gravity.
-//   Pour    the same number of beads placed at random, without overlap, in a
-//           column three specimen heights tall: rained in and settled.
-//   Given   the scene's own particles (listed or generated).
+// The specimen is placed as specimen.h describes (layers, pour, given).
 // The halves are rectangles, not planes, so a bead in the gap meets their
 // edges: with gap < the smallest radius no bead centre can pass a wall.
 // The default split height is mid-height of the specimen: for Layers between
@@ -32,6 +23,7 @@
 
 #include <optional>
 
+#include "solver/apparatus/specimen.h"
 #include "solver/scene/scene.h"
 #include "solver/scene/scene_check.h"
 
@@ -51,13 +43,7 @@ std::optional<SceneIssue> build_shear_box(Scene& scene);
 double shear_area(const ShearBox& box);
 double shear_area_corrected(const ShearBox& box, double dx);
 
-// The square layer the box allows for diameter d: floor(length/d) x
-// floor(width/d) beads at a pitch of d (1 + 1e-6) (touching, never
-// overlapping by round-off).
-struct LayerGrid {
-  int nx = 0, ny = 0;
-  double pitch = 0;
-};
+// The square layer the box allows for diameter d (specimen.h).
 LayerGrid layer_grid(const ShearBox& box, double d);
 int beads_per_layer(const ShearBox& box, double d);
 

@@ -1,0 +1,153 @@
+#include "solver/apparatus/specimen.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "solver/common/number_text.h"
+#include "solver/scene/sphere_grid.h"
+
+namespace simsols {
+namespace {
+
+std::string num(double v) { return shortest_number(v); }
+
+struct Problem {
+  SceneIssue issue;
+};
+
+// The cell's footprint and the table its problems are reported under.
+struct Cell {
+  double length, width;
+  std::string table;
+  [[noreturn]] void fail(const std::string& code, const std::string& field,
+                         const std::string& message) const {
+    throw Problem{{code, table + "." + field, message}};
+  }
+  void require(bool ok, const std::string& field, double v, const std::string& allowed) const {
+    if (!std::isfinite(v)) fail("not_finite", field, num(v) + " is not a finite number");
+    if (!ok) fail("out_of_range", field, num(v) + " is out of range, allowed " + allowed);
+  }
+};
+
+// Seeded and identical on every platform (mt19937_64 is fully specified).
+class Prng {
+ public:
+  explicit Prng(std::uint64_t seed) : engine_(seed) {}
+  double uniform(double a, double b) {
+    return a + (b - a) * (static_cast<double>(engine_() >> 11) * 0x1.0p-53);
+  }
+
+ private:
+  std::mt19937_64 engine_;
+};
+
+// The paper's preparation: square layers, clearance shifted or spread.
+void place_layers(Scene& scene, const ShearSpecimen& s, const Cell& b) {
+  const double d = s.diameter, r = d / 2;
+  const LayerGrid grid = layer_grid(b.length, b.width, d);
+  const double pitch = grid.pitch;
+  const int nx = grid.nx, ny = grid.ny;
+  const double cx = b.length - nx * pitch, cy = b.width - ny * pitch;  // clearances
+  Prng prng(static_cast<std::uint64_t>(s.seed));
+  for (int k = 0; k < s.layers; ++k) {
+    const double z = r + k * d * 1.001;
+    double sx = 0, sy = 0, gx = 0, gy = 0;  // layer shift; gap between rows
+    if (s.clearance == ShearSpecimen::Clearance::Shift) {
+      sx = prng.uniform(0, cx);
+      sy = prng.uniform(0, cy);
+    } else {
+      gx = cx / (nx + 1);
+      gy = cy / (ny + 1);
+      sx = gx;
+      sy = gy;
+    }
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        scene.particles.push_back({s.material, r,
+                                   {sx + r + i * (pitch + gx), sy + r + j * (pitch + gy), z},
+                                   {},
+                                   {}});
+  }
+}
+
+// Random pour: as many beads as the layers would hold, in a tall column.
+void place_pour(Scene& scene, const ShearSpecimen& s, const Cell& b) {
+  const double d = s.diameter, r = d / 2;
+  const int count = beads_per_layer(b.length, b.width, d) * s.layers;
+  const double top = 3.0 * s.layers * d;
+  Prng prng(static_cast<std::uint64_t>(s.seed));
+  SphereGrid grid(d, static_cast<size_t>(count));
+  const size_t first = scene.particles.size();
+  const std::int64_t budget = 1000 + 2000LL * count;
+  std::int64_t attempts = 0;
+  for (int placed = 0; placed < count; ++placed) {
+    Vec3 p{};
+    bool hit = true;
+    while (hit) {
+      if (attempts++ == budget)
+        b.fail("out_of_range", "specimen.layers",
+             "could place only " + std::to_string(placed) + " of " + std::to_string(count) +
+                 " beads in the pouring column; use fewer layers");
+      p = {prng.uniform(r, b.length - r), prng.uniform(r, b.width - r),
+           prng.uniform(r, top - r)};
+      hit = false;
+      grid.for_each_near(p, [&](int q) {
+        const Vec3& o = scene.particles[first + q].position;
+        const double dx = p[0] - o[0], dy = p[1] - o[1], dz = p[2] - o[2];
+        hit = hit || dx * dx + dy * dy + dz * dz < d * d;
+      });
+    }
+    grid.insert(placed, p);
+    scene.particles.push_back({s.material, r, p, {}, {}});
+  }
+}
+
+// Checks the specimen's settings and places its beads.
+void place_in(Scene& scene, const ShearSpecimen& s, const Cell& b) {
+  if (s.method == ShearSpecimen::Method::Given) return;
+  if (s.material < 0 || s.material >= static_cast<int>(scene.materials.size()))
+    b.fail("unknown_material", "specimen.material", "the specimen's material does not exist");
+  const double side = std::min(b.length, b.width);
+  b.require(s.diameter > 0 && s.diameter <= side, "specimen.diameter", s.diameter,
+          "(0, " + num(side) + "] m");
+  b.require(s.layers >= 1 && s.layers <= 200, "specimen.layers", s.layers, "[1, 200]");
+  const double beads = double(beads_per_layer(b.length, b.width, s.diameter)) * s.layers;
+  if (beads > 2e7)
+    b.fail("out_of_range", "specimen.diameter",
+         "the specimen would hold " + num(beads) + " beads (limit 2e7)");
+  if (!scene.particles.empty())
+    b.fail("conflicting_keys", "specimen.method",
+         "the scene lists particles; use specimen.method = \"given\" to shear them");
+  if (s.method == ShearSpecimen::Method::Layers)
+    place_layers(scene, s, b);
+  else
+    place_pour(scene, s, b);
+}
+
+}  // namespace
+
+LayerGrid layer_grid(double length, double width, double d) {
+  LayerGrid g;
+  g.pitch = d * (1 + 1e-6);
+  g.nx = static_cast<int>(std::floor(length / g.pitch));
+  g.ny = static_cast<int>(std::floor(width / g.pitch));
+  return g;
+}
+
+int beads_per_layer(double length, double width, double d) {
+  const LayerGrid g = layer_grid(length, width, d);
+  return g.nx * g.ny;
+}
+
+std::optional<SceneIssue> place_specimen(Scene& scene, const ShearSpecimen& specimen,
+                                         double length, double width, const std::string& table) {
+  try {
+    place_in(scene, specimen, Cell{length, width, table});
+  } catch (const Problem& p) {
+    return p.issue;
+  }
+  return std::nullopt;
+}
+
+}  // namespace simsols
