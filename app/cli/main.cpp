@@ -8,9 +8,10 @@
 //   simsols lab [SCENE] [--script F]     the desktop lab (window)
 //   simsols study accuracy --out DIR     what accuracy costs in time
 //
-// Exit status: 0 success, 2 bad input, 3 device or I/O failure, 4 the run ran
-// away (NaN or a particle too fast; see solver/core/guard.h), 130 / 143 stopped by
-// SIGINT / SIGTERM with a checkpoint (app/cli/interrupt.h).
+// Exit status: 0 success, 2 bad input (UsageError, SceneError), 3 device
+// failure, 4 the run ran away (NaN or a particle too fast; see
+// solver/core/guard.h), 5 a result could not be written (IoError), 130 / 143
+// stopped by SIGINT / SIGTERM with a checkpoint (app/cli/interrupt.h).
 #include <cstdio>
 #include <map>
 

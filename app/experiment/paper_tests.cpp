@@ -71,7 +71,7 @@ Scene paper_test_scene(const Scene& base, const std::string& base_name, double d
   sc.walls.erase(sc.walls.begin() + base.shear_box->first_wall,
                  sc.walls.begin() + base.shear_box->first_wall + kShearBoxWalls);
   ShearBox b = *base.shear_box;
-  if (b.specimen.method == ShearSpecimen::Method::Given)
+  if (b.specimen.method == Specimen::Method::Given)
     throw SceneError("bad_enum", base_name, 0, "shear_box.specimen.method",
                      "the programme prepares its own specimens: use \"layers\" or \"pour\"");
   b.specimen.diameter = d_mm * 1e-3;

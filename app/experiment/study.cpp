@@ -349,7 +349,7 @@ Scene shear_case_scene(const StudyPreset& preset, const StudySettings& s) {
         x.shear_box->rows = preset.rows;
         x.shear_box->specimen.seed = s.seed;
         if (s.specimen == StudySpecimen::Poured) {
-          x.shear_box->specimen.method = ShearSpecimen::Method::Pour;
+          x.shear_box->specimen.method = Specimen::Method::Pour;
           x.shear_box->length *= preset.poured_box_scale;
           x.shear_box->width *= preset.poured_box_scale;
           x.shear_box->settle_time = preset.poured_settle_time;

@@ -138,7 +138,7 @@ void LabApp::draw_precision_and_time_step() {
   if (ImGui::SliderFloat("time step (x Rayleigh)", &dt_fraction, 0.05f, 0.5f, "%.2f"))
     exp_->set_dt_fraction(dt_fraction);
   const auto& box = exp_->scene().shear_box;
-  const StudySpecimen kind = box && box->specimen.method == ShearSpecimen::Method::Layers
+  const StudySpecimen kind = box && box->specimen.method == Specimen::Method::Layers
                                  ? StudySpecimen::Layered
                                  : StudySpecimen::Poured;
   if (const SettingSummary* a =

@@ -35,7 +35,7 @@ SimulationView::SimulationView(const Gl& gl, Simulation& sim)
   const glm::dvec3 origin = to_glm(packer_.origin());
   // Layered shear-box specimens: one band per layer, from the reference
   // heights (the layers' centres are evenly spaced by construction).
-  if (scene.shear_box && scene.shear_box->specimen.method == ShearSpecimen::Method::Layers &&
+  if (scene.shear_box && scene.shear_box->specimen.method == Specimen::Method::Layers &&
       scene.shear_box->specimen.layers > 1 && !scene.particles.empty()) {
     double zmin = 1e300, zmax = -1e300;
     for (const Particle& p : scene.particles) {

@@ -99,8 +99,8 @@ SpecimenExtent measure_specimen(const Scene& scene, const ShearBox& b) {
 
 // The automatic split height (split_height = 0).
 double default_split_height(const Scene& scene, const ShearBox& b, const SpecimenExtent& e) {
-  const ShearSpecimen& s = b.specimen;
-  if (s.method == ShearSpecimen::Method::Layers) {
+  const Specimen& s = b.specimen;
+  if (s.method == Specimen::Method::Layers) {
     // Between the two layers nearest mid-height (the lower half holds
     // floor(layers/2)), at the height they reach once every layer has
     // nested into the one below as far as the row-wall clearance lets it
@@ -109,7 +109,7 @@ double default_split_height(const Scene& scene, const ShearBox& b, const Specime
     const LayerGrid grid = layer_grid(b, d);
     const double cx = std::min(0.5 * d, b.length - grid.nx * d);
     const double cy = std::min(0.5 * d, b.width - grid.ny * d);
-    const double spacing = s.clearance == ShearSpecimen::Clearance::Spread
+    const double spacing = s.clearance == Specimen::Clearance::Spread
                                ? d
                                : std::sqrt(d * d - cx * cx - cy * cy);
     const int lower = std::max(1, s.layers / 2);
@@ -118,7 +118,7 @@ double default_split_height(const Scene& scene, const ShearBox& b, const Specime
   // Mid-height of the given beads, or of a pour once settled (its
   // volume at a solid fraction of 0.6).
   double height = e.top - e.bottom;
-  if (s.method == ShearSpecimen::Method::Pour) {
+  if (s.method == Specimen::Method::Pour) {
     double volume = 0;
     for (const Particle& p : scene.particles) volume += 4.0 / 3.0 * M_PI * std::pow(p.radius, 3);
     height = volume / (0.6 * b.length * b.width);

@@ -43,7 +43,7 @@ class Prng {
 };
 
 // The paper's preparation: square layers, clearance shifted or spread.
-void place_layers(Scene& scene, const ShearSpecimen& s, const Cell& b) {
+void place_layers(Scene& scene, const Specimen& s, const Cell& b) {
   const double d = s.diameter, r = d / 2;
   const LayerGrid grid = layer_grid(b.length, b.width, d);
   const double pitch = grid.pitch;
@@ -53,7 +53,7 @@ void place_layers(Scene& scene, const ShearSpecimen& s, const Cell& b) {
   for (int k = 0; k < s.layers; ++k) {
     const double z = r + k * d * 1.001;
     double sx = 0, sy = 0, gx = 0, gy = 0;  // layer shift; gap between rows
-    if (s.clearance == ShearSpecimen::Clearance::Shift) {
+    if (s.clearance == Specimen::Clearance::Shift) {
       sx = prng.uniform(0, cx);
       sy = prng.uniform(0, cy);
     } else {
@@ -72,7 +72,7 @@ void place_layers(Scene& scene, const ShearSpecimen& s, const Cell& b) {
 }
 
 // Random pour: as many beads as the layers would hold, in a tall column.
-void place_pour(Scene& scene, const ShearSpecimen& s, const Cell& b) {
+void place_pour(Scene& scene, const Specimen& s, const Cell& b) {
   const double d = s.diameter, r = d / 2;
   const int count = beads_per_layer(b.length, b.width, d) * s.layers;
   const double top = 3.0 * s.layers * d;
@@ -104,8 +104,8 @@ void place_pour(Scene& scene, const ShearSpecimen& s, const Cell& b) {
 }
 
 // Checks the specimen's settings and places its beads.
-void place_in(Scene& scene, const ShearSpecimen& s, const Cell& b) {
-  if (s.method == ShearSpecimen::Method::Given) return;
+void place_in(Scene& scene, const Specimen& s, const Cell& b) {
+  if (s.method == Specimen::Method::Given) return;
   if (s.material < 0 || s.material >= static_cast<int>(scene.materials.size()))
     b.fail("unknown_material", "specimen.material", "the specimen's material does not exist");
   const double side = std::min(b.length, b.width);
@@ -119,7 +119,7 @@ void place_in(Scene& scene, const ShearSpecimen& s, const Cell& b) {
   if (!scene.particles.empty())
     b.fail("conflicting_keys", "specimen.method",
          "the scene lists particles; use specimen.method = \"given\" to shear them");
-  if (s.method == ShearSpecimen::Method::Layers)
+  if (s.method == Specimen::Method::Layers)
     place_layers(scene, s, b);
   else
     place_pour(scene, s, b);
@@ -140,7 +140,7 @@ int beads_per_layer(double length, double width, double d) {
   return g.nx * g.ny;
 }
 
-std::optional<SceneIssue> place_specimen(Scene& scene, const ShearSpecimen& specimen,
+std::optional<SceneIssue> place_specimen(Scene& scene, const Specimen& specimen,
                                          double length, double width, const std::string& table) {
   try {
     place_in(scene, specimen, Cell{length, width, table});

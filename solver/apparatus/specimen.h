@@ -1,7 +1,7 @@
 // A specimen in a rectangular cell, shared by every apparatus with one.
 //
 // The cell is [0, length] x [0, width] on the floor z = 0, open upward.
-// Methods (ShearSpecimen::Method, scene.h):
+// Methods (Specimen::Method, scene.h):
 //   Layers  the paper's preparation (its section 5 and Table 1): square
 //           layers of floor(length/d) x floor(width/d) touching beads, the
 //           row-to-wall clearance used either by shifting each layer as a
@@ -34,7 +34,7 @@ int beads_per_layer(double length, double width, double d);
 
 // Checks `specimen`'s settings and appends its beads to the scene; the
 // first problem, its field under "<table>.specimen" (the apparatus' table).
-std::optional<SceneIssue> place_specimen(Scene& scene, const ShearSpecimen& specimen,
+std::optional<SceneIssue> place_specimen(Scene& scene, const Specimen& specimen,
                                          double length, double width, const std::string& table);
 
 }  // namespace simsols

@@ -41,9 +41,9 @@ std::optional<SceneIssue> read_shear_box(const Reader& root, Scene& scene) {
   b.rows = static_cast<int>(rows);
 
   Reader sp = r.sub("specimen", {"method", "material", "diameter", "layers", "clearance", "seed"});
-  ShearSpecimen& s = b.specimen;
-  s.method = sp.choice("method", ShearSpecimen::Method::Layers);
-  if (s.method == ShearSpecimen::Method::Given) {
+  Specimen& s = b.specimen;
+  s.method = sp.choice("method", Specimen::Method::Layers);
+  if (s.method == Specimen::Method::Given) {
     sp.forbid({"material", "diameter", "layers", "clearance", "seed"},
               "only allowed when method = \"layers\" or \"pour\"");
   } else {
@@ -54,9 +54,9 @@ std::optional<SceneIssue> read_shear_box(const Reader& root, Scene& scene) {
       sp.fail("out_of_range", "layers",
               std::to_string(layers) + " is out of range, allowed [1, 200]");
     s.layers = static_cast<int>(layers);
-    if (s.method == ShearSpecimen::Method::Pour)
+    if (s.method == Specimen::Method::Pour)
       sp.forbid({"clearance"}, "only allowed when method = \"layers\"");
-    s.clearance = sp.choice("clearance", ShearSpecimen::Clearance::Shift);
+    s.clearance = sp.choice("clearance", Specimen::Clearance::Shift);
     const std::int64_t seed = sp.optional_integer("seed").value_or(1);
     if (seed < 0)
       sp.fail("out_of_range", "seed", std::to_string(seed) + " is out of range, allowed [0, 2^63)");

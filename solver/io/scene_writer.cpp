@@ -176,7 +176,7 @@ class Writer {
     line("consolidate_time", b.consolidate_time);
     line("rows", std::to_string(b.rows));
     header("[shear_box.specimen]");
-    line("method", toml_string(choice_name(ShearSpecimen::Method::Given)));
+    line("method", toml_string(choice_name(Specimen::Method::Given)));
   }
 
   void write_effects() {

@@ -24,10 +24,10 @@ SIMSOLS_CHOICES(WallShape, {WallShape::Plane, "plane"}, {WallShape::Rectangle, "
 // [shear_box] loading, [shear_box.specimen] method and clearance
 SIMSOLS_CHOICES(ShearBox::Loading, {ShearBox::Loading::DeadWeight, "dead_weight"},
                 {ShearBox::Loading::Servo, "servo"})
-SIMSOLS_CHOICES(ShearSpecimen::Method, {ShearSpecimen::Method::Layers, "layers"},
-                {ShearSpecimen::Method::Pour, "pour"}, {ShearSpecimen::Method::Given, "given"})
-SIMSOLS_CHOICES(ShearSpecimen::Clearance, {ShearSpecimen::Clearance::Shift, "shift"},
-                {ShearSpecimen::Clearance::Spread, "spread"})
+SIMSOLS_CHOICES(Specimen::Method, {Specimen::Method::Layers, "layers"},
+                {Specimen::Method::Pour, "pour"}, {Specimen::Method::Given, "given"})
+SIMSOLS_CHOICES(Specimen::Clearance, {Specimen::Clearance::Shift, "shift"},
+                {Specimen::Clearance::Spread, "spread"})
 
 #undef SIMSOLS_CHOICES
 

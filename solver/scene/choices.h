@@ -36,8 +36,8 @@ template <> std::span<const Named<FluidModel>> choices();
 template <> std::span<const Named<Precision>> choices();
 template <> std::span<const Named<WallShape>> choices();
 template <> std::span<const Named<ShearBox::Loading>> choices();
-template <> std::span<const Named<ShearSpecimen::Method>> choices();
-template <> std::span<const Named<ShearSpecimen::Clearance>> choices();
+template <> std::span<const Named<Specimen::Method>> choices();
+template <> std::span<const Named<Specimen::Clearance>> choices();
 
 // The name of `value` ("?" for a value outside the table).
 template <class E>

@@ -194,15 +194,9 @@ struct Outputs {
   bool dump_vtk = true;
 };
 
-// The direct shear apparatus of the reference paper (its section 5) and its
-// loading program. The box is x in [0, length] (the shear direction),
-// y in [0, width], floor at z = 0, split at z = split_height into a lower and
-// an upper half with `gap` between them. The lower half (floor and four side
-// plates) moves in +x at the shear speed; the upper half and the platen are
-// held horizontally; the platen is servo-controlled to the normal stress.
-// build_shear_box() (shear_box.h) turns this into twelve walls (and particles) and
-// resolves the automatic values (0 below) into numbers.
-struct ShearSpecimen {
+// The specimen of an apparatus with a rectangular cell: how its beads are
+// placed (apparatus/specimen.h).
+struct Specimen {
   enum class Method : std::uint8_t { Layers, Pour, Given };
   enum class Clearance : std::uint8_t { Shift, Spread };
   Method method = Method::Layers;  // Table 1 layers / random pour / the scene's particles
@@ -213,6 +207,14 @@ struct ShearSpecimen {
   std::int64_t seed = 1;
 };
 
+// The direct shear apparatus of the reference paper (its section 5) and its
+// loading program. The box is x in [0, length] (the shear direction),
+// y in [0, width], floor at z = 0, split at z = split_height into a lower and
+// an upper half with `gap` between them. The lower half (floor and four side
+// plates) moves in +x at the shear speed; the upper half and the platen are
+// held horizontally; the platen is servo-controlled to the normal stress.
+// build_shear_box() (shear_box.h) turns this into twelve walls (and particles) and
+// resolves the automatic values (0 below) into numbers.
 struct ShearBox {
   double length = 60.23e-3;        // m, inside, along the shear direction x
   double width = 60.07e-3;         // m, inside, along y
@@ -236,7 +238,7 @@ struct ShearBox {
   double settle_time = 0.01;       // s, longest settling under gravity
   double consolidate_time = 0.1;   // s, longest consolidation under the platen
   int rows = 400;                  // output rows over the shear displacement
-  ShearSpecimen specimen;
+  Specimen specimen;
   int first_wall = 0;  // set by build_shear_box: its 12 walls (ShearBoxWall order)
 };
 

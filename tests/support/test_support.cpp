@@ -28,7 +28,7 @@ void report(const std::string& what, double measured, double theory) {
 }
 
 Scene small_shear_box(const std::string& name, double sigma, double displacement, Precision p,
-                      ShearSpecimen::Method method) {
+                      Specimen::Method method) {
   const double d = 6.35e-3;
   Scene s;
   s.name = name;
@@ -41,7 +41,7 @@ Scene small_shear_box(const std::string& name, double sigma, double displacement
   b.normal_stress = sigma;
   b.shear_displacement = displacement;
   b.rows = 100;
-  b.settle_time = method == ShearSpecimen::Method::Pour ? 0.1 : 0.005;
+  b.settle_time = method == Specimen::Method::Pour ? 0.1 : 0.005;
   b.specimen.material = 0;
   b.specimen.diameter = d;
   b.specimen.layers = 4;

@@ -40,7 +40,7 @@ double mass(const Scene& s, const Particle& p);
 // validated: callers may change effects or rows and then validate_scene.
 Scene small_shear_box(const std::string& name, double sigma, double displacement,
                       Precision p = Precision::Float,
-                      ShearSpecimen::Method method = ShearSpecimen::Method::Layers);
+                      Specimen::Method method = Specimen::Method::Layers);
 
 // No NaN or infinity in positions, velocities or spins.
 bool all_finite(const ParticleSnapshot& q);

@@ -285,7 +285,7 @@ TEST(ShearAnalysis, FirstPeakIsTheFirstMaximumBeforeSoftening) {
 
 // The suite's reduced specimen (test_support.h, small_shear_box).
 Scene small_box(double sigma, double displacement, Precision p = Precision::Float,
-                ShearSpecimen::Method method = ShearSpecimen::Method::Layers) {
+                Specimen::Method method = Specimen::Method::Layers) {
   Scene s = testing::small_shear_box("small_box", sigma, displacement, p, method);
   validate_scene(s, "small_box");
   return s;
@@ -380,7 +380,7 @@ TEST(ShearTest, SameTestTwiceGivesTheSameCsv) {
 // set by the layers' geometry and its glass friction (0.02) changes it by a
 // few per cent only (docs/shear-box.md).
 TEST(ShearTest, FrictionlessRollingFreeSpecimenHasALowerPeak) {
-  Scene glass = small_box(160e3, 2.5e-3, Precision::Float, ShearSpecimen::Method::Pour);
+  Scene glass = small_box(160e3, 2.5e-3, Precision::Float, Specimen::Method::Pour);
   Scene slick = glass;
   for (Material& m : slick.materials) m.sliding_friction = m.rolling_friction = 0;
   slick.effects.tangential = TangentialModel::None;
@@ -426,7 +426,7 @@ TEST(ShearTest, FrictionlessNestedLayerPeakIsOneOverSqrt2) {
   b.shear_displacement = 0.75 * d;
   b.rows = 400;
   b.settle_time = 0;
-  b.specimen.method = ShearSpecimen::Method::Given;
+  b.specimen.method = Specimen::Method::Given;
   s.shear_box = b;
   if (auto issue = build_shear_box(s)) FAIL() << issue->field << ": " << issue->message;
   validate_scene(s, "nested_layer");

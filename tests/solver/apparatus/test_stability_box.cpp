@@ -112,7 +112,7 @@ TEST(StiffAndSmall, GlassUnder400kPaStaysQuietInFloat) {
   b.normal_stress = sigma;
   b.settle_time = 0;  // nothing to settle: the platen comes down at once
   b.shear_displacement = d;
-  b.specimen.method = ShearSpecimen::Method::Given;
+  b.specimen.method = Specimen::Method::Given;
   s.shear_box = b;
   if (auto issue = build_shear_box(s)) FAIL() << issue->field << ": " << issue->message;
   validate_scene(s, "stiff_and_small");
@@ -339,7 +339,7 @@ TEST(BoxGap, WedgedBeadsNeitherEscapeNorExplode) {
   b.shear_displacement = 1.1 * d;
   b.rows = 100;
   b.settle_time = 0;
-  b.specimen.method = ShearSpecimen::Method::Given;
+  b.specimen.method = Specimen::Method::Given;
   s.shear_box = b;
   if (auto issue = build_shear_box(s)) FAIL() << issue->field << ": " << issue->message;
   validate_scene(s, "box_gap");

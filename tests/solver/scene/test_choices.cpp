@@ -37,8 +37,8 @@ TEST(Choices, EveryValueHasOneNameThatReadsBack) {
   expect_round_trip<Precision>(2);
   expect_round_trip<WallShape>(2);
   expect_round_trip<ShearBox::Loading>(2);
-  expect_round_trip<ShearSpecimen::Method>(3);
-  expect_round_trip<ShearSpecimen::Clearance>(2);
+  expect_round_trip<Specimen::Method>(3);
+  expect_round_trip<Specimen::Clearance>(2);
 }
 
 TEST(Choices, TheLoaderListsTheTablesNames) {
