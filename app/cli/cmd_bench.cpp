@@ -12,7 +12,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <sstream>
 #include <vector>
 
@@ -209,7 +208,7 @@ CommandRunner add_bench_command(CLI::App& app) {
     if (sizes->count() > 0) r.sizes = opt->sizes;
     if (repeat->count() > 0) r.frames = opt->repeat;
     std::tie(r.width, r.height) = parse_frame_size(opt->frame_size, "--frame-size");
-    if (const char* v = std::getenv("SIMSOLS_GL"); v && *v && gl->count() == 0) r.gl = v;
+    gl_from_environment(r.gl, gl->count() > 0);
     return bench_render(r);
   };
 }

@@ -29,7 +29,9 @@ std::shared_ptr<Device> open_command_device();
 // and the allowed names when not a precision.
 std::optional<Precision> precision_flag(const std::string& value,
                                         const std::string& flag = "--precision");
-// --gl when given, else SIMSOLS_GL when set, else "auto".
+// --gl when given, else SIMSOLS_GL when set, else "auto": `gl` holds the
+// flag's value, `given` whether it was on the command line.
+void gl_from_environment(std::string& gl, bool given);
 void gl_from_environment(FrameFlags& flags);
 
 CommandRunner add_run_command(CLI::App& app);

@@ -22,9 +22,11 @@ std::optional<Precision> precision_flag(const std::string& value, const std::str
   throw UsageError("bad_enum", flag, "'" + value + "' is not one of: " + allowed);
 }
 
-void gl_from_environment(FrameFlags& flags) {
+void gl_from_environment(std::string& gl, bool given) {
   const char* v = std::getenv("SIMSOLS_GL");
-  if (v && *v && !flags.given("--gl")) flags.gl = v;
+  if (v && *v && !given) gl = v;
 }
+
+void gl_from_environment(FrameFlags& flags) { gl_from_environment(flags.gl, flags.given("--gl")); }
 
 }  // namespace simsols

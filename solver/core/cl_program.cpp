@@ -63,7 +63,7 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
   // GPUs already run one particle per SIMD lane.
   c.lanes = device.is_gpu() ? 1 : (c.double_precision ? 4 : 8);
   if (device.options().lanes != 0) c.lanes = device.options().lanes;
-  if (c.lanes != 1 && c.lanes != 2 && c.lanes != 4 && c.lanes != 8 && c.lanes != 16)
+  if (!allowed_lanes(c.lanes))
     throw DeviceError("EngineOptions::lanes (SIMSOLS_LANES) must be 1, 2, 4, 8 or 16, not " +
                       std::to_string(c.lanes));
   // List slices (neighbors.cl): a work item's lanes are one slice, so they

@@ -35,7 +35,7 @@ EngineOptions engine_options_from_environment() {
   o.cl_options = variable("SIMSOLS_CL_OPTIONS");
   if (const std::string l = variable("SIMSOLS_LANES"); !l.empty()) {
     o.lanes = positive("SIMSOLS_LANES", l, "1, 2, 4, 8 or 16");
-    if (o.lanes != 1 && o.lanes != 2 && o.lanes != 4 && o.lanes != 8 && o.lanes != 16)
+    if (!allowed_lanes(o.lanes))
       throw UsageError("out_of_range", "environment", 0, "SIMSOLS_LANES",
                        "'" + l + "': allowed 1, 2, 4, 8 or 16");
   }

@@ -25,6 +25,11 @@ struct EngineOptions {
   std::string cl_options;
 };
 
+// Lanes a kernel can be built with: 1, 2, 4, 8 or 16 (0 = the default).
+inline bool allowed_lanes(int lanes) {
+  return lanes == 1 || lanes == 2 || lanes == 4 || lanes == 8 || lanes == 16;
+}
+
 // The options the environment asks for: SIMSOLS_CL_DEVICE, SIMSOLS_LANES,
 // SIMSOLS_LOCAL_SIZE, SIMSOLS_CL_OPTIONS (docs/performance.md). For the
 // edges only (app/cli, tests/support). Throws UsageError naming the

@@ -14,6 +14,7 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
   if (!device_) throw DeviceError("Model: no OpenCL device given (Device::open opens one)");
   if (scene_.particles.empty())
     throw SceneError("no_particles", scene_.source_path, 0, "particles", "the scene has no particles");
+  total_mass_ = scene_.total_mass();
   program_ = std::make_unique<Program>(*device_, make_kernel_config(scene_, *device_));
   const Program& p = *program_;
   kernels_.grid_clear = p.kernel("grid_clear");

@@ -44,6 +44,7 @@ class Model {
   double skin() const { return skin_; }
   double cell_size() const { return cell_size_; }
   const Vec3& origin() const { return origin_; }  // positions on the device are relative to it
+  double total_mass() const { return total_mass_; }  // kg, of every particle
   size_t real_size() const { return config().double_precision ? 8 : 4; }
   size_t local_size() const { return local_size_; }
   size_t global_size(size_t n) const { return (n + local_size_ - 1) / local_size_ * local_size_; }
@@ -60,6 +61,7 @@ class Model {
   PairTable pairs_;
   double dt_ = 0, rayleigh_dt_ = 0, skin_ = 0, cell_size_ = 0;
   Vec3 origin_{};
+  double total_mass_ = 0;
   size_t local_size_ = 64;
   ClMem pair_buf_, wall_buf_;
 };

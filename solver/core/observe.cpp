@@ -1,7 +1,6 @@
 #include "solver/core/observe.h"
 
 #include <cstring>
-#include <numbers>
 
 #include "solver/core/kernel_args.h"
 #include "solver/core/pipeline.h"
@@ -32,14 +31,6 @@ std::vector<double> read_reals(const Model& m, const Buffer& b, size_t count, si
 
 namespace {
 
-double total_mass(const Scene& scene) {
-  double mass = 0;
-  for (const Particle& p : scene.particles)
-    mass += scene.materials[p.material].density * 4.0 / 3.0 * std::numbers::pi * p.radius *
-            p.radius * p.radius;
-  return mass;
-}
-
 // The device measures positions from the model's float frame (Model::
 // origin); moments about the scene origin add origin x P, and the
 // gravitational energy relative to it -M g.origin.
@@ -49,7 +40,7 @@ void refer_to_scene_origin(const Model& m, Observables& o) {
   const Vec3 shift = cross(c, o.momentum);
   for (int a = 0; a < 3; ++a) o.angular_momentum[a] += shift[a];
   if (m.config().gravity)
-    o.gravitational_energy -= total_mass(m.scene()) * dot(m.scene().effects.gravity, c);
+    o.gravitational_energy -= m.total_mass() * dot(m.scene().effects.gravity, c);
 }
 
 }  // namespace

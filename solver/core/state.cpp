@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <numbers>
 
 #include "solver/core/pipeline.h"
 #include "solver/core/real_packer.h"
@@ -65,8 +64,7 @@ float State::make_particles(const Model& model) {
     v2_start = std::max(v2_start, static_cast<float>(q.velocity[0] * q.velocity[0] +
                                                      q.velocity[1] * q.velocity[1] +
                                                      q.velocity[2] * q.velocity[2]));
-    const Material& m = s.materials[q.material];
-    const double mass = m.density * 4.0 / 3.0 * std::numbers::pi * q.radius * q.radius * q.radius;
+    const double mass = s.mass(q);
     double rel[3];
     for (int a = 0; a < 3; ++a) rel[a] = q.position[a] - o[a];
     p.put4(rel[0], rel[1], rel[2], q.radius);

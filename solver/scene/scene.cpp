@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace simsols {
 
@@ -11,6 +12,17 @@ int Scene::material_index(const std::string& material_name) const {
   for (size_t i = 0; i < materials.size(); ++i)
     if (materials[i].name == material_name) return static_cast<int>(i);
   return -1;
+}
+
+double Scene::mass(const Particle& p) const {
+  return materials[p.material].density * 4.0 / 3.0 * std::numbers::pi * p.radius * p.radius *
+         p.radius;
+}
+
+double Scene::total_mass() const {
+  double sum = 0;
+  for (const Particle& p : particles) sum += mass(p);
+  return sum;
 }
 
 bool Scene::has_gravity() const {

@@ -270,6 +270,8 @@ struct Scene {
   std::string source_text;
 
   int material_index(const std::string& name) const;  // -1 when absent
+  double mass(const Particle& p) const;  // kg, a solid sphere of its material
+  double total_mass() const;             // kg, of every particle
   bool has_gravity() const;
   // Largest capillary rupture distance of any pair (0 without cohesion), m.
   double rupture_distance() const;
