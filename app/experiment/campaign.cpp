@@ -79,7 +79,7 @@ bool keep_finished(CampaignTest& t, const std::string& label, bool quiet) {
   return true;
 }
 
-void print_result(const CampaignTest& t, bool quiet) {
+void print_result(const CampaignTest& t) {
   const ShearSummary& s = t.result.summary;
   std::printf("%-22s peak tau/sigma %.3f (phi %.2f deg), residual %.3f (phi %.2f deg), "
               "max dilatancy %.2f deg, %.0f s\n",
@@ -167,7 +167,7 @@ CampaignOutcome run_campaign(std::vector<CampaignTest>& tests, const std::string
     }
     outcome.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     done_cost += t.cost;
-    print_result(t, run.quiet);
+    print_result(t);
   }
   write_report(tests, base_name, spec, out_dir, outcome.seconds);
   return outcome;

@@ -7,6 +7,17 @@
 #include "app/experiment/run_cost.h"
 
 namespace simsols {
+namespace {
+
+// One progress line: on a terminal it redraws the current line (and ends it
+// when `final`), elsewhere it is a line of its own.
+void print_line(std::FILE* out, bool tty, const std::string& text, bool final) {
+  if (tty) std::fprintf(out, final ? "\r%s\033[K\n" : "\r%s\033[K", text.c_str());
+  else std::fprintf(out, "%s\n", text.c_str());
+  std::fflush(out);
+}
+
+}  // namespace
 
 Progress::Progress(std::string label, std::int64_t total_steps, double dt, std::int64_t particles,
                    bool quiet, Clock clock, std::FILE* out)
@@ -39,15 +50,13 @@ void Progress::update(std::int64_t step, bool force) {
   const double since = std::chrono::duration<double>(now - last_).count();
   if (!force && since < (tty_ ? 0.5 : 5.0)) return;
   last_ = now;
-  if (tty_) std::fprintf(out_, "\r%s\033[K", line(step, false).c_str());
-  else std::fprintf(out_, "%s\n", line(step, false).c_str());
-  std::fflush(out_);
+  print_line(out_, tty_, line(step, false), false);
 }
 
 void Progress::finish(std::int64_t step) {
   if (quiet_) return;
   if (first_step_ < 0) first_step_ = step;
-  std::fprintf(out_, tty_ ? "\r%s\033[K\n" : "%s\n", line(step, true).c_str());
+  print_line(out_, tty_, line(step, true), true);
 }
 
 ProgrammeProgress::ProgrammeProgress(std::string label, bool quiet, double later,
@@ -58,6 +67,15 @@ ProgrammeProgress::ProgrammeProgress(std::string label, bool quiet, double later
 void ProgrammeProgress::start(const LoadingProgramme& test) {
   first_done_ = test.step_count().done;
   start_ = clock_();
+}
+
+std::string ProgrammeProgress::line(const LoadingProgramme& test, std::int64_t step, double time,
+                                    const std::string& tail) const {
+  char buf[320];
+  std::snprintf(buf, sizeof buf, "[%s] %5.1f%%  %s  step %lld  t = %.4f s  %s", label_.c_str(),
+                100 * test.progress(), test.status().c_str(), static_cast<long long>(step), time,
+                tail.c_str());
+  return buf;
 }
 
 double ProgrammeProgress::seconds() const {
@@ -84,19 +102,12 @@ void ProgrammeProgress::show(const LoadingProgramme& test, std::int64_t step, do
       std::chrono::duration<double>(now - *last_).count() < (tty_ ? 0.5 : 10.0))
     return;
   last_ = now;
-  std::fprintf(out_, tty_ ? "\r[%s] %5.1f%%  %s  step %lld  t = %.4f s  %s\033[K"
-                          : "[%s] %5.1f%%  %s  step %lld  t = %.4f s  %s\n",
-               label_.c_str(), 100 * test.progress(), test.status().c_str(),
-               static_cast<long long>(step), time, eta(test).c_str());
-  std::fflush(out_);
+  print_line(out_, tty_, line(test, step, time, eta(test)), false);
 }
 
 void ProgrammeProgress::end(const LoadingProgramme& test, std::int64_t step, double time) {
   if (quiet_) return;
-  std::fprintf(out_, tty_ ? "\r[%s] %5.1f%%  %s  step %lld  t = %.4f s  in %s\033[K\n"
-                          : "[%s] %5.1f%%  %s  step %lld  t = %.4f s  in %s\n",
-               label_.c_str(), 100 * test.progress(), test.status().c_str(),
-               static_cast<long long>(step), time, human_seconds(seconds()).c_str());
+  print_line(out_, tty_, line(test, step, time, "in " + human_seconds(seconds())), true);
 }
 
 }  // namespace simsols

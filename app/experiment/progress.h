@@ -60,6 +60,9 @@ class ProgrammeProgress {
  private:
   double seconds() const;
   std::string eta(const LoadingProgramme& test) const;
+  // "[label]  40.0%  status  step N  t = T s  " + tail (the ETA, or the duration)
+  std::string line(const LoadingProgramme& test, std::int64_t step, double time,
+                   const std::string& tail) const;
   std::string label_;
   bool quiet_;
   double later_;
