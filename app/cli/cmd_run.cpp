@@ -25,6 +25,7 @@
 #include "app/experiment/progress.h"
 #include "app/experiment/run_cost.h"
 #include "solver/io/scene_toml.h"
+#include "app/experiment/oedometer_run.h"
 #include "app/experiment/shear_run.h"
 #include "solver/core/simulation.h"
 #include "solver/core/slots.h"
@@ -282,6 +283,10 @@ Scene load_run_scene(const RunOptions& opt) {
     throw UsageError("conflicting_keys", "--duration",
                      "a shear test's loading program sets its duration "
                      "(shear_box.shear_displacement)");
+  if (scene.oedometer && opt.duration != 0)
+    throw UsageError("conflicting_keys", "--duration",
+                     "an oedometer test's loading program sets its duration "
+                     "(oedometer.load_steps, each held to equilibrium)");
   return scene;
 }
 
@@ -322,11 +327,41 @@ int finish_shear(const ShearRunResult& r, const RunOptions& opt, const Interrupt
   return r.interrupted ? interrupt.exit_status() : 0;
 }
 
+void print_oedometer(const OedometerRunResult& r, const std::string& dir) {
+  const OedometerSummary& s = r.summary;
+  const char* how = r.state.finished ? "finished" : r.state.interrupted ? "interrupted" : "stopped";
+  std::printf("oedometer test %s: %zu of its load steps, %d beads, %lld steps in %.0f s\n", how,
+              s.steps.size(), r.state.particles, r.state.steps, s.wall_seconds);
+  for (size_t i = 0; i < s.steps.size(); ++i) {
+    const OedometerStep& st = s.steps[i];
+    std::printf("  step %2zu  sigma'_v = %7.1f kPa  e = %.5f  eps_v = %7.4f %%  K0 = %.3f%s\n",
+                i + 1, st.sigma_top * 1e-3, st.void_ratio, 100 * st.strain, st.k0,
+                st.equilibrium ? "" : "  (held for step_time, not in equilibrium)");
+  }
+  if (r.state.finished) {
+    std::printf("  Cc = %.4f (%d steps)  Cs = %.4f (%d steps)  K0 (NC) = %.3f  side friction "
+                "%.1f %%\n",
+                s.cc, s.cc_points, s.cs, s.cs_points, s.k0_nc, 100 * s.side_friction);
+    if (s.jaky_k0 > 0)
+      std::printf("  Jaky 1 - sin(%.1f deg) = %.3f; the measured K0 implies phi' = %.1f deg\n",
+                  s.jaky_friction_angle, s.jaky_k0, s.implied_friction_angle);
+    if (!s.valid) std::printf("  INVALID: a step ended at step_time, not in equilibrium\n");
+  }
+  std::printf("  results in %s\n", dir.c_str());
+  if (!r.state.finished) std::printf("  %s\n", resume_hint(dir).c_str());
+}
+
+int finish_oedometer(const OedometerRunResult& r, const RunOptions& opt,
+                     const InterruptScope& interrupt) {
+  print_oedometer(r, opt.out_dir);
+  return r.state.interrupted ? interrupt.exit_status() : 0;
+}
+
 int run(const RunOptions& opt) {
   if (opt.explain) return explain(opt);
   check_flags(opt);
-  if (opt.resume && shear_finished(opt.out_dir)) {
-    std::printf("the shear test in %s finished already (summary.txt): nothing to resume\n",
+  if (opt.resume && programme_finished(opt.out_dir)) {
+    std::printf("the test in %s finished already (summary.txt): nothing to resume\n",
                 opt.out_dir.c_str());
     return 0;
   }
@@ -347,6 +382,12 @@ int run(const RunOptions& opt) {
   if (sim && sim->scene().shear_box)
     return finish_shear(resume_shear(std::move(sim), extra, shear), opt, interrupt);
   if (scene && scene->shear_box) return finish_shear(run_shear(*scene, shear), opt, interrupt);
+  ProgrammeRunOptions oedometer = shear;
+  oedometer.label = "oedometer";
+  if (sim && sim->scene().oedometer)
+    return finish_oedometer(resume_oedometer(std::move(sim), extra, oedometer), opt, interrupt);
+  if (scene && scene->oedometer)
+    return finish_oedometer(run_oedometer(*scene, oedometer), opt, interrupt);
   if (!sim) {
     sim = std::make_unique<Simulation>(device, *scene);
     std::filesystem::create_directories(dir);

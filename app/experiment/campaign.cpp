@@ -71,7 +71,7 @@ void check_spec(const Scene& base, const std::string& base_name, const CampaignS
 
 // Keeps a test finished earlier; false when it still has to run.
 bool keep_finished(CampaignTest& t, const std::string& label, bool quiet) {
-  if (!shear_finished(t.dir.string())) return false;
+  if (!programme_finished(t.dir.string())) return false;
   t.result.rows = parse_shear_rows_csv(read_text(t.dir / "shear.csv"));
   t.result.summary = reanalysed(t.dir, t.scene.name, t.result.rows);
   t.result.finished = true;
@@ -136,7 +136,7 @@ CampaignOutcome run_campaign(std::vector<CampaignTest>& tests, const std::string
   CampaignOutcome outcome;
   double total_cost = 0, done_cost = 0;
   for (const CampaignTest& t : tests)
-    if (!shear_finished(t.dir.string())) total_cost += t.cost;
+    if (!programme_finished(t.dir.string())) total_cost += t.cost;
   if (!run.quiet)
     std::fprintf(stderr, "[campaign] %zu tests, ~%.3g particle-steps to run, ~%s at %.0e "
                  "particle-steps/s\n", tests.size(), total_cost,

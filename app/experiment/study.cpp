@@ -400,7 +400,7 @@ ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s,
     while (!test.done()) {
       if (control.stop_requested && control.stop_requested()) {
         const double wall = wall_before + std::chrono::duration<double>(Clock::now() - t0).count();
-        save_checkpoint(*sim, control.checkpoint, shear_driver_state(test, wall));
+        save_checkpoint(*sim, control.checkpoint, driver_state(test, wall));
         r.interrupted = true;
         return r;
       }

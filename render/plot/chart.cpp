@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 
@@ -272,6 +273,28 @@ std::vector<std::string> tick_labels(const std::vector<double>& ticks, double st
 
 std::string format_tick(double v, double step) { return tick_labels({v}, step)[0]; }
 
+namespace {
+
+// Ticks of a log axis over [10^lo, 10^hi]: 1, 2 and 5 x 10^k.
+std::vector<double> log_ticks(double lo, double hi) {
+  std::vector<double> ticks;
+  for (int k = static_cast<int>(std::floor(lo)) - 1; k <= static_cast<int>(std::ceil(hi)); ++k)
+    for (double m : {1.0, 2.0, 5.0}) {
+      const double t = m * std::pow(10.0, k), v = std::log10(t);
+      if (v >= lo - 1e-9 && v <= hi + 1e-9) ticks.push_back(t);
+    }
+  return ticks;
+}
+
+// "25", "0.5", "2000": the value with no trailing zeros.
+std::string format_log_tick(double t) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", t);
+  return buf;
+}
+
+}  // namespace
+
 ChartLayout chart_layout(const Chart& c, int w, int h) {
   if (w < 100 || h < 80 || w > 16384 || h > 16384)
     throw std::invalid_argument("chart size must be within 100 x 80 .. 16384 x 16384 pixels");
@@ -279,6 +302,7 @@ ChartLayout chart_layout(const Chart& c, int w, int h) {
   constexpr double inf = std::numeric_limits<double>::infinity();
   double xlo = inf, xhi = -inf, ylo = inf, yhi = -inf;
   const auto add = [&](double x, double y) {
+    if (c.x_log) x = x > 0 ? std::log10(x) : NAN;
     if (!std::isfinite(x) || !std::isfinite(y)) return;
     xlo = std::min(xlo, x), xhi = std::max(xhi, x), ylo = std::min(ylo, y), yhi = std::max(yhi, y);
   };
@@ -293,17 +317,29 @@ ChartLayout chart_layout(const Chart& c, int w, int h) {
   for (const Marker& m : c.markers) add(m.x, m.y);
 
   ChartLayout L;
-  const Axis ax = axis_range(xlo, xhi, c.x_min, c.x_max, std::clamp(w / 110, 4, 10), false);
+  std::optional<double> x_min = c.x_min, x_max = c.x_max;
+  if (c.x_log) {
+    if (x_min) x_min = std::log10(*x_min);
+    if (x_max) x_max = std::log10(*x_max);
+  }
+  const Axis ax = axis_range(xlo, xhi, x_min, x_max, std::clamp(w / 110, 4, 10), false);
   const Axis ay = axis_range(ylo, yhi, c.y_min, c.y_max, std::clamp(h / 90, 4, 9), true);
   L.x_lo = ax.lo, L.x_hi = ax.hi, L.y_lo = ay.lo, L.y_hi = ay.hi;
   L.x_ticks = ticks_with_step(ax.lo, ax.hi, ax.step);
   L.y_ticks = ticks_with_step(ay.lo, ay.hi, ay.step);
   L.x_step = ax.step.value(), L.y_step = ay.step.value();
+  L.x_log = c.x_log;
+  if (c.x_log) {
+    L.x_ticks = log_ticks(ax.lo, ax.hi);
+    for (double t : L.x_ticks) L.x_labels.push_back(format_log_tick(t));
+  } else {
+    L.x_labels = tick_labels(L.x_ticks, L.x_step);
+  }
 
   double ytick_w = 0;
   for (const std::string& t : tick_labels(L.y_ticks, L.y_step))
     ytick_w = std::max(ytick_w, text_width(t, st.tick_font));
-  const std::vector<std::string> xl = tick_labels(L.x_ticks, L.x_step);
+  const std::vector<std::string>& xl = L.x_labels;
   const double xlast_w = xl.empty() ? 0 : text_width(xl.back(), st.tick_font);
   const double label_h = text_cap_height(st.label_font) + text_descent(st.label_font);
   const double gap = 0.6 * st.pad;
@@ -381,7 +417,7 @@ Image render_chart(const Chart& c, int w, int h) {
   fill_rect(img, l - f, t, l, b, kInk);
   fill_rect(img, r, t, r + f, b, kInk);
   const double gap = 0.6 * st.pad;
-  const std::vector<std::string> xl = tick_labels(L.x_ticks, L.x_step);
+  const std::vector<std::string>& xl = L.x_labels;
   for (std::size_t i = 0; i < L.x_ticks.size(); ++i) {
     const double x = std::floor(L.px(L.x_ticks[i])) + 0.5;
     fill_rect(img, x - f / 2, b + f, x + f / 2, b + st.tick_len, kInk);

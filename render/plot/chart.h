@@ -10,6 +10,7 @@
 // corner of the plot area that hides the least data.
 #pragma once
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,6 +42,9 @@ struct Chart {
   std::vector<Marker> markers;
   std::optional<double> x_min, x_max, y_min, y_max;
   bool legend = true;
+  // x on a log10 scale (an e-log sigma' curve): points with x <= 0 are left
+  // out; ticks at 1, 2 and 5 x 10^k, labelled with their values.
+  bool x_log = false;
 };
 
 // Where render_chart puts things: the plot area [left, right) x [top, bottom)
@@ -49,8 +53,13 @@ struct ChartLayout {
   int left = 0, top = 0, right = 0, bottom = 0;
   double x_lo = 0, x_hi = 1, y_lo = 0, y_hi = 1;
   std::vector<double> x_ticks, y_ticks;
-  double x_step = 0.2, y_step = 0.2;  // tick spacing
-  double px(double x) const { return left + (x - x_lo) / (x_hi - x_lo) * (right - left); }
+  double x_step = 0.2, y_step = 0.2;  // tick spacing (of log10 x on a log axis)
+  bool x_log = false;                 // x_lo, x_hi are then log10 of the range
+  std::vector<std::string> x_labels;  // one per x tick
+  double px(double x) const {
+    const double v = x_log ? std::log10(x) : x;
+    return left + (v - x_lo) / (x_hi - x_lo) * (right - left);
+  }
   double py(double y) const { return bottom - (y - y_lo) / (y_hi - y_lo) * (bottom - top); }
 };
 

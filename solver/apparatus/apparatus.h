@@ -42,8 +42,11 @@ class LoadingProgramme {
   // new row; returns true when a new row was measured.
   virtual bool advance(std::int64_t max_steps) = 0;
   virtual bool done() const = 0;
-  // The current stage's name ("settle", "consolidate", "shear", "done").
+  // The current stage's name ("settle", "consolidate", "shear", "load", "done").
   virtual const char* stage_name() const = 0;
+  // True once the stage the test is about has begun (shear, load): what
+  // frames measure displacements from.
+  virtual bool measuring() const = 0;
 
   // Steps of the whole programme: done so far, and done plus an estimate
   // of those left (exact once the last stage has begun).

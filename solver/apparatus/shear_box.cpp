@@ -1,5 +1,6 @@
 #include "solver/apparatus/shear_box.h"
 
+#include "solver/apparatus/cell_walls.h"
 #include "solver/apparatus/specimen.h"
 
 #include <algorithm>
@@ -24,20 +25,6 @@ struct Problem {
 void require(bool ok, const std::string& field, double v, const std::string& allowed) {
   if (!std::isfinite(v)) fail("not_finite", field, num(v) + " is not a finite number");
   if (!ok) fail("out_of_range", field, num(v) + " is out of range, allowed " + allowed);
-}
-
-Wall rectangle(const std::string& name, int material, const Vec3& centre, const Vec3& normal,
-               const Vec3& axis_u, double half_u, double half_v) {
-  Wall w;
-  w.name = name;
-  w.shape = WallShape::Rectangle;
-  w.material = material;
-  w.point = centre;
-  w.normal = normal;
-  w.axis_u = axis_u;
-  w.half_u = half_u;
-  w.half_v = half_v;
-  return w;
 }
 
 void check_box(const ShearBox& b, const Scene& scene) {
@@ -126,20 +113,6 @@ double default_split_height(const Scene& scene, const ShearBox& b, const Specime
   return e.bottom + 0.5 * height;
 }
 
-// The box's material: the scene's "steel" when none is named, added when
-// the scene has none.
-void resolve_wall_material(Scene& scene, ShearBox& b) {
-  if (b.wall_material < 0) {
-    b.wall_material = scene.material_index("steel");
-    if (b.wall_material < 0) {
-      scene.materials.push_back(default_box_steel());
-      b.wall_material = static_cast<int>(scene.materials.size()) - 1;
-    }
-  }
-  if (b.wall_material >= static_cast<int>(scene.materials.size()))
-    fail("unknown_material", "wall_material", "the box material does not exist");
-}
-
 // The twelve walls (shear_box.h), from b.first_wall on.
 void add_walls(Scene& scene, ShearBox& b, const SpecimenExtent& e) {
   // Geometry: plates reach a little past the corners; the upper half is
@@ -152,26 +125,26 @@ void add_walls(Scene& scene, ShearBox& b, const SpecimenExtent& e) {
   const Vec3 ex{1, 0, 0}, ey{0, 1, 0}, ez{0, 0, 1};
   b.first_wall = static_cast<int>(scene.walls.size());
   auto& w = scene.walls;
-  w.push_back(rectangle("floor", m, {L / 2, W / 2, 0}, ez, ex, L / 2, W / 2));
-  w.push_back(rectangle("lower_x0", m, {0, W / 2, low_h / 2}, ex, ey, W / 2, low_h / 2));
-  w.push_back(rectangle("lower_x1", m, {L, W / 2, low_h / 2}, {-1, 0, 0}, ey, W / 2, low_h / 2));
-  w.push_back(rectangle("lower_y0", m, {L / 2, 0, low_h / 2}, ey, ex, L / 2, low_h / 2));
-  w.push_back(rectangle("lower_y1", m, {L / 2, W, low_h / 2}, {0, -1, 0}, ex, L / 2, low_h / 2));
+  w.push_back(rectangle_wall("floor", m, {L / 2, W / 2, 0}, ez, ex, L / 2, W / 2));
+  w.push_back(rectangle_wall("lower_x0", m, {0, W / 2, low_h / 2}, ex, ey, W / 2, low_h / 2));
+  w.push_back(rectangle_wall("lower_x1", m, {L, W / 2, low_h / 2}, {-1, 0, 0}, ey, W / 2, low_h / 2));
+  w.push_back(rectangle_wall("lower_y0", m, {L / 2, 0, low_h / 2}, ey, ex, L / 2, low_h / 2));
+  w.push_back(rectangle_wall("lower_y1", m, {L / 2, W, low_h / 2}, {0, -1, 0}, ex, L / 2, low_h / 2));
   // Real halves are frames with thick walls: once the lower half has moved
   // by dx, the top face of its x0 wall closes the opening x in [0, dx] under
   // the upper half, and the bottom face of the upper half's x1 wall closes
   // x in [L, L + dx] over the lower half. Plates as wide as the travel.
   const double frame = b.shear_displacement + 2 * e.r_max;
-  w.push_back(rectangle("lower_frame", m, {-frame / 2, W / 2, zs - g / 2}, ez, ex, frame / 2,
+  w.push_back(rectangle_wall("lower_frame", m, {-frame / 2, W / 2, zs - g / 2}, ez, ex, frame / 2,
                         W / 2));
   const double zu = up_lo + up_h / 2;
-  w.push_back(rectangle("upper_x0", m, {0, W / 2, zu}, ex, ey, W / 2, up_h / 2));
-  w.push_back(rectangle("upper_x1", m, {L, W / 2, zu}, {-1, 0, 0}, ey, W / 2, up_h / 2));
-  w.push_back(rectangle("upper_y0", m, {L / 2, 0, zu}, ey, ex, L / 2, up_h / 2));
-  w.push_back(rectangle("upper_y1", m, {L / 2, W, zu}, {0, -1, 0}, ex, L / 2, up_h / 2));
-  w.push_back(rectangle("upper_frame", m, {L + frame / 2, W / 2, zs + g / 2}, {0, 0, -1}, ex,
+  w.push_back(rectangle_wall("upper_x0", m, {0, W / 2, zu}, ex, ey, W / 2, up_h / 2));
+  w.push_back(rectangle_wall("upper_x1", m, {L, W / 2, zu}, {-1, 0, 0}, ey, W / 2, up_h / 2));
+  w.push_back(rectangle_wall("upper_y0", m, {L / 2, 0, zu}, ey, ex, L / 2, up_h / 2));
+  w.push_back(rectangle_wall("upper_y1", m, {L / 2, W, zu}, {0, -1, 0}, ex, L / 2, up_h / 2));
+  w.push_back(rectangle_wall("upper_frame", m, {L + frame / 2, W / 2, zs + g / 2}, {0, 0, -1}, ex,
                         frame / 2, W / 2));
-  Wall platen = rectangle("platen", m, {L / 2, W / 2, platen_z}, {0, 0, -1}, ex, L / 2, W / 2);
+  Wall platen = rectangle_wall("platen", m, {L / 2, W / 2, platen_z}, {0, 0, -1}, ex, L / 2, W / 2);
   // Switched on by the loading program (shear_test.h); its settings are set
   // there too, from the specimen's stiffness.
   platen.servo.enabled = true;
@@ -192,13 +165,12 @@ void build(Scene& scene) {
   if (b.split_height == 0) b.split_height = default_split_height(scene, b, e);
   require(b.split_height > b.gap && b.split_height < e.top, "split_height", b.split_height,
           "(" + num(b.gap) + ", " + num(e.top) + ") m (inside the specimen)");
-  resolve_wall_material(scene, b);
+  if (!resolve_wall_material(scene, b.wall_material))
+    fail("unknown_material", "wall_material", "the box material does not exist");
   add_walls(scene, b, e);
 }
 
 }  // namespace
-
-Material default_box_steel() { return {"steel", 200e9, 0.3, 7850, 0.87, 0.02, 5e-5}; }
 
 std::optional<SceneIssue> build_shear_box(Scene& scene) {
   if (!scene.shear_box) return std::nullopt;

@@ -23,16 +23,12 @@
 
 #include <optional>
 
+#include "solver/apparatus/cell_walls.h"
 #include "solver/apparatus/specimen.h"
 #include "solver/scene/scene.h"
 #include "solver/scene/scene_check.h"
 
 namespace simsols {
-
-// The box's default material when the scene names none: steel. The paper
-// gives no wall properties; restitution and friction are the glass values
-// of its Table 2, so a glass-steel pair behaves as glass-glass but stiffer.
-Material default_box_steel();
 
 // Appends the apparatus (and the specimen) to `scene`; returns the first
 // problem, with its field under "shear_box".

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "solver/scene/contact_model.h"
+#include "solver/apparatus/platen_servo.h"
 #include "solver/apparatus/shear_box.h"
 
 namespace simsols {
@@ -16,13 +16,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kRad = 180.0 / kPi;
-
-// Servo tuning (see docs/shear-box.md): the proportional gain makes the
-// platen's contacts relax in ~1/kGainFraction steps; the integral removes the
-// steady error while the specimen dilates, over kIntegralPeriods of the
-// specimen's vertical oscillation period.
-constexpr double kGainFraction = 0.5;
-constexpr double kIntegralPeriods = 5.0;
 
 // Shares of the settle and consolidate caps the paper's tests take before
 // their end criteria hold (for progress estimates only).
@@ -54,25 +47,10 @@ const char* phase_name(ShearPhase p) {
 }
 
 ShearTest::ShearTest(Simulation& sim) : sim_(sim), box_(box_of(sim)) {
-  const Scene& scene = sim.scene();
-  double d = 0, mass = 0;
-  for (const Particle& p : scene.particles) {
-    d += 2 * p.radius;
-    mass += scene.materials[p.material].density * 4.0 / 3.0 * kPi * std::pow(p.radius, 3);
-  }
-  const double n = static_cast<double>(scene.particles.size());
-  diameter_ = d / n;
-  bead_mass_ = mass / n;
-  density_ = scene.materials[scene.particles[0].material].density;
+  stats_ = specimen_stats(sim.scene(), box_.wall_material);
+  diameter_ = stats_.diameter;
+  density_ = stats_.density;
   sigma_target_ = box_.normal_stress;
-
-  const PairTable pairs = make_pair_table(scene);
-  const double e_star = pairs.at(scene.particles[0].material, box_.wall_material).e_star;
-  k_hertz_ = 4.0 / 3.0 * e_star * std::sqrt(diameter_ / 2);
-  specimen_mass_ = mass;
-  double top = 0;
-  for (const Particle& p : scene.particles) top = std::max(top, p.position[2] + p.radius);
-  layers_ = std::max(1.0, top / diameter_);
   // A quarter of a layer of touching beads over the platen's area: on its
   // contacts (one per d^2) the platen rings like a bead on four, no faster
   // than a bead in the packing (about six), so the step that resolves the
@@ -83,21 +61,15 @@ ShearTest::ShearTest(Simulation& sim) : sim_(sim), box_(box_of(sim)) {
   tune_servo();
 }
 
-// Automatic servo settings from the Hertz stiffness of the platen's
-// contacts at the target stress, one bead per d^2 of platen. Retuned when
-// the target changes: the contacts stiffen as sigma^(1/3), so a gain tuned
-// at 50 kPa is twice as sharp at 400 kPa, at the limit of the loop's
-// stability (docs/shear-box.md), and the platen rang from step to step
-// (stability case 6).
+// Automatic servo settings (platen_servo.h), retuned when the target
+// changes: a gain tuned at 50 kPa is twice as sharp at 400 kPa, at the limit
+// of the loop's stability (docs/shear-box.md), and the platen rang from step
+// to step (stability case 6).
 void ShearTest::tune_servo() {
-  const double contacts = shear_area(box_) / (diameter_ * diameter_);
-  const double f_contact = sigma_target_ * diameter_ * diameter_;
-  const double k_contact = 1.5 * std::cbrt(f_contact) * std::pow(k_hertz_, 2.0 / 3.0);
-  const double k_platen = contacts * k_contact;
-  gain_ = box_.servo_gain > 0 ? box_.servo_gain : kGainFraction / (k_platen * sim_.dt());
-  const double period = 2 * kPi * std::sqrt(specimen_mass_ / (k_platen / layers_));
-  integral_time_ = box_.servo_integral_time > 0 ? box_.servo_integral_time
-                                                : kIntegralPeriods * period;
+  const PlatenServo p = tune_platen_servo(stats_, shear_area(box_), sigma_target_, sim_.dt(),
+                                          box_.servo_gain, box_.servo_integral_time);
+  gain_ = p.gain;
+  integral_time_ = p.integral_time;
 }
 
 double ShearTest::shear_speed_for(double height) const {
@@ -223,7 +195,7 @@ bool ShearTest::settled() {
   const bool gravity = sim_.scene().has_gravity();
   if (gravity && elapsed < 2e-3) return false;
   const Observables o = sim_.observe();
-  const double scale = o.particles * bead_mass_ * 9.81 * diameter_;
+  const double scale = o.particles * stats_.bead_mass * 9.81 * diameter_;
   return o.kinetic() < 1e-4 * scale;
 }
 
@@ -246,7 +218,7 @@ bool ShearTest::equilibrium(double reaction) {
   const int platen = box_.first_wall + kPlaten;
   const double target = sigma_target_ * shear_area(box_);
   const Observables o = sim_.observe();
-  const double v_rms = std::sqrt(2 * o.kinetic_translational / (o.particles * bead_mass_));
+  const double v_rms = std::sqrt(2 * o.kinetic_translational / (o.particles * stats_.bead_mass));
   const double v_platen = std::fabs(sim_.wall_velocity(platen)[2]);
   const double v_shear = shear_speed_for(specimen_height());
   const bool quiet = std::fabs(reaction - target) < kEquilibriumForce * target &&
@@ -350,7 +322,7 @@ ShearTest::StepCount ShearTest::step_count() const {
   const double consolidate = box_.consolidate_time / dt * kConsolidateShare;
   const double shear = shear_steps_ > 0 ? double(shear_steps_)
                                         : box_.shear_displacement /
-                                              (shear_speed_for(layers_ * diameter_) * dt);
+                                              (shear_speed_for(stats_.layers * diameter_) * dt);
   const double settled = settle_seconds_ / dt, consolidated = consolidate_seconds_ / dt;
   StepCount c;
   switch (phase_) {

@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "solver/apparatus/apparatus.h"
+#include "solver/apparatus/platen_servo.h"
 #include "solver/apparatus/shear_analysis.h"
 #include "solver/core/simulation.h"
 
@@ -55,6 +56,7 @@ class ShearTest : public LoadingProgramme {
   bool advance(std::int64_t max_steps) override;
   bool done() const override { return phase_ == ShearPhase::Done; }
   const char* stage_name() const override { return phase_name(phase_); }
+  bool measuring() const override { return phase_ == ShearPhase::Shear; }
   StepCount step_count() const override;
   std::string status() const override;
   std::string save_state() const override;
@@ -118,8 +120,8 @@ class ShearTest : public LoadingProgramme {
   std::int64_t shear_steps_ = 0;   // steps the shear takes
   double sigma_target_ = 0;
   double speed_ = 0, gain_ = 0, integral_time_ = 0;
-  double x0_ = 0, z0_ = 0, height0_ = 0, diameter_ = 0, density_ = 0, bead_mass_ = 0;
-  double k_hertz_ = 0, specimen_mass_ = 0, layers_ = 1;  // for tune_servo
+  SpecimenStats stats_;
+  double x0_ = 0, z0_ = 0, height0_ = 0, diameter_ = 0, density_ = 0;
   double settle_seconds_ = 0, consolidate_seconds_ = 0;
   int quiet_checks_ = 0;
   bool hold_ = false, ready_ = false;

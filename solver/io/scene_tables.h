@@ -32,6 +32,13 @@ std::vector<size_t> read_generators(const Reader& root, Scene& scene);
 // the first problem of the build, if any.
 std::optional<SceneIssue> read_shear_box(const Reader& root, Scene& scene);
 
+// scene_tables_oedometer.cpp: [oedometer], likewise.
+std::optional<SceneIssue> read_oedometer(const Reader& root, Scene& scene);
+
+// The [<apparatus>.specimen] sub-table of an apparatus table
+// (scene_tables_shear_box.cpp).
+Specimen read_specimen(const Reader& apparatus, const Scene& scene);
+
 // scene_tables_settings.cpp
 void read_effects(const Reader& root, Scene& scene);   // [effects]
 void read_numerics(const Reader& root, Scene& scene);  // [numerics]

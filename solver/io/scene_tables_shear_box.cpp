@@ -5,6 +5,31 @@
 
 namespace simsols::scene_toml {
 
+Specimen read_specimen(const Reader& apparatus, const Scene& scene) {
+  Reader sp = apparatus.sub("specimen", {"method", "material", "diameter", "layers", "clearance", "seed"});
+  Specimen s;
+  s.method = sp.choice("method", Specimen::Method::Layers);
+  if (s.method == Specimen::Method::Given) {
+    sp.forbid({"material", "diameter", "layers", "clearance", "seed"},
+              "only allowed when method = \"layers\" or \"pour\"");
+    return s;
+  }
+  s.material = sp.material("material", scene);
+  s.diameter = sp.number("diameter");
+  const std::int64_t layers = sp.integer("layers");
+  if (layers < 1 || layers > 200)
+    sp.fail("out_of_range", "layers", std::to_string(layers) + " is out of range, allowed [1, 200]");
+  s.layers = static_cast<int>(layers);
+  if (s.method == Specimen::Method::Pour)
+    sp.forbid({"clearance"}, "only allowed when method = \"layers\"");
+  s.clearance = sp.choice("clearance", Specimen::Clearance::Shift);
+  const std::int64_t seed = sp.optional_integer("seed").value_or(1);
+  if (seed < 0)
+    sp.fail("out_of_range", "seed", std::to_string(seed) + " is out of range, allowed [0, 2^63)");
+  s.seed = seed;
+  return s;
+}
+
 std::optional<SceneIssue> read_shear_box(const Reader& root, Scene& scene) {
   if (!root.has("shear_box")) return std::nullopt;
   Reader r = root.sub("shear_box",
@@ -40,28 +65,7 @@ std::optional<SceneIssue> read_shear_box(const Reader& root, Scene& scene) {
            std::to_string(rows) + " is out of range, allowed [10, 1000000]");
   b.rows = static_cast<int>(rows);
 
-  Reader sp = r.sub("specimen", {"method", "material", "diameter", "layers", "clearance", "seed"});
-  Specimen& s = b.specimen;
-  s.method = sp.choice("method", Specimen::Method::Layers);
-  if (s.method == Specimen::Method::Given) {
-    sp.forbid({"material", "diameter", "layers", "clearance", "seed"},
-              "only allowed when method = \"layers\" or \"pour\"");
-  } else {
-    s.material = sp.material("material", scene);
-    s.diameter = sp.number("diameter");
-    const std::int64_t layers = sp.integer("layers");
-    if (layers < 1 || layers > 200)
-      sp.fail("out_of_range", "layers",
-              std::to_string(layers) + " is out of range, allowed [1, 200]");
-    s.layers = static_cast<int>(layers);
-    if (s.method == Specimen::Method::Pour)
-      sp.forbid({"clearance"}, "only allowed when method = \"layers\"");
-    s.clearance = sp.choice("clearance", Specimen::Clearance::Shift);
-    const std::int64_t seed = sp.optional_integer("seed").value_or(1);
-    if (seed < 0)
-      sp.fail("out_of_range", "seed", std::to_string(seed) + " is out of range, allowed [0, 2^63)");
-    s.seed = seed;
-  }
+  b.specimen = read_specimen(r, scene);
   scene.shear_box = b;
   return build_shear_box(scene);
 }

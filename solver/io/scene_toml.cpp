@@ -25,7 +25,7 @@ class Loader {
     root_ = &root;
     Reader r(root, "", ctx_,
              {"scene", "materials", "interactions", "particles", "generators", "walls", "effects",
-              "numerics", "output", "shear_box", "view"});
+              "numerics", "output", "shear_box", "oedometer", "view"});
     read_info(r, scene_);
     read_materials(r, scene_);
     read_interactions(r, scene_);
@@ -34,6 +34,7 @@ class Loader {
     generator_of_ = read_generators(r, scene_);
     read_walls(r, scene_);
     if (auto issue = read_shear_box(r, scene_)) fail(std::move(*issue));
+    if (auto issue = read_oedometer(r, scene_)) fail(std::move(*issue));
     read_effects(r, scene_);
     read_numerics(r, scene_);
     read_outputs(r, scene_);

@@ -83,6 +83,7 @@ class Writer {
     for (size_t i = 0; i < s_.walls.size(); ++i)
       if (!is_box_wall(i)) write(s_.walls[i], i);
     if (s_.shear_box) write_shear_box(*s_.shear_box);
+    if (s_.oedometer) write_oedometer(*s_.oedometer);
     write_effects();
     write_numerics();
     write_outputs();
@@ -149,9 +150,14 @@ class Writer {
                         " }");
   }
 
+  // The apparatus' walls are written as its table, which rebuilds them.
   bool is_box_wall(size_t i) const {
-    return s_.shear_box && static_cast<int>(i) >= s_.shear_box->first_wall &&
-           static_cast<int>(i) < s_.shear_box->first_wall + kShearBoxWalls;
+    const int k = static_cast<int>(i);
+    if (s_.shear_box && k >= s_.shear_box->first_wall &&
+        k < s_.shear_box->first_wall + kShearBoxWalls)
+      return true;
+    return s_.oedometer && k >= s_.oedometer->first_wall &&
+           k < s_.oedometer->first_wall + kOedometerWalls;
   }
 
   // The apparatus with its resolved values; its specimen is the explicit
@@ -176,6 +182,25 @@ class Writer {
     line("consolidate_time", b.consolidate_time);
     line("rows", std::to_string(b.rows));
     header("[shear_box.specimen]");
+    line("method", toml_string(choice_name(Specimen::Method::Given)));
+  }
+
+  void write_oedometer(const Oedometer& o) {
+    header("[oedometer]");
+    line("length", o.length);
+    line("width", o.width);
+    line("wall_material", toml_string(material_name(s_, o.wall_material, "oedometer.wall_material")));
+    std::string steps = "[";
+    for (size_t i = 0; i < o.load_steps.size(); ++i)
+      steps += (i ? ", " : "") + toml_float(o.load_steps[i]);
+    line("load_steps", steps + "]");
+    line("step_time", o.step_time);
+    line("settle_time", o.settle_time);
+    line("servo_gain", o.servo_gain);
+    line("servo_max_speed", o.servo_max_speed);
+    line("servo_integral_time", o.servo_integral_time);
+    line("friction_angle", o.friction_angle);
+    header("[oedometer.specimen]");
     line("method", toml_string(choice_name(Specimen::Method::Given)));
   }
 

@@ -116,6 +116,22 @@ class Reader {
     return n ? std::optional<double>(to_number(key, *n)) : std::nullopt;
   }
 
+  // An array of numbers, e.g. load_steps = [25e3, 50e3]; `fallback` when absent.
+  std::vector<double> numbers(std::string_view key, const std::vector<double>& fallback) const {
+    const toml::node* n = get(key);
+    if (!n) return fallback;
+    const toml::array* a = as_array(key, *n);
+    std::vector<double> out;
+    for (size_t k = 0; k < a->size(); ++k) {
+      const toml::node& e = *a->get(k);
+      if (!e.is_integer() && !e.is_floating_point())
+        fail("wrong_type", key,
+             "element " + std::to_string(k) + " is " + type_name(e) + ", expected a number");
+      out.push_back(to_number(key, e));
+    }
+    return out;
+  }
+
   std::optional<std::int64_t> optional_integer(std::string_view key) const {
     const toml::node* n = get(key);
     if (!n) return std::nullopt;

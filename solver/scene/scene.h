@@ -252,6 +252,34 @@ enum ShearBoxWall : int {
   kLowerLast = kLowerFrame
 };
 
+// The oedometer (one-dimensional compression, docs/oedometer.md): a rigid
+// square ring x in [0, length], y in [0, width] on a floor at z = 0, and a
+// top platen servo-controlled to each vertical stress of `load_steps` in
+// turn, each held until the specimen is in equilibrium under it (or for
+// step_time at most). The steps up to the largest are the loading branch,
+// those after it the unloading branch. build_oedometer() (apparatus/
+// oedometer.h) turns this into six walls (and particles) and resolves the
+// automatic values (0 below).
+struct Oedometer {
+  double length = 60e-3;           // m, inside, along x
+  double width = 60e-3;            // m, inside, along y
+  int wall_material = -1;          // the ring's material; -1 = "steel" (added when absent)
+  std::vector<double> load_steps = {25e3, 50e3, 100e3, 200e3, 400e3, 800e3, 200e3, 50e3, 25e3};  // Pa
+  double step_time = 0.1;          // s, longest hold of one load step
+  double settle_time = 0.01;       // s, longest settling under gravity
+  double servo_gain = 0;           // m/(s N); 0 = automatic (from the Hertz stiffness)
+  double servo_max_speed = 0.5;    // m/s, the platen's speed cap
+  double servo_integral_time = 0;  // s; 0 = automatic
+  double friction_angle = 0;       // deg, phi' for Jaky's K0 = 1 - sin phi'; 0 = none given
+  Specimen specimen;
+  int first_wall = 0;  // set by build_oedometer: its 6 walls (OedometerWall order)
+};
+
+// The oedometer's walls, in this order from Oedometer::first_wall.
+enum OedometerWall : int {
+  kOedFloor = 0, kOedX0, kOedX1, kOedY0, kOedY1, kOedPlaten, kOedometerWalls
+};
+
 struct Scene {
   std::string name = "unnamed";
   std::string description;
@@ -264,6 +292,7 @@ struct Scene {
   Outputs outputs;
   ViewHints view;
   std::optional<ShearBox> shear_box;  // a direct shear test (walls included in `walls`)
+  std::optional<Oedometer> oedometer;  // an oedometer test (walls included in `walls`)
 
   // Where it came from (empty for scenes built in code).
   std::string source_path;

@@ -171,6 +171,7 @@ class FakeProgramme : public LoadingProgramme {
   bool advance(std::int64_t) override { return false; }
   bool done() const override { return false; }
   const char* stage_name() const override { return "shear"; }
+  bool measuring() const override { return true; }
   StepCount step_count() const override { return count; }
   std::string status() const override { return "shear dx = 1.000/3.000 mm"; }
   std::string save_state() const override { return ""; }

@@ -1,0 +1,42 @@
+// Pieces shared by the apparatus builders (shear_box.h, oedometer.h): the
+// rigid plates they are made of and the box material.
+#pragma once
+
+#include <string>
+
+#include "solver/scene/scene_check.h"
+
+#include "solver/scene/scene.h"
+
+namespace simsols {
+
+// The apparatus' default material when the scene names none: steel. The
+// paper gives no wall properties; restitution and friction are the glass
+// values of its Table 2, so a glass-steel pair behaves as glass-glass but
+// stiffer.
+Material default_box_steel();
+
+// A rectangle wall (a thin two-sided plate) centred at `centre`.
+Wall rectangle_wall(const std::string& name, int material, const Vec3& centre, const Vec3& normal,
+                    const Vec3& axis_u, double half_u, double half_v);
+
+// An apparatus' wall material: -1 becomes the scene's "steel", added (as
+// default_box_steel) when the scene has none. False when `material` names
+// no material of the scene.
+bool resolve_wall_material(Scene& scene, int& material);
+
+// Checks of an apparatus table's fields: a failure throws TableProblem with
+// the field's dotted path under `table` ("oedometer.step_time"), which the
+// builder returns as its SceneIssue.
+struct TableProblem {
+  SceneIssue issue;
+};
+struct TableCheck {
+  std::string table;
+  [[noreturn]] void fail(const std::string& code, const std::string& field,
+                         const std::string& message) const;
+  // Fails with "out_of_range ... allowed <allowed>" unless ok (and v finite).
+  void require(bool ok, const std::string& field, double v, const std::string& allowed) const;
+};
+
+}  // namespace simsols

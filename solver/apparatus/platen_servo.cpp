@@ -1,0 +1,52 @@
+#include "solver/apparatus/platen_servo.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "solver/scene/contact_model.h"
+
+namespace simsols {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kGainFraction = 0.5;
+constexpr double kIntegralPeriods = 5.0;
+
+}  // namespace
+
+SpecimenStats specimen_stats(const Scene& scene, int wall_material) {
+  SpecimenStats s;
+  double d = 0, mass = 0;
+  for (const Particle& p : scene.particles) {
+    d += 2 * p.radius;
+    mass += scene.materials[p.material].density * 4.0 / 3.0 * kPi * std::pow(p.radius, 3);
+  }
+  const double n = static_cast<double>(scene.particles.size());
+  s.diameter = d / n;
+  s.bead_mass = mass / n;
+  s.density = scene.materials[scene.particles[0].material].density;
+  const PairTable pairs = make_pair_table(scene);
+  const double e_star = pairs.at(scene.particles[0].material, wall_material).e_star;
+  s.k_hertz = 4.0 / 3.0 * e_star * std::sqrt(s.diameter / 2);
+  s.mass = mass;
+  double top = 0;
+  for (const Particle& p : scene.particles) top = std::max(top, p.position[2] + p.radius);
+  s.layers = std::max(1.0, top / s.diameter);
+  return s;
+}
+
+PlatenServo tune_platen_servo(const SpecimenStats& s, double area, double stress, double dt,
+                              double given_gain, double given_integral_time) {
+  const double d = s.diameter;
+  const double contacts = area / (d * d);
+  const double f_contact = stress * d * d;
+  const double k_contact = 1.5 * std::cbrt(f_contact) * std::pow(s.k_hertz, 2.0 / 3.0);
+  const double k_platen = contacts * k_contact;
+  PlatenServo p;
+  p.gain = given_gain > 0 ? given_gain : kGainFraction / (k_platen * dt);
+  const double period = 2 * kPi * std::sqrt(s.mass / (k_platen / s.layers));
+  p.integral_time = given_integral_time > 0 ? given_integral_time : kIntegralPeriods * period;
+  return p;
+}
+
+}  // namespace simsols

@@ -1,0 +1,34 @@
+// [oedometer]: one-dimensional compression in a rigid square ring
+// (docs/oedometer.md), expanded into walls and beads by build_oedometer().
+#include "solver/apparatus/oedometer.h"
+#include "solver/io/scene_tables.h"
+
+namespace simsols::scene_toml {
+
+std::optional<SceneIssue> read_oedometer(const Reader& root, Scene& scene) {
+  if (!root.has("oedometer")) return std::nullopt;
+  Reader r = root.sub("oedometer", {"length", "width", "wall_material", "load_steps", "step_time",
+                                    "settle_time", "servo_gain", "servo_max_speed",
+                                    "servo_integral_time", "friction_angle", "specimen"});
+  Oedometer o;
+  o.length = r.number("length", o.length);
+  o.width = r.number("width", o.width);
+  if (r.has("wall_material")) {
+    const std::string name = r.string("wall_material");
+    // "steel" is built in (default_box_steel) unless the scene defines it
+    if (name != "steel" || scene.material_index(name) >= 0)
+      o.wall_material = r.material("wall_material", scene);
+  }
+  o.load_steps = r.numbers("load_steps", o.load_steps);
+  o.step_time = r.number("step_time", o.step_time);
+  o.settle_time = r.number("settle_time", o.settle_time);
+  o.servo_gain = r.number("servo_gain", o.servo_gain);
+  o.servo_max_speed = r.number("servo_max_speed", o.servo_max_speed);
+  o.servo_integral_time = r.number("servo_integral_time", o.servo_integral_time);
+  o.friction_angle = r.number("friction_angle", o.friction_angle);
+  o.specimen = read_specimen(r, scene);
+  scene.oedometer = o;
+  return build_oedometer(scene);
+}
+
+}  // namespace simsols::scene_toml
