@@ -27,6 +27,7 @@
 #include "solver/io/scene_toml.h"
 #include "app/experiment/oedometer_run.h"
 #include "app/experiment/shear_run.h"
+#include "app/experiment/triaxial_run.h"
 #include "solver/core/simulation.h"
 #include "solver/core/slots.h"
 
@@ -283,10 +284,9 @@ Scene load_run_scene(const RunOptions& opt) {
     throw UsageError("conflicting_keys", "--duration",
                      "a shear test's loading program sets its duration "
                      "(shear_box.shear_displacement)");
-  if (scene.oedometer && opt.duration != 0)
+  if ((scene.oedometer || scene.triaxial) && opt.duration != 0)
     throw UsageError("conflicting_keys", "--duration",
-                     "an oedometer test's loading program sets its duration "
-                     "(oedometer.load_steps, each held to equilibrium)");
+                     "an oedometer's or a triaxial test's loading program sets its duration");
   return scene;
 }
 
@@ -357,6 +357,25 @@ int finish_oedometer(const OedometerRunResult& r, const RunOptions& opt,
   return r.state.interrupted ? interrupt.exit_status() : 0;
 }
 
+int finish_triaxial(const TriaxialRunResult& r, const RunOptions& opt,
+                    const InterruptScope& interrupt) {
+  const TriaxialSummary& s = r.summary;
+  const char* how = r.state.finished ? "finished" : r.state.interrupted ? "interrupted" : "stopped";
+  std::printf("triaxial test %s: p'0 = %.0f kPa, %d beads, %lld steps in %.0f s\n", how,
+              s.confining_stress * 1e-3, r.state.particles, r.state.steps, s.wall_seconds);
+  if (!r.rows.empty())
+    std::printf("  peak     phi = %.2f deg  q/p' = %.3f at eps_a = %.2f %%\n"
+                "  critical phi = %.2f deg  q/p' = %.3f  e = %.4f  p' = %.1f kPa (last 20 %%)\n"
+                "  max dilatancy angle %.2f deg; walls vs internal stress within %.2f %% of p'; "
+                "inertial number <= %.2g\n",
+                s.peak_angle, s.peak_q_over_p, 100 * s.peak_axial_strain, s.critical_angle,
+                s.critical_q_over_p, s.critical_void_ratio, s.critical_p * 1e-3,
+                s.max_dilatancy_angle, 100 * s.wall_internal_gap, s.max_inertial_number);
+  std::printf("  results in %s\n", opt.out_dir.c_str());
+  if (!r.state.finished) std::printf("  %s\n", resume_hint(opt.out_dir).c_str());
+  return r.state.interrupted ? interrupt.exit_status() : 0;
+}
+
 int run(const RunOptions& opt) {
   if (opt.explain) return explain(opt);
   check_flags(opt);
@@ -388,6 +407,12 @@ int run(const RunOptions& opt) {
     return finish_oedometer(resume_oedometer(std::move(sim), extra, oedometer), opt, interrupt);
   if (scene && scene->oedometer)
     return finish_oedometer(run_oedometer(*scene, oedometer), opt, interrupt);
+  ProgrammeRunOptions triaxial = shear;
+  triaxial.label = "triaxial";
+  if (sim && sim->scene().triaxial)
+    return finish_triaxial(resume_triaxial(std::move(sim), extra, triaxial), opt, interrupt);
+  if (scene && scene->triaxial)
+    return finish_triaxial(run_triaxial(*scene, triaxial), opt, interrupt);
   if (!sim) {
     sim = std::make_unique<Simulation>(device, *scene);
     std::filesystem::create_directories(dir);

@@ -35,6 +35,9 @@ std::optional<SceneIssue> read_shear_box(const Reader& root, Scene& scene);
 // scene_tables_oedometer.cpp: [oedometer], likewise.
 std::optional<SceneIssue> read_oedometer(const Reader& root, Scene& scene);
 
+// scene_tables_triaxial.cpp: [triaxial], likewise.
+std::optional<SceneIssue> read_triaxial(const Reader& root, Scene& scene);
+
 // The [<apparatus>.specimen] sub-table of an apparatus table
 // (scene_tables_shear_box.cpp).
 Specimen read_specimen(const Reader& apparatus, const Scene& scene);

@@ -25,7 +25,7 @@ class Loader {
     root_ = &root;
     Reader r(root, "", ctx_,
              {"scene", "materials", "interactions", "particles", "generators", "walls", "effects",
-              "numerics", "output", "shear_box", "oedometer", "view"});
+              "numerics", "output", "shear_box", "oedometer", "triaxial", "view"});
     read_info(r, scene_);
     read_materials(r, scene_);
     read_interactions(r, scene_);
@@ -35,6 +35,7 @@ class Loader {
     read_walls(r, scene_);
     if (auto issue = read_shear_box(r, scene_)) fail(std::move(*issue));
     if (auto issue = read_oedometer(r, scene_)) fail(std::move(*issue));
+    if (auto issue = read_triaxial(r, scene_)) fail(std::move(*issue));
     read_effects(r, scene_);
     read_numerics(r, scene_);
     read_outputs(r, scene_);

@@ -84,6 +84,7 @@ class Writer {
       if (!is_box_wall(i)) write(s_.walls[i], i);
     if (s_.shear_box) write_shear_box(*s_.shear_box);
     if (s_.oedometer) write_oedometer(*s_.oedometer);
+    if (s_.triaxial) write_triaxial(*s_.triaxial);
     write_effects();
     write_numerics();
     write_outputs();
@@ -156,8 +157,11 @@ class Writer {
     if (s_.shear_box && k >= s_.shear_box->first_wall &&
         k < s_.shear_box->first_wall + kShearBoxWalls)
       return true;
-    return s_.oedometer && k >= s_.oedometer->first_wall &&
-           k < s_.oedometer->first_wall + kOedometerWalls;
+    if (s_.oedometer && k >= s_.oedometer->first_wall &&
+        k < s_.oedometer->first_wall + kOedometerWalls)
+      return true;
+    return s_.triaxial && k >= s_.triaxial->first_wall &&
+           k < s_.triaxial->first_wall + kTriaxialWalls;
   }
 
   // The apparatus with its resolved values; its specimen is the explicit
@@ -201,6 +205,27 @@ class Writer {
     line("servo_integral_time", o.servo_integral_time);
     line("friction_angle", o.friction_angle);
     header("[oedometer.specimen]");
+    line("method", toml_string(choice_name(Specimen::Method::Given)));
+  }
+
+  void write_triaxial(const Triaxial& t) {
+    header("[triaxial]");
+    line("length", t.length);
+    line("width", t.width);
+    line("wall_material", toml_string(material_name(s_, t.wall_material, "triaxial.wall_material")));
+    line("confining_stress", t.confining_stress);
+    line("path", toml_string(choice_name(t.path)));
+    if (t.path == Triaxial::Path::TrueTriaxial) line("b_value", t.b_value);
+    line("axial_strain", t.axial_strain);
+    line("strain_rate", t.strain_rate);
+    line("inertial_number", t.inertial_number);
+    line("settle_time", t.settle_time);
+    line("consolidate_time", t.consolidate_time);
+    line("servo_gain", t.servo_gain);
+    line("servo_max_speed", t.servo_max_speed);
+    line("servo_integral_time", t.servo_integral_time);
+    line("rows", std::to_string(t.rows));
+    header("[triaxial.specimen]");
     line("method", toml_string(choice_name(Specimen::Method::Given)));
   }
 

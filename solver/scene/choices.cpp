@@ -29,6 +29,11 @@ SIMSOLS_CHOICES(Specimen::Method, {Specimen::Method::Layers, "layers"},
 SIMSOLS_CHOICES(Specimen::Clearance, {Specimen::Clearance::Shift, "shift"},
                 {Specimen::Clearance::Spread, "spread"})
 
+// [triaxial] path
+SIMSOLS_CHOICES(Triaxial::Path, {Triaxial::Path::ConstantSigma3, "constant_sigma3"},
+                {Triaxial::Path::ConstantP, "constant_p"},
+                {Triaxial::Path::TrueTriaxial, "true_triaxial"})
+
 #undef SIMSOLS_CHOICES
 
 }  // namespace simsols

@@ -280,6 +280,46 @@ enum OedometerWall : int {
   kOedFloor = 0, kOedX0, kOedX1, kOedY0, kOedY1, kOedPlaten, kOedometerWalls
 };
 
+// The triaxial test (docs/triaxial.md): a cuboid specimen between six
+// rigid plates, x in [0, length], y in [0, width] on a floor at z = 0. The
+// floor is fixed; the top platen and the four sides are servo-controlled.
+// Stages: isotropic consolidation to confining_stress on all five, then
+// drained axial compression, the platen moved down at a constant strain
+// rate while the sides hold the lateral stresses of the stress path:
+//   constant_sigma3  both lateral stresses at confining_stress (the
+//                    conventional test);
+//   constant_p       the lateral stresses follow sigma3 = (3 p0 - sigma1)/2
+//                    so the mean stress p' stays at confining_stress;
+//   true_triaxial    sigma3 (x) at confining_stress, sigma2 (y) at
+//                    sigma3 + b (sigma1 - sigma3).
+// build_triaxial() (apparatus/triaxial.h) turns this into six walls (and
+// particles) and resolves the automatic values (0 below).
+struct Triaxial {
+  enum class Path : std::uint8_t { ConstantSigma3, ConstantP, TrueTriaxial };
+  double length = 30e-3;           // m, inside at the start, along x
+  double width = 30e-3;            // m, inside at the start, along y
+  int wall_material = -1;          // the plates' material; -1 = "steel" (added when absent)
+  double confining_stress = 100e3; // Pa, p'0 and sigma3
+  Path path = Path::ConstantSigma3;
+  double b_value = 0.5;            // true_triaxial: (sigma2 - sigma3) / (sigma1 - sigma3), [0, 1]
+  double axial_strain = 0.15;      // to compress to
+  double strain_rate = 0;          // 1/s; 0 = from inertial_number
+  double inertial_number = 5e-4;   // target I = strain_rate d sqrt(rho / p0)
+  double settle_time = 0.02;       // s, longest settling under gravity
+  double consolidate_time = 0.1;   // s, longest isotropic consolidation
+  double servo_gain = 0;           // m/(s N); 0 = automatic (from the Hertz stiffness)
+  double servo_max_speed = 0.5;    // m/s, the plates' speed cap
+  double servo_integral_time = 0;  // s; 0 = automatic
+  int rows = 200;                  // rows over the axial strain
+  Specimen specimen;
+  int first_wall = 0;  // set by build_triaxial: its 6 walls (TriaxialWall order)
+};
+
+// The triaxial cell's walls, in this order from Triaxial::first_wall.
+enum TriaxialWall : int {
+  kTriFloor = 0, kTriX0, kTriX1, kTriY0, kTriY1, kTriPlaten, kTriaxialWalls
+};
+
 struct Scene {
   std::string name = "unnamed";
   std::string description;
@@ -293,6 +333,7 @@ struct Scene {
   ViewHints view;
   std::optional<ShearBox> shear_box;  // a direct shear test (walls included in `walls`)
   std::optional<Oedometer> oedometer;  // an oedometer test (walls included in `walls`)
+  std::optional<Triaxial> triaxial;    // a triaxial test (walls included in `walls`)
 
   // Where it came from (empty for scenes built in code).
   std::string source_path;

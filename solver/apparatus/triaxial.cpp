@@ -1,0 +1,125 @@
+#include "solver/apparatus/triaxial.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "solver/apparatus/cell_walls.h"
+#include "solver/apparatus/specimen.h"
+#include "solver/common/number_text.h"
+
+namespace simsols {
+namespace {
+
+const TableCheck kCheck{"triaxial"};
+
+void check_fields(const Triaxial& t, const Scene& scene) {
+  kCheck.require(t.length > 0 && t.length < 10, "length", t.length, "(0, 10) m");
+  kCheck.require(t.width > 0 && t.width < 10, "width", t.width, "(0, 10) m");
+  kCheck.require(t.confining_stress > 0 && t.confining_stress <= 1e9, "confining_stress",
+                 t.confining_stress, "(0, 1e9] Pa");
+  kCheck.require(t.b_value >= 0 && t.b_value <= 1, "b_value", t.b_value, "[0, 1]");
+  kCheck.require(t.axial_strain > 0 && t.axial_strain <= 0.5, "axial_strain", t.axial_strain,
+                 "(0, 0.5]");
+  kCheck.require(t.strain_rate >= 0 && t.strain_rate <= 1e4, "strain_rate", t.strain_rate,
+                 "[0, 1e4] 1/s (0 = from inertial_number)");
+  kCheck.require(t.inertial_number > 0 && t.inertial_number < 1, "inertial_number",
+                 t.inertial_number, "(0, 1)");
+  kCheck.require(t.settle_time >= 0 && t.settle_time <= 100, "settle_time", t.settle_time,
+                 "[0, 100] s");
+  kCheck.require(t.consolidate_time > 0 && t.consolidate_time <= 100, "consolidate_time",
+                 t.consolidate_time, "(0, 100] s");
+  kCheck.require(t.servo_gain >= 0, "servo_gain", t.servo_gain, "[0, inf) m/(s N) (0 = automatic)");
+  kCheck.require(t.servo_max_speed > 0 && t.servo_max_speed <= 10, "servo_max_speed",
+                 t.servo_max_speed, "(0, 10] m/s");
+  kCheck.require(t.servo_integral_time >= 0, "servo_integral_time", t.servo_integral_time,
+                 "[0, inf) s (0 = automatic)");
+  kCheck.require(t.rows >= 10 && t.rows <= 1000000, "rows", t.rows, "[10, 1000000]");
+  if (scene.walls.size() + kTriaxialWalls > kMaxWalls)
+    kCheck.fail("out_of_range", "length",
+                "the triaxial cell adds " + std::to_string(int(kTriaxialWalls)) +
+                    " walls to the scene's " + std::to_string(scene.walls.size()) + "; at most " +
+                    std::to_string(kMaxWalls) + " walls are allowed");
+}
+
+// Every bead inside the cell; the highest bead's top and the largest radius.
+std::pair<double, double> check_beads(const Scene& scene, const Triaxial& t) {
+  if (scene.particles.empty())
+    kCheck.fail("out_of_range", "specimen.method", "the specimen has no beads (the scene lists none)");
+  double top = 0, r_max = 0;
+  for (const Particle& p : scene.particles) {
+    const Vec3& x = p.position;
+    if (!(x[0] >= p.radius && x[0] <= t.length - p.radius && x[1] >= p.radius &&
+          x[1] <= t.width - p.radius && x[2] >= p.radius))
+      kCheck.fail("out_of_range", "specimen.method",
+                  "a bead at (" + shortest_number(x[0]) + ", " + shortest_number(x[1]) + ", " +
+                      shortest_number(x[2]) +
+                      ") is not inside the cell [0, length] x [0, width] x [0, inf)");
+    top = std::max(top, x[2] + p.radius);
+    r_max = std::max(r_max, p.radius);
+  }
+  return {top, r_max};
+}
+
+Wall servo_plate(Wall w, double max_speed) {
+  w.servo.enabled = true;  // tuned and targeted by the loading programme
+  w.servo.target_force = 1;
+  w.servo.gain = 1;
+  w.servo.max_speed = max_speed;
+  return w;
+}
+
+void add_walls(Scene& scene, Triaxial& t, double top, double r_max) {
+  const int m = t.wall_material;
+  const double L = t.length, W = t.width;
+  const double platen_z = top + 0.2 * r_max;
+  const double h = platen_z + 2 * r_max;
+  const double reach = 0.5 * std::max({L, W, h});  // past each edge
+  const Vec3 ex{1, 0, 0}, ey{0, 1, 0}, ez{0, 0, 1};
+  const double hu = L / 2 + reach, hv = W / 2 + reach, hz = h / 2 + reach;
+  const double v = t.servo_max_speed;
+  t.first_wall = static_cast<int>(scene.walls.size());
+  auto& w = scene.walls;
+  w.push_back(rectangle_wall("floor", m, {L / 2, W / 2, 0}, ez, ex, hu, hv));
+  w.push_back(servo_plate(rectangle_wall("side_x0", m, {0, W / 2, h / 2}, ex, ey, hv, hz), v));
+  w.push_back(servo_plate(rectangle_wall("side_x1", m, {L, W / 2, h / 2}, {-1, 0, 0}, ey, hv, hz), v));
+  w.push_back(servo_plate(rectangle_wall("side_y0", m, {L / 2, 0, h / 2}, ey, ex, hu, hz), v));
+  w.push_back(servo_plate(rectangle_wall("side_y1", m, {L / 2, W, h / 2}, {0, -1, 0}, ex, hu, hz), v));
+  w.push_back(servo_plate(
+      rectangle_wall("platen", m, {L / 2, W / 2, platen_z}, {0, 0, -1}, ex, hu, hv), v));
+}
+
+void build(Scene& scene) {
+  Triaxial& t = *scene.triaxial;
+  check_fields(t, scene);
+  if (auto issue = place_specimen(scene, t.specimen, t.length, t.width, "triaxial"))
+    throw TableProblem{*issue};
+  const auto [top, r_max] = check_beads(scene, t);
+  if (!resolve_wall_material(scene, t.wall_material))
+    kCheck.fail("unknown_material", "wall_material", "the plates' material does not exist");
+  add_walls(scene, t, top, r_max);
+}
+
+}  // namespace
+
+std::optional<SceneIssue> build_triaxial(Scene& scene) {
+  if (!scene.triaxial) return std::nullopt;
+  if (scene.shear_box || scene.oedometer)
+    return SceneIssue{"conflicting_keys", "triaxial",
+                      "a scene holds one apparatus: [shear_box], [oedometer] or [triaxial]"};
+  try {
+    build(scene);
+  } catch (const TableProblem& p) {
+    return p.issue;
+  }
+  return std::nullopt;
+}
+
+double triaxial_inertial_number(double strain_rate, double d, double density, double p) {
+  return strain_rate * d * std::sqrt(density / p);
+}
+
+double triaxial_strain_rate(double inertial_number, double d, double density, double p) {
+  return inertial_number / d * std::sqrt(p / density);
+}
+
+}  // namespace simsols

@@ -1,0 +1,70 @@
+// Triaxial analysis: a triaxial test's measurements and what is read from
+// them (docs/triaxial.md), apart from the apparatus that measured them.
+//
+// Signs: compression positive, as in soil mechanics. Axial strain
+// eps_a = (H0 - H) / H0, volumetric strain eps_v = (V0 - V) / V0 from the
+// plates' positions (V = L W H), both from the end of consolidation.
+//   p' = (s_x + s_y + s_z) / 3,
+//   q  = sqrt(((s_x - s_y)^2 + (s_y - s_z)^2 + (s_z - s_x)^2) / 2)
+//        (= s_1 - s_3 in the conventional test);
+//   mobilised friction angle from Mohr's circle of the largest and
+//        smallest principal stresses: sin(phi) = (s_1 - s_3) / (s_1 + s_3)
+//        (= 3 eta / (6 + eta) in triaxial compression, eta = q / p');
+//   dilatancy angle: sin(psi) = -r / (2 - r), r = d eps_v / d eps_a, the
+//        slope over a window of 1 % axial strain (negative r: dilation).
+// The peak is the largest mobilised angle; the critical state the mean over
+// the last 20 % of the axial strain.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace simsols {
+
+struct TriaxialRow {
+  double time = 0;               // s
+  std::int64_t step = 0;
+  double axial_strain = 0;       // compression positive
+  double volumetric_strain = 0;  // compression positive
+  double sigma_x = 0, sigma_y = 0, sigma_z = 0;  // Pa, the plates' mean stresses
+  double p = 0, q = 0;           // Pa
+  double friction_angle = 0;     // deg, mobilised
+  double void_ratio = 0;
+  double coordination = 0;       // contacts per bead (bead and wall contacts)
+  double lw_x = 0, lw_y = 0, lw_z = 0;  // Pa, the Love-Weber stress of the whole cell
+  // The largest difference between the plates' stresses at the row's last
+  // step and lw_*, over the three axes, as a fraction of p' (the means
+  // sigma_* span the whole row; the comparison is at one instant).
+  double lw_gap = 0;
+  double fabric_anisotropy = 0;  // (15/2)(phi_zz - (phi_xx + phi_yy)/2), phi = <n n> over bead pairs
+  double kinetic_energy = 0;     // J
+  double inertial_number = 0;    // strain_rate d sqrt(rho / p')
+};
+
+struct TriaxialSummary {
+  double confining_stress = 0;      // Pa
+  double strain_rate = 0;           // 1/s
+  double bead_diameter = 0;         // m
+  double initial_void_ratio = 0;    // e after consolidation
+  double peak_angle = 0, peak_q_over_p = 0, peak_axial_strain = 0, peak_q = 0, peak_p = 0;
+  double critical_angle = 0, critical_q_over_p = 0, critical_void_ratio = 0, critical_p = 0;
+  double max_dilatancy_angle = 0;   // deg
+  // The largest disagreement between the plates' stresses and the internal
+  // (Love-Weber) stress at the same step, on any axis over the rows, as a
+  // fraction of p' (TriaxialRow::lw_gap).
+  double wall_internal_gap = 0;
+  double max_inertial_number = 0;
+  double settle_time = 0, consolidate_time = 0;  // s
+  double wall_seconds = 0;          // filled in by the caller
+};
+
+void analyse_triaxial_rows(const std::vector<TriaxialRow>& rows, TriaxialSummary& s);
+
+// The mobilised friction angle (deg) of a stress state.
+double mobilised_friction_angle(double sx, double sy, double sz);
+
+std::string triaxial_rows_csv(const std::vector<TriaxialRow>& rows);
+std::string triaxial_summary_text(const TriaxialSummary& s);
+
+}  // namespace simsols

@@ -1,0 +1,364 @@
+#include "solver/apparatus/triaxial_test.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+#include "solver/apparatus/triaxial.h"
+#include "solver/core/stress.h"
+
+namespace simsols {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kCheckSeconds = 0.5e-3;
+constexpr double kForceError = 0.01;
+constexpr double kBeadsInertial = 1e-4;
+constexpr double kSettleShare = 0.3, kConsolidateShare = 0.3;  // progress estimates
+
+const Triaxial& triaxial_of(const Simulation& sim) {
+  if (!sim.scene().triaxial) throw std::invalid_argument("TriaxialTest: the scene has no triaxial cell");
+  return *sim.scene().triaxial;
+}
+
+// The fabric anisotropy (15/2)(phi_zz - (phi_xx + phi_yy)/2) of the bead
+// pairs' contact normals.
+double fabric_anisotropy(Simulation& sim) {
+  const ParticleSnapshot snap = sim.snapshot();
+  double f[3] = {0, 0, 0};
+  int n = 0;
+  for (const ContactForce& c : sim.contacts()) {
+    if (c.b < 0) continue;
+    Vec3 l{};
+    double len2 = 0;
+    for (int k = 0; k < 3; ++k) {
+      l[k] = snap.position[c.b][k] - snap.position[c.a][k];
+      len2 += l[k] * l[k];
+    }
+    if (len2 <= 0) continue;
+    for (int k = 0; k < 3; ++k) f[k] += l[k] * l[k] / len2;
+    ++n;
+  }
+  return n > 0 ? 7.5 * (f[2] - 0.5 * (f[0] + f[1])) / n : 0;
+}
+
+}  // namespace
+
+TriaxialTest::TriaxialTest(Simulation& sim) : sim_(sim), tri_(triaxial_of(sim)) {
+  stats_ = specimen_stats(sim.scene(), tri_.wall_material);
+  for (const Particle& p : sim.scene().particles)
+    solid_volume_ += 4.0 / 3.0 * kPi * std::pow(p.radius, 3);
+  rate_ = tri_.strain_rate > 0 ? tri_.strain_rate
+                               : triaxial_strain_rate(tri_.inertial_number, stats_.diameter,
+                                                      stats_.density, tri_.confining_stress);
+}
+
+const char* TriaxialTest::stage_name() const {
+  switch (stage_) {
+    case Stage::Settle: return "settle";
+    case Stage::Consolidate: return "consolidate";
+    case Stage::Compress: return "compress";
+    case Stage::Done: return "done";
+  }
+  return "?";
+}
+
+std::int64_t TriaxialTest::check_every() const {
+  return std::max<std::int64_t>(50, std::llround(kCheckSeconds / sim_.dt()));
+}
+
+TriaxialTest::Cell TriaxialTest::cell() {
+  const int f = tri_.first_wall;
+  return {sim_.wall_point(f + kTriX0)[0], sim_.wall_point(f + kTriX1)[0],
+          sim_.wall_point(f + kTriY0)[1], sim_.wall_point(f + kTriY1)[1],
+          sim_.wall_point(f + kTriFloor)[2], sim_.wall_point(f + kTriPlaten)[2]};
+}
+
+std::array<double, 3> TriaxialTest::targets(double sigma_z) const {
+  const double s3 = tri_.confining_stress;
+  if (stage_ != Stage::Compress) return {s3, s3, s3};
+  switch (tri_.path) {
+    case Triaxial::Path::ConstantSigma3: return {s3, s3, sigma_z};
+    case Triaxial::Path::ConstantP: {
+      const double lateral = std::max(0.05 * s3, (3 * s3 - sigma_z) / 2);
+      return {lateral, lateral, sigma_z};
+    }
+    case Triaxial::Path::TrueTriaxial:
+      return {s3, s3 + tri_.b_value * std::max(0.0, sigma_z - s3), sigma_z};
+  }
+  return {s3, s3, sigma_z};
+}
+
+// Each servo plate's force target and tuning for the stresses, on the
+// plates' current areas.
+void TriaxialTest::apply_servos(const std::array<double, 3>& stress, bool platen) {
+  const Cell c = cell();
+  const double area[3] = {c.ly() * c.lz(), c.lx() * c.lz(), c.lx() * c.ly()};
+  const double extent[3] = {c.lx(), c.ly(), c.lz()};
+  const int walls[3][2] = {{kTriX0, kTriX1}, {kTriY0, kTriY1}, {kTriPlaten, -1}};
+  for (int axis = 0; axis < 3; ++axis) {
+    if (axis == 2 && !platen) continue;
+    SpecimenStats s = stats_;
+    s.layers = std::max(1.0, extent[axis] / stats_.diameter);
+    const PlatenServo tuned = tune_platen_servo(s, area[axis], stress[axis], sim_.dt(),
+                                                tri_.servo_gain, tri_.servo_integral_time);
+    WallServo servo;
+    servo.enabled = true;
+    servo.target_force = stress[axis] * area[axis];
+    servo.gain = tuned.gain;
+    servo.max_speed = tri_.servo_max_speed;
+    servo.integral_time = tuned.integral_time;
+    for (int w : walls[axis])
+      if (w >= 0) sim_.set_servo(tri_.first_wall + w, servo);
+  }
+}
+
+void TriaxialTest::lower_platen() {
+  const ParticleSnapshot snap = sim_.snapshot();
+  double top = 0;
+  for (size_t i = 0; i < snap.position.size(); ++i)
+    top = std::max(top, snap.position[i][2] + snap.radius[i]);
+  const int platen = tri_.first_wall + kTriPlaten;
+  Vec3 p = sim_.wall_point(platen);
+  p[2] = std::min(p[2], top + 0.1 * stats_.diameter);
+  sim_.set_wall_point(platen, p);
+}
+
+void TriaxialTest::enter(Stage s) {
+  const std::int64_t now = sim_.steps();
+  const double elapsed = (now - stage_start_) * sim_.dt();
+  if (stage_ == Stage::Settle) settle_seconds_ = elapsed;
+  if (stage_ == Stage::Consolidate) consolidate_seconds_ = elapsed;
+  stage_ = s;
+  stage_start_ = now;
+  quiet_checks_ = 0;
+  next_check_ = now + check_every();
+  const int platen = tri_.first_wall + kTriPlaten;
+  if (s == Stage::Settle || s == Stage::Done) {
+    for (int w = kTriX0; w <= kTriPlaten; ++w) {
+      sim_.set_servo(tri_.first_wall + w, WallServo{});
+      sim_.set_wall_velocity(tri_.first_wall + w, {0, 0, 0});
+    }
+    return;
+  }
+  if (s == Stage::Consolidate) {
+    lower_platen();
+    sim_.read_wall_means();
+    apply_servos(targets(0), true);
+    return;
+  }
+  // Compress: the row at rest, then the platen moves down.
+  const Cell c = cell();
+  h0_ = c.lz();
+  v0_ = c.lx() * c.ly() * c.lz();
+  compress_steps_ = std::max<std::int64_t>(
+      tri_.rows, std::llround(tri_.axial_strain / (rate_ * sim_.dt())));
+  row_steps_ = std::max<std::int64_t>(1, compress_steps_ / tri_.rows);
+  compress_steps_ = row_steps_ * tri_.rows;
+  last_sigma_z_ = tri_.confining_stress;
+  measure_row(&consolidated_stress_);
+  sim_.set_servo(platen, WallServo{});
+  sim_.set_wall_velocity(platen, {0, 0, -rate_ * h0_});
+  next_row_ = now + row_steps_;
+}
+
+bool TriaxialTest::settled() {
+  const double elapsed = (sim_.steps() - stage_start_) * sim_.dt();
+  if (elapsed >= tri_.settle_time) return true;
+  if (sim_.scene().has_gravity() && elapsed < 2e-3) return false;
+  const Observables o = sim_.observe();
+  return o.kinetic() < 1e-4 * o.particles * stats_.bead_mass * 9.81 * stats_.diameter;
+}
+
+std::array<double, 3> TriaxialTest::wall_stresses(const Cell& c) {
+  const auto means = sim_.read_wall_means();
+  const int f = tri_.first_wall;
+  const double fx = means[f + kTriX1].force[0] - means[f + kTriX0].force[0];
+  const double fy = means[f + kTriY1].force[1] - means[f + kTriY0].force[1];
+  return {fx / (2 * c.ly() * c.lz()), fy / (2 * c.lx() * c.lz()),
+          means[f + kTriPlaten].force[2] / (c.lx() * c.ly())};
+}
+
+bool TriaxialTest::consolidated() {
+  const Cell c = cell();
+  const std::array<double, 3> s = wall_stresses(c);
+  consolidated_stress_ = s;
+  const double p0 = tri_.confining_stress;
+  const Observables o = sim_.observe();
+  const double v_rms = std::sqrt(2 * o.kinetic_translational / (o.particles * stats_.bead_mass));
+  const double scale = c.lz() / stats_.diameter * std::sqrt(p0 / stats_.density);
+  bool quiet = v_rms < kBeadsInertial * scale;
+  for (double v : s) quiet = quiet && std::fabs(v - p0) < kForceError * p0;
+  quiet_checks_ = quiet ? quiet_checks_ + 1 : 0;
+  apply_servos(targets(0), true);  // the areas changed
+  return quiet_checks_ >= 2 ||
+         (sim_.steps() - stage_start_) * sim_.dt() >= tri_.consolidate_time;
+}
+
+void TriaxialTest::measure_row(const std::array<double, 3>* at_rest) {
+  const Cell c = cell();
+  const std::array<double, 3> s = at_rest ? *at_rest : wall_stresses(c);
+  TriaxialRow r;
+  r.time = sim_.time();
+  r.step = sim_.steps();
+  r.axial_strain = (h0_ - c.lz()) / h0_;
+  r.volumetric_strain = (v0_ - c.lx() * c.ly() * c.lz()) / v0_;
+  r.sigma_x = s[0];
+  r.sigma_y = s[1];
+  r.sigma_z = s[2];
+  r.p = (s[0] + s[1] + s[2]) / 3;
+  r.q = std::sqrt(0.5 * ((s[0] - s[1]) * (s[0] - s[1]) + (s[1] - s[2]) * (s[1] - s[2]) +
+                         (s[2] - s[0]) * (s[2] - s[0])));
+  r.friction_angle = mobilised_friction_angle(s[0], s[1], s[2]);
+  r.void_ratio = c.lx() * c.ly() * c.lz() / solid_volume_ - 1;
+  const Observables o = sim_.observe();
+  r.coordination = o.particles > 0 ? o.contacts / o.particles : 0;
+  r.kinetic_energy = o.kinetic();
+  const Tensor3 lw = love_weber_slab(sim_, c.z0, c.z1, c.lx() * c.ly());
+  r.lw_x = lw[0][0];
+  r.lw_y = lw[1][1];
+  r.lw_z = lw[2][2];
+  const std::vector<WallReaction> now = sim_.wall_reactions();
+  const int f = tri_.first_wall;
+  const double sx = (now[f + kTriX1].force[0] - now[f + kTriX0].force[0]) / (2 * c.ly() * c.lz());
+  const double sy = (now[f + kTriY1].force[1] - now[f + kTriY0].force[1]) / (2 * c.lx() * c.lz());
+  const double sz = now[f + kTriPlaten].force[2] / (c.lx() * c.ly());
+  if (r.p > 0)
+    r.lw_gap = std::max({std::fabs(r.lw_x - sx), std::fabs(r.lw_y - sy), std::fabs(r.lw_z - sz)}) / r.p;
+  r.fabric_anisotropy = fabric_anisotropy(sim_);
+  r.inertial_number =
+      r.p > 0 ? triaxial_inertial_number(rate_, stats_.diameter, stats_.density, r.p) : 0;
+  last_sigma_z_ = s[2];
+  rows_.push_back(r);
+}
+
+bool TriaxialTest::advance(std::int64_t max_steps) {
+  if (!started_) {
+    started_ = true;
+    stage_start_ = sim_.steps();
+    enter(tri_.settle_time > 0 ? Stage::Settle : Stage::Consolidate);
+  }
+  std::int64_t left = max_steps;
+  while (left > 0 && stage_ != Stage::Done) {
+    const std::int64_t event = stage_ == Stage::Compress ? next_row_ : next_check_;
+    const std::int64_t n = std::min(left, event - sim_.steps());
+    if (n > 0) sim_.advance(n);
+    left -= std::max<std::int64_t>(n, 0);
+    if (sim_.steps() < event) break;
+    switch (stage_) {
+      case Stage::Settle:
+        if (settled()) enter(Stage::Consolidate);
+        else next_check_ = sim_.steps() + check_every();
+        return false;
+      case Stage::Consolidate:
+        if (consolidated()) enter(Stage::Compress);
+        else next_check_ = sim_.steps() + check_every();
+        return stage_ == Stage::Compress;
+      case Stage::Compress:
+        measure_row();
+        apply_servos(targets(last_sigma_z_), false);  // the sides, on their new areas
+        next_row_ = sim_.steps() + row_steps_;
+        if (static_cast<int>(rows_.size()) > tri_.rows) enter(Stage::Done);
+        return true;
+      case Stage::Done: break;
+    }
+  }
+  return false;
+}
+
+TriaxialTest::StepCount TriaxialTest::step_count() const {
+  const double dt = sim_.dt();
+  const double in_stage = started_ ? double(sim_.steps() - stage_start_) : 0;
+  const double settle = tri_.settle_time / dt * kSettleShare;
+  const double consolidate = tri_.consolidate_time / dt * kConsolidateShare;
+  const double compress = compress_steps_ > 0 ? double(compress_steps_)
+                                              : tri_.axial_strain / (rate_ * dt);
+  const double settled = settle_seconds_ / dt, consolidated = consolidate_seconds_ / dt;
+  StepCount c;
+  switch (stage_) {
+    case Stage::Settle:
+      c.done = in_stage;
+      c.total = std::max(settle, in_stage) + consolidate + compress;
+      break;
+    case Stage::Consolidate:
+      c.done = settled + in_stage;
+      c.total = settled + std::max(consolidate, in_stage) + compress;
+      break;
+    case Stage::Compress:
+      c.done = settled + consolidated + in_stage;
+      c.total = settled + consolidated + std::max(compress, in_stage);
+      break;
+    case Stage::Done: c.done = c.total = settled + consolidated + compress; break;
+  }
+  return c;
+}
+
+std::string TriaxialTest::status() const {
+  char buf[200];
+  if (stage_ == Stage::Compress && !rows_.empty()) {
+    const TriaxialRow& r = rows_.back();
+    std::snprintf(buf, sizeof buf, "compress eps_a = %.4f/%.3f, q/p = %.3f, phi = %.1f deg",
+                  r.axial_strain, tri_.axial_strain, r.p > 0 ? r.q / r.p : 0, r.friction_angle);
+  } else if (stage_ == Stage::Done) {
+    std::snprintf(buf, sizeof buf, "done: %zu rows", rows_.size());
+  } else {
+    std::snprintf(buf, sizeof buf, "%s t = %.2f ms", stage_name(),
+                  (sim_.steps() - stage_start_) * sim_.dt() * 1e3);
+  }
+  return buf;
+}
+
+TriaxialSummary TriaxialTest::summary() const {
+  TriaxialSummary s;
+  s.confining_stress = tri_.confining_stress;
+  s.strain_rate = rate_;
+  s.bead_diameter = stats_.diameter;
+  s.settle_time = settle_seconds_;
+  s.consolidate_time = consolidate_seconds_;
+  analyse_triaxial_rows(rows_, s);
+  return s;
+}
+
+std::string TriaxialTest::save_state() const {
+  std::ostringstream o;
+  o.precision(17);
+  o << "triaxial_test 1\n"
+    << started_ << ' ' << static_cast<int>(stage_) << ' ' << stage_start_ << ' ' << next_check_
+    << ' ' << next_row_ << ' ' << row_steps_ << ' ' << compress_steps_ << ' ' << quiet_checks_
+    << ' ' << rate_ << ' ' << h0_ << ' ' << v0_ << ' ' << last_sigma_z_ << ' ' << settle_seconds_
+    << ' ' << consolidate_seconds_ << '\n'
+    << rows_.size() << '\n';
+  for (const TriaxialRow& r : rows_)
+    o << r.time << ' ' << r.step << ' ' << r.axial_strain << ' ' << r.volumetric_strain << ' '
+      << r.sigma_x << ' ' << r.sigma_y << ' ' << r.sigma_z << ' ' << r.p << ' ' << r.q << ' '
+      << r.friction_angle << ' ' << r.void_ratio << ' ' << r.coordination << ' ' << r.lw_x << ' '
+      << r.lw_y << ' ' << r.lw_z << ' ' << r.lw_gap << ' ' << r.fabric_anisotropy << ' ' << r.kinetic_energy << ' '
+      << r.inertial_number << '\n';
+  return o.str();
+}
+
+void TriaxialTest::restore_state(const std::string& text) {
+  std::istringstream in(text);
+  std::string tag;
+  int version = 0, stage = 0;
+  size_t count = 0;
+  in >> tag >> version;
+  if (tag != "triaxial_test" || version != 1)
+    throw std::runtime_error("the checkpoint holds no triaxial-test state");
+  in >> started_ >> stage >> stage_start_ >> next_check_ >> next_row_ >> row_steps_ >>
+      compress_steps_ >> quiet_checks_ >> rate_ >> h0_ >> v0_ >> last_sigma_z_ >>
+      settle_seconds_ >> consolidate_seconds_ >> count;
+  if (!in || stage < 0 || stage > 3 || count > 10000000)
+    throw std::runtime_error("malformed triaxial-test state");
+  stage_ = static_cast<Stage>(stage);
+  rows_.assign(count, {});
+  for (TriaxialRow& r : rows_)
+    in >> r.time >> r.step >> r.axial_strain >> r.volumetric_strain >> r.sigma_x >> r.sigma_y >>
+        r.sigma_z >> r.p >> r.q >> r.friction_angle >> r.void_ratio >> r.coordination >> r.lw_x >>
+        r.lw_y >> r.lw_z >> r.lw_gap >> r.fabric_anisotropy >> r.kinetic_energy >> r.inertial_number;
+  if (!in) throw std::runtime_error("malformed triaxial-test rows");
+}
+
+}  // namespace simsols

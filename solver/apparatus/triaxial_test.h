@@ -1,0 +1,97 @@
+// TriaxialTest: the triaxial test's loading programme and measurements.
+//
+// A Simulation of a scene with a [triaxial] is the apparatus; the test
+// operates it in named stages:
+//   settle       gravity only, the plates held, until the kinetic energy
+//                has died down (or settle_time);
+//   consolidate  the platen is lowered onto the specimen and the platen
+//                and the four sides are servo-controlled to the confining
+//                stress (each target force is the stress times the plate's
+//                current area, renewed at every check) until equilibrium:
+//                twice in a row 0.5 ms apart every plate's mean stress
+//                within 1 % of its target and the beads' RMS speed below
+//                1e-4 (H/d) sqrt(p/rho) (or consolidate_time);
+//   compress     a first row at rest, then the platen moves down at the
+//                strain rate (from the inertial number unless given) while
+//                the sides hold the stress path's lateral stresses; a row
+//                every axial_strain / rows until axial_strain;
+//   done.
+// Rows are means over the steps since the previous row (triaxial_analysis.h),
+// with the internal (Love-Weber) stress and the fabric sampled at the row.
+// The programme's state is saved with the checkpoint.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "solver/apparatus/apparatus.h"
+#include "solver/apparatus/platen_servo.h"
+#include "solver/apparatus/triaxial_analysis.h"
+#include "solver/core/simulation.h"
+
+namespace simsols {
+
+class TriaxialTest : public LoadingProgramme {
+ public:
+  enum class Stage : int { Settle = 0, Consolidate = 1, Compress = 2, Done = 3 };
+
+  // `sim` must hold a scene with a triaxial cell; it is not owned.
+  explicit TriaxialTest(Simulation& sim);
+
+  bool advance(std::int64_t max_steps) override;
+  bool done() const override { return stage_ == Stage::Done; }
+  const char* stage_name() const override;
+  bool measuring() const override { return stage_ == Stage::Compress; }
+  StepCount step_count() const override;
+  std::string status() const override;
+  std::string save_state() const override;
+  void restore_state(const std::string& text) override;  // throws std::runtime_error
+
+  Stage stage() const { return stage_; }
+  const std::vector<TriaxialRow>& rows() const { return rows_; }
+  TriaxialSummary summary() const;
+  double strain_rate() const { return rate_; }
+  double bead_diameter() const { return stats_.diameter; }
+
+ private:
+  struct Cell {
+    double x0, x1, y0, y1, z0, z1;
+    double lx() const { return x1 - x0; }
+    double ly() const { return y1 - y0; }
+    double lz() const { return z1 - z0; }
+  };
+  Cell cell();
+  void enter(Stage s);
+  void lower_platen();
+  // The plates' targets (Pa) for the stage: x, y and z (z unused while
+  // compressing).
+  std::array<double, 3> targets(double sigma_z) const;
+  void apply_servos(const std::array<double, 3>& stress, bool platen);
+  bool settled();
+  bool consolidated();
+  std::array<double, 3> wall_stresses(const Cell& c);
+  // A row; `at_rest` gives the plates' stresses of the last consolidation
+  // check (the row at rest), else they are the means since the last row.
+  void measure_row(const std::array<double, 3>* at_rest = nullptr);
+  std::int64_t check_every() const;
+
+  Simulation& sim_;
+  const Triaxial& tri_;
+  SpecimenStats stats_;
+  double solid_volume_ = 0;
+  bool started_ = false;
+  Stage stage_ = Stage::Settle;
+  std::int64_t stage_start_ = 0, next_check_ = 0, next_row_ = 0, row_steps_ = 1;
+  std::int64_t compress_steps_ = 0;
+  int quiet_checks_ = 0;
+  double rate_ = 0;                 // 1/s
+  double h0_ = 0, v0_ = 0;          // at the start of compression
+  double last_sigma_z_ = 0;         // Pa, the platen's stress at the last row
+  std::array<double, 3> consolidated_stress_{};  // Pa, at the last consolidation check
+  double settle_seconds_ = 0, consolidate_seconds_ = 0;
+  std::vector<TriaxialRow> rows_;
+};
+
+}  // namespace simsols

@@ -1,0 +1,45 @@
+// [triaxial]: a cuboid specimen between six rigid plates (docs/triaxial.md),
+// expanded into walls and beads by build_triaxial().
+#include "solver/apparatus/triaxial.h"
+#include "solver/io/scene_tables.h"
+
+namespace simsols::scene_toml {
+
+std::optional<SceneIssue> read_triaxial(const Reader& root, Scene& scene) {
+  if (!root.has("triaxial")) return std::nullopt;
+  Reader r = root.sub("triaxial",
+                      {"length", "width", "wall_material", "confining_stress", "path", "b_value",
+                       "axial_strain", "strain_rate", "inertial_number", "settle_time",
+                       "consolidate_time", "servo_gain", "servo_max_speed",
+                       "servo_integral_time", "rows", "specimen"});
+  Triaxial t;
+  t.length = r.number("length", t.length);
+  t.width = r.number("width", t.width);
+  if (r.has("wall_material")) {
+    const std::string name = r.string("wall_material");
+    if (name != "steel" || scene.material_index(name) >= 0)
+      t.wall_material = r.material("wall_material", scene);
+  }
+  t.confining_stress = r.number("confining_stress", t.confining_stress);
+  t.path = r.choice("path", t.path);
+  if (t.path != Triaxial::Path::TrueTriaxial)
+    r.forbid({"b_value"}, "only allowed when path = \"true_triaxial\"");
+  t.b_value = r.number("b_value", t.b_value);
+  t.axial_strain = r.number("axial_strain", t.axial_strain);
+  t.strain_rate = r.number("strain_rate", t.strain_rate);
+  t.inertial_number = r.number("inertial_number", t.inertial_number);
+  t.settle_time = r.number("settle_time", t.settle_time);
+  t.consolidate_time = r.number("consolidate_time", t.consolidate_time);
+  t.servo_gain = r.number("servo_gain", t.servo_gain);
+  t.servo_max_speed = r.number("servo_max_speed", t.servo_max_speed);
+  t.servo_integral_time = r.number("servo_integral_time", t.servo_integral_time);
+  const std::int64_t rows = r.optional_integer("rows").value_or(t.rows);
+  if (rows < 10 || rows > 1000000)
+    r.fail("out_of_range", "rows", std::to_string(rows) + " is out of range, allowed [10, 1000000]");
+  t.rows = static_cast<int>(rows);
+  t.specimen = read_specimen(r, scene);
+  scene.triaxial = t;
+  return build_triaxial(scene);
+}
+
+}  // namespace simsols::scene_toml
