@@ -327,7 +327,9 @@ int finish_shear(const ShearRunResult& r, const RunOptions& opt, const Interrupt
   return r.interrupted ? interrupt.exit_status() : 0;
 }
 
-void print_oedometer(const OedometerRunResult& r, const std::string& dir) {
+int finish_oedometer(const OedometerRunResult& r, const RunOptions& opt,
+                     const InterruptScope& interrupt) {
+  const std::string& dir = opt.out_dir;
   const OedometerSummary& s = r.summary;
   const char* how = r.state.finished ? "finished" : r.state.interrupted ? "interrupted" : "stopped";
   std::printf("oedometer test %s: %zu of its load steps, %d beads, %lld steps in %.0f s\n", how,
@@ -349,11 +351,6 @@ void print_oedometer(const OedometerRunResult& r, const std::string& dir) {
   }
   std::printf("  results in %s\n", dir.c_str());
   if (!r.state.finished) std::printf("  %s\n", resume_hint(dir).c_str());
-}
-
-int finish_oedometer(const OedometerRunResult& r, const RunOptions& opt,
-                     const InterruptScope& interrupt) {
-  print_oedometer(r, opt.out_dir);
   return r.state.interrupted ? interrupt.exit_status() : 0;
 }
 
@@ -401,18 +398,20 @@ int run(const RunOptions& opt) {
   if (sim && sim->scene().shear_box)
     return finish_shear(resume_shear(std::move(sim), extra, shear), opt, interrupt);
   if (scene && scene->shear_box) return finish_shear(run_shear(*scene, shear), opt, interrupt);
-  ProgrammeRunOptions oedometer = shear;
-  oedometer.label = "oedometer";
-  if (sim && sim->scene().oedometer)
-    return finish_oedometer(resume_oedometer(std::move(sim), extra, oedometer), opt, interrupt);
-  if (scene && scene->oedometer)
-    return finish_oedometer(run_oedometer(*scene, oedometer), opt, interrupt);
-  ProgrammeRunOptions triaxial = shear;
-  triaxial.label = "triaxial";
-  if (sim && sim->scene().triaxial)
-    return finish_triaxial(resume_triaxial(std::move(sim), extra, triaxial), opt, interrupt);
-  if (scene && scene->triaxial)
-    return finish_triaxial(run_triaxial(*scene, triaxial), opt, interrupt);
+  ProgrammeRunOptions programme = shear;  // the same options, labelled by apparatus
+  const Scene& chosen = sim ? sim->scene() : *scene;
+  if (chosen.oedometer) {
+    programme.label = "oedometer";
+    return finish_oedometer(sim ? resume_oedometer(std::move(sim), extra, programme)
+                                : run_oedometer(*scene, programme),
+                            opt, interrupt);
+  }
+  if (chosen.triaxial) {
+    programme.label = "triaxial";
+    return finish_triaxial(sim ? resume_triaxial(std::move(sim), extra, programme)
+                               : run_triaxial(*scene, programme),
+                           opt, interrupt);
+  }
   if (!sim) {
     sim = std::make_unique<Simulation>(device, *scene);
     std::filesystem::create_directories(dir);

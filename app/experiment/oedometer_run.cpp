@@ -37,41 +37,18 @@ class OedometerOutputs : public ProgrammeOutputs {
   OedometerTest& test_;
 };
 
-OedometerRunResult drive(Simulation& sim, OedometerTest& test, const ProgrammeRunOptions& opt,
-                         double wall_before) {
-  OedometerOutputs outputs(test);
-  OedometerRunResult r;
-  r.state = drive_programme(sim, outputs, opt, wall_before);
-  r.rows = test.rows();
-  r.summary = test.summary();
-  r.summary.wall_seconds = r.state.wall_seconds;
-  return r;
-}
+bool has_oedometer(const Scene& scene) { return scene.oedometer.has_value(); }
 
 }  // namespace
 
 OedometerRunResult resume_oedometer(std::unique_ptr<Simulation> sim, const std::string& state,
-                                    const ProgrammeRunOptions& opt) {
-  if (!sim->scene().oedometer)
-    throw SceneError("bad_checkpoint", (fs::path(opt.out_dir) / "checkpoint.bin").string(), 0,
-                     "--resume", "the checkpoint is not an oedometer test");
-  OedometerTest test(*sim);
-  restore_programme(test, state, opt.out_dir);
-  std::fprintf(stderr, "[%s] resumed at %s\n", opt.label.c_str(),
-               where_programme_is(*sim, test).c_str());
-  return drive(*sim, test, opt, driver_wall_seconds(state));
+                                 const ProgrammeRunOptions& opt) {
+  return resume_apparatus_test<OedometerTest, OedometerOutputs>(std::move(sim), state, opt, has_oedometer,
+                                                          "an oedometer test");
 }
 
 OedometerRunResult run_oedometer(const Scene& scene, const ProgrammeRunOptions& opt) {
-  if (opt.resume) {
-    std::string state;
-    auto sim = load_run_checkpoint(opt, &state);
-    return resume_oedometer(std::move(sim), state, opt);
-  }
-  Simulation sim(opt.device, scene);
-  OedometerTest test(sim);
-  start_run_folder(scene, opt.out_dir);
-  return drive(sim, test, opt, 0);
+  return run_apparatus_test<OedometerTest, OedometerOutputs>(scene, opt, has_oedometer, "an oedometer test");
 }
 
 }  // namespace simsols

@@ -16,16 +16,12 @@
 #include <string>
 #include <vector>
 
-#include "app/experiment/programme_run.h"
+#include "app/experiment/apparatus_run.h"
 #include "solver/apparatus/oedometer_test.h"
 
 namespace simsols {
 
-struct OedometerRunResult {
-  OedometerSummary summary;
-  std::vector<OedometerRow> rows;
-  ProgrammeRunState state;
-};
+using OedometerRunResult = TestRunResult<OedometerTest>;
 
 // Runs (or, with options.resume, resumes) the test of `scene`.
 OedometerRunResult run_oedometer(const Scene& scene, const ProgrammeRunOptions& options);

@@ -37,41 +37,18 @@ class TriaxialOutputs : public ProgrammeOutputs {
   TriaxialTest& test_;
 };
 
-TriaxialRunResult drive(Simulation& sim, TriaxialTest& test, const ProgrammeRunOptions& opt,
-                         double wall_before) {
-  TriaxialOutputs outputs(test);
-  TriaxialRunResult r;
-  r.state = drive_programme(sim, outputs, opt, wall_before);
-  r.rows = test.rows();
-  r.summary = test.summary();
-  r.summary.wall_seconds = r.state.wall_seconds;
-  return r;
-}
+bool has_triaxial(const Scene& scene) { return scene.triaxial.has_value(); }
 
 }  // namespace
 
 TriaxialRunResult resume_triaxial(std::unique_ptr<Simulation> sim, const std::string& state,
-                                    const ProgrammeRunOptions& opt) {
-  if (!sim->scene().triaxial)
-    throw SceneError("bad_checkpoint", (fs::path(opt.out_dir) / "checkpoint.bin").string(), 0,
-                     "--resume", "the checkpoint is not a triaxial test");
-  TriaxialTest test(*sim);
-  restore_programme(test, state, opt.out_dir);
-  std::fprintf(stderr, "[%s] resumed at %s\n", opt.label.c_str(),
-               where_programme_is(*sim, test).c_str());
-  return drive(*sim, test, opt, driver_wall_seconds(state));
+                                 const ProgrammeRunOptions& opt) {
+  return resume_apparatus_test<TriaxialTest, TriaxialOutputs>(std::move(sim), state, opt, has_triaxial,
+                                                          "a triaxial test");
 }
 
 TriaxialRunResult run_triaxial(const Scene& scene, const ProgrammeRunOptions& opt) {
-  if (opt.resume) {
-    std::string state;
-    auto sim = load_run_checkpoint(opt, &state);
-    return resume_triaxial(std::move(sim), state, opt);
-  }
-  Simulation sim(opt.device, scene);
-  TriaxialTest test(sim);
-  start_run_folder(scene, opt.out_dir);
-  return drive(sim, test, opt, 0);
+  return run_apparatus_test<TriaxialTest, TriaxialOutputs>(scene, opt, has_triaxial, "a triaxial test");
 }
 
 }  // namespace simsols

@@ -14,16 +14,12 @@
 #include <string>
 #include <vector>
 
-#include "app/experiment/programme_run.h"
+#include "app/experiment/apparatus_run.h"
 #include "solver/apparatus/triaxial_test.h"
 
 namespace simsols {
 
-struct TriaxialRunResult {
-  TriaxialSummary summary;
-  std::vector<TriaxialRow> rows;
-  ProgrammeRunState state;
-};
+using TriaxialRunResult = TestRunResult<TriaxialTest>;
 
 // Runs (or, with options.resume, resumes) the test of `scene`.
 TriaxialRunResult run_triaxial(const Scene& scene, const ProgrammeRunOptions& options);

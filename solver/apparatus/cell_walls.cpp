@@ -1,5 +1,6 @@
 #include "solver/apparatus/cell_walls.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "solver/common/number_text.h"
@@ -42,6 +43,45 @@ void TableCheck::require(bool ok, const std::string& field, double v,
                          const std::string& allowed) const {
   if (!std::isfinite(v)) fail("not_finite", field, shortest_number(v) + " is not a finite number");
   if (!ok) fail("out_of_range", field, shortest_number(v) + " is out of range, allowed " + allowed);
+}
+
+void check_wall_room(const Scene& scene, int added, const TableCheck& check,
+                     const std::string& apparatus) {
+  if (scene.walls.size() + added > kMaxWalls)
+    check.fail("out_of_range", "length",
+               "the " + apparatus + " adds " + std::to_string(added) + " walls to the scene's " +
+                   std::to_string(scene.walls.size()) + "; at most " + std::to_string(kMaxWalls) +
+                   " walls are allowed");
+}
+
+void check_servo_settings(const TableCheck& check, double gain, double max_speed,
+                          double integral_time) {
+  check.require(gain >= 0, "servo_gain", gain, "[0, inf) m/(s N) (0 = automatic)");
+  check.require(max_speed > 0 && max_speed <= 10, "servo_max_speed", max_speed, "(0, 10] m/s");
+  check.require(integral_time >= 0, "servo_integral_time", integral_time,
+                "[0, inf) s (0 = automatic)");
+}
+
+SpecimenExtent measure_cell_specimen(const Scene& scene, double length, double width,
+                                     const TableCheck& check, const std::string& cell) {
+  if (scene.particles.empty())
+    check.fail("out_of_range", "specimen.method", "the specimen has no beads (the scene lists none)");
+  SpecimenExtent e{scene.particles[0].radius, 0, 0, 1e300};
+  for (const Particle& p : scene.particles) {
+    const Vec3& x = p.position;
+    e.r_min = std::min(e.r_min, p.radius);
+    e.r_max = std::max(e.r_max, p.radius);
+    e.top = std::max(e.top, x[2] + p.radius);
+    e.bottom = std::min(e.bottom, x[2] - p.radius);
+    const bool inside = x[0] >= p.radius && x[0] <= length - p.radius && x[1] >= p.radius &&
+                        x[1] <= width - p.radius && x[2] >= p.radius;
+    if (!inside)
+      check.fail("out_of_range", "specimen.method",
+                 "a bead at (" + shortest_number(x[0]) + ", " + shortest_number(x[1]) + ", " +
+                     shortest_number(x[2]) + ") is not inside the " + cell +
+                     " [0, length] x [0, width] x [0, inf)");
+  }
+  return e;
 }
 
 }  // namespace simsols

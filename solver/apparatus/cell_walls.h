@@ -39,4 +39,24 @@ struct TableCheck {
   void require(bool ok, const std::string& field, double v, const std::string& allowed) const;
 };
 
+// Fails unless the scene has room for the apparatus' `added` walls
+// (kMaxWalls in all; reported at the table's `length`).
+void check_wall_room(const Scene& scene, int added, const TableCheck& check,
+                     const std::string& apparatus);
+
+// The servo settings every apparatus table has (servo_gain,
+// servo_max_speed, servo_integral_time).
+void check_servo_settings(const TableCheck& check, double gain, double max_speed,
+                          double integral_time);
+
+// The specimen's smallest and largest radius and the heights its beads
+// reach. Fails at specimen.method when there are no beads or one is not
+// inside the cell [0, length] x [0, width] x [0, inf) (named by `cell`:
+// "box", "ring", ...).
+struct SpecimenExtent {
+  double r_min, r_max, top, bottom;
+};
+SpecimenExtent measure_cell_specimen(const Scene& scene, double length, double width,
+                                     const TableCheck& check, const std::string& cell);
+
 }  // namespace simsols

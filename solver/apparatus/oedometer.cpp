@@ -5,7 +5,6 @@
 
 #include "solver/apparatus/cell_walls.h"
 #include "solver/apparatus/specimen.h"
-#include "solver/common/number_text.h"
 
 namespace simsols {
 namespace {
@@ -24,40 +23,10 @@ void check_fields(const Oedometer& o, const Scene& scene) {
   kCheck.require(o.step_time > 0 && o.step_time <= 100, "step_time", o.step_time, "(0, 100] s");
   kCheck.require(o.settle_time >= 0 && o.settle_time <= 100, "settle_time", o.settle_time,
                  "[0, 100] s");
-  kCheck.require(o.servo_gain >= 0, "servo_gain", o.servo_gain,
-                 "[0, inf) m/(s N) (0 = automatic)");
-  kCheck.require(o.servo_max_speed > 0 && o.servo_max_speed <= 10, "servo_max_speed",
-                 o.servo_max_speed, "(0, 10] m/s");
-  kCheck.require(o.servo_integral_time >= 0, "servo_integral_time", o.servo_integral_time,
-                 "[0, inf) s (0 = automatic)");
+  check_servo_settings(kCheck, o.servo_gain, o.servo_max_speed, o.servo_integral_time);
   kCheck.require(o.friction_angle >= 0 && o.friction_angle < 90, "friction_angle",
                  o.friction_angle, "[0, 90) deg (0 = none given)");
-  if (scene.walls.size() + kOedometerWalls > kMaxWalls)
-    kCheck.fail("out_of_range", "length",
-                "the oedometer adds " + std::to_string(int(kOedometerWalls)) +
-                    " walls to the scene's " + std::to_string(scene.walls.size()) + "; at most " +
-                    std::to_string(kMaxWalls) + " walls are allowed");
-}
-
-// Every bead inside the ring; returns the height of the highest bead's top
-// and the largest radius.
-std::pair<double, double> check_beads(const Scene& scene, const Oedometer& o) {
-  if (scene.particles.empty())
-    kCheck.fail("out_of_range", "specimen.method", "the specimen has no beads (the scene lists none)");
-  double top = 0, r_max = 0;
-  for (const Particle& p : scene.particles) {
-    const Vec3& x = p.position;
-    const bool inside = x[0] >= p.radius && x[0] <= o.length - p.radius && x[1] >= p.radius &&
-                        x[1] <= o.width - p.radius && x[2] >= p.radius;
-    if (!inside)
-      kCheck.fail("out_of_range", "specimen.method",
-                  "a bead at (" + shortest_number(x[0]) + ", " + shortest_number(x[1]) + ", " +
-                      shortest_number(x[2]) +
-                      ") is not inside the ring [0, length] x [0, width] x [0, inf)");
-    top = std::max(top, x[2] + p.radius);
-    r_max = std::max(r_max, p.radius);
-  }
-  return {top, r_max};
+  check_wall_room(scene, kOedometerWalls, kCheck, "oedometer");
 }
 
 void add_walls(Scene& scene, Oedometer& o, double top, double r_max) {
@@ -87,10 +56,10 @@ void build(Scene& scene) {
   check_fields(o, scene);
   if (auto issue = place_specimen(scene, o.specimen, o.length, o.width, "oedometer"))
     throw TableProblem{*issue};
-  const auto [top, r_max] = check_beads(scene, o);
+  const SpecimenExtent e = measure_cell_specimen(scene, o.length, o.width, kCheck, "ring");
   if (!resolve_wall_material(scene, o.wall_material))
     kCheck.fail("unknown_material", "wall_material", "the ring's material does not exist");
-  add_walls(scene, o, top, r_max);
+  add_walls(scene, o, e.top, e.r_max);
 }
 
 }  // namespace

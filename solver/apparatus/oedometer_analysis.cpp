@@ -37,6 +37,7 @@ std::vector<OedometerStep> steps_of(const std::vector<OedometerRow>& rows, int p
     s.sigma_top = r.sigma_top;
     s.sigma_h = r.sigma_h;
     s.void_ratio = r.void_ratio;
+    s.height = r.height;
     s.k0 = r.k0;
     s.side_friction = r.side_friction;
     s.duration = r.time - start;
@@ -73,6 +74,7 @@ OedometerSummary analyse_oedometer(const std::vector<OedometerRow>& rows, int pe
   if (jaky_friction_angle_deg > 0) s.jaky_k0 = 1 - std::sin(jaky_friction_angle_deg / kDeg);
   if (s.steps.empty()) return s;
   s.seated_void_ratio = s.steps.front().void_ratio;
+  s.height = s.steps.front().height;
   const double e_ref = s.seated_void_ratio;
   std::vector<double> load_sigma, load_e, load_k0, unload_sigma, unload_e, friction;
   const int loading = std::min<int>(peak + 1, static_cast<int>(s.steps.size()));

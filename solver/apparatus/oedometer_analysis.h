@@ -57,6 +57,7 @@ struct OedometerRow {
 struct OedometerStep {
   double sigma_target = 0, sigma_top = 0, sigma_h = 0;  // Pa
   double void_ratio = 0, strain = 0, k0 = 0, side_friction = 0;
+  double height = 0;          // m
   double duration = 0;        // s held
   bool equilibrium = false;   // ended in equilibrium (else at step_time)
   bool loading = true;        // on the loading branch (up to the largest step)

@@ -7,11 +7,11 @@
 #include <stdexcept>
 
 #include "solver/apparatus/oedometer.h"
+#include "solver/apparatus/stage_checks.h"
 
 namespace simsols {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kCheckSeconds = 0.5e-3;
 // Shares of the caps a step and the settling take before their end criteria
 // hold (progress estimates only).
@@ -28,7 +28,6 @@ const Oedometer& oedometer_of(const Simulation& sim) {
 
 OedometerTest::OedometerTest(Simulation& sim) : sim_(sim), oed_(oedometer_of(sim)) {
   stats_ = specimen_stats(sim.scene(), oed_.wall_material);
-  for (const Particle& p : sim.scene().particles) solid_volume_ += 4.0 / 3.0 * kPi * std::pow(p.radius, 3);
   servo_ = tune_platen_servo(stats_, oedometer_area(oed_), target(), sim.dt(), oed_.servo_gain,
                              oed_.servo_integral_time);
 }
@@ -62,18 +61,6 @@ void OedometerTest::start_step(int index) {
   sim_.set_servo(oed_.first_wall + kOedPlaten, s);
 }
 
-// The platen down to a tenth of a diameter above the highest bead.
-void OedometerTest::lower_platen() {
-  const ParticleSnapshot snap = sim_.snapshot();
-  double top = 0;
-  for (size_t i = 0; i < snap.position.size(); ++i)
-    top = std::max(top, snap.position[i][2] + snap.radius[i]);
-  const int platen = oed_.first_wall + kOedPlaten;
-  Vec3 p = sim_.wall_point(platen);
-  p[2] = std::min(p[2], top + 0.1 * stats_.diameter);
-  sim_.set_wall_point(platen, p);
-}
-
 void OedometerTest::enter(Stage s) {
   const std::int64_t now = sim_.steps();
   if (stage_ == Stage::Settle) settle_seconds_ = (now - stage_start_) * sim_.dt();
@@ -87,20 +74,12 @@ void OedometerTest::enter(Stage s) {
     sim_.set_wall_velocity(platen, {0, 0, 0});
     return;
   }
-  lower_platen();
+  lower_platen_onto_specimen(sim_, oed_.first_wall + kOedPlaten, 0.1 * stats_.diameter);
   sim_.read_wall_means();  // the first row's means start here
   start_step(0);
 }
 
-bool OedometerTest::settled() {
-  const double elapsed = (sim_.steps() - stage_start_) * sim_.dt();
-  if (elapsed >= oed_.settle_time) return true;
-  if (sim_.scene().has_gravity() && elapsed < 2e-3) return false;
-  const Observables o = sim_.observe();
-  return o.kinetic() < 1e-4 * o.particles * stats_.bead_mass * 9.81 * stats_.diameter;
-}
-
-OedometerRow OedometerTest::measure_row() {
+OedometerRow OedometerTest::measure_row(const Observables& o) {
   const auto means = sim_.read_wall_means();
   sim_.read_servo(oed_.first_wall + kOedPlaten);
   const int f = oed_.first_wall;
@@ -118,12 +97,11 @@ OedometerRow OedometerTest::measure_row() {
   r.sigma_hy = fy / (2 * L * H);
   r.sigma_h = (fx + fy) / (2 * (L + W) * H);
   r.height = H;
-  r.void_ratio = A * H / solid_volume_ - 1;
+  r.void_ratio = A * H / stats_.volume - 1;
   const double sigma_v = 0.5 * (r.sigma_top + r.sigma_base);
   r.k0 = sigma_v > 0 ? r.sigma_h / sigma_v : 0;
   const double weight = stats_.mass * std::fabs(sim_.scene().effects.gravity[2]) / A;
   r.side_friction = r.sigma_top > 0 ? 1 - (r.sigma_base - weight) / r.sigma_top : 0;
-  const Observables o = sim_.observe();
   r.coordination = o.particles > 0 ? o.contacts / o.particles : 0;
   r.kinetic_energy = o.kinetic();
   return r;
@@ -131,19 +109,19 @@ OedometerRow OedometerTest::measure_row() {
 
 // Equilibrium (oedometer_test.h): the row's mean reaction on target, the
 // beads and the platen at rest on the scale of a quasi-static deformation.
-bool OedometerTest::quiet(const OedometerRow& row) {
+bool OedometerTest::quiet(const OedometerRow& row, const Observables& o) {
   const double sigma = target();
   const double scale = row.height / stats_.diameter * std::sqrt(sigma / stats_.density);
-  const Observables o = sim_.observe();
-  const double v_rms = std::sqrt(2 * o.kinetic_translational / (o.particles * stats_.bead_mass));
+  const double v_rms = rms_bead_speed(o, stats_);
   const double v_platen = std::fabs(sim_.wall_velocity(oed_.first_wall + kOedPlaten)[2]);
   return std::fabs(row.sigma_top - sigma) < kOedometerForceError * sigma &&
          v_rms < kOedometerBeadsInertial * scale && v_platen < kOedometerPlatenInertial * scale;
 }
 
 bool OedometerTest::step_ended() {
-  OedometerRow row = measure_row();
-  quiet_checks_ = quiet(row) ? quiet_checks_ + 1 : 0;
+  const Observables o = sim_.observe();
+  OedometerRow row = measure_row(o);
+  quiet_checks_ = quiet(row, o) ? quiet_checks_ + 1 : 0;
   const bool timed_out = (sim_.steps() - step_start_) * sim_.dt() >= oed_.step_time;
   if (quiet_checks_ >= 2) row.end_of_step = 1;
   else if (timed_out) row.end_of_step = 2;
@@ -166,7 +144,8 @@ bool OedometerTest::advance(std::int64_t max_steps) {
     if (sim_.steps() < next_check_) break;
     next_check_ = sim_.steps() + every;
     if (stage_ == Stage::Settle) {
-      if (settled()) enter(Stage::Load);
+      const double elapsed = (sim_.steps() - stage_start_) * sim_.dt();
+      if (settled_under_gravity(sim_, stats_, elapsed, oed_.settle_time)) enter(Stage::Load);
       return false;
     }
     if (step_ended()) {
@@ -218,11 +197,6 @@ OedometerSummary OedometerTest::summary() const {
   OedometerSummary s = analyse_oedometer(rows_, oedometer_peak_step(oed_), oed_.friction_angle);
   s.bead_diameter = stats_.diameter;
   s.settle_time = settle_seconds_;
-  for (const OedometerRow& r : rows_)
-    if (r.end_of_step != 0) {
-      s.height = r.height;
-      break;
-    }
   return s;
 }
 

@@ -65,18 +65,15 @@ class OedometerTest : public LoadingProgramme {
  private:
   void enter(Stage s);
   void start_step(int index);  // retargets and retunes the platen's servo
-  void lower_platen();
-  bool settled();
   bool step_ended();  // measures a row; true when the step is over
-  bool quiet(const OedometerRow& row);
-  OedometerRow measure_row();
+  bool quiet(const OedometerRow& row, const Observables& beads);
+  OedometerRow measure_row(const Observables& beads);
   double height();
   double target() const { return oed_.load_steps[step_]; }
 
   Simulation& sim_;
   const Oedometer& oed_;
   SpecimenStats stats_;
-  double solid_volume_ = 0;  // m^3, of the beads
   PlatenServo servo_;
   bool started_ = false;
   Stage stage_ = Stage::Settle;

@@ -20,6 +20,7 @@ SpecimenStats specimen_stats(const Scene& scene, int wall_material) {
   for (const Particle& p : scene.particles) {
     d += 2 * p.radius;
     mass += scene.materials[p.material].density * 4.0 / 3.0 * kPi * std::pow(p.radius, 3);
+    s.volume += 4.0 / 3.0 * kPi * std::pow(p.radius, 3);
   }
   const double n = static_cast<double>(scene.particles.size());
   s.diameter = d / n;

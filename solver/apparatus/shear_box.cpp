@@ -13,75 +13,29 @@ namespace {
 
 std::string num(double v) { return shortest_number(v); }
 
-struct Problem {
-  SceneIssue issue;
-};
-
-[[noreturn]] void fail(const std::string& code, const std::string& field,
-                       const std::string& message) {
-  throw Problem{{code, "shear_box." + field, message}};
-}
-
-void require(bool ok, const std::string& field, double v, const std::string& allowed) {
-  if (!std::isfinite(v)) fail("not_finite", field, num(v) + " is not a finite number");
-  if (!ok) fail("out_of_range", field, num(v) + " is out of range, allowed " + allowed);
-}
+const TableCheck kCheck{"shear_box"};
 
 void check_box(const ShearBox& b, const Scene& scene) {
-  require(b.length > 0 && b.length < 10, "length", b.length, "(0, 10) m");
-  require(b.width > 0 && b.width < 10, "width", b.width, "(0, 10) m");
-  require(b.normal_stress > 0 && b.normal_stress <= 1e9, "normal_stress", b.normal_stress,
+  kCheck.require(b.length > 0 && b.length < 10, "length", b.length, "(0, 10) m");
+  kCheck.require(b.width > 0 && b.width < 10, "width", b.width, "(0, 10) m");
+  kCheck.require(b.normal_stress > 0 && b.normal_stress <= 1e9, "normal_stress", b.normal_stress,
           "(0, 1e9] Pa");
-  require(b.shear_speed >= 0 && b.shear_speed <= 10, "shear_speed", b.shear_speed,
+  kCheck.require(b.shear_speed >= 0 && b.shear_speed <= 10, "shear_speed", b.shear_speed,
           "[0, 10] m/s (0 = from inertial_number)");
-  require(b.inertial_number > 0 && b.inertial_number < 1, "inertial_number", b.inertial_number,
+  kCheck.require(b.inertial_number > 0 && b.inertial_number < 1, "inertial_number", b.inertial_number,
           "(0, 1)");
-  require(b.shear_displacement > 0 && b.shear_displacement <= 0.5 * b.length,
+  kCheck.require(b.shear_displacement > 0 && b.shear_displacement <= 0.5 * b.length,
           "shear_displacement", b.shear_displacement, "(0, " + num(0.5 * b.length) + "] m (half the length)");
-  require(b.platen_mass >= 0 && b.platen_mass <= 1e4, "platen_mass", b.platen_mass,
+  kCheck.require(b.platen_mass >= 0 && b.platen_mass <= 1e4, "platen_mass", b.platen_mass,
           "[0, 1e4] kg (0 = automatic)");
-  require(b.servo_gain >= 0, "servo_gain", b.servo_gain, "[0, inf) m/(s N) (0 = automatic)");
-  require(b.servo_max_speed > 0 && b.servo_max_speed <= 10, "servo_max_speed",
-          b.servo_max_speed, "(0, 10] m/s");
-  require(b.servo_integral_time >= 0, "servo_integral_time", b.servo_integral_time,
-          "[0, inf) s (0 = automatic)");
-  require(b.settle_time >= 0 && b.settle_time <= 100, "settle_time", b.settle_time, "[0, 100] s");
-  require(b.consolidate_time > 0 && b.consolidate_time <= 100, "consolidate_time",
+  check_servo_settings(kCheck, b.servo_gain, b.servo_max_speed, b.servo_integral_time);
+  kCheck.require(b.settle_time >= 0 && b.settle_time <= 100, "settle_time", b.settle_time, "[0, 100] s");
+  kCheck.require(b.consolidate_time > 0 && b.consolidate_time <= 100, "consolidate_time",
           b.consolidate_time, "(0, 100] s");
-  require(b.rows >= 10 && b.rows <= 1000000, "rows", b.rows, "[10, 1000000]");
-  require(b.split_height >= 0, "split_height", b.split_height, "[0, inf) m (0 = mid-height)");
-  require(b.gap >= 0, "gap", b.gap, "[0, inf) m (0 = automatic)");
-  if (scene.walls.size() + kShearBoxWalls > kMaxWalls)
-    fail("out_of_range", "length",
-         "the shear box adds " + std::to_string(int(kShearBoxWalls)) + " walls to the scene's " +
-             std::to_string(scene.walls.size()) + "; at most " + std::to_string(kMaxWalls) +
-             " walls are allowed");
-}
-
-// The specimen's smallest and largest radius and the heights its beads
-// reach; every bead must lie inside the box.
-struct SpecimenExtent {
-  double r_min, r_max, top, bottom;
-};
-
-SpecimenExtent measure_specimen(const Scene& scene, const ShearBox& b) {
-  if (scene.particles.empty())
-    fail("out_of_range", "specimen.method", "the specimen has no beads (the scene lists none)");
-  SpecimenExtent e{scene.particles[0].radius, 0, 0, 1e300};
-  for (const Particle& p : scene.particles) {
-    e.r_min = std::min(e.r_min, p.radius);
-    e.r_max = std::max(e.r_max, p.radius);
-    e.top = std::max(e.top, p.position[2] + p.radius);
-    e.bottom = std::min(e.bottom, p.position[2] - p.radius);
-    const bool inside = p.position[0] >= p.radius && p.position[0] <= b.length - p.radius &&
-                        p.position[1] >= p.radius && p.position[1] <= b.width - p.radius &&
-                        p.position[2] >= p.radius;
-    if (!inside)
-      fail("out_of_range", "specimen.method",
-           "a bead at (" + num(p.position[0]) + ", " + num(p.position[1]) + ", " +
-               num(p.position[2]) + ") is not inside the box [0, length] x [0, width] x [0, inf)");
-  }
-  return e;
+  kCheck.require(b.rows >= 10 && b.rows <= 1000000, "rows", b.rows, "[10, 1000000]");
+  kCheck.require(b.split_height >= 0, "split_height", b.split_height, "[0, inf) m (0 = mid-height)");
+  kCheck.require(b.gap >= 0, "gap", b.gap, "[0, inf) m (0 = automatic)");
+  check_wall_room(scene, kShearBoxWalls, kCheck, "shear box");
 }
 
 // The automatic split height (split_height = 0).
@@ -158,15 +112,15 @@ void build(Scene& scene) {
   ShearBox& b = *scene.shear_box;
   check_box(b, scene);
   if (auto issue = place_specimen(scene, b.specimen, b.length, b.width, "shear_box"))
-    throw Problem{*issue};
-  const SpecimenExtent e = measure_specimen(scene, b);
+    throw TableProblem{*issue};
+  const SpecimenExtent e = measure_cell_specimen(scene, b.length, b.width, kCheck, "box");
   if (b.gap == 0) b.gap = 0.2 * 2 * e.r_min;
-  require(b.gap < e.r_min, "gap", b.gap, "[0, " + num(e.r_min) + ") m (below the smallest radius)");
+  kCheck.require(b.gap < e.r_min, "gap", b.gap, "[0, " + num(e.r_min) + ") m (below the smallest radius)");
   if (b.split_height == 0) b.split_height = default_split_height(scene, b, e);
-  require(b.split_height > b.gap && b.split_height < e.top, "split_height", b.split_height,
+  kCheck.require(b.split_height > b.gap && b.split_height < e.top, "split_height", b.split_height,
           "(" + num(b.gap) + ", " + num(e.top) + ") m (inside the specimen)");
   if (!resolve_wall_material(scene, b.wall_material))
-    fail("unknown_material", "wall_material", "the box material does not exist");
+    kCheck.fail("unknown_material", "wall_material", "the box material does not exist");
   add_walls(scene, b, e);
 }
 
@@ -176,7 +130,7 @@ std::optional<SceneIssue> build_shear_box(Scene& scene) {
   if (!scene.shear_box) return std::nullopt;
   try {
     build(scene);
-  } catch (const Problem& p) {
+  } catch (const TableProblem& p) {
     return p.issue;
   }
   return std::nullopt;

@@ -10,6 +10,7 @@
 
 #include "solver/apparatus/platen_servo.h"
 #include "solver/apparatus/shear_box.h"
+#include "solver/apparatus/stage_checks.h"
 
 namespace simsols {
 namespace {
@@ -155,13 +156,7 @@ void ShearTest::enter(ShearPhase p) {
     case ShearPhase::Consolidate: {
       // The platen is lowered onto the settled specimen (a tenth of a
       // diameter above its highest bead) and its servo switched on.
-      const ParticleSnapshot snap = sim_.snapshot();
-      double top = 0;
-      for (size_t i = 0; i < snap.position.size(); ++i)
-        top = std::max(top, snap.position[i][2] + snap.radius[i]);
-      Vec3 p = sim_.wall_point(box_.first_wall + kPlaten);
-      p[2] = std::min(p[2], top + 0.1 * diameter_);
-      sim_.set_wall_point(box_.first_wall + kPlaten, p);
+      lower_platen_onto_specimen(sim_, box_.first_wall + kPlaten, 0.1 * diameter_);
       sim_.read_servo(box_.first_wall + kPlaten);
       loaded_ = false;
       apply_servo(true);
@@ -189,14 +184,8 @@ void ShearTest::enter(ShearPhase p) {
 }
 
 bool ShearTest::settled() {
-  const std::int64_t now = sim_.steps();
-  const double elapsed = (now - phase_start_) * sim_.dt();
-  if (elapsed >= box_.settle_time) return true;
-  const bool gravity = sim_.scene().has_gravity();
-  if (gravity && elapsed < 2e-3) return false;
-  const Observables o = sim_.observe();
-  const double scale = o.particles * stats_.bead_mass * 9.81 * diameter_;
-  return o.kinetic() < 1e-4 * scale;
+  const double elapsed = (sim_.steps() - phase_start_) * sim_.dt();
+  return settled_under_gravity(sim_, stats_, elapsed, box_.settle_time);
 }
 
 // Equilibrium under the load: the mean reaction since the last check
@@ -218,7 +207,7 @@ bool ShearTest::equilibrium(double reaction) {
   const int platen = box_.first_wall + kPlaten;
   const double target = sigma_target_ * shear_area(box_);
   const Observables o = sim_.observe();
-  const double v_rms = std::sqrt(2 * o.kinetic_translational / (o.particles * stats_.bead_mass));
+  const double v_rms = rms_bead_speed(o, stats_);
   const double v_platen = std::fabs(sim_.wall_velocity(platen)[2]);
   const double v_shear = shear_speed_for(specimen_height());
   const bool quiet = std::fabs(reaction - target) < kEquilibriumForce * target &&

@@ -1,5 +1,7 @@
 #include "solver/apparatus/specimen.h"
 
+#include "solver/apparatus/cell_walls.h"
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -12,22 +14,10 @@ namespace {
 
 std::string num(double v) { return shortest_number(v); }
 
-struct Problem {
-  SceneIssue issue;
-};
-
-// The cell's footprint and the table its problems are reported under.
+// The cell's footprint and the checks of the apparatus table it belongs to.
 struct Cell {
   double length, width;
-  std::string table;
-  [[noreturn]] void fail(const std::string& code, const std::string& field,
-                         const std::string& message) const {
-    throw Problem{{code, table + "." + field, message}};
-  }
-  void require(bool ok, const std::string& field, double v, const std::string& allowed) const {
-    if (!std::isfinite(v)) fail("not_finite", field, num(v) + " is not a finite number");
-    if (!ok) fail("out_of_range", field, num(v) + " is out of range, allowed " + allowed);
-  }
+  TableCheck check;
 };
 
 // Seeded and identical on every platform (mt19937_64 is fully specified).
@@ -86,7 +76,7 @@ void place_pour(Scene& scene, const Specimen& s, const Cell& b) {
     bool hit = true;
     while (hit) {
       if (attempts++ == budget)
-        b.fail("out_of_range", "specimen.layers",
+        b.check.fail("out_of_range", "specimen.layers",
              "could place only " + std::to_string(placed) + " of " + std::to_string(count) +
                  " beads in the pouring column; use fewer layers");
       p = {prng.uniform(r, b.length - r), prng.uniform(r, b.width - r),
@@ -107,17 +97,17 @@ void place_pour(Scene& scene, const Specimen& s, const Cell& b) {
 void place_in(Scene& scene, const Specimen& s, const Cell& b) {
   if (s.method == Specimen::Method::Given) return;
   if (s.material < 0 || s.material >= static_cast<int>(scene.materials.size()))
-    b.fail("unknown_material", "specimen.material", "the specimen's material does not exist");
+    b.check.fail("unknown_material", "specimen.material", "the specimen's material does not exist");
   const double side = std::min(b.length, b.width);
-  b.require(s.diameter > 0 && s.diameter <= side, "specimen.diameter", s.diameter,
+  b.check.require(s.diameter > 0 && s.diameter <= side, "specimen.diameter", s.diameter,
           "(0, " + num(side) + "] m");
-  b.require(s.layers >= 1 && s.layers <= 200, "specimen.layers", s.layers, "[1, 200]");
+  b.check.require(s.layers >= 1 && s.layers <= 200, "specimen.layers", s.layers, "[1, 200]");
   const double beads = double(beads_per_layer(b.length, b.width, s.diameter)) * s.layers;
   if (beads > 2e7)
-    b.fail("out_of_range", "specimen.diameter",
+    b.check.fail("out_of_range", "specimen.diameter",
          "the specimen would hold " + num(beads) + " beads (limit 2e7)");
   if (!scene.particles.empty())
-    b.fail("conflicting_keys", "specimen.method",
+    b.check.fail("conflicting_keys", "specimen.method",
          "the scene lists particles; use specimen.method = \"given\" to shear them");
   if (s.method == Specimen::Method::Layers)
     place_layers(scene, s, b);
@@ -143,8 +133,8 @@ int beads_per_layer(double length, double width, double d) {
 std::optional<SceneIssue> place_specimen(Scene& scene, const Specimen& specimen,
                                          double length, double width, const std::string& table) {
   try {
-    place_in(scene, specimen, Cell{length, width, table});
-  } catch (const Problem& p) {
+    place_in(scene, specimen, Cell{length, width, TableCheck{table}});
+  } catch (const TableProblem& p) {
     return p.issue;
   }
   return std::nullopt;

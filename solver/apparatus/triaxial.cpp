@@ -5,7 +5,6 @@
 
 #include "solver/apparatus/cell_walls.h"
 #include "solver/apparatus/specimen.h"
-#include "solver/common/number_text.h"
 
 namespace simsols {
 namespace {
@@ -28,36 +27,9 @@ void check_fields(const Triaxial& t, const Scene& scene) {
                  "[0, 100] s");
   kCheck.require(t.consolidate_time > 0 && t.consolidate_time <= 100, "consolidate_time",
                  t.consolidate_time, "(0, 100] s");
-  kCheck.require(t.servo_gain >= 0, "servo_gain", t.servo_gain, "[0, inf) m/(s N) (0 = automatic)");
-  kCheck.require(t.servo_max_speed > 0 && t.servo_max_speed <= 10, "servo_max_speed",
-                 t.servo_max_speed, "(0, 10] m/s");
-  kCheck.require(t.servo_integral_time >= 0, "servo_integral_time", t.servo_integral_time,
-                 "[0, inf) s (0 = automatic)");
+  check_servo_settings(kCheck, t.servo_gain, t.servo_max_speed, t.servo_integral_time);
   kCheck.require(t.rows >= 10 && t.rows <= 1000000, "rows", t.rows, "[10, 1000000]");
-  if (scene.walls.size() + kTriaxialWalls > kMaxWalls)
-    kCheck.fail("out_of_range", "length",
-                "the triaxial cell adds " + std::to_string(int(kTriaxialWalls)) +
-                    " walls to the scene's " + std::to_string(scene.walls.size()) + "; at most " +
-                    std::to_string(kMaxWalls) + " walls are allowed");
-}
-
-// Every bead inside the cell; the highest bead's top and the largest radius.
-std::pair<double, double> check_beads(const Scene& scene, const Triaxial& t) {
-  if (scene.particles.empty())
-    kCheck.fail("out_of_range", "specimen.method", "the specimen has no beads (the scene lists none)");
-  double top = 0, r_max = 0;
-  for (const Particle& p : scene.particles) {
-    const Vec3& x = p.position;
-    if (!(x[0] >= p.radius && x[0] <= t.length - p.radius && x[1] >= p.radius &&
-          x[1] <= t.width - p.radius && x[2] >= p.radius))
-      kCheck.fail("out_of_range", "specimen.method",
-                  "a bead at (" + shortest_number(x[0]) + ", " + shortest_number(x[1]) + ", " +
-                      shortest_number(x[2]) +
-                      ") is not inside the cell [0, length] x [0, width] x [0, inf)");
-    top = std::max(top, x[2] + p.radius);
-    r_max = std::max(r_max, p.radius);
-  }
-  return {top, r_max};
+  check_wall_room(scene, kTriaxialWalls, kCheck, "triaxial cell");
 }
 
 Wall servo_plate(Wall w, double max_speed) {
@@ -93,10 +65,10 @@ void build(Scene& scene) {
   check_fields(t, scene);
   if (auto issue = place_specimen(scene, t.specimen, t.length, t.width, "triaxial"))
     throw TableProblem{*issue};
-  const auto [top, r_max] = check_beads(scene, t);
+  const SpecimenExtent e = measure_cell_specimen(scene, t.length, t.width, kCheck, "cell");
   if (!resolve_wall_material(scene, t.wall_material))
     kCheck.fail("unknown_material", "wall_material", "the plates' material does not exist");
-  add_walls(scene, t, top, r_max);
+  add_walls(scene, t, e.top, e.r_max);
 }
 
 }  // namespace

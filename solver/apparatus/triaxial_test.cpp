@@ -6,13 +6,13 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "solver/apparatus/stage_checks.h"
 #include "solver/apparatus/triaxial.h"
 #include "solver/core/stress.h"
 
 namespace simsols {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kCheckSeconds = 0.5e-3;
 constexpr double kForceError = 0.01;
 constexpr double kBeadsInertial = 1e-4;
@@ -25,11 +25,11 @@ const Triaxial& triaxial_of(const Simulation& sim) {
 
 // The fabric anisotropy (15/2)(phi_zz - (phi_xx + phi_yy)/2) of the bead
 // pairs' contact normals.
-double fabric_anisotropy(Simulation& sim) {
-  const ParticleSnapshot snap = sim.snapshot();
+double fabric_anisotropy(const ContactSample& sample) {
+  const ParticleSnapshot& snap = sample.beads;
   double f[3] = {0, 0, 0};
   int n = 0;
-  for (const ContactForce& c : sim.contacts()) {
+  for (const ContactForce& c : sample.contacts) {
     if (c.b < 0) continue;
     Vec3 l{};
     double len2 = 0;
@@ -48,8 +48,6 @@ double fabric_anisotropy(Simulation& sim) {
 
 TriaxialTest::TriaxialTest(Simulation& sim) : sim_(sim), tri_(triaxial_of(sim)) {
   stats_ = specimen_stats(sim.scene(), tri_.wall_material);
-  for (const Particle& p : sim.scene().particles)
-    solid_volume_ += 4.0 / 3.0 * kPi * std::pow(p.radius, 3);
   rate_ = tri_.strain_rate > 0 ? tri_.strain_rate
                                : triaxial_strain_rate(tri_.inertial_number, stats_.diameter,
                                                       stats_.density, tri_.confining_stress);
@@ -115,17 +113,6 @@ void TriaxialTest::apply_servos(const std::array<double, 3>& stress, bool platen
   }
 }
 
-void TriaxialTest::lower_platen() {
-  const ParticleSnapshot snap = sim_.snapshot();
-  double top = 0;
-  for (size_t i = 0; i < snap.position.size(); ++i)
-    top = std::max(top, snap.position[i][2] + snap.radius[i]);
-  const int platen = tri_.first_wall + kTriPlaten;
-  Vec3 p = sim_.wall_point(platen);
-  p[2] = std::min(p[2], top + 0.1 * stats_.diameter);
-  sim_.set_wall_point(platen, p);
-}
-
 void TriaxialTest::enter(Stage s) {
   const std::int64_t now = sim_.steps();
   const double elapsed = (now - stage_start_) * sim_.dt();
@@ -144,7 +131,7 @@ void TriaxialTest::enter(Stage s) {
     return;
   }
   if (s == Stage::Consolidate) {
-    lower_platen();
+    lower_platen_onto_specimen(sim_, tri_.first_wall + kTriPlaten, 0.1 * stats_.diameter);
     sim_.read_wall_means();
     apply_servos(targets(0), true);
     return;
@@ -164,14 +151,6 @@ void TriaxialTest::enter(Stage s) {
   next_row_ = now + row_steps_;
 }
 
-bool TriaxialTest::settled() {
-  const double elapsed = (sim_.steps() - stage_start_) * sim_.dt();
-  if (elapsed >= tri_.settle_time) return true;
-  if (sim_.scene().has_gravity() && elapsed < 2e-3) return false;
-  const Observables o = sim_.observe();
-  return o.kinetic() < 1e-4 * o.particles * stats_.bead_mass * 9.81 * stats_.diameter;
-}
-
 std::array<double, 3> TriaxialTest::wall_stresses(const Cell& c) {
   const auto means = sim_.read_wall_means();
   const int f = tri_.first_wall;
@@ -187,7 +166,7 @@ bool TriaxialTest::consolidated() {
   consolidated_stress_ = s;
   const double p0 = tri_.confining_stress;
   const Observables o = sim_.observe();
-  const double v_rms = std::sqrt(2 * o.kinetic_translational / (o.particles * stats_.bead_mass));
+  const double v_rms = rms_bead_speed(o, stats_);
   const double scale = c.lz() / stats_.diameter * std::sqrt(p0 / stats_.density);
   bool quiet = v_rms < kBeadsInertial * scale;
   for (double v : s) quiet = quiet && std::fabs(v - p0) < kForceError * p0;
@@ -212,11 +191,12 @@ void TriaxialTest::measure_row(const std::array<double, 3>* at_rest) {
   r.q = std::sqrt(0.5 * ((s[0] - s[1]) * (s[0] - s[1]) + (s[1] - s[2]) * (s[1] - s[2]) +
                          (s[2] - s[0]) * (s[2] - s[0])));
   r.friction_angle = mobilised_friction_angle(s[0], s[1], s[2]);
-  r.void_ratio = c.lx() * c.ly() * c.lz() / solid_volume_ - 1;
+  r.void_ratio = c.lx() * c.ly() * c.lz() / stats_.volume - 1;
   const Observables o = sim_.observe();
   r.coordination = o.particles > 0 ? o.contacts / o.particles : 0;
   r.kinetic_energy = o.kinetic();
-  const Tensor3 lw = love_weber_slab(sim_, c.z0, c.z1, c.lx() * c.ly());
+  const ContactSample sample = sample_contacts(sim_);
+  const Tensor3 lw = love_weber_slab(sample, sim_.scene().walls, c.z0, c.z1, c.lx() * c.ly());
   r.lw_x = lw[0][0];
   r.lw_y = lw[1][1];
   r.lw_z = lw[2][2];
@@ -227,7 +207,7 @@ void TriaxialTest::measure_row(const std::array<double, 3>* at_rest) {
   const double sz = now[f + kTriPlaten].force[2] / (c.lx() * c.ly());
   if (r.p > 0)
     r.lw_gap = std::max({std::fabs(r.lw_x - sx), std::fabs(r.lw_y - sy), std::fabs(r.lw_z - sz)}) / r.p;
-  r.fabric_anisotropy = fabric_anisotropy(sim_);
+  r.fabric_anisotropy = fabric_anisotropy(sample);
   r.inertial_number =
       r.p > 0 ? triaxial_inertial_number(rate_, stats_.diameter, stats_.density, r.p) : 0;
   last_sigma_z_ = s[2];
@@ -249,7 +229,9 @@ bool TriaxialTest::advance(std::int64_t max_steps) {
     if (sim_.steps() < event) break;
     switch (stage_) {
       case Stage::Settle:
-        if (settled()) enter(Stage::Consolidate);
+        if (settled_under_gravity(sim_, stats_, (sim_.steps() - stage_start_) * sim_.dt(),
+                                  tri_.settle_time))
+          enter(Stage::Consolidate);
         else next_check_ = sim_.steps() + check_every();
         return false;
       case Stage::Consolidate:

@@ -64,12 +64,10 @@ class TriaxialTest : public LoadingProgramme {
   };
   Cell cell();
   void enter(Stage s);
-  void lower_platen();
   // The plates' targets (Pa) for the stage: x, y and z (z unused while
   // compressing).
   std::array<double, 3> targets(double sigma_z) const;
   void apply_servos(const std::array<double, 3>& stress, bool platen);
-  bool settled();
   bool consolidated();
   std::array<double, 3> wall_stresses(const Cell& c);
   // A row; `at_rest` gives the plates' stresses of the last consolidation
@@ -80,7 +78,6 @@ class TriaxialTest : public LoadingProgramme {
   Simulation& sim_;
   const Triaxial& tri_;
   SpecimenStats stats_;
-  double solid_volume_ = 0;
   bool started_ = false;
   Stage stage_ = Stage::Settle;
   std::int64_t stage_start_ = 0, next_check_ = 0, next_row_ = 0, row_steps_ = 1;

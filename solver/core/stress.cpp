@@ -17,11 +17,23 @@ double inside_fraction(double z0, double lz, double lo, double hi) {
 
 }  // namespace
 
+ContactSample sample_contacts(Simulation& sim) {
+  ContactSample s;
+  s.beads = sim.snapshot();
+  s.contacts = sim.contacts();
+  s.wall_points = wall_points(sim.model(), sim.state());
+  return s;
+}
+
 Tensor3 love_weber_slab(Simulation& sim, double z_lo, double z_hi, double area) {
-  const ParticleSnapshot snap = sim.snapshot();
-  const std::vector<ContactForce> contacts = sim.contacts();
-  const std::vector<Vec3> points = wall_points(sim.model(), sim.state());
-  const std::vector<Wall>& walls = sim.scene().walls;
+  return love_weber_slab(sample_contacts(sim), sim.scene().walls, z_lo, z_hi, area);
+}
+
+Tensor3 love_weber_slab(const ContactSample& sample, const std::vector<Wall>& walls, double z_lo,
+                        double z_hi, double area) {
+  const ParticleSnapshot& snap = sample.beads;
+  const std::vector<ContactForce>& contacts = sample.contacts;
+  const std::vector<Vec3>& points = sample.wall_points;
   Tensor3 s{};
   for (const ContactForce& c : contacts) {
     const Vec3& xa = snap.position[c.a];

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "solver/core/simulation.h"
 
@@ -22,7 +23,19 @@ namespace simsols {
 
 using Tensor3 = std::array<std::array<double, 3>, 3>;  // [force component][branch component]
 
+// What the average reads from the device at one step: the beads, their
+// contacts and the walls' reference points (read once when a caller also
+// wants other averages of the same contacts).
+struct ContactSample {
+  ParticleSnapshot beads;
+  std::vector<ContactForce> contacts;
+  std::vector<Vec3> wall_points;
+};
+ContactSample sample_contacts(Simulation& sim);
+
 // Slab z in [z_lo, z_hi], horizontal area `area` (m^2). Pa.
+Tensor3 love_weber_slab(const ContactSample& sample, const std::vector<Wall>& walls, double z_lo,
+                        double z_hi, double area);
 Tensor3 love_weber_slab(Simulation& sim, double z_lo, double z_hi, double area);
 
 }  // namespace simsols

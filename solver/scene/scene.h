@@ -289,7 +289,8 @@ enum OedometerWall : int {
 //   constant_sigma3  both lateral stresses at confining_stress (the
 //                    conventional test);
 //   constant_p       the lateral stresses follow sigma3 = (3 p0 - sigma1)/2
-//                    so the mean stress p' stays at confining_stress;
+//                    so the mean stress p' stays at confining_stress (never
+//                    below 5 % of it: the sides keep the specimen closed);
 //   true_triaxial    sigma3 (x) at confining_stress, sigma2 (y) at
 //                    sigma3 + b (sigma1 - sigma3).
 // build_triaxial() (apparatus/triaxial.h) turns this into six walls (and

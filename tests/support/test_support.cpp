@@ -5,7 +5,9 @@
 #include <cstdlib>
 #include <mutex>
 
+#include "solver/common/errors.h"
 #include "solver/core/engine_options.h"
+#include "solver/io/scene_toml.h"
 
 namespace simsols {
 
@@ -120,6 +122,31 @@ double mass(const Scene& s, const Particle& p) {
 
 double e_star(const Material& m) {
   return m.young_modulus / (2 * (1 - m.poisson_ratio * m.poisson_ratio));
+}
+
+std::string glass_toml(const std::string& sliding_friction) {
+  return R"(
+[[materials]]
+name = "glass"
+young_modulus = 62.784e9
+poisson_ratio = 0.2
+density = 2230
+restitution = 0.87
+sliding_friction = )" + sliding_friction + R"(
+rolling_friction = 5e-5
+)";
+}
+
+void expect_scene_error(const std::string& text, const std::string& code,
+                        const std::string& field) {
+  try {
+    parse_scene(text, "bad.toml");
+    ADD_FAILURE() << "accepted, expected " << code << " at " << field;
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.code, code) << e.what();
+    EXPECT_EQ(e.field, field) << e.what();
+    EXPECT_NE(std::string(e.what()).find("bad.toml"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace simsols::testing

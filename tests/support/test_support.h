@@ -52,6 +52,15 @@ bool stability_full_form();
 // same-material wall (identical).
 double e_star(const Material& m);
 
+// The paper's glass (Table 2) as a scene file's [[materials]] table named
+// "glass", with the given sliding friction.
+std::string glass_toml(const std::string& sliding_friction = "0.02");
+
+// Parses `text` as the file "bad.toml" and expects it refused with a
+// SceneError of this code at this field, its message naming the file.
+void expect_scene_error(const std::string& text, const std::string& code,
+                        const std::string& field);
+
 // Prints "[measure] what: measured M, theory T, error E%" so the test log
 // doubles as the validation record (docs/validation.md).
 void report(const std::string& what, double measured, double theory);

@@ -18,22 +18,15 @@
 namespace simsols {
 namespace {
 
+using testing::expect_scene_error;
+
 constexpr double kD = 6.35e-3;
 
 // A ring 6.5 d square (36 beads a layer) with three layers poured in, the
 // paper's glass; `extra` goes into [oedometer].
 std::string oedometer_toml(const std::string& extra = "",
                            const std::string& steps = "[25e3, 100e3, 400e3, 100e3]") {
-  return R"(
-[[materials]]
-name = "glass"
-young_modulus = 62.784e9
-poisson_ratio = 0.2
-density = 2230
-restitution = 0.87
-sliding_friction = 0.02
-rolling_friction = 5e-5
-
+  return testing::glass_toml() + R"(
 [[materials]]
 name = "steel"
 young_modulus = 200e9
@@ -88,28 +81,19 @@ TEST(OedometerScene, RoundTripRebuildsTheSameApparatus) {
   EXPECT_EQ(to_toml(a), to_toml(b));
 }
 
-void expect_error(const std::string& text, const std::string& code, const std::string& field) {
-  try {
-    parse_scene(text, "bad.toml");
-    ADD_FAILURE() << "accepted, expected " << code << " at " << field;
-  } catch (const SceneError& e) {
-    EXPECT_EQ(e.code, code) << e.what();
-    EXPECT_EQ(e.field, field) << e.what();
-    EXPECT_NE(std::string(e.what()).find("bad.toml"), std::string::npos) << e.what();
-  }
-}
-
 TEST(OedometerScene, BadValuesNameTheFieldAndRange) {
-  expect_error(oedometer_toml("", "[25e3]"), "out_of_range", "oedometer.load_steps");
-  expect_error(oedometer_toml("", "[25e3, -1]"), "out_of_range", "oedometer.load_steps[1]");
-  expect_error(oedometer_toml("", "[25e3, \"a\"]"), "wrong_type", "oedometer.load_steps");
-  expect_error(oedometer_toml("step_time = 0"), "out_of_range", "oedometer.step_time");
-  expect_error(oedometer_toml("friction_angle = 90"), "out_of_range", "oedometer.friction_angle");
+  expect_scene_error(oedometer_toml("", "[25e3]"), "out_of_range", "oedometer.load_steps");
+  expect_scene_error(oedometer_toml("", "[25e3, -1]"), "out_of_range",
+                     "oedometer.load_steps[1]");
+  expect_scene_error(oedometer_toml("", "[25e3, \"a\"]"), "wrong_type", "oedometer.load_steps");
+  expect_scene_error(oedometer_toml("step_time = 0"), "out_of_range", "oedometer.step_time");
+  expect_scene_error(oedometer_toml("friction_angle = 90"), "out_of_range",
+                     "oedometer.friction_angle");
   std::string narrow = oedometer_toml();
   narrow.replace(narrow.find("length = 41.275e-3"), 18, "length = 1e-3");
-  expect_error(narrow, "out_of_range", "oedometer.specimen.diameter");
-  expect_error(oedometer_toml("colour = 1"), "unknown_key", "oedometer.colour");
-  expect_error(oedometer_toml() + "\n[shear_box]\n[shear_box.specimen]\nmethod = \"pour\"\n"
+  expect_scene_error(narrow, "out_of_range", "oedometer.specimen.diameter");
+  expect_scene_error(oedometer_toml("colour = 1"), "unknown_key", "oedometer.colour");
+  expect_scene_error(oedometer_toml() + "\n[shear_box]\n[shear_box.specimen]\nmethod = \"pour\"\n"
                                   "material = \"glass\"\ndiameter = 6.35e-3\nlayers = 1\n",
                "conflicting_keys", "oedometer");
 }

@@ -19,21 +19,14 @@
 namespace simsols {
 namespace {
 
+using testing::expect_scene_error;
+using testing::glass_toml;
 using testing::report;
 
 constexpr double kD = 6.35e-3;  // the paper's largest beads (Table 1, test 5)
 
 std::string box_toml(const std::string& specimen, const std::string& extra = "") {
-  return R"(
-[[materials]]
-name = "glass"
-young_modulus = 62.784e9
-poisson_ratio = 0.2
-density = 2230
-restitution = 0.87
-sliding_friction = 0.02
-rolling_friction = 5e-5
-
+  return glass_toml() + R"(
 [shear_box]
 )" + extra + R"(
 [shear_box.specimen]
@@ -104,34 +97,23 @@ TEST(ShearBoxScene, PourPlacesTheSameNumberOfBeadsWithoutOverlap) {
   EXPECT_EQ(s.particles.size(), 324u);  // validation refuses overlaps
 }
 
-void expect_error(const std::string& text, const std::string& code, const std::string& field) {
-  try {
-    parse_scene(text, "bad.toml");
-    ADD_FAILURE() << "accepted, expected " << code << " at " << field;
-  } catch (const SceneError& e) {
-    EXPECT_EQ(e.code, code) << e.what();
-    EXPECT_EQ(e.field, field) << e.what();
-    EXPECT_NE(std::string(e.what()).find("bad.toml"), std::string::npos) << e.what();
-  }
-}
-
 TEST(ShearBoxScene, BadValuesNameTheFieldAndRange) {
   const std::string spec = "material = \"glass\"\ndiameter = 6.35e-3\nlayers = 4";
-  expect_error(box_toml(spec, "gap = 4e-3"), "out_of_range", "shear_box.gap");
-  expect_error(box_toml(spec, "normal_stress = -5"), "out_of_range", "shear_box.normal_stress");
-  expect_error(box_toml(spec, "inertial_number = 2"), "out_of_range", "shear_box.inertial_number");
-  expect_error(box_toml(spec, "shear_displacement = 0.05"), "out_of_range",
+  expect_scene_error(box_toml(spec, "gap = 4e-3"), "out_of_range", "shear_box.gap");
+  expect_scene_error(box_toml(spec, "normal_stress = -5"), "out_of_range", "shear_box.normal_stress");
+  expect_scene_error(box_toml(spec, "inertial_number = 2"), "out_of_range", "shear_box.inertial_number");
+  expect_scene_error(box_toml(spec, "shear_displacement = 0.05"), "out_of_range",
                "shear_box.shear_displacement");
-  expect_error(box_toml("material = \"glass\"\ndiameter = 6.35e-3\nlayers = 0"), "out_of_range",
+  expect_scene_error(box_toml("material = \"glass\"\ndiameter = 6.35e-3\nlayers = 0"), "out_of_range",
                "shear_box.specimen.layers");
-  expect_error(box_toml("material = \"glass\"\ndiameter = 0.1\nlayers = 2"), "out_of_range",
+  expect_scene_error(box_toml("material = \"glass\"\ndiameter = 0.1\nlayers = 2"), "out_of_range",
                "shear_box.specimen.diameter");
-  expect_error(box_toml("material = \"sand\"\ndiameter = 6.35e-3\nlayers = 2"),
+  expect_scene_error(box_toml("material = \"sand\"\ndiameter = 6.35e-3\nlayers = 2"),
                "unknown_material", "shear_box.specimen.material");
-  expect_error(box_toml(spec, "wall_material = \"wood\""), "unknown_material",
+  expect_scene_error(box_toml(spec, "wall_material = \"wood\""), "unknown_material",
                "shear_box.wall_material");
-  expect_error(box_toml(spec + "\nmethod = \"heap\""), "bad_enum", "shear_box.specimen.method");
-  expect_error(box_toml(spec, "colour = 1"), "unknown_key", "shear_box.colour");
+  expect_scene_error(box_toml(spec + "\nmethod = \"heap\""), "bad_enum", "shear_box.specimen.method");
+  expect_scene_error(box_toml(spec, "colour = 1"), "unknown_key", "shear_box.colour");
 }
 
 TEST(ShearAnalysis, MohrCoulombFitRecoversTheLine) {

@@ -16,19 +16,12 @@
 namespace simsols {
 namespace {
 
+using testing::expect_scene_error;
+
 // 150 beads of 6.35 mm poured into a 5.5 d square cell; `extra` goes into
 // [triaxial].
 std::string triaxial_toml(const std::string& extra = "") {
-  return R"(
-[[materials]]
-name = "glass"
-young_modulus = 62.784e9
-poisson_ratio = 0.2
-density = 2230
-restitution = 0.87
-sliding_friction = 0.3
-rolling_friction = 5e-5
-
+  return testing::glass_toml("0.3") + R"(
 [triaxial]
 length = 34.925e-3
 width = 34.925e-3
@@ -64,20 +57,11 @@ TEST(TriaxialScene, SixPlatesAroundTheSpecimenAndRoundTrip) {
 }
 
 TEST(TriaxialScene, BadValuesNameTheField) {
-  const auto expect_error = [](const std::string& extra, const std::string& code,
-                               const std::string& field) {
-    try {
-      parse_scene(triaxial_toml(extra), "bad.toml");
-      ADD_FAILURE() << "accepted " << extra;
-    } catch (const SceneError& e) {
-      EXPECT_EQ(e.code, code) << e.what();
-      EXPECT_EQ(e.field, field) << e.what();
-    }
-  };
-  expect_error("b_value = 0.5", "unknown_key", "triaxial.b_value");
-  expect_error("path = \"true_triaxial\"\nb_value = 2", "out_of_range", "triaxial.b_value");
-  expect_error("path = \"extension\"", "bad_enum", "triaxial.path");
-  expect_error("strain_rate = -1", "out_of_range", "triaxial.strain_rate");
+  expect_scene_error(triaxial_toml("b_value = 0.5"), "unknown_key", "triaxial.b_value");
+  expect_scene_error(triaxial_toml("path = \"true_triaxial\"\nb_value = 2"), "out_of_range",
+                     "triaxial.b_value");
+  expect_scene_error(triaxial_toml("path = \"extension\""), "bad_enum", "triaxial.path");
+  expect_scene_error(triaxial_toml("strain_rate = -1"), "out_of_range", "triaxial.strain_rate");
 }
 
 TEST(TriaxialTest, ConsolidatesIsotropicallyAndTheWallsAgreeWithTheContacts) {

@@ -1,0 +1,31 @@
+#include "solver/apparatus/stage_checks.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace simsols {
+
+bool settled_under_gravity(Simulation& sim, const SpecimenStats& stats, double elapsed,
+                           double cap) {
+  if (elapsed >= cap) return true;
+  if (sim.scene().has_gravity() && elapsed < 2e-3) return false;
+  const Observables o = sim.observe();
+  const double scale = o.particles * stats.bead_mass * 9.81 * stats.diameter;
+  return o.kinetic() < 1e-4 * scale;
+}
+
+double rms_bead_speed(const Observables& o, const SpecimenStats& stats) {
+  return std::sqrt(2 * o.kinetic_translational / (o.particles * stats.bead_mass));
+}
+
+void lower_platen_onto_specimen(Simulation& sim, int platen, double clearance) {
+  const ParticleSnapshot snap = sim.snapshot();
+  double top = 0;
+  for (size_t i = 0; i < snap.position.size(); ++i)
+    top = std::max(top, snap.position[i][2] + snap.radius[i]);
+  Vec3 p = sim.wall_point(platen);
+  p[2] = std::min(p[2], top + clearance);
+  sim.set_wall_point(platen, p);
+}
+
+}  // namespace simsols
