@@ -100,13 +100,15 @@ Axis axis_range(double dlo, double dhi, std::optional<double> omin, std::optiona
   return {lo, hi, step};
 }
 
-// The finite points of a series as pixel polylines, broken at NaN/inf.
+// The points of a series the axes can show as pixel polylines, broken at
+// NaN/inf (and at x <= 0 on a log axis).
 std::vector<std::vector<Point>> polylines(const Series& s, const ChartLayout& L) {
   std::vector<std::vector<Point>> out(1);
   const std::size_t n = std::min(s.x.size(), s.y.size());
   for (std::size_t i = 0; i < n; ++i) {
-    if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) {
-      out.back().push_back({L.px(s.x[i]), L.py(s.y[i])});
+    const Point p{L.px(s.x[i]), L.py(s.y[i])};
+    if (std::isfinite(p.x) && std::isfinite(p.y)) {
+      out.back().push_back(p);
     } else if (!out.back().empty()) {
       out.emplace_back();
     }
@@ -189,6 +191,7 @@ void draw_legend(Image& img, const Chart& c, const ChartLayout& L, const Style& 
 void draw_marker(Image& img, const Marker& mk, const ChartLayout& L, const Style& st,
                  const std::vector<Point>& samples) {
   const double x = L.px(mk.x), y = L.py(mk.y), r = 8 * st.u;
+  if (!std::isfinite(x) || !std::isfinite(y)) return;
   const Rect clip{L.left, L.top, L.right, L.bottom};
   stroke_circle(img, x, y, r, 2.2 * st.u, kInk, clip);
   if (mk.label.empty() || !(x >= L.left && x <= L.right && y >= L.top && y <= L.bottom)) return;
@@ -368,8 +371,9 @@ void draw_error_bars(Image& img, const Series& s, const ChartLayout& L, const St
   const double cap = 4 * st.u;
   for (std::size_t i = 0; i < n; ++i) {
     const double e = s.y_err[i];
-    if (!std::isfinite(e) || e <= 0 || !std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+    if (!std::isfinite(e) || e <= 0 || !std::isfinite(s.y[i])) continue;
     const double x = L.px(s.x[i]), y0 = L.py(s.y[i] - e), y1 = L.py(s.y[i] + e);
+    if (!std::isfinite(x)) continue;
     draw_line(img, {x, y0}, {x, y1}, st.line, col, clip);
     draw_line(img, {x - cap, y0}, {x + cap, y0}, st.line, col, clip);
     draw_line(img, {x - cap, y1}, {x + cap, y1}, st.line, col, clip);

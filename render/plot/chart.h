@@ -56,8 +56,9 @@ struct ChartLayout {
   double x_step = 0.2, y_step = 0.2;  // tick spacing (of log10 x on a log axis)
   bool x_log = false;                 // x_lo, x_hi are then log10 of the range
   std::vector<std::string> x_labels;  // one per x tick
+  // NaN for an x the axis cannot show (x <= 0 on a log axis).
   double px(double x) const {
-    const double v = x_log ? std::log10(x) : x;
+    const double v = !x_log ? x : x > 0 ? std::log10(x) : NAN;
     return left + (v - x_lo) / (x_hi - x_lo) * (right - left);
   }
   double py(double y) const { return bottom - (y - y_lo) / (y_hi - y_lo) * (bottom - top); }

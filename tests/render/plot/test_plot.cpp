@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -230,6 +231,29 @@ TEST(Chart, NanBreaksTheLine) {
   EXPECT_TRUE(near_color(img, static_cast<int>(L.px(2)), row, red, 2));
   EXPECT_TRUE(near_color(img, static_cast<int>(L.px(8)), row, red, 2));
   EXPECT_FALSE(near_color(img, static_cast<int>(L.px(5)), row, red, 60));
+}
+
+// An e-log sigma' axis: ticks at 1, 2 and 5 x 10^k labelled by value, the
+// points evenly spaced by decade, and a point at x <= 0 left out as a NaN
+// would be (it breaks the line instead of running it off the left edge).
+TEST(Chart, LogAxisTicksDecadesAndLeavesOutNonPositiveX) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Chart c;
+  c.legend = false;
+  c.x_log = true;
+  c.series.push_back({"", {25, 100, 400, 800}, {1, 1, 1, 1}, Color{200, 0, 0}});
+  c.y_min = 0, c.y_max = 2;
+  const ChartLayout L = chart_layout(c);
+  EXPECT_TRUE(L.x_log);
+  ASSERT_EQ(L.x_labels.size(), L.x_ticks.size());
+  for (const char* label : {"50", "100", "200", "500"})
+    EXPECT_NE(std::find(L.x_labels.begin(), L.x_labels.end(), label), L.x_labels.end()) << label;
+  EXPECT_NEAR(L.px(100) - L.px(25), L.px(400) - L.px(100), 1e-9);
+  EXPECT_TRUE(std::isnan(L.px(0)));
+  Chart with_zero = c, with_nan = c;
+  with_zero.series[0].x = {25, 0, 400, 800};
+  with_nan.series[0].x = {25, nan, 400, 800};
+  EXPECT_EQ(render_chart(with_zero).rgba, render_chart(with_nan).rgba);
 }
 
 TEST(Text, InkLiesWithinTheReportedWidth) {
