@@ -48,6 +48,7 @@ double fabric_anisotropy(const ContactSample& sample) {
 
 TriaxialTest::TriaxialTest(Simulation& sim) : sim_(sim), tri_(triaxial_of(sim)) {
   stats_ = specimen_stats(sim.scene(), tri_.wall_material);
+  sigma3_ = tri_.confining_stress;
   rate_ = tri_.strain_rate > 0 ? tri_.strain_rate
                                : triaxial_strain_rate(tri_.inertial_number, stats_.diameter,
                                                       stats_.density, tri_.confining_stress);
@@ -75,7 +76,7 @@ TriaxialTest::Cell TriaxialTest::cell() {
 }
 
 std::array<double, 3> TriaxialTest::targets(double sigma_z) const {
-  const double s3 = tri_.confining_stress;
+  const double s3 = sigma3_;
   if (stage_ != Stage::Compress) return {s3, s3, s3};
   switch (tri_.path) {
     case Triaxial::Path::ConstantSigma3: return {s3, s3, sigma_z};
@@ -144,7 +145,7 @@ void TriaxialTest::enter(Stage s) {
       tri_.rows, std::llround(tri_.axial_strain / (rate_ * sim_.dt())));
   row_steps_ = std::max<std::int64_t>(1, compress_steps_ / tri_.rows);
   compress_steps_ = row_steps_ * tri_.rows;
-  last_sigma_z_ = tri_.confining_stress;
+  last_sigma_z_ = sigma3_;
   measure_row(&consolidated_stress_);
   sim_.set_servo(platen, WallServo{});
   sim_.set_wall_velocity(platen, {0, 0, -rate_ * h0_});
@@ -164,7 +165,7 @@ bool TriaxialTest::consolidated() {
   const Cell c = cell();
   const std::array<double, 3> s = wall_stresses(c);
   consolidated_stress_ = s;
-  const double p0 = tri_.confining_stress;
+  const double p0 = sigma3_;
   const Observables o = sim_.observe();
   const double v_rms = rms_bead_speed(o, stats_);
   const double scale = c.lz() / stats_.diameter * std::sqrt(p0 / stats_.density);
@@ -172,8 +173,54 @@ bool TriaxialTest::consolidated() {
   for (double v : s) quiet = quiet && std::fabs(v - p0) < kForceError * p0;
   quiet_checks_ = quiet ? quiet_checks_ + 1 : 0;
   apply_servos(targets(0), true);  // the areas changed
+  if (hold_) return false;
   return quiet_checks_ >= 2 ||
          (sim_.steps() - stage_start_) * sim_.dt() >= tri_.consolidate_time;
+}
+
+void TriaxialTest::set_confining_stress(double pascals) {
+  sigma3_ = pascals;
+  if (stage_ == Stage::Consolidate) {
+    quiet_checks_ = 0;
+    stage_start_ = sim_.steps();
+    apply_servos(targets(0), true);
+  } else if (stage_ == Stage::Compress) {
+    apply_servos(targets(last_sigma_z_), false);
+  }
+}
+
+void TriaxialTest::set_strain_rate(double per_second) {
+  rate_ = per_second;
+  if (stage_ != Stage::Compress) return;
+  // The rows stay tri_.axial_strain / tri_.rows apart in strain.
+  const double row_strain = tri_.axial_strain / tri_.rows;
+  row_steps_ = std::max<std::int64_t>(1, std::llround(row_strain / (rate_ * sim_.dt())));
+  compress_steps_ = (sim_.steps() - stage_start_) +
+                    row_steps_ * std::max<std::int64_t>(0, tri_.rows + 1 - std::ssize(rows_));
+  next_row_ = std::min(next_row_, sim_.steps() + row_steps_);
+  sim_.set_wall_velocity(tri_.first_wall + kTriPlaten, {0, 0, -rate_ * h0_});
+}
+
+bool TriaxialTest::start_compression() {
+  if (stage_ != Stage::Consolidate) return false;
+  enter(Stage::Compress);
+  return true;
+}
+
+TriaxialTest::AtRest TriaxialTest::at_rest() {
+  AtRest a;
+  const Cell c = cell();
+  a.stress = consolidated_stress_;
+  a.p = (a.stress[0] + a.stress[1] + a.stress[2]) / 3;
+  a.volume = c.lx() * c.ly() * c.lz();
+  a.void_ratio = a.volume / stats_.volume - 1;
+  a.porosity = 1 - stats_.volume / a.volume;
+  const ContactSample sample = sample_contacts(sim_);
+  int pairs = 0;
+  for (const ContactForce& f : sample.contacts) pairs += f.b >= 0;
+  const size_t n = sample.beads.position.size();
+  a.bead_coordination = n > 0 ? 2.0 * pairs / double(n) : 0;
+  return a;
 }
 
 void TriaxialTest::measure_row(const std::array<double, 3>* at_rest) {
@@ -294,7 +341,7 @@ std::string TriaxialTest::status() const {
 
 TriaxialSummary TriaxialTest::summary() const {
   TriaxialSummary s;
-  s.confining_stress = tri_.confining_stress;
+  s.confining_stress = sigma3_;
   s.strain_rate = rate_;
   s.bead_diameter = stats_.diameter;
   s.settle_time = settle_seconds_;
@@ -306,11 +353,11 @@ TriaxialSummary TriaxialTest::summary() const {
 std::string TriaxialTest::save_state() const {
   std::ostringstream o;
   o.precision(17);
-  o << "triaxial_test 1\n"
+  o << "triaxial_test 2\n"
     << started_ << ' ' << static_cast<int>(stage_) << ' ' << stage_start_ << ' ' << next_check_
     << ' ' << next_row_ << ' ' << row_steps_ << ' ' << compress_steps_ << ' ' << quiet_checks_
     << ' ' << rate_ << ' ' << h0_ << ' ' << v0_ << ' ' << last_sigma_z_ << ' ' << settle_seconds_
-    << ' ' << consolidate_seconds_ << '\n'
+    << ' ' << consolidate_seconds_ << ' ' << sigma3_ << ' ' << hold_ << '\n'
     << rows_.size() << '\n';
   for (const TriaxialRow& r : rows_)
     o << r.time << ' ' << r.step << ' ' << r.axial_strain << ' ' << r.volumetric_strain << ' '
@@ -327,11 +374,13 @@ void TriaxialTest::restore_state(const std::string& text) {
   int version = 0, stage = 0;
   size_t count = 0;
   in >> tag >> version;
-  if (tag != "triaxial_test" || version != 1)
+  if (tag != "triaxial_test" || version < 1 || version > 2)
     throw std::runtime_error("the checkpoint holds no triaxial-test state");
   in >> started_ >> stage >> stage_start_ >> next_check_ >> next_row_ >> row_steps_ >>
       compress_steps_ >> quiet_checks_ >> rate_ >> h0_ >> v0_ >> last_sigma_z_ >>
-      settle_seconds_ >> consolidate_seconds_ >> count;
+      settle_seconds_ >> consolidate_seconds_;
+  if (version >= 2) in >> sigma3_ >> hold_;  // version 1: the scene's, no hold
+  in >> count;
   if (!in || stage < 0 || stage > 3 || count > 10000000)
     throw std::runtime_error("malformed triaxial-test state");
   stage_ = static_cast<Stage>(stage);

@@ -19,6 +19,15 @@
 // Rows are means over the steps since the previous row (triaxial_analysis.h),
 // with the internal (Love-Weber) stress and the fabric sampled at the row.
 // The programme's state is saved with the checkpoint.
+//
+// Operator controls (the lab, and tests that walk an isotropic path): the
+// confining stress and the strain rate can be changed at any stage (a new
+// confining stress restarts the equilibrium checks; while compressing it is
+// the new sigma_3 of the path); with hold_when_consolidated() the test
+// stays in consolidate, the servos holding the stress, until
+// start_compression(). at_rest() reads the state the last equilibrium
+// check saw, which an isotropic compression or an unload-reload loop
+// records step by step.
 #pragma once
 
 #include <array>
@@ -51,6 +60,29 @@ class TriaxialTest : public LoadingProgramme {
 
   Stage stage() const { return stage_; }
   const std::vector<TriaxialRow>& rows() const { return rows_; }
+
+  // The operator's controls (see above).
+  void set_confining_stress(double pascals);
+  void set_strain_rate(double per_second);
+  void hold_when_consolidated(bool hold) { hold_ = hold; }
+  bool holding() const { return hold_; }
+  // True once consolidate has met its equilibrium criterion at the current
+  // confining stress (it stays true while holding).
+  bool consolidated_now() const { return stage_ == Stage::Consolidate && quiet_checks_ >= 2; }
+  // Leaves consolidate for compress; false when the test is not consolidating.
+  bool start_compression();
+  double confining_stress() const { return sigma3_; }
+
+  // The specimen at the last equilibrium check of consolidate.
+  struct AtRest {
+    std::array<double, 3> stress{};  // Pa, the plates' mean stresses
+    double p = 0;                    // Pa
+    double volume = 0;               // m^3, the cell's
+    double void_ratio = 0;
+    double bead_coordination = 0;    // bead-bead contacts per bead (pairs counted twice)
+    double porosity = 0;
+  };
+  AtRest at_rest();
   TriaxialSummary summary() const;
   double strain_rate() const { return rate_; }
   double bead_diameter() const { return stats_.diameter; }
@@ -84,6 +116,8 @@ class TriaxialTest : public LoadingProgramme {
   std::int64_t compress_steps_ = 0;
   int quiet_checks_ = 0;
   double rate_ = 0;                 // 1/s
+  double sigma3_ = 0;               // Pa, the confining stress (the scene's until set)
+  bool hold_ = false;
   double h0_ = 0, v0_ = 0;          // at the start of compression
   double last_sigma_z_ = 0;         // Pa, the platen's stress at the last row
   std::array<double, 3> consolidated_stress_{};  // Pa, at the last consolidation check
