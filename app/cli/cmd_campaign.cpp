@@ -1,7 +1,10 @@
 // simsols campaign: the reference paper's programme of direct shear tests,
 // 5 bead sizes (its Table 1) x 4 normal stresses (50, 160, 280, 400 kPa),
-// or any subset, any sizes and stresses (app/experiment/campaign.h).
+// or any subset, any sizes and stresses (app/experiment/campaign.h); on a
+// triaxial base scene, its test at several confining stresses
+// (app/experiment/triaxial_campaign.h).
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -9,6 +12,7 @@
 #include "app/cli/interrupt.h"
 #include "app/experiment/campaign.h"
 #include "app/experiment/paper_tests.h"
+#include "app/experiment/triaxial_campaign.h"
 #include "solver/io/scene_toml.h"
 
 namespace simsols {
@@ -23,13 +27,51 @@ struct CampaignOptions {
   std::string precision;
   double displacement_mm = 0;  // 0 = the base scene's
   bool quiet = false;
+  // Flags given on the command line (the triaxial campaign refuses the
+  // shear box's and has its own default stresses).
+  bool sizes_given = false, stresses_given = false, layers_given = false,
+       displacement_given = false;
 };
+
+int report_interrupted(size_t k, size_t count, const std::string& name,
+                       const std::filesystem::path& dir, const InterruptScope& interrupt) {
+  std::printf("campaign interrupted in test %zu/%zu (%s): its checkpoint and rows are in %s; "
+              "%zu of %zu tests finished. Resume with the same command.\n",
+              k + 1, count, name.c_str(), dir.string().c_str(), k, count);
+  return interrupt.exit_status();
+}
+
+int triaxial_campaign(const CampaignOptions& opt, const Scene& base, const std::string& base_name) {
+  for (const auto& [given, flag] : {std::pair{opt.sizes_given, "--sizes"},
+                                    {opt.layers_given, "--layers"},
+                                    {opt.displacement_given, "--displacement"}})
+    if (given)
+      throw UsageError("not_applicable", flag,
+                       "is a shear-box flag; a triaxial campaign varies --stresses (sigma_3)");
+  TriaxialCampaignSpec spec;
+  if (opt.stresses_given) spec.stresses_kpa = opt.stresses_kpa;
+  spec.precision = precision_flag(opt.precision);
+  std::vector<TriaxialCampaignTest> tests =
+      plan_triaxial_campaign(base, base_name, spec, opt.out_dir);
+  InterruptScope interrupt;
+  const CampaignRun run{open_command_device(), interrupt.stop_function(), opt.quiet};
+  const CampaignOutcome outcome = run_triaxial_campaign(tests, base_name, opt.out_dir, run);
+  if (outcome.interrupted) {
+    const TriaxialCampaignTest& t = tests[outcome.interrupted_test];
+    return report_interrupted(outcome.interrupted_test, tests.size(), t.scene.name, t.dir,
+                              interrupt);
+  }
+  std::printf("campaign done: %zu triaxial tests in %s (summary.md, summary.csv, *.png)\n",
+              tests.size(), opt.out_dir.c_str());
+  return 0;
+}
 
 int campaign(const CampaignOptions& opt) {
   // Everything is checked and every scene built before anything runs.
   const std::string base_name = opt.base.empty() ? kDefaultSceneName : opt.base;
   const Scene base = opt.base.empty() ? parse_scene(default_shear_scene_text(), base_name)
                                       : load_scene(opt.base);
+  if (base.triaxial) return triaxial_campaign(opt, base, base_name);
   CampaignSpec spec;
   spec.sizes_mm = opt.sizes_mm;
   spec.stresses_kpa = opt.stresses_kpa;
@@ -42,12 +84,9 @@ int campaign(const CampaignOptions& opt) {
   const CampaignRun run{open_command_device(), interrupt.stop_function(), opt.quiet};
   const CampaignOutcome outcome = run_campaign(tests, base_name, spec, opt.out_dir, run);
   if (outcome.interrupted) {
-    const size_t k = outcome.interrupted_test;
-    std::printf("campaign interrupted in test %zu/%zu (%s): its checkpoint and rows are in %s; "
-                "%zu of %zu tests finished. Resume with the same command.\n",
-                k + 1, tests.size(), tests[k].scene.name.c_str(), tests[k].dir.string().c_str(), k,
-                tests.size());
-    return interrupt.exit_status();
+    const CampaignTest& t = tests[outcome.interrupted_test];
+    return report_interrupted(outcome.interrupted_test, tests.size(), t.scene.name, t.dir,
+                              interrupt);
   }
   std::printf("campaign done: %zu tests in %s (summary.md, summary.csv, *.png)\n", tests.size(),
               opt.out_dir.c_str());
@@ -59,19 +98,35 @@ int campaign(const CampaignOptions& opt) {
 CommandRunner add_campaign_command(CLI::App& app) {
   auto opt = std::make_shared<CampaignOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "campaign", "Run the paper's direct shear programme (5 sizes x 4 stresses), resumable");
-  cmd->add_option("base", opt->base, "Base shear-box scene (default: the built-in shear_box.toml)");
+      "campaign",
+      "Run the paper's direct shear programme (5 sizes x 4 stresses), or a triaxial test at "
+      "several confining stresses; resumable");
+  cmd->add_option("base", opt->base,
+                  "Base scene: a shear box (default: the built-in shear_box.toml) or a triaxial "
+                  "cell");
   cmd->add_option("--out,-o", opt->out_dir, "Output folder (rerun to resume)")->required();
-  cmd->add_option("--sizes", opt->sizes_mm, "Bead diameters in mm (default: Table 1)")
-      ->delimiter(',');
-  cmd->add_option("--stresses", opt->stresses_kpa, "Normal stresses in kPa (default 50,160,280,400)")
-      ->delimiter(',');
-  cmd->add_option("--layers", opt->layers, "Layers for every size (default: Table 1)");
+  CLI::Option* sizes =
+      cmd->add_option("--sizes", opt->sizes_mm, "Bead diameters in mm (default: Table 1)")
+          ->delimiter(',');
+  CLI::Option* stresses =
+      cmd->add_option("--stresses", opt->stresses_kpa,
+                      "Normal stresses in kPa (default 50,160,280,400), or a triaxial "
+                      "campaign's confining stresses (default 50,100,200)")
+          ->delimiter(',');
+  CLI::Option* layers =
+      cmd->add_option("--layers", opt->layers, "Layers for every size (default: Table 1)");
   cmd->add_option("--precision", opt->precision, "float or double (default: the base scene's)");
-  cmd->add_option("--displacement", opt->displacement_mm,
-                  "Horizontal displacement to shear, mm (default: the base scene's)");
+  CLI::Option* displacement =
+      cmd->add_option("--displacement", opt->displacement_mm,
+                      "Horizontal displacement to shear, mm (default: the base scene's)");
   cmd->add_flag("--quiet,-q", opt->quiet, "No progress lines");
-  return [opt] { return campaign(*opt); };
+  return [=] {
+    opt->sizes_given = sizes->count() > 0;
+    opt->stresses_given = stresses->count() > 0;
+    opt->layers_given = layers->count() > 0;
+    opt->displacement_given = displacement->count() > 0;
+    return campaign(*opt);
+  };
 }
 
 }  // namespace simsols

@@ -1,9 +1,12 @@
 #include "solver/apparatus/triaxial_analysis.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include "solver/common/number_text.h"
 
@@ -44,11 +47,15 @@ void analyse_triaxial_rows(const std::vector<TriaxialRow>& rows, TriaxialSummary
       s.peak_axial_strain = r.axial_strain;
       s.peak_q = r.q;
       s.peak_p = r.p;
+      s.peak_sigma1 = std::max({r.sigma_x, r.sigma_y, r.sigma_z});
+      s.peak_sigma3 = std::min({r.sigma_x, r.sigma_y, r.sigma_z});
     }
     s.max_inertial_number = std::max(s.max_inertial_number, r.inertial_number);
     s.wall_internal_gap = std::max(s.wall_internal_gap, r.lw_gap);
   }
-  const double from = 0.8 * rows.back().axial_strain;
+  // (less a hair, so a row on the boundary is in whether read from memory or
+  // from triaxial.csv's 9 digits)
+  const double from = 0.8 * rows.back().axial_strain * (1 - 1e-7);
   int n = 0;
   for (const TriaxialRow& r : rows)
     if (r.axial_strain >= from && r.p > 0) {
@@ -56,6 +63,8 @@ void analyse_triaxial_rows(const std::vector<TriaxialRow>& rows, TriaxialSummary
       s.critical_q_over_p += r.q / r.p;
       s.critical_void_ratio += r.void_ratio;
       s.critical_p += r.p;
+      s.critical_sigma1 += std::max({r.sigma_x, r.sigma_y, r.sigma_z});
+      s.critical_sigma3 += std::min({r.sigma_x, r.sigma_y, r.sigma_z});
       ++n;
     }
   if (n > 0) {
@@ -63,6 +72,8 @@ void analyse_triaxial_rows(const std::vector<TriaxialRow>& rows, TriaxialSummary
     s.critical_q_over_p /= n;
     s.critical_void_ratio /= n;
     s.critical_p /= n;
+    s.critical_sigma1 /= n;
+    s.critical_sigma3 /= n;
   }
   s.max_dilatancy_angle = max_dilatancy(rows);
 }
@@ -100,10 +111,14 @@ std::string triaxial_summary_text(const TriaxialSummary& s) {
   key("peak_axial_strain", s.peak_axial_strain);
   key("peak_q_kPa", s.peak_q * 1e-3);
   key("peak_p_kPa", s.peak_p * 1e-3);
+  key("peak_sigma1_kPa", s.peak_sigma1 * 1e-3);
+  key("peak_sigma3_kPa", s.peak_sigma3 * 1e-3);
   key("critical_friction_angle_deg", s.critical_angle);
   key("critical_q_over_p", s.critical_q_over_p);
   key("critical_void_ratio", s.critical_void_ratio);
   key("critical_p_kPa", s.critical_p * 1e-3);
+  key("critical_sigma1_kPa", s.critical_sigma1 * 1e-3);
+  key("critical_sigma3_kPa", s.critical_sigma3 * 1e-3);
   key("max_dilatancy_angle_deg", s.max_dilatancy_angle);
   key("wall_internal_gap_percent", 100 * s.wall_internal_gap);
   key("max_inertial_number", s.max_inertial_number);
@@ -111,6 +126,146 @@ std::string triaxial_summary_text(const TriaxialSummary& s) {
   key("consolidate_time_s", s.consolidate_time);
   key("wall_seconds", s.wall_seconds);
   return o.str();
+}
+
+namespace {
+
+constexpr const char* kColumns[] = {
+    "time_s", "step", "axial_strain", "volumetric_strain", "sigma_x_kPa", "sigma_y_kPa",
+    "sigma_z_kPa", "p_kPa", "q_kPa", "q_over_p", "friction_angle_deg", "void_ratio",
+    "coordination", "lw_x_kPa", "lw_y_kPa", "lw_z_kPa", "lw_gap", "fabric_anisotropy",
+    "kinetic_energy_J", "inertial_number"};
+constexpr size_t kColumnCount = sizeof kColumns / sizeof kColumns[0];
+
+std::vector<double> csv_numbers(const std::string& line, size_t row) {
+  std::vector<double> v;
+  std::istringstream in(line);
+  std::string field;
+  while (std::getline(in, field, ',')) {
+    size_t used = 0;
+    double x = 0;
+    try {
+      x = std::stod(field, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != field.size())
+      throw std::runtime_error("triaxial.csv row " + std::to_string(row) + ", column " +
+                               kColumns[std::min(v.size(), kColumnCount - 1)] + ": '" + field +
+                               "' is not a number");
+    v.push_back(x);
+  }
+  if (v.size() != kColumnCount)
+    throw std::runtime_error("triaxial.csv row " + std::to_string(row) + " has " +
+                             std::to_string(v.size()) + " fields, expected " +
+                             std::to_string(kColumnCount));
+  return v;
+}
+
+// The least-squares line y = a + b x: {a, b, standard error of b, R^2}.
+std::array<double, 4> line_fit(const std::vector<double>& x, const std::vector<double>& y) {
+  const size_t n = x.size();
+  double mx = 0, my = 0;
+  for (size_t i = 0; i < n; ++i) {
+    mx += x[i] / n;
+    my += y[i] / n;
+  }
+  double sxx = 0, sxy = 0, syy = 0;
+  for (size_t i = 0; i < n; ++i) {
+    sxx += (x[i] - mx) * (x[i] - mx);
+    sxy += (x[i] - mx) * (y[i] - my);
+    syy += (y[i] - my) * (y[i] - my);
+  }
+  const double b = sxx > 0 ? sxy / sxx : 0, a = my - b * mx;
+  double res = 0;
+  for (size_t i = 0; i < n; ++i) res += (y[i] - a - b * x[i]) * (y[i] - a - b * x[i]);
+  const double se = n > 2 && sxx > 0 ? std::sqrt(res / double(n - 2) / sxx)
+                                     : std::numeric_limits<double>::quiet_NaN();
+  return {a, b, se, syy > 0 ? 1 - res / syy : 1};
+}
+
+}  // namespace
+
+std::vector<TriaxialRow> parse_triaxial_rows_csv(const std::string& text) {
+  std::istringstream in(text);
+  std::string line, header;
+  for (size_t i = 0; i < kColumnCount; ++i) header += std::string(i ? "," : "") + kColumns[i];
+  std::getline(in, line);
+  if (line != header) throw std::runtime_error("not a triaxial.csv (its header differs)");
+  std::vector<TriaxialRow> rows;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    const std::vector<double> v = csv_numbers(line, rows.size() + 1);
+    TriaxialRow r;
+    r.time = v[0];
+    r.step = static_cast<std::int64_t>(v[1]);
+    r.axial_strain = v[2];
+    r.volumetric_strain = v[3];
+    r.sigma_x = v[4] * 1e3;
+    r.sigma_y = v[5] * 1e3;
+    r.sigma_z = v[6] * 1e3;
+    r.p = v[7] * 1e3;
+    r.q = v[8] * 1e3;
+    r.friction_angle = v[10];
+    r.void_ratio = v[11];
+    r.coordination = v[12];
+    r.lw_x = v[13] * 1e3;
+    r.lw_y = v[14] * 1e3;
+    r.lw_z = v[15] * 1e3;
+    r.lw_gap = v[16];
+    r.fabric_anisotropy = v[17];
+    r.kinetic_energy = v[18];
+    r.inertial_number = v[19];
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+MohrCoulomb fit_mohr_circles(const std::vector<double>& sigma1, const std::vector<double>& sigma3) {
+  MohrCoulomb m;
+  const size_t n = std::min(sigma1.size(), sigma3.size());
+  m.points = static_cast<int>(n);
+  if (n < 2) return m;
+  std::vector<double> s(n), t(n);
+  for (size_t i = 0; i < n; ++i) {
+    s[i] = 0.5 * (sigma1[i] + sigma3[i]);
+    t[i] = 0.5 * (sigma1[i] - sigma3[i]);
+  }
+  const auto [a, b, b_se, r2] = line_fit(s, t);
+  const double sin_phi = std::clamp(b, -0.999999, 0.999999);
+  const double cos_phi = std::sqrt(1 - sin_phi * sin_phi);
+  m.phi_deg = std::asin(sin_phi) * kDeg;
+  m.tan_phi = sin_phi / cos_phi;
+  m.cohesion = a / cos_phi;
+  m.r2 = r2;
+  m.exact = n == 2;
+  m.phi_se_deg = b_se / cos_phi * kDeg;  // d(phi) = d(sin phi) / cos phi
+  m.tan_phi_se = b_se / (cos_phi * cos_phi * cos_phi);
+  if (m.exact) {
+    m.cohesion_se = b_se;  // NaN
+  } else {
+    double ms = 0, sss = 0;
+    for (double x : s) ms += x / n;
+    for (double x : s) sss += (x - ms) * (x - ms);
+    // The intercept's error, as the slope's scaled by the spread of s.
+    m.cohesion_se = b_se * std::sqrt(sss / n + ms * ms) / cos_phi;
+  }
+  return m;
+}
+
+CriticalStateLine fit_critical_state_line(const std::vector<double>& p, const std::vector<double>& e) {
+  CriticalStateLine c;
+  const size_t n = std::min(p.size(), e.size());
+  c.points = static_cast<int>(n);
+  if (n < 2) return c;
+  std::vector<double> lnp(n);
+  for (size_t i = 0; i < n; ++i) lnp[i] = std::log(p[i] / 1e3);
+  const auto [a, b, b_se, r2] = line_fit(lnp, std::vector<double>(e.begin(), e.begin() + n));
+  c.gamma = a;
+  c.lambda = -b;
+  c.lambda_se = b_se;
+  c.r2 = r2;
+  return c;
 }
 
 }  // namespace simsols

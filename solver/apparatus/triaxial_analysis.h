@@ -13,12 +13,24 @@
 //   dilatancy angle: sin(psi) = -r / (2 - r), r = d eps_v / d eps_a, the
 //        slope over a window of 1 % axial strain (negative r: dilation).
 // The peak is the largest mobilised angle; the critical state the mean over
-// the last 20 % of the axial strain.
+// the last 20 % of the axial strain. Its Mohr circle spans the largest and
+// smallest principal stresses, s_1 and s_3 (the largest and smallest plate
+// stress).
+//
+// Over several tests (a campaign over sigma_3):
+//   the Mohr-Coulomb envelope tangent to the circles, tau = c + sigma tan(phi):
+//        the least-squares line t = a + s b through the circles' tops
+//        (s = (s_1 + s_3) / 2, t = (s_1 - s_3) / 2), sin(phi) = b,
+//        c = a / cos(phi);
+//   the critical state line e = Gamma - lambda ln(p' / 1 kPa), least squares
+//        over the tests' critical states.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "solver/apparatus/shear_analysis.h"
 
 namespace simsols {
 
@@ -48,7 +60,9 @@ struct TriaxialSummary {
   double bead_diameter = 0;         // m
   double initial_void_ratio = 0;    // e after consolidation
   double peak_angle = 0, peak_q_over_p = 0, peak_axial_strain = 0, peak_q = 0, peak_p = 0;
+  double peak_sigma1 = 0, peak_sigma3 = 0;  // Pa, the peak's Mohr circle
   double critical_angle = 0, critical_q_over_p = 0, critical_void_ratio = 0, critical_p = 0;
+  double critical_sigma1 = 0, critical_sigma3 = 0;  // Pa, means over the critical rows
   double max_dilatancy_angle = 0;   // deg
   // The largest disagreement between the plates' stresses and the internal
   // (Love-Weber) stress at the same step, on any axis over the rows, as a
@@ -66,5 +80,20 @@ double mobilised_friction_angle(double sx, double sy, double sz);
 
 std::string triaxial_rows_csv(const std::vector<TriaxialRow>& rows);
 std::string triaxial_summary_text(const TriaxialSummary& s);
+// triaxial.csv read back (a campaign keeping a finished test); throws
+// std::runtime_error naming the row or column that is wrong.
+std::vector<TriaxialRow> parse_triaxial_rows_csv(const std::string& text);
+
+// The envelope tangent to Mohr circles (s_1, s_3 in Pa), as a Mohr-Coulomb
+// line: cohesion (Pa), phi and their standard errors (see above).
+MohrCoulomb fit_mohr_circles(const std::vector<double>& sigma1, const std::vector<double>& sigma3);
+
+struct CriticalStateLine {
+  double gamma = 0, lambda = 0;  // e = gamma - lambda ln(p' / 1 kPa)
+  double lambda_se = 0;          // NaN with two points
+  double r2 = 0;
+  int points = 0;
+};
+CriticalStateLine fit_critical_state_line(const std::vector<double>& p, const std::vector<double>& e);
 
 }  // namespace simsols

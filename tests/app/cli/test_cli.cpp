@@ -215,6 +215,35 @@ TEST(Cli, CampaignWritesItsTablesAndResumes) {
   EXPECT_EQ(read(out / "summary.csv"), table);
 }
 
+// A triaxial campaign over two confining stresses: the Mohr circles, the
+// envelope tangent to them and the critical state line; run again, nothing
+// is rerun and the table is the same. The shear box's flags are refused.
+TEST(Cli, TriaxialCampaignFitsTheEnvelopeAndResumes) {
+  const fs::path out = fresh_dir("triaxial_campaign");
+  const std::string base = std::string(SIMSOLS_ASSETS_DIR) + "/tests/triaxial_small.toml";
+  const Result refused = run("campaign " + base + " --out " + out.string() + " --sizes 6.35");
+  EXPECT_EQ(refused.status, 2) << refused.out;
+  EXPECT_NE(refused.out.find("--sizes"), std::string::npos) << refused.out;
+  EXPECT_FALSE(fs::exists(out));
+  const std::string args = "campaign " + base + " --out " + out.string() + " --stresses 50,150";
+  const Result first = run(args + " -q");
+  ASSERT_EQ(first.status, 0) << first.out;
+  EXPECT_NE(first.out.find("Mohr-Coulomb envelope (peak): phi = "), std::string::npos) << first.out;
+  EXPECT_NE(first.out.find("critical state line: "), std::string::npos) << first.out;
+  for (const char* f : {"summary.md", "summary.csv", "mohr_peak.png", "mohr_critical.png",
+                        "csl.png", "stress_ratio.png", "volumetric.png",
+                        "s3_50kPa/triaxial.csv", "s3_150kPa/summary.txt"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  const std::string table = read(out / "summary.csv");
+  EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 3) << table;
+  EXPECT_NE(read(out / "s3_150kPa/summary.txt").find("confining_stress_kPa = 150"),
+            std::string::npos);
+  const Result again = run(args);
+  ASSERT_EQ(again.status, 0) << again.out;
+  EXPECT_NE(again.out.find("finished earlier, kept"), std::string::npos) << again.out;
+  EXPECT_EQ(read(out / "summary.csv"), table);
+}
+
 }  // namespace
 
 // ------------------------------------------------------------------ frames

@@ -1,0 +1,145 @@
+#include "app/experiment/triaxial_campaign.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include "app/experiment/run_cost.h"
+#include "app/experiment/triaxial_campaign_report.h"
+#include "app/experiment/triaxial_plots.h"
+#include "solver/apparatus/platen_servo.h"
+#include "solver/apparatus/triaxial.h"
+#include "solver/common/errors.h"
+#include "solver/io/output.h"
+#include "solver/io/scene_toml.h"
+#include "solver/scene/contact_model.h"
+
+namespace simsols {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr auto fmt = format_number;  // printf conversion of one number (output.h)
+
+// Particle-steps the test will take: a third of the settling and
+// consolidation allowances (they end at equilibrium, usually sooner) and
+// the compression at its strain rate.
+double estimated_cost(const Scene& s) {
+  const Triaxial& t = *s.triaxial;
+  const SpecimenStats b = specimen_stats(s, t.wall_material);
+  const double rate = t.strain_rate > 0 ? t.strain_rate
+                                        : triaxial_strain_rate(t.inertial_number, b.diameter,
+                                                               b.density, t.confining_stress);
+  const double seconds = 0.3 * (t.settle_time + t.consolidate_time) + t.axial_strain / rate;
+  return s.particles.size() * seconds / effective_time_step(s);
+}
+
+void check_spec(const Scene& base, const std::string& base_name, const TriaxialCampaignSpec& spec) {
+  if (!base.triaxial)
+    throw SceneError("missing_field", base_name, 0, "triaxial",
+                     "the triaxial campaign's base scene must describe a triaxial cell");
+  if (spec.stresses_kpa.empty())
+    throw UsageError("missing_value", "--stresses", "give one or more confining stresses in kPa");
+  for (double s : spec.stresses_kpa)
+    if (!(s > 0 && s <= 1e6))
+      throw UsageError("out_of_range", "--stresses",
+                       fmt("%g", s) + " kPa is out of range, allowed (0, 1e6] kPa");
+}
+
+// A test finished earlier: its rows read back and analysed again.
+bool keep_finished(TriaxialCampaignTest& t, const std::string& label, bool quiet) {
+  if (!programme_finished(t.dir.string())) return false;
+  t.result.rows = parse_triaxial_rows_csv(read_text(t.dir / "triaxial.csv"));
+  const auto keys = summary_keys(read_text(t.dir / "summary.txt"));
+  TriaxialSummary& s = t.result.summary;
+  s = TriaxialSummary{};
+  s.confining_stress = t.s_kpa * 1e3;
+  for (const auto& [key, field] : {std::pair{"strain_rate_per_s", &s.strain_rate},
+                                   {"bead_diameter_mm", &s.bead_diameter},
+                                   {"settle_time_s", &s.settle_time},
+                                   {"consolidate_time_s", &s.consolidate_time},
+                                   {"wall_seconds", &s.wall_seconds}})
+    if (const auto it = keys.find(key); it != keys.end()) *field = std::stod(it->second);
+  s.bead_diameter *= 1e-3;
+  analyse_triaxial_rows(t.result.rows, s);
+  t.result.state.finished = true;
+  if (!quiet) std::fprintf(stderr, "[%s] finished earlier, kept\n", label.c_str());
+  return true;
+}
+
+void print_result(const TriaxialCampaignTest& t) {
+  const TriaxialSummary& s = t.result.summary;
+  std::printf("%-26s peak phi %.2f deg (q/p' %.3f at %.1f %%), critical phi %.2f deg, "
+              "e_cs %.3f, max dilatancy %.2f deg, %.0f s\n",
+              t.scene.name.c_str(), s.peak_angle, s.peak_q_over_p, 100 * s.peak_axial_strain,
+              s.critical_angle, s.critical_void_ratio, s.max_dilatancy_angle, s.wall_seconds);
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+std::vector<TriaxialCampaignTest> plan_triaxial_campaign(const Scene& base,
+                                                         const std::string& base_name,
+                                                         const TriaxialCampaignSpec& spec,
+                                                         const std::string& out_dir) {
+  check_spec(base, base_name, spec);
+  std::vector<TriaxialCampaignTest> tests;
+  for (double s : spec.stresses_kpa) {
+    TriaxialCampaignTest t;
+    t.s_kpa = s;
+    t.scene = base;
+    t.scene.triaxial->confining_stress = s * 1e3;
+    if (spec.precision) t.scene.numerics.precision = *spec.precision;
+    t.scene.name = base.name + "_s3_" + fmt("%g", s) + "kPa";
+    t.scene.source_text.clear();  // scene.toml is then the resolved scene
+    validate_scene(t.scene, base_name + " (" + t.scene.name + ")");
+    t.dir = fs::path(out_dir) / ("s3_" + fmt("%g", s) + "kPa");
+    t.cost = estimated_cost(t.scene);
+    tests.push_back(std::move(t));
+  }
+  return tests;
+}
+
+CampaignOutcome run_triaxial_campaign(std::vector<TriaxialCampaignTest>& tests,
+                                      const std::string& base_name, const std::string& out_dir,
+                                      const CampaignRun& run) {
+  fs::create_directories(out_dir);
+  CampaignOutcome outcome;
+  double total_cost = 0, done_cost = 0;
+  for (const TriaxialCampaignTest& t : tests)
+    if (!programme_finished(t.dir.string())) total_cost += t.cost;
+  if (!run.quiet)
+    std::fprintf(stderr, "[campaign] %zu triaxial tests, ~%.3g particle-steps to run, ~%s at %.0e "
+                 "particle-steps/s\n", tests.size(), total_cost,
+                 human_seconds(total_cost / kAssumedRate).c_str(), kAssumedRate);
+  for (size_t k = 0; k < tests.size(); ++k) {
+    TriaxialCampaignTest& t = tests[k];
+    const std::string label = "campaign " + std::to_string(k + 1) + "/" +
+                              std::to_string(tests.size()) + " " + t.scene.name;
+    if (keep_finished(t, label, run.quiet)) continue;
+    ProgrammeRunOptions o;
+    o.device = run.device;
+    o.out_dir = t.dir.string();
+    o.label = label;
+    o.quiet = run.quiet;
+    o.resume = fs::exists(t.dir / "checkpoint.bin") && fs::exists(t.dir / "triaxial.csv");
+    o.stop_requested = run.stop_requested;
+    o.later_particle_steps = total_cost - done_cost - t.cost;
+    const auto t0 = std::chrono::steady_clock::now();
+    t.result = run_triaxial(t.scene, o);
+    if (t.result.state.interrupted) {
+      outcome.interrupted = true;
+      outcome.interrupted_test = k;
+      return outcome;
+    }
+    outcome.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    done_cost += t.cost;
+    print_result(t);
+  }
+  std::vector<TriaxialCampaignEntry> entries;
+  for (const TriaxialCampaignTest& t : tests)
+    entries.push_back({t.s_kpa, static_cast<int>(t.scene.particles.size()), t.result.rows,
+                       t.result.summary});
+  write_triaxial_campaign_report(out_dir, base_name, entries, outcome.seconds);
+  return outcome;
+}
+
+}  // namespace simsols
