@@ -44,7 +44,8 @@ void check_spec(const Scene& base, const std::string& base_name, const TriaxialC
                        fmt("%g", s) + " kPa is out of range, allowed (0, 1e6] kPa");
 }
 
-// A test finished earlier: its rows read back and analysed again.
+// A test finished earlier: its rows read back and analysed again (its
+// summary and plots rewritten when today's analysis differs).
 bool keep_finished(TriaxialCampaignTest& t, const std::string& label, bool quiet) {
   if (!programme_finished(t.dir.string())) return false;
   t.result.rows = parse_triaxial_rows_csv(read_text(t.dir / "triaxial.csv"));
@@ -60,6 +61,11 @@ bool keep_finished(TriaxialCampaignTest& t, const std::string& label, bool quiet
     if (const auto it = keys.find(key); it != keys.end()) *field = std::stod(it->second);
   s.bead_diameter *= 1e-3;
   analyse_triaxial_rows(t.result.rows, s);
+  // Today's analysis of the rows, written back when it reads them otherwise.
+  if (const std::string now = triaxial_summary_text(s); now != read_text(t.dir / "summary.txt")) {
+    write_triaxial_plots(t.dir.string(), t.scene.name, t.result.rows, s);
+    write_file_atomic((t.dir / "summary.txt").string(), now);
+  }
   t.result.state.finished = true;
   if (!quiet) std::fprintf(stderr, "[%s] finished earlier, kept\n", label.c_str());
   return true;

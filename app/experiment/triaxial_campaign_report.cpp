@@ -20,8 +20,8 @@ std::string csv_row(const TriaxialCampaignEntry& e) {
   const TriaxialSummary& s = e.summary;
   char buf[512];
   std::snprintf(buf, sizeof buf,
-                "%g,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
-                e.s_kpa, e.beads, s.initial_void_ratio, s.peak_angle, s.peak_q_over_p,
+                "%g,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
+                e.s_kpa, e.beads, s.initial_void_ratio, s.peak_angle, s.max_angle, s.peak_q_over_p,
                 100 * s.peak_axial_strain, s.peak_sigma1 * 1e-3, s.peak_sigma3 * 1e-3,
                 s.critical_angle, s.critical_void_ratio, s.critical_p * 1e-3,
                 s.critical_sigma1 * 1e-3, s.critical_sigma3 * 1e-3, s.max_dilatancy_angle,
@@ -33,11 +33,12 @@ std::string md_row(const TriaxialCampaignEntry& e) {
   const TriaxialSummary& s = e.summary;
   char buf[512];
   std::snprintf(buf, sizeof buf,
-                "| %g | %d | %.3f | %.2f | %.3f | %.1f | %.2f | %.3f | %.1f | %.2f | %.1f | %.0f |\n",
-                e.s_kpa, e.beads, s.initial_void_ratio, s.peak_angle, s.peak_q_over_p,
+                "| %g | %d | %.3f | %.2f | %.2f | %.3f | %.1f | %.2f | %.3f | %.1f | %.2f | %.1f / %.1f "
+                "| %.0f |\n",
+                e.s_kpa, e.beads, s.initial_void_ratio, s.peak_angle, s.max_angle, s.peak_q_over_p,
                 100 * s.peak_axial_strain, s.critical_angle, s.critical_void_ratio,
-                s.critical_p * 1e-3, s.max_dilatancy_angle, 100 * s.wall_internal_gap,
-                s.wall_seconds);
+                s.critical_p * 1e-3, s.max_dilatancy_angle, 100 * s.median_wall_internal_gap,
+                100 * s.wall_internal_gap, s.wall_seconds);
   return buf;
 }
 
@@ -171,17 +172,21 @@ void write_triaxial_campaign_report(const std::string& out_dir, const std::strin
   const fs::path out = out_dir;
   std::vector<double> p1, p3, c1, c3, cp, ce;
   std::string csv =
-      "sigma3_kPa,beads,e0,peak_phi_deg,peak_q_over_p,peak_axial_strain_percent,peak_sigma1_kPa,"
+      "sigma3_kPa,beads,e0,peak_phi_deg,max_phi_deg,peak_q_over_p,peak_axial_strain_percent,peak_sigma1_kPa,"
       "peak_sigma3_kPa,critical_phi_deg,critical_void_ratio,critical_p_kPa,critical_sigma1_kPa,"
       "critical_sigma3_kPa,max_dilatancy_deg,wall_internal_gap_percent,wall_seconds\n";
   std::string md = "# Triaxial campaign\n\nBase scene: `" + base_name + "`; " +
                    std::to_string(entries.size()) + " tests; wall time of the tests run now: " +
                    fmt("%.0f", wall_seconds) +
-                   " s. Peak: the largest mobilised angle; critical state: the mean over the "
-                   "last 20 % of the axial strain (docs/triaxial.md).\n\n"
-                   "| σ3 (kPa) | beads | e0 | φ peak (°) | q/p′ peak | εa peak (%) | φ cs (°) | "
-                   "e cs | p′ cs (kPa) | ψ max (°) | wall-LW gap (%) | wall (s) |\n"
-                   "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+                   " s. Peak: the largest running median of the mobilised angle over 1 % of "
+                   "axial strain; largest: the largest angle of any row (a jamming event can "
+                   "make it); critical state: the mean over the last 20 % of the axial strain; "
+                   "plates vs Love-Weber stress: the median and the largest gap over the rows, "
+                   "as % of p′ (docs/triaxial.md).\n\n"
+                   "| σ3 (kPa) | beads | e0 | φ peak (°) | φ largest (°) | q/p′ peak | εa peak (%) "
+                   "| φ cs (°) | e cs | p′ cs (kPa) | ψ max (°) | plates vs LW, median / largest "
+                   "(%) | wall (s) |\n"
+                   "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const TriaxialCampaignEntry& e : entries) {
     csv += csv_row(e);
     md += md_row(e);

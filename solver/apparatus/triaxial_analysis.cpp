@@ -37,24 +37,71 @@ double mobilised_friction_angle(double sx, double sy, double sz) {
   return s1 + s3 > 0 ? std::asin((s1 - s3) / (s1 + s3)) * kDeg : 0;
 }
 
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  const size_t h = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + h, v.end());
+  const double hi = v[h];
+  if (v.size() % 2) return hi;
+  return 0.5 * (hi + *std::max_element(v.begin(), v.begin() + h));
+}
+
+// The median of `value` over the rows within kPeakWindow / 2 of row i's
+// axial strain.
+double window_median(const std::vector<TriaxialRow>& rows, size_t i,
+                     double (*value)(const TriaxialRow&)) {
+  std::vector<double> v;
+  for (const TriaxialRow& r : rows)
+    if (std::fabs(r.axial_strain - rows[i].axial_strain) <= 0.5 * kPeakWindow * (1 + 1e-9))
+      v.push_back(value(r));
+  return median(std::move(v));
+}
+
+double angle_of(const TriaxialRow& r) { return r.friction_angle; }
+double ratio_of(const TriaxialRow& r) { return r.p > 0 ? r.q / r.p : 0; }
+double q_of(const TriaxialRow& r) { return r.q; }
+double p_of(const TriaxialRow& r) { return r.p; }
+double sigma1_of(const TriaxialRow& r) { return std::max({r.sigma_x, r.sigma_y, r.sigma_z}); }
+double sigma3_of(const TriaxialRow& r) { return std::min({r.sigma_x, r.sigma_y, r.sigma_z}); }
+
+// The peak: the largest running median of the mobilised angle, and the
+// medians of the other readings over the same window.
+void read_peak(const std::vector<TriaxialRow>& rows, TriaxialSummary& s) {
+  size_t best = 0;
+  double best_angle = -1;
+  for (size_t i = 0; i < rows.size(); ++i)
+    if (const double a = window_median(rows, i, angle_of); a > best_angle) {
+      best_angle = a;
+      best = i;
+    }
+  s.peak_angle = best_angle;
+  s.peak_axial_strain = rows[best].axial_strain;
+  s.peak_q_over_p = window_median(rows, best, ratio_of);
+  s.peak_q = window_median(rows, best, q_of);
+  s.peak_p = window_median(rows, best, p_of);
+  s.peak_sigma1 = window_median(rows, best, sigma1_of);
+  s.peak_sigma3 = window_median(rows, best, sigma3_of);
+}
+
+}  // namespace
+
 void analyse_triaxial_rows(const std::vector<TriaxialRow>& rows, TriaxialSummary& s) {
   if (rows.empty()) return;
   s.initial_void_ratio = rows.front().void_ratio;
+  read_peak(rows, s);
+  std::vector<double> gaps;
   for (const TriaxialRow& r : rows) {
-    if (r.friction_angle > s.peak_angle) {
-      s.peak_angle = r.friction_angle;
-      s.peak_q_over_p = r.p > 0 ? r.q / r.p : 0;
-      s.peak_axial_strain = r.axial_strain;
-      s.peak_q = r.q;
-      s.peak_p = r.p;
-      s.peak_sigma1 = std::max({r.sigma_x, r.sigma_y, r.sigma_z});
-      s.peak_sigma3 = std::min({r.sigma_x, r.sigma_y, r.sigma_z});
+    if (r.friction_angle > s.max_angle) {
+      s.max_angle = r.friction_angle;
+      s.max_axial_strain = r.axial_strain;
     }
     s.max_inertial_number = std::max(s.max_inertial_number, r.inertial_number);
     s.wall_internal_gap = std::max(s.wall_internal_gap, r.lw_gap);
+    gaps.push_back(r.lw_gap);
   }
-  // (less a hair, so a row on the boundary is in whether read from memory or
-  // from triaxial.csv's 9 digits)
+  s.median_wall_internal_gap = median(std::move(gaps));
   const double from = 0.8 * rows.back().axial_strain * (1 - 1e-7);
   int n = 0;
   for (const TriaxialRow& r : rows)
@@ -107,6 +154,8 @@ std::string triaxial_summary_text(const TriaxialSummary& s) {
   key("bead_diameter_mm", s.bead_diameter * 1e3);
   key("initial_void_ratio", s.initial_void_ratio);
   key("peak_friction_angle_deg", s.peak_angle);
+  key("max_friction_angle_deg", s.max_angle);
+  key("max_angle_axial_strain", s.max_axial_strain);
   key("peak_q_over_p", s.peak_q_over_p);
   key("peak_axial_strain", s.peak_axial_strain);
   key("peak_q_kPa", s.peak_q * 1e-3);
@@ -121,6 +170,7 @@ std::string triaxial_summary_text(const TriaxialSummary& s) {
   key("critical_sigma3_kPa", s.critical_sigma3 * 1e-3);
   key("max_dilatancy_angle_deg", s.max_dilatancy_angle);
   key("wall_internal_gap_percent", 100 * s.wall_internal_gap);
+  key("median_wall_internal_gap_percent", 100 * s.median_wall_internal_gap);
   key("max_inertial_number", s.max_inertial_number);
   key("settle_time_s", s.settle_time);
   key("consolidate_time_s", s.consolidate_time);

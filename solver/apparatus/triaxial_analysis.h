@@ -12,8 +12,12 @@
 //        (= 3 eta / (6 + eta) in triaxial compression, eta = q / p');
 //   dilatancy angle: sin(psi) = -r / (2 - r), r = d eps_v / d eps_a, the
 //        slope over a window of 1 % axial strain (negative r: dilation).
-// The peak is the largest mobilised angle; the critical state the mean over
-// the last 20 % of the axial strain. Its Mohr circle spans the largest and
+// The peak is the largest running median of the mobilised angle over a
+// window of kPeakWindow of axial strain (q/p', q, p', s_1, s_3 at the peak
+// are their medians over the same window): a jamming event shorter than
+// half the window, a column of beads locking for a moment, raises the
+// largest angle (reported beside the peak, max_angle) but not the peak.
+// The critical state is the mean over the last 20 % of the axial strain. Its Mohr circle spans the largest and
 // smallest principal stresses, s_1 and s_3 (the largest and smallest plate
 // stress).
 //
@@ -33,6 +37,8 @@
 #include "solver/apparatus/shear_analysis.h"
 
 namespace simsols {
+
+constexpr double kPeakWindow = 0.01;  // axial strain
 
 struct TriaxialRow {
   double time = 0;               // s
@@ -61,6 +67,7 @@ struct TriaxialSummary {
   double initial_void_ratio = 0;    // e after consolidation
   double peak_angle = 0, peak_q_over_p = 0, peak_axial_strain = 0, peak_q = 0, peak_p = 0;
   double peak_sigma1 = 0, peak_sigma3 = 0;  // Pa, the peak's Mohr circle
+  double max_angle = 0, max_axial_strain = 0;  // the largest mobilised angle of any row
   double critical_angle = 0, critical_q_over_p = 0, critical_void_ratio = 0, critical_p = 0;
   double critical_sigma1 = 0, critical_sigma3 = 0;  // Pa, means over the critical rows
   double max_dilatancy_angle = 0;   // deg
@@ -68,6 +75,7 @@ struct TriaxialSummary {
   // (Love-Weber) stress at the same step, on any axis over the rows, as a
   // fraction of p' (TriaxialRow::lw_gap).
   double wall_internal_gap = 0;
+  double median_wall_internal_gap = 0;  // the median over the rows
   double max_inertial_number = 0;
   double settle_time = 0, consolidate_time = 0;  // s
   double wall_seconds = 0;          // filled in by the caller

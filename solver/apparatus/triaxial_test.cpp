@@ -201,6 +201,19 @@ void TriaxialTest::set_strain_rate(double per_second) {
   sim_.set_wall_velocity(tri_.first_wall + kTriPlaten, {0, 0, -rate_ * h0_});
 }
 
+bool TriaxialTest::follows_platen() const {
+  return tri_.path != Triaxial::Path::ConstantSigma3;
+}
+
+// The sides' targets from the platen's stress now (its reaction this step),
+// so a constant-p or true-triaxial path is held between rows as well.
+void TriaxialTest::follow_platen() {
+  const Cell c = cell();
+  const std::vector<WallReaction> now = sim_.wall_reactions();
+  const double sz = now[tri_.first_wall + kTriPlaten].force[2] / (c.lx() * c.ly());
+  apply_servos(targets(sz), false);
+}
+
 bool TriaxialTest::start_compression() {
   if (stage_ != Stage::Consolidate) return false;
   enter(Stage::Compress);
@@ -269,7 +282,9 @@ bool TriaxialTest::advance(std::int64_t max_steps) {
   }
   std::int64_t left = max_steps;
   while (left > 0 && stage_ != Stage::Done) {
-    const std::int64_t event = stage_ == Stage::Compress ? next_row_ : next_check_;
+    const std::int64_t event = stage_ != Stage::Compress ? next_check_
+                               : follows_platen() ? std::min(next_row_, next_check_)
+                                                  : next_row_;
     const std::int64_t n = std::min(left, event - sim_.steps());
     if (n > 0) sim_.advance(n);
     left -= std::max<std::int64_t>(n, 0);
@@ -286,6 +301,11 @@ bool TriaxialTest::advance(std::int64_t max_steps) {
         else next_check_ = sim_.steps() + check_every();
         return stage_ == Stage::Compress;
       case Stage::Compress:
+        if (sim_.steps() < next_row_) {  // a check between rows: the sides follow the platen
+          follow_platen();
+          next_check_ = sim_.steps() + check_every();
+          break;
+        }
         measure_row();
         apply_servos(targets(last_sigma_z_), false);  // the sides, on their new areas
         next_row_ = sim_.steps() + row_steps_;

@@ -13,8 +13,10 @@
 //                1e-4 (H/d) sqrt(p/rho) (or consolidate_time);
 //   compress     a first row at rest, then the platen moves down at the
 //                strain rate (from the inertial number unless given) while
-//                the sides hold the stress path's lateral stresses; a row
-//                every axial_strain / rows until axial_strain;
+//                the sides hold the stress path's lateral stresses (on a
+//                constant-p or true-triaxial path renewed every 0.5 ms from
+//                the platen's stress); a row every axial_strain / rows until
+//                axial_strain;
 //   done.
 // Rows are means over the steps since the previous row (triaxial_analysis.h),
 // with the internal (Love-Weber) stress and the fabric sampled at the row.
@@ -106,6 +108,8 @@ class TriaxialTest : public LoadingProgramme {
   // check (the row at rest), else they are the means since the last row.
   void measure_row(const std::array<double, 3>* at_rest = nullptr);
   std::int64_t check_every() const;
+  bool follows_platen() const;  // the path's side targets depend on the platen's stress
+  void follow_platen();
 
   Simulation& sim_;
   const Triaxial& tri_;

@@ -7,6 +7,7 @@
 
 #include "solver/common/errors.h"
 #include "solver/core/engine_options.h"
+#include "solver/core/observe.h"
 #include "solver/io/scene_toml.h"
 
 namespace simsols {
@@ -147,6 +148,36 @@ void expect_scene_error(const std::string& text, const std::string& code,
     EXPECT_EQ(e.field, field) << e.what();
     EXPECT_NE(std::string(e.what()).find("bad.toml"), std::string::npos) << e.what();
   }
+}
+
+double max_speed(const ParticleSnapshot& q) {
+  double v = 0;
+  for (const Vec3& u : q.velocity) v = std::max(v, std::sqrt(dot(u, u)));
+  return v;
+}
+
+Overlaps max_overlaps(Simulation& sim, const ParticleSnapshot& q) {
+  Overlaps o;
+  const size_t n = q.position.size();
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 1; j < n; ++j) {
+      const Vec3 d = sub(q.position[i], q.position[j]);
+      const double gap = std::sqrt(dot(d, d)) - q.radius[i] - q.radius[j];
+      o.pair = std::max(o.pair, -gap);
+    }
+  const std::vector<Vec3> points = wall_points(sim.model(), sim.state());
+  const std::vector<Wall>& walls = sim.scene().walls;
+  for (size_t w = 0; w < walls.size(); ++w) {
+    for (size_t i = 0; i < n; ++i) {
+      const double dist = wall_distance(walls[w], points[w], q.position[i]);
+      if (dist >= 0) o.wall = std::max(o.wall, q.radius[i] - dist);  // behind a plane: ignored
+    }
+  }
+  return o;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace simsols::testing

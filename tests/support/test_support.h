@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -47,6 +49,20 @@ bool all_finite(const ParticleSnapshot& q);
 
 // The stability suite's full forms (SIMSOLS_STABILITY_FULL=1, docs/stability.md).
 bool stability_full_form();
+
+// The stability suite's measurements (docs/stability.md). The fastest
+// bead's speed (m/s).
+double max_speed(const ParticleSnapshot& q);
+// Largest overlaps of the current state, in metres: between two beads
+// (all pairs: the specimens here hold a few hundred beads) and between a
+// bead and a wall (at the walls' current positions; planes one-sided,
+// rectangles two-sided plates, as in the solver and check_wall_overlaps).
+struct Overlaps {
+  double pair = 0, wall = 0;
+  double largest() const { return std::max(pair, wall); }
+};
+Overlaps max_overlaps(Simulation& sim, const ParticleSnapshot& q);
+double seconds_since(std::chrono::steady_clock::time_point t0);
 
 // Equivalent Young modulus of a material with itself, and with a rigid-free
 // same-material wall (identical).

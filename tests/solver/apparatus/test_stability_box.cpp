@@ -22,45 +22,6 @@ bool full_form() { return stability_full_form(); }
 
 const char* form_name() { return full_form() ? "full" : "reduced"; }
 
-double max_speed(const ParticleSnapshot& q) {
-  double v = 0;
-  for (const Vec3& u : q.velocity) v = std::max(v, std::sqrt(dot(u, u)));
-  return v;
-}
-
-// Largest overlaps of the current state, in metres: between two beads
-// (all pairs: the specimens here hold a few hundred beads) and between a
-// bead and a wall (at the walls' current positions; planes one-sided,
-// rectangles two-sided plates, as in the solver and check_wall_overlaps).
-struct Overlaps {
-  double pair = 0, wall = 0;
-  double largest() const { return std::max(pair, wall); }
-};
-
-Overlaps max_overlaps(Simulation& sim, const ParticleSnapshot& q) {
-  Overlaps o;
-  const size_t n = q.position.size();
-  for (size_t i = 0; i < n; ++i)
-    for (size_t j = i + 1; j < n; ++j) {
-      const Vec3 d = sub(q.position[i], q.position[j]);
-      const double gap = std::sqrt(dot(d, d)) - q.radius[i] - q.radius[j];
-      o.pair = std::max(o.pair, -gap);
-    }
-  const std::vector<Vec3> points = wall_points(sim.model(), sim.state());
-  const std::vector<Wall>& walls = sim.scene().walls;
-  for (size_t w = 0; w < walls.size(); ++w) {
-    for (size_t i = 0; i < n; ++i) {
-      const double dist = wall_distance(walls[w], points[w], q.position[i]);
-      if (dist >= 0) o.wall = std::max(o.wall, q.radius[i] - dist);  // behind a plane: ignored
-    }
-  }
-  return o;
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 // Nested square layers (the face-centred cubic packing seen along a cube
 // axis), from the floor up: n x n beads touching the walls, then
 // (n-1) x (n-1) in their hollows d/sqrt(2) higher, and so on. The densest

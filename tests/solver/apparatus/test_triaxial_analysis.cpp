@@ -118,5 +118,30 @@ TEST(TriaxialAnalysis, PeakAndCriticalCirclesFromThePlates) {
   EXPECT_DOUBLE_EQ(s.critical_sigma3, 100e3);
 }
 
+// A jamming event: three rows (0.2 % of axial strain) far above a plateau
+// of rows 0.1 % apart. It is the largest angle, not the peak, which is the
+// plateau's.
+TEST(TriaxialAnalysis, AJammingSpikeIsTheLargestAngleNotThePeak) {
+  std::vector<TriaxialRow> rows(120);
+  for (int i = 0; i < 120; ++i) {
+    TriaxialRow& r = rows[i];
+    r.axial_strain = 0.001 * i;
+    r.sigma_x = r.sigma_y = 100e3;
+    const double plateau = 100e3 + std::min(i, 20) * 5e3 + (i % 2 ? 2e3 : -2e3);
+    r.sigma_z = i >= 60 && i < 63 ? 400e3 : plateau;
+    r.p = (r.sigma_x + r.sigma_y + r.sigma_z) / 3;
+    r.q = r.sigma_z - r.sigma_x;
+    r.friction_angle = mobilised_friction_angle(r.sigma_x, r.sigma_y, r.sigma_z);
+  }
+  TriaxialSummary s;
+  analyse_triaxial_rows(rows, s);
+  EXPECT_NEAR(s.max_angle, std::asin(300.0 / 500) * 180 / 3.14159265358979323846, 1e-9);
+  EXPECT_NEAR(s.max_axial_strain, 0.060, 1e-12);
+  // The plateau: sigma_1 200 +- 2 kPa; its median 200 kPa (sin phi = 1/3).
+  EXPECT_NEAR(s.peak_sigma1, 202e3, 2.5e3);
+  EXPECT_LT(s.peak_angle, 20.0);
+  EXPECT_GT(s.peak_angle, 19.0);
+}
+
 }  // namespace
 }  // namespace simsols
