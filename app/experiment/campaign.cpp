@@ -51,9 +51,13 @@ double estimated_cost(const Scene& s) {
 }
 
 void check_spec(const Scene& base, const std::string& base_name, const CampaignSpec& spec) {
+  if (base.oedometer)
+    throw SceneError("not_applicable", base_name, 0, "oedometer",
+                     "an oedometer test is already a programme over stresses (its load_steps); "
+                     "a campaign takes a shear box or a triaxial cell");
   if (!base.shear_box)
     throw SceneError("missing_field", base_name, 0, "shear_box",
-                     "the campaign's base scene must describe a shear box");
+                     "the campaign's base scene must describe a shear box or a triaxial cell");
   for (double d : spec.sizes_mm)
     if (!(d > 0 && d < 60))
       throw UsageError("out_of_range", "--sizes",
@@ -69,14 +73,11 @@ void check_spec(const Scene& base, const std::string& base_name, const CampaignS
     throw UsageError("out_of_range", "--displacement", "must be > 0 mm");
 }
 
-// Keeps a test finished earlier; false when it still has to run.
-bool keep_finished(CampaignTest& t, const std::string& label, bool quiet) {
-  if (!programme_finished(t.dir.string())) return false;
+// A test finished earlier, read back.
+void keep_finished(CampaignTest& t) {
   t.result.rows = parse_shear_rows_csv(read_text(t.dir / "shear.csv"));
   t.result.summary = reanalysed(t.dir, t.scene.name, t.result.rows);
   t.result.finished = true;
-  if (!quiet) std::fprintf(stderr, "[%s] finished earlier, kept\n", label.c_str());
-  return true;
 }
 
 void print_result(const CampaignTest& t) {
@@ -129,47 +130,68 @@ std::vector<CampaignTest> plan_campaign(const Scene& base, const std::string& ba
   return tests;
 }
 
-CampaignOutcome run_campaign(std::vector<CampaignTest>& tests, const std::string& base_name,
-                             const CampaignSpec& spec, const std::string& out_dir,
-                             const CampaignRun& run) {
-  fs::create_directories(out_dir);
+CampaignOutcome run_campaign_loop(const CampaignLoop& loop, const CampaignRun& run) {
   CampaignOutcome outcome;
   double total_cost = 0, done_cost = 0;
-  for (const CampaignTest& t : tests)
-    if (!programme_finished(t.dir.string())) total_cost += t.cost;
+  for (size_t k = 0; k < loop.count; ++k)
+    if (!programme_finished(loop.dir(k).string())) total_cost += loop.cost(k);
   if (!run.quiet)
-    std::fprintf(stderr, "[campaign] %zu tests, ~%.3g particle-steps to run, ~%s at %.0e "
-                 "particle-steps/s\n", tests.size(), total_cost,
+    std::fprintf(stderr, "[campaign] %zu %s, ~%.3g particle-steps to run, ~%s at %.0e "
+                 "particle-steps/s\n", loop.count, loop.what.c_str(), total_cost,
                  human_seconds(total_cost / kAssumedRate).c_str(), kAssumedRate);
-  for (size_t k = 0; k < tests.size(); ++k) {
-    CampaignTest& t = tests[k];
+  for (size_t k = 0; k < loop.count; ++k) {
+    const fs::path dir = loop.dir(k);
     const std::string label = "campaign " + std::to_string(k + 1) + "/" +
-                              std::to_string(tests.size()) + " " + t.scene.name;
-    if (keep_finished(t, label, run.quiet)) continue;
+                              std::to_string(loop.count) + " " + loop.name(k);
+    if (programme_finished(dir.string())) {
+      loop.keep(k, label);
+      if (!run.quiet) std::fprintf(stderr, "[%s] finished earlier, kept\n", label.c_str());
+      continue;
+    }
     if (!run.quiet && done_cost > 0)
       std::fprintf(stderr, "[campaign] %zu/%zu tests, %.0f s so far, ETA %.0f s\n", k,
-                   tests.size(), outcome.seconds,
+                   loop.count, outcome.seconds,
                    outcome.seconds / done_cost * (total_cost - done_cost));
-    ShearRunOptions o;
+    ProgrammeRunOptions o;
     o.device = run.device;
-    o.out_dir = t.dir.string();
+    o.out_dir = dir.string();
     o.label = label;
     o.quiet = run.quiet;
-    o.resume = fs::exists(t.dir / "checkpoint.bin") && fs::exists(t.dir / "shear.csv");
+    o.resume = fs::exists(dir / "checkpoint.bin");
     o.stop_requested = run.stop_requested;
-    o.later_particle_steps = total_cost - done_cost - t.cost;
+    o.later_particle_steps = total_cost - done_cost - loop.cost(k);
     const auto t0 = std::chrono::steady_clock::now();
-    t.result = run_shear(t.scene, o);
-    if (t.result.interrupted) {
+    if (loop.run(k, o)) {
       outcome.interrupted = true;
       outcome.interrupted_test = k;
       return outcome;
     }
     outcome.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    done_cost += t.cost;
-    print_result(t);
+    done_cost += loop.cost(k);
+    loop.print(k);
   }
-  write_report(tests, base_name, spec, out_dir, outcome.seconds);
+  return outcome;
+}
+
+CampaignOutcome run_campaign(std::vector<CampaignTest>& tests, const std::string& base_name,
+                             const CampaignSpec& spec, const std::string& out_dir,
+                             const CampaignRun& run) {
+  fs::create_directories(out_dir);
+  CampaignLoop loop;
+  loop.count = tests.size();
+  loop.what = "tests";
+  loop.cost = [&](size_t k) { return tests[k].cost; };
+  loop.dir = [&](size_t k) { return tests[k].dir; };
+  loop.name = [&](size_t k) { return tests[k].scene.name; };
+  loop.keep = [&](size_t k, const std::string&) { keep_finished(tests[k]); };
+  loop.run = [&](size_t k, ProgrammeRunOptions& o) {
+    o.resume = o.resume && fs::exists(tests[k].dir / "shear.csv");
+    tests[k].result = run_shear(tests[k].scene, o);
+    return tests[k].result.interrupted;
+  };
+  loop.print = [&](size_t k) { print_result(tests[k]); };
+  const CampaignOutcome outcome = run_campaign_loop(loop, run);
+  if (!outcome.interrupted) write_report(tests, base_name, spec, out_dir, outcome.seconds);
   return outcome;
 }
 

@@ -63,6 +63,26 @@ struct CampaignOutcome {
   double seconds = 0;           // wall time of the tests run now
 };
 
+// The loop every campaign runs, whatever its apparatus: for each test, keep
+// it when finished earlier, else run it (resuming its checkpoint), with
+// progress and an ETA over the whole campaign. Test k's callbacks: its
+// estimated cost (particle-steps), its folder, whether it finished earlier
+// (then `keep` reads it back), `run` (true when interrupted) and `print`
+// its result.
+struct CampaignLoop {
+  size_t count = 0;
+  std::string what;  // "tests", "triaxial tests"
+  std::function<double(size_t)> cost;
+  std::function<std::filesystem::path(size_t)> dir;
+  std::function<std::string(size_t)> name;
+  std::function<void(size_t, const std::string& label)> keep;
+  // Fills in the test's result from a run with these options; true when
+  // the run was interrupted.
+  std::function<bool(size_t, ProgrammeRunOptions&)> run;
+  std::function<void(size_t)> print;
+};
+CampaignOutcome run_campaign_loop(const CampaignLoop& loop, const CampaignRun& run);
+
 // Runs the tests not finished yet (keeping the results of those that are),
 // printing one line per test; then writes the report into `out_dir`
 // unless interrupted.

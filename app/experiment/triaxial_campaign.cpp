@@ -1,9 +1,7 @@
 #include "app/experiment/triaxial_campaign.h"
 
-#include <chrono>
 #include <cstdio>
 
-#include "app/experiment/run_cost.h"
 #include "app/experiment/triaxial_campaign_report.h"
 #include "app/experiment/triaxial_plots.h"
 #include "solver/apparatus/platen_servo.h"
@@ -46,8 +44,7 @@ void check_spec(const Scene& base, const std::string& base_name, const TriaxialC
 
 // A test finished earlier: its rows read back and analysed again (its
 // summary and plots rewritten when today's analysis differs).
-bool keep_finished(TriaxialCampaignTest& t, const std::string& label, bool quiet) {
-  if (!programme_finished(t.dir.string())) return false;
+void keep_finished(TriaxialCampaignTest& t) {
   t.result.rows = parse_triaxial_rows_csv(read_text(t.dir / "triaxial.csv"));
   const auto keys = summary_keys(read_text(t.dir / "summary.txt"));
   TriaxialSummary& s = t.result.summary;
@@ -67,8 +64,6 @@ bool keep_finished(TriaxialCampaignTest& t, const std::string& label, bool quiet
     write_file_atomic((t.dir / "summary.txt").string(), now);
   }
   t.result.state.finished = true;
-  if (!quiet) std::fprintf(stderr, "[%s] finished earlier, kept\n", label.c_str());
-  return true;
 }
 
 void print_result(const TriaxialCampaignTest& t) {
@@ -108,38 +103,21 @@ CampaignOutcome run_triaxial_campaign(std::vector<TriaxialCampaignTest>& tests,
                                       const std::string& base_name, const std::string& out_dir,
                                       const CampaignRun& run) {
   fs::create_directories(out_dir);
-  CampaignOutcome outcome;
-  double total_cost = 0, done_cost = 0;
-  for (const TriaxialCampaignTest& t : tests)
-    if (!programme_finished(t.dir.string())) total_cost += t.cost;
-  if (!run.quiet)
-    std::fprintf(stderr, "[campaign] %zu triaxial tests, ~%.3g particle-steps to run, ~%s at %.0e "
-                 "particle-steps/s\n", tests.size(), total_cost,
-                 human_seconds(total_cost / kAssumedRate).c_str(), kAssumedRate);
-  for (size_t k = 0; k < tests.size(); ++k) {
-    TriaxialCampaignTest& t = tests[k];
-    const std::string label = "campaign " + std::to_string(k + 1) + "/" +
-                              std::to_string(tests.size()) + " " + t.scene.name;
-    if (keep_finished(t, label, run.quiet)) continue;
-    ProgrammeRunOptions o;
-    o.device = run.device;
-    o.out_dir = t.dir.string();
-    o.label = label;
-    o.quiet = run.quiet;
-    o.resume = fs::exists(t.dir / "checkpoint.bin") && fs::exists(t.dir / "triaxial.csv");
-    o.stop_requested = run.stop_requested;
-    o.later_particle_steps = total_cost - done_cost - t.cost;
-    const auto t0 = std::chrono::steady_clock::now();
-    t.result = run_triaxial(t.scene, o);
-    if (t.result.state.interrupted) {
-      outcome.interrupted = true;
-      outcome.interrupted_test = k;
-      return outcome;
-    }
-    outcome.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    done_cost += t.cost;
-    print_result(t);
-  }
+  CampaignLoop loop;
+  loop.count = tests.size();
+  loop.what = "triaxial tests";
+  loop.cost = [&](size_t k) { return tests[k].cost; };
+  loop.dir = [&](size_t k) { return tests[k].dir; };
+  loop.name = [&](size_t k) { return tests[k].scene.name; };
+  loop.keep = [&](size_t k, const std::string&) { keep_finished(tests[k]); };
+  loop.run = [&](size_t k, ProgrammeRunOptions& o) {
+    o.resume = o.resume && fs::exists(tests[k].dir / "triaxial.csv");
+    tests[k].result = run_triaxial(tests[k].scene, o);
+    return tests[k].result.state.interrupted;
+  };
+  loop.print = [&](size_t k) { print_result(tests[k]); };
+  const CampaignOutcome outcome = run_campaign_loop(loop, run);
+  if (outcome.interrupted) return outcome;
   std::vector<TriaxialCampaignEntry> entries;
   for (const TriaxialCampaignTest& t : tests)
     entries.push_back({t.s_kpa, static_cast<int>(t.scene.particles.size()), t.result.rows,

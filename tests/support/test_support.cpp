@@ -150,6 +150,27 @@ void expect_scene_error(const std::string& text, const std::string& code,
   }
 }
 
+std::string triaxial_cell_toml(const std::string& materials, const std::string& triaxial_keys,
+                               const std::string& precision) {
+  return materials + R"(
+[triaxial]
+length = 34.925e-3
+width = 34.925e-3
+)" + triaxial_keys + R"(
+[triaxial.specimen]
+method = "pour"
+material = "glass"
+diameter = 6.35e-3
+layers = 6
+seed = 2
+
+[numerics]
+precision = ")" + precision + R"("
+dt_fraction = 0.25
+duration = 1
+)";
+}
+
 double max_speed(const ParticleSnapshot& q) {
   double v = 0;
   for (const Vec3& u : q.velocity) v = std::max(v, std::sqrt(dot(u, u)));

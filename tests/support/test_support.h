@@ -72,6 +72,12 @@ double e_star(const Material& m);
 // "glass", with the given sliding friction.
 std::string glass_toml(const std::string& sliding_friction = "0.02");
 
+// The triaxial tests' cell: 150 beads of 6.35 mm poured into a 5.5 d
+// (34.925 mm) square cell, after `materials` (a "glass" material), with
+// `triaxial_keys` in [triaxial], in `precision`.
+std::string triaxial_cell_toml(const std::string& materials, const std::string& triaxial_keys,
+                               const std::string& precision);
+
 // Parses `text` as the file "bad.toml" and expects it refused with a
 // SceneError of this code at this field, its message naming the file.
 void expect_scene_error(const std::string& text, const std::string& code,

@@ -21,28 +21,12 @@ using testing::expect_scene_error;
 // 150 beads of 6.35 mm poured into a 5.5 d square cell; `extra` goes into
 // [triaxial].
 std::string triaxial_toml(const std::string& extra = "") {
-  return testing::glass_toml("0.3") + R"(
-[triaxial]
-length = 34.925e-3
-width = 34.925e-3
-confining_stress = 100e3
+  return testing::triaxial_cell_toml(testing::glass_toml("0.3"), R"(confining_stress = 100e3
 axial_strain = 0.03
 inertial_number = 3e-4
 settle_time = 0.3
 rows = 15
-)" + extra + R"(
-[triaxial.specimen]
-method = "pour"
-material = "glass"
-diameter = 6.35e-3
-layers = 6
-seed = 2
-
-[numerics]
-precision = "double"
-dt_fraction = 0.25
-duration = 1
-)";
+)" + extra, "double");
 }
 
 TEST(TriaxialScene, SixPlatesAroundTheSpecimenAndRoundTrip) {

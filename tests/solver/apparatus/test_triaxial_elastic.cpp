@@ -29,7 +29,7 @@ constexpr double kYoung = 62.784e9, kPoisson = 0.2;
 // Frictionless glass beads (no sliding or rolling friction), damped
 // (restitution 0.5: only the states of equilibrium are compared).
 std::string frictionless_toml() {
-  return R"(
+  return testing::triaxial_cell_toml(R"(
 [[materials]]
 name = "glass"
 young_modulus = 62.784e9
@@ -38,26 +38,7 @@ density = 2230
 restitution = 0.5
 sliding_friction = 0
 rolling_friction = 0
-
-[triaxial]
-length = 34.925e-3
-width = 34.925e-3
-confining_stress = 100e3
-settle_time = 0.3
-consolidate_time = 0.2
-
-[triaxial.specimen]
-method = "pour"
-material = "glass"
-diameter = 6.35e-3
-layers = 6
-seed = 2
-
-[numerics]
-precision = "double"
-dt_fraction = 0.25
-duration = 1
-)";
+)", "confining_stress = 100e3\nsettle_time = 0.3\nconsolidate_time = 0.2\n", "double");
 }
 
 // Walton / Digby bulk modulus of a packing at mean stress p.
