@@ -79,6 +79,7 @@ std::string LabApp::state_text() {
   LabApparatus* a = exp_->apparatus();
   o << "stage = " << exp_->stage_text() << "\n";
   if (a) o << "apparatus = " << to_string(a->kind()) << "\n";
+  o << "scene = " << exp_->scene_label() << "\n";  // the next prepare's
   o << "paused = " << (exp_->paused() ? 1 : 0) << "\n";
   if (sim) {
     char hash[32];
