@@ -53,7 +53,6 @@ class LabApparatus {
 
   virtual LabApparatusKind kind() const = 0;
   virtual LoadingProgramme& programme() = 0;
-  const LoadingProgramme& programme() const { return const_cast<LabApparatus*>(this)->programme(); }
 
   // The stage; `started` is true once loading (or the programme) has begun.
   virtual LabStage stage(bool started) const = 0;

@@ -186,6 +186,106 @@ class LabApparatus : public ::testing::Test {
     std::ofstream(d / "oed.toml") << oedometer_scene();
   }
   fs::path p(const std::string& name) const { return d / name; }
+  // consolidated and held, compressed at two rates, exported
+  void check_triaxial() {
+    auto def = read_state(p("default.state"));
+    EXPECT_EQ(def["scene"], "built-in triaxial.toml");
+
+    // consolidated, sigma3 held: p' within 1 % of 100 kPa
+    auto c = read_state(p("consolidated.state"));
+    EXPECT_EQ(c["apparatus"], "triaxial");
+    EXPECT_EQ(c["stage"], "consolidated, sigma3 held");
+    EXPECT_EQ(c["consolidated"], "1");
+    EXPECT_EQ(c["rows"], "0");
+    std::printf("[measure] consolidated after %s steps: p' %s kPa, sigma %s %s %s kPa\n",
+                c["steps"].c_str(), c["p_kpa"].c_str(), c["sigma_x_kpa"].c_str(),
+                c["sigma_y_kpa"].c_str(), c["sigma_z_kpa"].c_str());
+    EXPECT_NEAR(num(c, "p_kpa"), 100, 1.0);
+    for (const char* k : {"sigma_x_kpa", "sigma_y_kpa", "sigma_z_kpa"}) EXPECT_NEAR(num(c, k), 100, 1.0) << k;
+
+    // compression at the scene's rate, then at 1/s: d eps_a / dt = the rate
+    auto a = read_state(p("a.state")), b = read_state(p("b.state"));
+    EXPECT_EQ(a["stage"], "compressing");
+    EXPECT_EQ(a["rows"], "3");
+    EXPECT_EQ(b["rows"], "6");
+    const double rate0 = num(a, "strain_rate");
+    EXPECT_DOUBLE_EQ(num(b, "strain_rate"), 1.0);
+    const double before = num(a, "axial_strain") / (num(a, "time_s") - num(c, "time_s"));
+    const double after = (num(b, "axial_strain") - num(a, "axial_strain")) / (num(b, "time_s") - num(a, "time_s"));
+    std::printf("[measure] d eps_a/dt %.5f 1/s (rate %.5f), then %.5f 1/s (rate 1); q %s kPa at "
+                "eps_a %s\n", before, rate0, after, b["q_kpa"].c_str(), b["axial_strain"].c_str());
+    EXPECT_NEAR(before, rate0, 0.01 * rate0);
+    EXPECT_NEAR(after, 1.0, 0.01);
+    EXPECT_GT(num(b, "q_kpa"), 5) << "a frictional packing carries a deviator";
+    EXPECT_NEAR(num(b, "sigma3_target_kpa"), 100, 1e-9);
+
+    // the export: the rows as the state says, every field a number
+    auto tri = read_csv(p("tri_out/triaxial.csv"));
+    ASSERT_EQ(tri["axial_strain"].size(), 6u);
+    EXPECT_NEAR(tri["axial_strain"].back(), num(b, "axial_strain"), 1e-6);
+    for (std::size_t i = 1; i < 6; ++i) EXPECT_GT(tri["axial_strain"][i], tri["axial_strain"][i - 1]);
+    EXPECT_NEAR(tri["p_kPa"].front(), num(c, "p_kpa"), 0.01) << "the first row is the one at rest";
+    EXPECT_NE(slurp(p("tri_out/summary.txt")).find("peak"), std::string::npos);
+    for (const char* png : {"stress_ratio.png", "deviator.png", "volumetric.png", "e_log_p.png"})
+      EXPECT_GT(simsols::plot::read_png(p("tri_out") / png).width, 0) << png;
+  }
+
+  void check_checkpoint() {
+    auto a = read_state(p("a.state")), b = read_state(p("b.state"));
+    // the checkpoint reloads to the same state and continues identically
+    auto a2 = read_state(p("a2.state")), b2 = read_state(p("b2.state"));
+    EXPECT_EQ(a2["stage"], "compressing");
+    EXPECT_EQ(a2["hash"], a["hash"]);
+    EXPECT_EQ(a2["steps"], a["steps"]);
+    EXPECT_EQ(b2["hash"], b["hash"]);
+    EXPECT_EQ(b2["steps"], b["steps"]);
+  }
+
+  void check_oedometer() {
+    // the oedometer: its programme ran to the end by itself, both steps on target
+    auto os = read_state(p("oed_start.state")), od = read_state(p("oed_done.state"));
+    EXPECT_EQ(os["apparatus"], "oedometer");
+    EXPECT_EQ(os["stage"], "load programme");
+    EXPECT_EQ(os["load_step"], "1");
+    EXPECT_EQ(od["stage"], "load programme finished");
+    EXPECT_EQ(od["steps_ended"], "2");
+    EXPECT_EQ(od["load_step"], "2");
+    EXPECT_NEAR(num(od, "sigma_top_kpa"), 50, 2.5);
+    auto oed = read_csv(p("oed_out/oedometer.csv"));
+    ASSERT_EQ(oed["void_ratio"].size(), std::size_t(num(od, "rows")));
+    std::vector<double> e_end, top_end;
+    int in_equilibrium = 0;
+    for (std::size_t i = 0; i < oed["end_of_step"].size(); ++i)
+      if (oed["end_of_step"][i] != 0) {
+        e_end.push_back(oed["void_ratio"][i]);
+        top_end.push_back(oed["sigma_top_kPa"][i]);
+        in_equilibrium += oed["end_of_step"][i] == 1;
+      }
+    ASSERT_EQ(e_end.size(), 2u);
+    std::printf("[measure] oedometer: e %.5f at %.2f kPa, %.5f at %.2f kPa; %d steps in equilibrium\n",
+                e_end[0], top_end[0], e_end[1], top_end[1], in_equilibrium);
+    EXPECT_NEAR(top_end[0], 25, 1.25);
+    EXPECT_NEAR(top_end[1], 50, 2.5);
+    EXPECT_LT(e_end[1], e_end[0]) << "the larger load compresses the specimen";
+    EXPECT_EQ(od["steps_in_equilibrium"], std::to_string(in_equilibrium));
+    EXPECT_NE(slurp(p("oed_out/summary.txt")).find("compression_index_cc"), std::string::npos);
+    for (const char* png : {"e_log_sigma.png", "k0.png", "settlement.png"})
+      EXPECT_GT(simsols::plot::read_png(p("oed_out") / png).width, 0) << png;
+  }
+
+  void check_screenshots() {
+    // the screenshots: the panel and the beads in the viewport
+    for (const char* shot : {"tri.png", "oed.png"}) {
+      const simsols::plot::Image img = simsols::plot::read_png(p(shot).string());
+      ASSERT_EQ(img.width, 1000) << shot;
+      ASSERT_EQ(img.height, 640) << shot;
+      const long n = coloured_viewport_pixels(img);
+      std::printf("[measure] %s: %ld coloured pixels in the viewport\n", shot, n);
+      // the specimen covers about 60 x 200 pixels of the 570 x 640 viewport
+      EXPECT_GT(n, 2000) << shot << ": beads visible";
+    }
+  }
+
   fs::path d;
 };
 
@@ -210,95 +310,10 @@ TEST_F(LabApparatus, TriaxialAndOedometerOperatedExportedAndCheckpointed) {
   const double all_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("[measure] session one %.1f s, both %.1f s\n", one_s, all_s);
 
-  auto def = read_state(p("default.state"));
-  EXPECT_EQ(def["scene"], "built-in triaxial.toml");
-
-  // consolidated, sigma3 held: p' within 1 % of 100 kPa
-  auto c = read_state(p("consolidated.state"));
-  EXPECT_EQ(c["apparatus"], "triaxial");
-  EXPECT_EQ(c["stage"], "consolidated, sigma3 held");
-  EXPECT_EQ(c["consolidated"], "1");
-  EXPECT_EQ(c["rows"], "0");
-  std::printf("[measure] consolidated after %s steps: p' %s kPa, sigma %s %s %s kPa\n",
-              c["steps"].c_str(), c["p_kpa"].c_str(), c["sigma_x_kpa"].c_str(),
-              c["sigma_y_kpa"].c_str(), c["sigma_z_kpa"].c_str());
-  EXPECT_NEAR(num(c, "p_kpa"), 100, 1.0);
-  for (const char* k : {"sigma_x_kpa", "sigma_y_kpa", "sigma_z_kpa"}) EXPECT_NEAR(num(c, k), 100, 1.0) << k;
-
-  // compression at the scene's rate, then at 1/s: d eps_a / dt = the rate
-  auto a = read_state(p("a.state")), b = read_state(p("b.state"));
-  EXPECT_EQ(a["stage"], "compressing");
-  EXPECT_EQ(a["rows"], "3");
-  EXPECT_EQ(b["rows"], "6");
-  const double rate0 = num(a, "strain_rate");
-  EXPECT_DOUBLE_EQ(num(b, "strain_rate"), 1.0);
-  const double before = num(a, "axial_strain") / (num(a, "time_s") - num(c, "time_s"));
-  const double after = (num(b, "axial_strain") - num(a, "axial_strain")) / (num(b, "time_s") - num(a, "time_s"));
-  std::printf("[measure] d eps_a/dt %.5f 1/s (rate %.5f), then %.5f 1/s (rate 1); q %s kPa at "
-              "eps_a %s\n", before, rate0, after, b["q_kpa"].c_str(), b["axial_strain"].c_str());
-  EXPECT_NEAR(before, rate0, 0.01 * rate0);
-  EXPECT_NEAR(after, 1.0, 0.01);
-  EXPECT_GT(num(b, "q_kpa"), 5) << "a frictional packing carries a deviator";
-  EXPECT_NEAR(num(b, "sigma3_target_kpa"), 100, 1e-9);
-
-  // the export: the rows as the state says, every field a number
-  auto tri = read_csv(p("tri_out/triaxial.csv"));
-  ASSERT_EQ(tri["axial_strain"].size(), 6u);
-  EXPECT_NEAR(tri["axial_strain"].back(), num(b, "axial_strain"), 1e-6);
-  for (std::size_t i = 1; i < 6; ++i) EXPECT_GT(tri["axial_strain"][i], tri["axial_strain"][i - 1]);
-  EXPECT_NEAR(tri["p_kPa"].front(), num(c, "p_kpa"), 0.01) << "the first row is the one at rest";
-  EXPECT_NE(slurp(p("tri_out/summary.txt")).find("peak"), std::string::npos);
-  for (const char* png : {"stress_ratio.png", "deviator.png", "volumetric.png", "e_log_p.png"})
-    EXPECT_GT(simsols::plot::read_png(p("tri_out") / png).width, 0) << png;
-
-  // the checkpoint reloads to the same state and continues identically
-  auto a2 = read_state(p("a2.state")), b2 = read_state(p("b2.state"));
-  EXPECT_EQ(a2["stage"], "compressing");
-  EXPECT_EQ(a2["hash"], a["hash"]);
-  EXPECT_EQ(a2["steps"], a["steps"]);
-  EXPECT_EQ(b2["hash"], b["hash"]);
-  EXPECT_EQ(b2["steps"], b["steps"]);
-
-  // the oedometer: its programme ran to the end by itself, both steps on target
-  auto os = read_state(p("oed_start.state")), od = read_state(p("oed_done.state"));
-  EXPECT_EQ(os["apparatus"], "oedometer");
-  EXPECT_EQ(os["stage"], "load programme");
-  EXPECT_EQ(os["load_step"], "1");
-  EXPECT_EQ(od["stage"], "load programme finished");
-  EXPECT_EQ(od["steps_ended"], "2");
-  EXPECT_EQ(od["load_step"], "2");
-  EXPECT_NEAR(num(od, "sigma_top_kpa"), 50, 2.5);
-  auto oed = read_csv(p("oed_out/oedometer.csv"));
-  ASSERT_EQ(oed["void_ratio"].size(), std::size_t(num(od, "rows")));
-  std::vector<double> e_end, top_end;
-  int in_equilibrium = 0;
-  for (std::size_t i = 0; i < oed["end_of_step"].size(); ++i)
-    if (oed["end_of_step"][i] != 0) {
-      e_end.push_back(oed["void_ratio"][i]);
-      top_end.push_back(oed["sigma_top_kPa"][i]);
-      in_equilibrium += oed["end_of_step"][i] == 1;
-    }
-  ASSERT_EQ(e_end.size(), 2u);
-  std::printf("[measure] oedometer: e %.5f at %.2f kPa, %.5f at %.2f kPa; %d steps in equilibrium\n",
-              e_end[0], top_end[0], e_end[1], top_end[1], in_equilibrium);
-  EXPECT_NEAR(top_end[0], 25, 1.25);
-  EXPECT_NEAR(top_end[1], 50, 2.5);
-  EXPECT_LT(e_end[1], e_end[0]) << "the larger load compresses the specimen";
-  EXPECT_EQ(od["steps_in_equilibrium"], std::to_string(in_equilibrium));
-  EXPECT_NE(slurp(p("oed_out/summary.txt")).find("compression_index_cc"), std::string::npos);
-  for (const char* png : {"e_log_sigma.png", "k0.png", "settlement.png"})
-    EXPECT_GT(simsols::plot::read_png(p("oed_out") / png).width, 0) << png;
-
-  // the screenshots: the panel and the beads in the viewport
-  for (const char* shot : {"tri.png", "oed.png"}) {
-    const simsols::plot::Image img = simsols::plot::read_png(p(shot).string());
-    ASSERT_EQ(img.width, 1000) << shot;
-    ASSERT_EQ(img.height, 640) << shot;
-    const long n = coloured_viewport_pixels(img);
-    std::printf("[measure] %s: %ld coloured pixels in the viewport\n", shot, n);
-    // the specimen covers about 60 x 200 pixels of the 570 x 640 viewport
-    EXPECT_GT(n, 2000) << shot << ": beads visible";
-  }
+  check_triaxial();
+  check_checkpoint();
+  check_oedometer();
+  check_screenshots();
 }
 
 // A setting the apparatus has not is refused, naming it and listing none.
