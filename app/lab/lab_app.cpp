@@ -29,7 +29,7 @@ constexpr float kPanelWidth = 430;  // pixels at scale 1
 }  // namespace
 
 LabApp::LabApp(const LabOptions& options) : opt_(options) {
-  window_ = std::make_unique<LabWindow>(opt_.width, opt_.height, "SimSols — direct shear lab");
+  window_ = std::make_unique<LabWindow>(opt_.width, opt_.height, "SimSols — virtual geotechnical lab");
   glfwSetWindowUserPointer(window_->handle(), this);
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -48,7 +48,7 @@ LabApp::LabApp(const LabOptions& options) : opt_(options) {
     message_ = err;
     if (!opt_.scene.empty()) err = exp_->load_preset(6.35, 160);
   }
-  if (exp_->scene().shear_box) sigma_kpa_ = float(exp_->scene().shear_box->normal_stress * 1e-3);
+  if (const auto kind = apparatus_kind(exp_->scene())) apparatus_ = int(*kind);
   if (opt_.script.empty()) {
     act(exp_->prepare());
     return;

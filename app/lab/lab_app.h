@@ -30,7 +30,7 @@
 namespace simsols {
 
 struct LabOptions {
-  std::string scene;   // open this scene at start (else the 6.35 mm / 160 kPa preset)
+  std::string scene;   // open this scene (any apparatus) at start, else the 6.35 mm / 160 kPa preset
   std::string script;  // run these commands (see lab_script.cpp)
   int width = 1400, height = 860;
 };
@@ -70,9 +70,12 @@ class LabApp {
   void draw_controls();  // the panel's sections, one function each (lab_panel.cpp):
   void draw_stage_and_message(LabStage stage);
   void draw_specimen(LabStage stage);
+  void draw_apparatus_choice();
   void draw_preset_and_scene_file();
+  void draw_presets();
   void draw_precision_and_time_step();
-  void draw_loading_and_shear(LabStage stage);
+  void draw_loading_and_running(LabStage stage);
+  void draw_settings();
   void draw_view_settings();
   void draw_save();
   bool draw_effect_slots();  // lab_effects.cpp; true when a slot changed
@@ -99,8 +102,8 @@ class LabApp {
   std::unique_ptr<Script> script_;
   int exit_status_ = 0;
   // panel state
+  int apparatus_ = 0;  // the panel's choice: LabApparatusKind
   int preset_size_ = 4, preset_stress_ = 1;
-  float sigma_kpa_ = 160, speed_mm_s_ = 0;
   char scene_path_[512] = "";
   char out_path_[512] = "results/lab";
   bool record_ = false;

@@ -5,31 +5,22 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "solver/io/checkpoint.h"
-#include "solver/common/errors.h"
-#include "solver/io/output.h"
+#include "app/experiment/default_scenes.h"
 #include "app/experiment/paper_tests.h"
+#include "solver/common/errors.h"
+#include "solver/io/checkpoint.h"
+#include "solver/io/output.h"
 #include "solver/io/scene_toml.h"
-#include "app/experiment/shear_plots.h"
 
 namespace simsols {
 
 namespace {
 constexpr const char* kStateTag = "lab_experiment 1\n";
-}
 
-const char* to_string(LabStage s) {
-  switch (s) {
-    case LabStage::Empty: return "no specimen";
-    case LabStage::Building: return "building the specimen";
-    case LabStage::Prepared: return "specimen prepared";
-    case LabStage::Loading: return "applying the normal stress";
-    case LabStage::Loaded: return "normal stress applied";
-    case LabStage::Shearing: return "shearing";
-    case LabStage::Done: return "shear finished";
-  }
-  return "?";
+std::string scene_error_text(const std::string& given, const SceneError& e) {
+  return given + (e.field.empty() ? "" : "field '" + e.field + "': ") + e.message;
 }
+}  // namespace
 
 LabExperiment::LabExperiment(std::shared_ptr<Device> device) : device_(std::move(device)) {}
 
@@ -48,13 +39,28 @@ std::string LabExperiment::load_preset(double d_mm, double s_kpa) {
     const Scene base = parse_scene(default_shear_scene_text(), kDefaultSceneName);
     Scene sc = paper_test_scene(base, kDefaultSceneName, d_mm, s_kpa, 0,
                                 [&](Scene& x) { x.numerics.precision = scene_.numerics.precision; });
-    if (!label_.empty()) sc.effects = scene_.effects;  // keep the panel's choices
-    validate_scene(sc, sc.name);
-    scene_ = std::move(sc);
-    label_ = "preset " + scene_.name;
-    return {};
+    const std::string name = sc.name;
+    return adopt_scene(std::move(sc), "preset " + name, name, true);
   } catch (const SceneError& e) {
-    return given + (e.field.empty() ? "" : "field '" + e.field + "': ") + e.message;
+    return scene_error_text(given, e);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+}
+
+// The shear box's default is the lab's preset (6.35 mm, 160 kPa); the
+// triaxial cell's and the oedometer's are their built-in scenes, in the
+// precision chosen in the panel.
+std::string LabExperiment::load_default(LabApparatusKind kind) {
+  if (kind == LabApparatusKind::ShearBox) return load_preset(6.35, 160);
+  const bool tri = kind == LabApparatusKind::Triaxial;
+  const char* name = tri ? kDefaultTriaxialSceneName : kDefaultOedometerSceneName;
+  try {
+    Scene sc = parse_scene(tri ? default_triaxial_scene_text() : default_oedometer_scene_text(), name);
+    sc.numerics.precision = scene_.numerics.precision;
+    return adopt_scene(std::move(sc), name, name, true);
+  } catch (const SceneError& e) {
+    return scene_error_text(std::string(name) + ": ", e);
   } catch (const std::exception& e) {
     return e.what();
   }
@@ -63,15 +69,25 @@ std::string LabExperiment::load_preset(double d_mm, double s_kpa) {
 std::string LabExperiment::load_scene_file(const std::string& path) {
   try {
     Scene sc = load_scene(path);
-    validate_scene(sc, path);
-    if (!sc.shear_box)
-      return path + ": the lab runs direct shear tests; this scene has no [shear_box] table";
-    scene_ = std::move(sc);
-    label_ = path;
-    return {};
+    if (!apparatus_kind(sc))
+      return path + ": the lab runs shear box, triaxial and oedometer tests; this scene has none "
+                    "of the tables [shear_box], [triaxial], [oedometer]";
+    return adopt_scene(std::move(sc), path, path, false);
   } catch (const std::exception& e) {
     return e.what();
   }
+}
+
+// Validates `sc` (named `source` in errors) and makes it the scene of the
+// next prepare(); a built-in scene keeps the panel's effect choices once a
+// scene has been chosen. Throws SceneError.
+std::string LabExperiment::adopt_scene(Scene sc, const std::string& label,
+                                       const std::string& source, bool keep_effects) {
+  if (keep_effects && !label_.empty()) sc.effects = scene_.effects;
+  validate_scene(sc, source);
+  scene_ = std::move(sc);
+  label_ = label;
+  return {};
 }
 
 std::string LabExperiment::prepare() {
@@ -102,10 +118,10 @@ std::string LabExperiment::poll() {
 }
 
 void LabExperiment::adopt(std::unique_ptr<Simulation> sim, const std::string& state) {
-  auto test = std::make_unique<ShearTest>(*sim);
-  test->hold_before_shear(true);
-  if (!state.empty()) test->restore_state(state);
-  test_ = std::move(test);
+  std::unique_ptr<LabApparatus> app = make_lab_apparatus(*sim);
+  if (!app) throw SceneError("bad_scene", sim->scene().name, 0, "", "the scene has no apparatus the lab runs");
+  if (!state.empty()) app->programme().restore_state(state);
+  app_ = std::move(app);
   sim_ = std::move(sim);
   ++generation_;
 }
@@ -113,80 +129,84 @@ void LabExperiment::adopt(std::unique_ptr<Simulation> sim, const std::string& st
 LabStage LabExperiment::stage() const {
   if (building_.valid()) return LabStage::Building;
   if (!sim_) return LabStage::Empty;
-  if (test_->done()) return LabStage::Done;
-  if (test_->phase() == ShearPhase::Shear) return LabStage::Shearing;
-  if (test_->ready_to_shear()) return LabStage::Loaded;
-  if (loading_started_ || sim_->steps() > 0) return LabStage::Loading;
-  return LabStage::Prepared;
+  return app_->stage(loading_started_ || sim_->steps() > 0);
 }
 
-std::string LabExperiment::apply_normal_stress() {
+std::string LabExperiment::stage_text() const {
+  const LabStage s = stage();
+  return s == LabStage::Empty || s == LabStage::Building ? to_string(s) : app_->stage_text(s);
+}
+
+std::string LabExperiment::apply_load() {
   if (stage() != LabStage::Prepared) return "prepare a specimen first";
+  if (std::string e = app_->begin_loading(); !e.empty()) return e;
   loading_started_ = true;
   running_ = true;
   return {};
 }
 
-std::string LabExperiment::start_shear() {
+std::string LabExperiment::start() {
+  if (!app_) return "prepare a specimen first";
   const LabStage s = stage();
-  if (s != LabStage::Loaded && s != LabStage::Loading)
-    return "apply the normal stress first";
-  test_->start_shear();  // at once when consolidated, else as soon as it is
+  if (s == LabStage::Building) return "the specimen is still being built";
+  if (std::string e = app_->start(s); !e.empty()) return e;
+  loading_started_ = true;
   running_ = true;
   return {};
 }
 
 std::string LabExperiment::step() {
   const LabStage s = stage();
-  if (s != LabStage::Loading && s != LabStage::Shearing) return "nothing to step";
+  if (s != LabStage::Loading && s != LabStage::Running) return "nothing to step";
   running_ = false;
-  if (s == LabStage::Shearing) {
-    const size_t rows = test_->rows().size();
-    while (test_->rows().size() == rows && !test_->done()) test_->advance(1 << 20);
+  LoadingProgramme& p = app_->programme();
+  if (s == LabStage::Running) {
+    const size_t rows = app_->rows();
+    while (app_->rows() == rows && !p.done()) p.advance(1 << 20);
   } else {
-    test_->advance(200);
+    p.advance(200);
   }
   return {};
 }
 
-std::string LabExperiment::set_normal_stress(double pa) {
-  if (!(pa > 0) || pa > 1e9) return "normal stress must be in (0, 1e6] kPa";
-  scene_.shear_box->normal_stress = pa;
-  if (test_) test_->set_normal_stress(pa);
+std::string LabExperiment::set(const std::string& key, double value) {
+  if (!app_) return "prepare a specimen first";
+  const LabStage before = stage();
+  if (std::string e = app_->set(key, value, scene_); !e.empty()) return e;
+  // a new stress while loaded restarts the equilibrium checks: go on loading
+  if (before == LabStage::Loaded && stage() == LabStage::Loading) running_ = true;
   return {};
 }
 
-std::string LabExperiment::set_shear_speed(double v) {
-  if (!(v > 0) || v > 1) return "shear speed must be in (0, 1000] mm/s";
-  if (test_) test_->set_shear_speed(v);
-  else scene_.shear_box->shear_speed = v;
-  return {};
+bool LabExperiment::should_pause() const {
+  return (pause_rows_ > 0 && app_->rows() >= pause_rows_) ||
+         (pause_step_ > 0 && sim_->steps() >= pause_step_) ||
+         (pause_stage_ && stage() == *pause_stage_);
 }
 
 std::int64_t LabExperiment::advance(double budget) {
   if (!running_ || !sim_) return 0;
   const LabStage s = stage();
-  if (s != LabStage::Loading && s != LabStage::Shearing) {
+  if (s != LabStage::Loading && s != LabStage::Running) {
     if (s == LabStage::Done || s == LabStage::Loaded) running_ = false;
     return 0;
   }
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   const std::int64_t first = sim_->steps();
+  LoadingProgramme& test = app_->programme();
   double elapsed = 0;
-  while (elapsed < budget && !test_->done() && !(test_->ready_to_shear() && s == LabStage::Loading)) {
-    if ((pause_rows_ > 0 && test_->rows().size() >= pause_rows_) ||
-        (pause_step_ > 0 && sim_->steps() >= pause_step_)) {
+  while (elapsed < budget && !test.done() && !(app_->holding() && stage() == LabStage::Loaded)) {
+    if (should_pause()) {
       running_ = false;
-      pause_rows_ = 0;
-      pause_step_ = 0;
+      pause_at(0, 0);
       break;
     }
     const auto c0 = Clock::now();
     std::int64_t n = chunk_;
     if (pause_step_ > 0) n = std::min<std::int64_t>(n, pause_step_ - sim_->steps());
     try {
-      test_->advance(n);  // returns at each new row
+      test.advance(n);  // returns at each new row and stage change
     } catch (const RunawayError& e) {
       // the simulation is at the step before the fault: paused there
       running_ = false;
@@ -201,7 +221,11 @@ std::int64_t LabExperiment::advance(double budget) {
   }
   const std::int64_t done = sim_->steps() - first;
   if (elapsed > 0 && done > 0) rate_ = 0.8 * rate_ + 0.2 * done / elapsed;
-  if (test_->ready_to_shear() && s == LabStage::Loading) running_ = false;  // holding: wait
+  if (app_->holding() && stage() == LabStage::Loaded) running_ = false;  // holding: wait
+  if (running_ && should_pause()) {  // reached in the last chunk
+    running_ = false;
+    pause_at(0, 0);
+  }
   return done;
 }
 
@@ -210,7 +234,7 @@ std::string LabExperiment::save_checkpoint(const std::string& path) {
   try {
     simsols::save_checkpoint(*sim_, path,
                              std::string(kStateTag) + (loading_started_ ? "1\n" : "0\n") +
-                                 test_->save_state());
+                                 app_->programme().save_state());
     return {};
   } catch (const std::exception& e) {
     return e.what();
@@ -221,7 +245,8 @@ std::string LabExperiment::load_checkpoint(const std::string& path) {
   try {
     std::string extra;
     auto sim = simsols::load_checkpoint(device_, path, &extra);
-    if (!sim->scene().shear_box) return path + ": not a shear test checkpoint";
+    if (!apparatus_kind(sim->scene()))
+      return path + ": not a checkpoint of a shear box, triaxial or oedometer test";
     bool started = true;
     if (extra.rfind(kStateTag, 0) == 0) {
       extra.erase(0, std::string(kStateTag).size());
@@ -240,13 +265,10 @@ std::string LabExperiment::load_checkpoint(const std::string& path) {
 }
 
 std::string LabExperiment::export_results(const std::string& dir) {
-  if (!test_ || test_->rows().empty()) return "no rows to export yet";
+  if (!app_ || app_->rows() == 0) return "no rows to export yet";
   try {
     std::filesystem::create_directories(dir);
-    const std::string d = std::filesystem::path(dir).string();
-    write_file_atomic(d + "/shear.csv", shear_rows_csv(test_->rows()));
-    write_file_atomic(d + "/summary.txt", shear_summary_text(test_->summary()));
-    write_shear_plots(d, scene_.name, test_->rows(), test_->summary());
+    app_->export_results(std::filesystem::path(dir).string(), scene_.name);
     return {};
   } catch (const std::exception& e) {
     return e.what();

@@ -1,22 +1,24 @@
-// LabExperiment: the direct shear test as an operator runs it on a bench,
+// LabExperiment: a laboratory test as an operator runs it on a bench,
 // without any window: the desktop lab (lab_app.cpp) and its scripted tests
-// drive this class, and only this class touches the solver.
+// drive this class, and only this class touches the solver. The apparatus
+// (shear box, triaxial cell, oedometer) is the scene's; what differs
+// between them is behind LabApparatus (lab_apparatus.h).
 //
 // Stages, in order (stage()):
 //   Empty      no scene chosen
 //   Building   the specimen and kernels are being built (a background
 //              thread: the window keeps drawing)
-//   Prepared   the specimen sits in the box, nothing has run
-//   Loading    the normal stress is being applied (settle, then consolidate
-//              under the servo platen)
-//   Loaded     consolidated; the servo holds the normal stress; waiting for
-//              start_shear()
-//   Shearing   the lower half moves; rows are measured
-//   Done       the shear displacement is reached
-// paused() is separate: Loading and Shearing only advance while running.
-// Changing the target normal stress or the shear speed takes effect at once
-// (the servo follows); precision and effects apply from the next prepare()
-// (the kernels are rebuilt, in the background).
+//   Prepared   the specimen sits in the apparatus, nothing has run
+//   Loading    the stress is being applied (settle, then consolidate: the
+//              shear box's normal stress, the triaxial cell's sigma3; the
+//              oedometer settles here once its programme has started)
+//   Loaded     consolidated; the servos hold the stress; waiting for start()
+//   Running    the measured stage: shearing, compressing, the load steps
+//   Done       the test's end is reached
+// paused() is separate: Loading and Running only advance while running.
+// Changing a setting (stress, speed, strain rate) takes effect at once (the
+// servos follow); precision and effects apply from the next prepare() (the
+// kernels are rebuilt, in the background).
 //
 // A failed scene load leaves the current experiment as it was and returns
 // the error text for the panel. Checkpoints hold the simulation and the
@@ -26,17 +28,15 @@
 #include <atomic>
 #include <future>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 
-#include "solver/scene/scene.h"
-#include "solver/apparatus/shear_test.h"
+#include "app/lab/lab_apparatus.h"
 #include "solver/core/simulation.h"
+#include "solver/scene/scene.h"
 
 namespace simsols {
-
-enum class LabStage { Empty, Building, Prepared, Loading, Loaded, Shearing, Done };
-const char* to_string(LabStage s);
 
 class LabExperiment {
  public:
@@ -44,8 +44,9 @@ class LabExperiment {
   ~LabExperiment();
 
   // Scene choice. Empty string on success, else the error (nothing changed).
-  std::string load_preset(double d_mm, double s_kpa);
-  std::string load_scene_file(const std::string& path);
+  std::string load_preset(double d_mm, double s_kpa);      // a shear box of Table 1
+  std::string load_default(LabApparatusKind kind);         // the built-in scene
+  std::string load_scene_file(const std::string& path);    // any of the three
   const Scene& scene() const { return scene_; }
   const std::string& scene_label() const { return label_; }
 
@@ -59,15 +60,15 @@ class LabExperiment {
 
   // Bench actions; each returns an error text or "" (e.g. "prepare first").
   std::string prepare();  // starts the build; poll() finishes it
-  std::string apply_normal_stress();
-  std::string start_shear();
+  std::string apply_load();  // the stress: settle, consolidate, hold
+  std::string start();       // the measured stage (shear, compression, load programme)
   void pause() { running_ = false; }
   void resume() { running_ = true; }
   bool paused() const { return !running_; }
-  std::string step();     // one measurement row (shearing) or 200 steps (loading)
+  std::string step();     // one measurement row (running) or 200 steps (loading)
   std::string reset();    // a fresh specimen (same as prepare)
-  std::string set_normal_stress(double pascals);
-  std::string set_shear_speed(double metres_per_second);
+  // A live setting by key (LabApparatus::settings), in its unit.
+  std::string set(const std::string& key, double value);
 
   // Finishes a background build when it is ready; call once per frame.
   // Returns a build error, if any.
@@ -75,17 +76,20 @@ class LabExperiment {
   // Advances while running, for about `budget_seconds` of wall time.
   std::int64_t advance(double budget_seconds);
   // Pause exactly when the test has this many rows / the simulation this
-  // many steps (0 = no such stop): scripted sessions stop at the same state
-  // whatever the frame timing.
-  void pause_at(std::size_t rows, std::int64_t step) {
+  // many steps / the test reaches this stage (0, nullopt = no such stop):
+  // scripted sessions stop at the same state whatever the frame timing.
+  void pause_at(std::size_t rows, std::int64_t step, std::optional<LabStage> stage = {}) {
     pause_rows_ = rows;
     pause_step_ = step;
+    pause_stage_ = stage;
   }
   double steps_per_second() const { return rate_; }
 
   LabStage stage() const;
+  std::string stage_text() const;  // in the apparatus' words
   Simulation* simulation() { return sim_.get(); }
-  ShearTest* test() { return test_.get(); }
+  LabApparatus* apparatus() { return app_.get(); }
+  std::size_t rows() const { return app_ ? app_->rows() : 0; }
   // A new simulation object appeared (prepare, reset, checkpoint load):
   // views must re-attach. Counts up.
   int generation() const { return generation_; }
@@ -95,17 +99,21 @@ class LabExperiment {
   std::string take_fault() { return std::exchange(fault_, {}); }
   std::string save_checkpoint(const std::string& path);
   std::string load_checkpoint(const std::string& path);
-  // shear.csv, summary.txt and the plots, as the campaign writes them.
+  // The rows (shear.csv, triaxial.csv, oedometer.csv), summary.txt and the
+  // plots, as `simsols run` writes them.
   std::string export_results(const std::string& dir);
 
  private:
+  std::string adopt_scene(Scene sc, const std::string& label, const std::string& source,
+                          bool keep_effects);
   void adopt(std::unique_ptr<Simulation> sim, const std::string& state);
+  bool should_pause() const;
 
   std::shared_ptr<Device> device_;
   Scene scene_;
   std::string label_;
   std::unique_ptr<Simulation> sim_;
-  std::unique_ptr<ShearTest> test_;
+  std::unique_ptr<LabApparatus> app_;
   std::future<std::unique_ptr<Simulation>> building_;
   bool running_ = false, loading_started_ = false;
   std::string fault_;  // a runaway (guard.h), until taken by take_fault()
@@ -113,6 +121,7 @@ class LabExperiment {
   std::int64_t chunk_ = 100;   // steps per advance call, adapted to the budget
   std::size_t pause_rows_ = 0;
   std::int64_t pause_step_ = 0;
+  std::optional<LabStage> pause_stage_;
   int generation_ = 0;
 };
 

@@ -23,6 +23,7 @@ const char* kViews[] = {"flat opaque", "flat transparent", "force chains",
                         "Alioscopy (full screen)", "eight-view grid", "single view"};
 const char* kFields[] = {"size", "layer", "speed", "displacement", "contacts", "rotation"};
 const char* kPresets[] = {"front", "side", "top", "three-quarter"};
+const char* kApparatus[] = {"shear box", "triaxial", "oedometer"};  // LabApparatusKind's order
 
 
 }  // namespace
@@ -57,8 +58,8 @@ void LabApp::draw_controls() {
   const LabStage stage = exp_->stage();
   draw_stage_and_message(stage);
   if (ImGui::CollapsingHeader("Specimen", ImGuiTreeNodeFlags_DefaultOpen)) draw_specimen(stage);
-  if (ImGui::CollapsingHeader("Loading and shear", ImGuiTreeNodeFlags_DefaultOpen))
-    draw_loading_and_shear(stage);
+  if (ImGui::CollapsingHeader("Loading and test", ImGuiTreeNodeFlags_DefaultOpen))
+    draw_loading_and_running(stage);
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) draw_view_settings();
   if (ImGui::CollapsingHeader("Save")) draw_save();
 }
@@ -66,8 +67,8 @@ void LabApp::draw_controls() {
 // The scene, the stage, and the last error or note with a button to dismiss it.
 void LabApp::draw_stage_and_message(LabStage stage) {
   ImGui::TextColored({0.55f, 0.8f, 1, 1}, "%s", exp_->scene_label().c_str());
-  ImGui::Text("stage: %s%s", to_string(stage),
-              exp_->paused() && (stage == LabStage::Loading || stage == LabStage::Shearing) ? " (paused)" : "");
+  ImGui::Text("stage: %s%s", exp_->stage_text().c_str(),
+              exp_->paused() && (stage == LabStage::Loading || stage == LabStage::Running) ? " (paused)" : "");
   if (!message_.empty()) {
     ImGui::PushTextWrapPos(0);
     ImGui::TextColored({1, 0.45f, 0.35f, 1}, "%s", message_.c_str());
@@ -76,9 +77,10 @@ void LabApp::draw_stage_and_message(LabStage stage) {
   }
 }
 
-// Step 1 of a test: a preset or a scene file, the precision, the time step
-// and the effect slots, then Prepare / Reset.
+// Step 1 of a test: the apparatus, a preset or a scene file, the precision,
+// the time step and the effect slots, then Prepare / Reset.
 void LabApp::draw_specimen(LabStage stage) {
+  draw_apparatus_choice();
   draw_preset_and_scene_file();
   draw_precision_and_time_step();
   if (draw_effect_slots()) {
@@ -90,9 +92,47 @@ void LabApp::draw_specimen(LabStage stage) {
   ImGui::EndDisabled();
 }
 
-// A Table 1 size and a paper stress (Preset), or the scene file typed in the
-// field (Open); either prepares the specimen at once.
+// Shear box, triaxial cell or oedometer: choosing one loads its default
+// scene (the shear box's preset, the others' built-in scenes) and prepares it.
+void LabApp::draw_apparatus_choice() {
+  ImGui::SetNextItemWidth(150);
+  if (ImGui::Combo("apparatus", &apparatus_, kApparatus, 3)) {
+    message_.clear();
+    const std::string err = exp_->load_default(LabApparatusKind(apparatus_));
+    act(err);
+    if (err.empty()) act(exp_->prepare());
+  }
+}
+
+// The shear box: a Table 1 size and a paper stress (Preset); the others: their
+// built-in scene (Default); or the scene file typed in the field (Open), of
+// any apparatus. Each prepares the specimen at once.
 void LabApp::draw_preset_and_scene_file() {
+  if (apparatus_ != int(LabApparatusKind::ShearBox)) {
+    if (ImGui::Button("Default scene")) {
+      message_.clear();
+      const std::string err = exp_->load_default(LabApparatusKind(apparatus_));
+      act(err);
+      if (err.empty()) act(exp_->prepare());
+    }
+  } else {
+    draw_presets();
+  }
+  ImGui::SetNextItemWidth(300);
+  ImGui::InputText("##scene", scene_path_, sizeof scene_path_);
+  ImGui::SameLine();
+  if (ImGui::Button("Open")) {
+    message_.clear();
+    const std::string err = exp_->load_scene_file(scene_path_);
+    act(err);  // a failed load keeps the current experiment
+    if (err.empty()) {
+      apparatus_ = int(*apparatus_kind(exp_->scene()));
+      act(exp_->prepare());
+    }
+  }
+}
+
+void LabApp::draw_presets() {
   static const char* sizes[] = {"2.38 mm (8 layers)", "3.18 mm (6)", "3.97 mm (5)", "4.76 mm (4)",
                                 "6.35 mm (4)"};
   static const char* stresses[] = {"50 kPa", "160 kPa", "280 kPa", "400 kPa"};
@@ -106,18 +146,6 @@ void LabApp::draw_preset_and_scene_file() {
     message_.clear();
     const std::string err = exp_->load_preset(kTable1SizesMm[preset_size_], kPaperStressesKpa[preset_stress_]);
     act(err);
-    if (err.empty()) {
-      sigma_kpa_ = float(kPaperStressesKpa[preset_stress_]);
-      act(exp_->prepare());
-    }
-  }
-  ImGui::SetNextItemWidth(300);
-  ImGui::InputText("##scene", scene_path_, sizeof scene_path_);
-  ImGui::SameLine();
-  if (ImGui::Button("Open")) {
-    message_.clear();
-    const std::string err = exp_->load_scene_file(scene_path_);
-    act(err);  // a failed load keeps the current experiment
     if (err.empty()) act(exp_->prepare());
   }
 }
@@ -138,6 +166,7 @@ void LabApp::draw_precision_and_time_step() {
   if (ImGui::SliderFloat("time step (x Rayleigh)", &dt_fraction, 0.05f, 0.5f, "%.2f"))
     exp_->set_dt_fraction(dt_fraction);
   const auto& box = exp_->scene().shear_box;
+  if (!box) return;  // the accuracy study is of the shear box
   const StudySpecimen kind = box && box->specimen.method == Specimen::Method::Layers
                                  ? StudySpecimen::Layered
                                  : StudySpecimen::Poured;
@@ -150,30 +179,49 @@ void LabApp::draw_precision_and_time_step() {
   }
 }
 
-// Steps 2 to 4: apply the normal stress, start the shear, pause or step it,
-// and change the target stress or the shear speed while it runs.
-void LabApp::draw_loading_and_shear(LabStage stage) {
-  ImGui::BeginDisabled(stage != LabStage::Prepared);
-  if (ImGui::Button("Apply normal stress")) act(exp_->apply_normal_stress());
-  ImGui::EndDisabled();
-  ImGui::SameLine();
-  ImGui::BeginDisabled(stage != LabStage::Loaded && stage != LabStage::Loading);
-  if (ImGui::Button("Start shear")) act(exp_->start_shear());
+// Steps 2 to 4, with the apparatus' words: apply the stress (the normal
+// stress, sigma3), start the measured stage (shear, compression, the load
+// programme), pause or step it, change the live settings while it runs,
+// and where the test stands (the load step, equilibrium, the last row).
+void LabApp::draw_loading_and_running(LabStage stage) {
+  LabApparatus* a = exp_->apparatus();
+  if (!a) {
+    ImGui::TextDisabled("prepare a specimen first");
+    return;
+  }
+  if (const char* load = a->load_label()) {
+    ImGui::BeginDisabled(stage != LabStage::Prepared);
+    if (ImGui::Button(load)) act(exp_->apply_load());
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+  }
+  ImGui::BeginDisabled(stage == LabStage::Running || stage == LabStage::Done ||
+                       stage == LabStage::Building);
+  if (ImGui::Button(a->start_label())) act(exp_->start());
   ImGui::EndDisabled();
   if (ImGui::Button(exp_->paused() ? "Resume (space)" : "Pause (space)"))
     exp_->paused() ? exp_->resume() : exp_->pause();
   ImGui::SameLine();
   if (ImGui::Button("Step (S)")) act(exp_->step());
-  ImGui::SetNextItemWidth(160);
-  if (ImGui::InputFloat("normal stress (kPa)", &sigma_kpa_, 10, 50, "%.0f",
-                        ImGuiInputTextFlags_EnterReturnsTrue))
-    act(exp_->set_normal_stress(double(sigma_kpa_) * 1e3));
-  if (ShearTest* t = exp_->test(); t && speed_mm_s_ == 0 && t->shear_speed() > 0)
-    speed_mm_s_ = float(t->shear_speed() * 1e3);
-  ImGui::SetNextItemWidth(160);
-  if (ImGui::InputFloat("shear speed (mm/s)", &speed_mm_s_, 0, 0, "%.4g",
-                        ImGuiInputTextFlags_EnterReturnsTrue))
-    act(exp_->set_shear_speed(double(speed_mm_s_) * 1e-3));
+  draw_settings();
+  if (const std::string p = a->progress_text(); !p.empty()) {
+    ImGui::PushTextWrapPos(0);
+    ImGui::TextUnformatted(p.c_str());
+    ImGui::PopTextWrapPos();
+  }
+}
+
+// The live settings, each applied when Enter is pressed (the field shows
+// the test's value while it is not being edited).
+void LabApp::draw_settings() {
+  LabApparatus* a = exp_->apparatus();
+  for (const LabSetting& s : a->settings()) {
+    float v = float(s.value);
+    const std::string label = s.label + " (" + s.unit + ")";
+    ImGui::SetNextItemWidth(160);
+    if (ImGui::InputFloat(label.c_str(), &v, 0, 0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue))
+      act(exp_->set(s.key, double(v)));
+  }
 }
 
 // The view, the beads' colour, the chain threshold and overlay, the camera.
@@ -240,29 +288,15 @@ void LabApp::draw_save() {
   ImGui::TextDisabled("Load checkpoint reads the path in the scene field.");
 }
 
+// The apparatus' live plots (LabApparatus::live_plots), stacked.
 void LabApp::draw_plots() {
-  ShearTest* t = exp_->test();
-  if (!t || !ImGui::CollapsingHeader("Live plots", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  LabPlot ratio{"tau/sigma", "horizontal displacement (mm)", "tau/sigma (-)", {}, {}, {}};
-  LabPlot tau{"shear stress", "horizontal displacement (mm)", "tau (kPa)", {}, {}, {}};
-  LabPlot dil{"dilation", "horizontal displacement (mm)", "vertical displacement (mm)", {}, {}, {}};
-  for (const ShearRow& r : t->rows()) {
-    ratio.x.push_back(r.displacement * 1e3);
-    ratio.y.push_back(r.sigma > 0 ? r.tau / r.sigma : 0);
-    tau.x.push_back(r.displacement * 1e3);
-    tau.y.push_back(r.tau * 1e-3);
-    dil.x.push_back(r.displacement * 1e3);
-    dil.y.push_back(r.dilation * 1e3);
-  }
-  // the peak as in the summaries: the first peak of tau/sigma (shear_analysis.h)
-  const FirstPeak first =
-      first_peak(t->rows(), t->normal_stress(), kPeakRecoveryDiameters * t->bead_diameter());
-  if (first.row >= 0) ratio.peak = tau.peak = std::size_t(first.row);
+  LabApparatus* a = exp_->apparatus();
+  if (!a || !ImGui::CollapsingHeader("Live plots", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  const std::vector<LabPlot> plots = a->live_plots();
   const float w = ImGui::GetContentRegionAvail().x;
-  const float h = std::max(120.0f, (ImGui::GetContentRegionAvail().y - 40) / 3);
-  draw_lab_plot("##ratio", ratio, {w, h});
-  draw_lab_plot("##tau", tau, {w, h});
-  draw_lab_plot("##dil", dil, {w, h});
+  const float h = std::max(120.0f, (ImGui::GetContentRegionAvail().y - 40) / float(plots.size()));
+  for (std::size_t i = 0; i < plots.size(); ++i)
+    draw_lab_plot(("##plot" + std::to_string(i)).c_str(), plots[i], w, h);
 }
 
 void LabApp::draw_status(int panel_width) {
@@ -275,16 +309,13 @@ void LabApp::draw_status(int panel_width) {
                    ImGuiWindowFlags_NoInputs);
   Simulation* sim = exp_->simulation();
   if (sim) {
-    const ShearTest* t = exp_->test();
-    const double inertial = t && !t->rows().empty() ? t->rows().back().inertial_number : 0;
+    const LabApparatus* a = exp_->apparatus();
+    const double inertial = a ? a->inertial_number() : 0;
     ImGui::Text("t = %.5f s   %.0f steps/s   %d beads   %zu contacts   I = %.2g   dt = %.3g s   %s",
                 sim->time(), exp_->steps_per_second(), sim->model().particles(), contacts_,
                 inertial, sim->dt(), sim->model().config().double_precision ? "double" : "float");
-    if (inertial > kQuasiStaticInertialNumber)
-      ImGui::TextColored({1.0f, 0.6f, 0.2f, 1.0f},
-                         "I = %.2g > %.0e: the shear is no longer quasi-static; lower the shear "
-                         "speed (the summary will say quasi_static = no)",
-                         inertial, kQuasiStaticInertialNumber);
+    if (const std::string w = a ? a->warning() : std::string(); !w.empty())
+      ImGui::TextColored({1.0f, 0.6f, 0.2f, 1.0f}, "%s", w.c_str());
     std::string device = sim->model().device().name();
     if (device.size() > 48) device = device.substr(0, 45) + "...";
     ImGui::Text("%s   %s   %.0f fps (view at %.0f%%)   H: help", device.c_str(),
@@ -294,7 +325,7 @@ void LabApp::draw_status(int panel_width) {
     ImGui::Text("compiled: %s",
                 compiled_slots_line(sim->scene(), sim->model().config()).c_str());
   } else {
-    ImGui::Text("%s   %.0f fps   (H: help)", to_string(exp_->stage()), fps_);
+    ImGui::Text("%s   %.0f fps   (H: help)", exp_->stage_text().c_str(), fps_);
   }
   ImGui::End();
 }

@@ -1,5 +1,7 @@
 #include "app/lab/lab_plots.h"
 
+#include <imgui.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -7,8 +9,8 @@
 
 namespace simsols {
 
-void draw_lab_plot(const char* id, const LabPlot& p, ImVec2 size) {
-  ImGui::BeginChild(id, size, true, ImGuiWindowFlags_NoScrollbar);
+void draw_lab_plot(const char* id, const LabPlot& p, float width, float height) {
+  ImGui::BeginChild(id, {width, height}, true, ImGuiWindowFlags_NoScrollbar);
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const ImVec2 o = ImGui::GetCursorScreenPos();
   const ImVec2 avail = ImGui::GetContentRegionAvail();
@@ -23,16 +25,36 @@ void draw_lab_plot(const char* id, const LabPlot& p, ImVec2 size) {
   }
   const ImU32 axis = IM_COL32(150, 155, 165, 255), grid = IM_COL32(60, 64, 72, 255),
               line = IM_COL32(90, 170, 255, 255), peak = IM_COL32(255, 120, 60, 255);
-  double x0 = 0, x1 = 1, y0 = 0, y1 = 1;
-  if (!p.x.empty()) {
-    x0 = std::min(0.0, *std::min_element(p.x.begin(), p.x.end()));
-    x1 = *std::max_element(p.x.begin(), p.x.end());
-    y0 = std::min(0.0, *std::min_element(p.y.begin(), p.y.end()));
-    y1 = std::max(0.0, *std::max_element(p.y.begin(), p.y.end()));
+  // the points drawn: x as plotted (log10 on a log axis), x <= 0 left out there
+  std::vector<double> px, py;
+  std::vector<std::size_t> index;  // into p.x
+  for (std::size_t i = 0; i < p.x.size() && i < p.y.size(); ++i) {
+    if (p.x_log && !(p.x[i] > 0)) continue;
+    px.push_back(p.x_log ? std::log10(p.x[i]) : p.x[i]);
+    py.push_back(p.y[i]);
+    index.push_back(i);
   }
+  double x0 = 0, x1 = 1, y0 = 0, y1 = 1;
+  if (!px.empty()) {
+    x0 = *std::min_element(px.begin(), px.end());
+    x1 = *std::max_element(px.begin(), px.end());
+    y0 = *std::min_element(py.begin(), py.end());
+    y1 = *std::max_element(py.begin(), py.end());
+    if (!p.x_log) {  // linear axes start at zero; a void ratio or log axis need not
+      x0 = std::min(0.0, x0);
+      y0 = std::min(0.0, y0);
+      y1 = std::max(0.0, y1);
+    }
+  }
+  if (p.x_log) x0 = std::floor(x0), x1 = std::max(x0 + 1, std::ceil(x1));  // whole decades
   if (x1 <= x0) x1 = x0 + 1;
-  if (y1 <= y0) y1 = y0 + 1;
-  const std::vector<double> xt = plot::nice_ticks(x0, x1, 5), yt = plot::nice_ticks(y0, y1, 4);
+  if (y1 <= y0) y1 = y0 + (y0 != 0 ? 0.01 * std::fabs(y0) : 1);
+  std::vector<double> xt = plot::nice_ticks(x0, x1, 5);
+  if (p.x_log) {
+    xt.clear();
+    for (double d = x0; d <= x1 + 1e-9; d += 1) xt.push_back(d);
+  }
+  const std::vector<double> yt = plot::nice_ticks(y0, y1, 4);
   if (xt.size() >= 2) x0 = std::min(x0, xt.front()), x1 = std::max(x1, xt.back());
   if (yt.size() >= 2) y0 = std::min(y0, yt.front()), y1 = std::max(y1, yt.back());
   auto X = [&](double v) { return float(a.x + (v - x0) / (x1 - x0) * (b.x - a.x)); };
@@ -40,7 +62,9 @@ void draw_lab_plot(const char* id, const LabPlot& p, ImVec2 size) {
   const double xs = xt.size() >= 2 ? xt[1] - xt[0] : 1, ys = yt.size() >= 2 ? yt[1] - yt[0] : 1;
   for (double v : xt) {
     dl->AddLine({X(v), a.y}, {X(v), b.y}, grid);
-    const std::string s = plot::format_tick(v, xs);
+    // a log axis is labelled by value: 10, 100, 1000
+    const double value = p.x_log ? std::pow(10.0, v) : v;
+    const std::string s = plot::format_tick(value, p.x_log ? value : xs);
     dl->AddText({X(v) - ImGui::CalcTextSize(s.c_str()).x / 2, b.y + 0.2f * fh}, axis, s.c_str());
   }
   for (double v : yt) {
@@ -54,12 +78,13 @@ void draw_lab_plot(const char* id, const LabPlot& p, ImVec2 size) {
   dl->AddText({(a.x + b.x - xl.x) / 2, b.y + 1.2f * fh}, axis, p.x_label.c_str());
   dl->AddText({a.x + 0.3f * fh, a.y + 0.1f * fh}, axis, p.y_label.c_str());
   std::vector<ImVec2> pts;
-  pts.reserve(p.x.size());
-  for (std::size_t i = 0; i < p.x.size(); ++i) pts.push_back({X(p.x[i]), Y(p.y[i])});
+  pts.reserve(px.size());
+  for (std::size_t i = 0; i < px.size(); ++i) pts.push_back({X(px[i]), Y(py[i])});
   dl->PushClipRect(a, b, true);
   if (pts.size() >= 2) dl->AddPolyline(pts.data(), int(pts.size()), line, 0, 2.0f);
-  if (p.peak && *p.peak < pts.size()) {
-    const ImVec2 q = pts[*p.peak];
+  const auto marked = p.peak ? std::find(index.begin(), index.end(), *p.peak) : index.end();
+  if (marked != index.end()) {
+    const ImVec2 q = pts[std::size_t(marked - index.begin())];
     dl->AddCircle(q, 5, peak, 16, 2.0f);
     char buf[64];
     std::snprintf(buf, sizeof buf, "peak %.3g", p.y[*p.peak]);

@@ -29,17 +29,20 @@ void LabApp::take_script_screenshot() {
 // The commands, as docs/lab.md lists them. A new command is one entry here
 // and its handler in lab_script_commands.cpp.
 const LabApp::Script::Command LabApp::Script::kCommands[] = {
+    {"apparatus", kApparatusNames, &Script::choose_apparatus},
     {"preset", "D_MM S_KPA", &Script::choose_preset},
     {"open", "SCENE.toml", &Script::open_scene},
     {"precision", "float|double", &Script::choose_precision},
     {"effect", "SLOT CHOICE", &Script::choose_effect},
     {"prepare", "", &Script::prepare},
-    {"load", "", &Script::apply_normal_stress},
-    {"start", "", &Script::start_shear},
+    {"load", "[KPA]", &Script::apply_load},
+    {"start", "", &Script::start},
     {"rows", "N", &Script::run_rows},
     {"steps", "N", &Script::run_steps},
+    {"finish", "", &Script::finish},
     {"set_stress", "KPA", &Script::set_stress},
     {"set_speed", "MM_S", &Script::set_speed},
+    {"set_rate", "PER_S", &Script::set_rate},
     {"pause", "", &Script::pause},
     {"resume", "", &Script::resume},
     {"step", "", &Script::step},
@@ -73,8 +76,10 @@ std::string LabApp::state_text() {
   std::ostringstream o;
   o.precision(10);
   Simulation* sim = exp_->simulation();
-  ShearTest* t = exp_->test();
-  o << "stage = " << to_string(exp_->stage()) << "\n";
+  LabApparatus* a = exp_->apparatus();
+  o << "stage = " << exp_->stage_text() << "\n";
+  if (a) o << "apparatus = " << to_string(a->kind()) << "\n";
+  o << "scene = " << exp_->scene_label() << "\n";  // the next prepare's
   o << "paused = " << (exp_->paused() ? 1 : 0) << "\n";
   if (sim) {
     char hash[32];
@@ -85,17 +90,7 @@ std::string LabApp::state_text() {
     o << "compiled = " << compiled_slots_line(sim->scene(), sim->model().config())
       << "\nhistory_bytes = " << sim->model().config().history_bytes_per_contact() << "\n";
   }
-  if (t) {
-    o << "rows = " << t->rows().size() << "\n";
-    o << "sigma_target_kpa = " << t->normal_stress() * 1e-3 << "\n";
-    o << "shear_speed_mm_s = " << t->shear_speed() * 1e3 << "\n";
-    if (!t->rows().empty()) {
-      const ShearRow& r = t->rows().back();
-      o << "displacement_mm = " << r.displacement * 1e3 << "\nsigma_kpa = " << r.sigma * 1e-3
-        << "\ntau_kpa = " << r.tau * 1e-3 << "\ninertial_number = " << r.inertial_number
-        << "\n";
-    }
-  }
+  if (a) o << a->state_lines();
   o << "fps = " << fps_ << "\nrender_scale = " << render_scale_ << "\n";
   return o.str();
 }

@@ -52,17 +52,21 @@ struct LabApp::Script {
   LabExperiment& experiment() { return *lab.exp_; }
 
   // The commands (lab_script_commands.cpp), as docs/lab.md lists them.
+  void choose_apparatus(const Line& line);     // apparatus shear_box|triaxial|oedometer
   void choose_preset(const Line& line);        // preset D_MM S_KPA
   void open_scene(const Line& line);           // open SCENE.toml
   void choose_precision(const Line& line);     // precision float|double
   void choose_effect(const Line& line);        // effect SLOT CHOICE
   void prepare(const Line& line);              // prepare
-  void apply_normal_stress(const Line& line);  // load
-  void start_shear(const Line& line);          // start
+  void apply_load(const Line& line);           // load [KPA]
+  void start(const Line& line);                // start
   void run_rows(const Line& line);             // rows N
   void run_steps(const Line& line);            // steps N
+  void finish(const Line& line);               // finish
   void set_stress(const Line& line);           // set_stress KPA
   void set_speed(const Line& line);            // set_speed MM_S
+  void set_rate(const Line& line);             // set_rate PER_S
+  void set_setting(const Line& line, const char* key);  // the three above
   void pause(const Line& line);                // pause
   void resume(const Line& line);               // resume
   void step(const Line& line);                 // step

@@ -52,12 +52,21 @@ bool set_slot(Effects& e, const std::string& slot, const std::string& choice) {
 
 // ------------------------------------------------------------ the specimen
 
+// The apparatus' default scene (the shear box's 6.35 mm / 160 kPa preset),
+// as the panel's combo box.
+void LabApp::Script::choose_apparatus(const Line& line) {
+  const std::optional<LabApparatusKind> kind = parse_apparatus_kind(line.argument);
+  if (!kind)
+    return fail(line, "apparatus " + std::string(kApparatusNames) + ", got '" + line.argument + "'", 2);
+  if (succeeded(line, experiment().load_default(*kind))) lab.apparatus_ = int(*kind);
+}
+
 void LabApp::Script::choose_preset(const Line& line) {
   double d = 0, kpa = 0;
   if (std::sscanf(line.argument.c_str(), "%lf %lf", &d, &kpa) != 2)
     return fail(line, "preset D_MM S_KPA", 2);
   if (!succeeded(line, experiment().load_preset(d, kpa))) return;
-  lab.sigma_kpa_ = float(kpa);
+  lab.apparatus_ = int(LabApparatusKind::ShearBox);
   const double size = nearest_table1_size(d).value_or(d);
   for (int k = 0; k < 5; ++k)  // the panel's combo boxes follow
     if (kTable1SizesMm[k] == size) lab.preset_size_ = k;
@@ -66,7 +75,8 @@ void LabApp::Script::choose_preset(const Line& line) {
 }
 
 void LabApp::Script::open_scene(const Line& line) {
-  succeeded(line, experiment().load_scene_file(line.argument));
+  if (succeeded(line, experiment().load_scene_file(line.argument)))
+    lab.apparatus_ = int(*apparatus_kind(experiment().scene()));
 }
 
 void LabApp::Script::choose_precision(const Line& line) {
@@ -93,21 +103,30 @@ void LabApp::Script::prepare(const Line& line) {
   if (succeeded(line, exp.prepare())) until = [&exp] { return exp.stage() == LabStage::Prepared; };
 }
 
-// ------------------------------------------------------- loading and shear
+// ------------------------------------------------------- loading and test
 
-void LabApp::Script::apply_normal_stress(const Line& line) {
+// The stress (KPA, when given, first becomes the target: the shear box's
+// normal stress, the triaxial cell's sigma3); waits until consolidated.
+void LabApp::Script::apply_load(const Line& line) {
   LabExperiment& exp = experiment();
-  if (succeeded(line, exp.apply_normal_stress()))
-    until = [&exp] { return exp.stage() == LabStage::Loaded; };
+  if (!line.argument.empty()) {
+    const std::optional<double> kpa = number(line);
+    if (!kpa || !succeeded(line, exp.set("stress", *kpa))) return;
+  }
+  if (succeeded(line, exp.apply_load()))
+    until = [&exp] { return exp.stage() == LabStage::Loaded || exp.stage() == LabStage::Done; };
 }
 
-// Shearing starts at once from Loaded; scripts then move on with `rows` or
-// `steps` (paused until then, so a session is the same every time).
-void LabApp::Script::start_shear(const Line& line) {
+// The measured stage starts (at once from Loaded; the oedometer settles
+// first) and the run pauses exactly there; scripts then move on with
+// `rows`, `steps`, `finish` or `resume`, so a session is the same every time.
+void LabApp::Script::start(const Line& line) {
   LabExperiment& exp = experiment();
-  if (!succeeded(line, exp.start_shear())) return;
-  exp.pause();
-  until = [&exp] { return exp.stage() == LabStage::Shearing || exp.stage() == LabStage::Done; };
+  if (!succeeded(line, exp.start())) return;
+  exp.pause_at(0, 0, LabStage::Running);
+  until = [&exp] {
+    return (exp.stage() == LabStage::Running && exp.paused()) || exp.stage() == LabStage::Done;
+  };
 }
 
 void LabApp::Script::run_rows(const Line& line) {
@@ -118,7 +137,7 @@ void LabApp::Script::run_rows(const Line& line) {
   exp.pause_at(n, 0);
   exp.resume();
   until = [&exp, n] {
-    return !exp.test() || exp.test()->done() || (exp.test()->rows().size() >= n && exp.paused());
+    return !exp.apparatus() || exp.stage() == LabStage::Done || (exp.rows() >= n && exp.paused());
   };
 }
 
@@ -134,16 +153,29 @@ void LabApp::Script::run_steps(const Line& line) {
   };
 }
 
-void LabApp::Script::set_stress(const Line& line) {
-  const std::optional<double> kpa = number(line);
-  if (kpa && succeeded(line, experiment().set_normal_stress(*kpa * 1e3)))
-    lab.sigma_kpa_ = float(*kpa);
+// Runs until the test is done (the oedometer's programme, a compression),
+// or until it holds, loaded.
+void LabApp::Script::finish(const Line& line) {
+  LabExperiment& exp = experiment();
+  const LabStage st = exp.stage();
+  if (st != LabStage::Loading && st != LabStage::Running && st != LabStage::Done)
+    return fail(line, "finish: nothing is running; 'load' or 'start' first", 1);
+  exp.resume();
+  // a test that holds when loaded waits there for `start`
+  until = [&exp] {
+    return exp.stage() == LabStage::Done || (exp.stage() == LabStage::Loaded && exp.paused());
+  };
 }
 
-void LabApp::Script::set_speed(const Line& line) {
-  if (const std::optional<double> mm_s = number(line))
-    succeeded(line, experiment().set_shear_speed(*mm_s * 1e-3));
+void LabApp::Script::set_setting(const Line& line, const char* key) {
+  if (const std::optional<double> v = number(line)) succeeded(line, experiment().set(key, *v));
 }
+
+void LabApp::Script::set_stress(const Line& line) { set_setting(line, "stress"); }
+
+void LabApp::Script::set_speed(const Line& line) { set_setting(line, "speed"); }
+
+void LabApp::Script::set_rate(const Line& line) { set_setting(line, "rate"); }
 
 void LabApp::Script::pause(const Line&) { experiment().pause(); }
 

@@ -20,6 +20,20 @@ namespace {
 
 glm::dvec3 to_glm(const Vec3& v) { return {v[0], v[1], v[2]}; }
 
+// An axis-aligned half extent `h` about `c` clipped to [lo, hi] along its
+// axis (a rectangle's edge on one of x, y, z); other directions unchanged.
+void clip_extent(glm::dvec3& c, glm::dvec3& h, const glm::dvec3& lo, const glm::dvec3& hi) {
+  int axis = -1;
+  for (int k = 0; k < 3; ++k)
+    if (std::abs(h[k]) > 0) axis = axis < 0 ? k : 3;  // 3: not axis-aligned
+  if (axis < 0 || axis > 2) return;
+  const double a = std::max(c[axis] - std::abs(h[axis]), lo[axis]);
+  const double b = std::min(c[axis] + std::abs(h[axis]), hi[axis]);
+  if (b <= a) return;
+  c[axis] = 0.5 * (a + b);
+  h[axis] = (h[axis] < 0 ? -0.5 : 0.5) * (b - a);
+}
+
 // Two unit vectors spanning the plane normal to n.
 std::pair<glm::dvec3, glm::dvec3> plane_axes(const glm::dvec3& n) {
   const glm::dvec3 a = std::abs(n.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
@@ -45,18 +59,25 @@ SimulationView::SimulationView(const Gl& gl, Simulation& sim)
     const int layers = scene.shear_box->specimen.layers;
     if (zmax > zmin) packer_.set_layer_bands(zmin, (zmax - zmin) / (layers - 1));
   }
-  // Bounds: the initial specimen and the rectangles.
+  // Bounds: the initial specimen and the rectangles, these no further than
+  // half the specimen's size beyond it (the triaxial cell's plates are much
+  // larger than the specimen so they can slide past each other: the view
+  // frames the specimen, not them).
   glm::dvec3 lo(1e300), hi(-1e300);
   for (const Particle& p : scene.particles) {
     lo = glm::min(lo, to_glm(p.position) - p.radius);
     hi = glm::max(hi, to_glm(p.position) + p.radius);
   }
+  const bool beads = lo.x <= hi.x;
+  const glm::dvec3 reach = beads ? 0.5 * (hi - lo) : glm::dvec3(1e300);
+  const glm::dvec3 wall_lo = beads ? lo - reach : glm::dvec3(-1e300),
+                   wall_hi = beads ? hi + reach : glm::dvec3(1e300);
   for (const Wall& w : scene.walls) {
     if (w.shape != WallShape::Rectangle) continue;
     const glm::dvec3 c = to_glm(w.point), u = to_glm(w.axis_u) * w.half_u,
                      v = glm::cross(to_glm(w.normal), to_glm(w.axis_u)) * w.half_v;
     for (int k = 0; k < 4; ++k) {
-      const glm::dvec3 q = c + ((k & 1) ? u : -u) + ((k & 2) ? v : -v);
+      const glm::dvec3 q = glm::clamp(c + ((k & 1) ? u : -u) + ((k & 2) ? v : -v), wall_lo, wall_hi);
       lo = glm::min(lo, q);
       hi = glm::max(hi, q);
     }
@@ -64,6 +85,10 @@ SimulationView::SimulationView(const Gl& gl, Simulation& sim)
   if (lo.x > hi.x) lo = hi = glm::dvec3(0);
   lo_ = lo - origin;
   hi_ = hi - origin;
+  if (beads) {
+    clip_lo_ = wall_lo - origin;
+    clip_hi_ = wall_hi - origin;
+  }
   bridge_ = std::make_unique<ParticleBridge>(gl, buffers_, packer_, sim.model().device());
 }
 
@@ -92,9 +117,13 @@ FrameGeometry SimulationView::geometry() {
       const glm::dvec3 p = to_glm(points[i]) - origin, n = to_glm(w.normal);
       WallQuad q;
       if (w.shape == WallShape::Rectangle) {
-        q.centre = glm::vec3(p);
-        q.axis_u = glm::vec3(to_glm(w.axis_u) * w.half_u);
-        q.axis_v = glm::vec3(glm::cross(n, to_glm(w.axis_u)) * w.half_v);
+        glm::dvec3 c = p, u = to_glm(w.axis_u) * w.half_u,
+                   v = glm::cross(n, to_glm(w.axis_u)) * w.half_v;
+        clip_extent(c, u, clip_lo_, clip_hi_);
+        clip_extent(c, v, clip_lo_, clip_hi_);
+        q.centre = glm::vec3(c);
+        q.axis_u = glm::vec3(u);
+        q.axis_v = glm::vec3(v);
       } else {
         // an infinite plane: the part of it under the specimen
         const auto [u, v] = plane_axes(n);

@@ -58,6 +58,9 @@ class SimulationView {
   GeometryBuffers buffers_;
   std::unique_ptr<ParticleBridge> bridge_;
   glm::dvec3 lo_{0}, hi_{0};
+  // Rectangles are drawn within this box (relative to the origin, as lo_):
+  // the specimen and half its size around it.
+  glm::dvec3 clip_lo_{-1e300}, clip_hi_{1e300};
 };
 
 }  // namespace simsols::render

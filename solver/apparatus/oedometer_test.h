@@ -56,6 +56,8 @@ class OedometerTest : public LoadingProgramme {
 
   Stage stage() const { return stage_; }
   int load_step() const { return step_; }  // 0-based index into load_steps
+  // Equilibrium checks passed in a row in the current step (2 ends it).
+  int equilibrium_checks() const { return quiet_checks_; }
   const std::vector<OedometerRow>& rows() const { return rows_; }
   OedometerSummary summary() const;
   double bead_diameter() const { return stats_.diameter; }

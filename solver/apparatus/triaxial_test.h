@@ -74,6 +74,8 @@ class TriaxialTest : public LoadingProgramme {
   // Leaves consolidate for compress; false when the test is not consolidating.
   bool start_compression();
   double confining_stress() const { return sigma3_; }
+  // Pa, the plates' mean stresses (x, y, z) at the last equilibrium check.
+  std::array<double, 3> checked_stress() const { return consolidated_stress_; }
 
   // The specimen at the last equilibrium check of consolidate.
   struct AtRest {
