@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "app/experiment/grading_plots.h"
 #include "app/experiment/progress.h"
 #include "app/experiment/run_cost.h"
 #include "solver/io/checkpoint.h"
@@ -166,6 +167,7 @@ void start_run_folder(const Scene& scene, const std::string& out_dir) {
   write_file_atomic((dir / "scene.toml").string(),
                     scene.source_text.empty() ? to_toml(scene) : scene.source_text);
   write_file_atomic((dir / "scene.resolved.toml").string(), to_toml(scene));
+  write_grading_files(scene, out_dir);
 }
 
 }  // namespace simsols

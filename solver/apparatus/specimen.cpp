@@ -1,9 +1,11 @@
 #include "solver/apparatus/specimen.h"
 
 #include "solver/apparatus/cell_walls.h"
+#include "solver/apparatus/grading.h"
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <random>
 
 #include "solver/common/number_text.h"
@@ -11,6 +13,8 @@
 
 namespace simsols {
 namespace {
+
+constexpr double kPi = 3.14159265358979323846;
 
 std::string num(double v) { return shortest_number(v); }
 
@@ -61,17 +65,43 @@ void place_layers(Scene& scene, const Specimen& s, const Cell& b) {
   }
 }
 
-// Random pour: as many beads as the layers would hold, in a tall column.
-void place_pour(Scene& scene, const Specimen& s, const Cell& b) {
-  const double d = s.diameter, r = d / 2;
+// The pour's diameters, largest first: as many beads of d as the layers
+// would hold, or with a grading, sizes drawn from its curve until they
+// hold the same solid volume (the layers of D50 beads; grading.h).
+std::vector<double> pour_sizes(const Specimen& s, const Cell& b) {
+  const double d = s.diameter;
   const int count = beads_per_layer(b.length, b.width, d) * s.layers;
-  const double top = 3.0 * s.layers * d;
+  if (s.grading.law == Grading::Law::Single) return std::vector<double>(count, d);
+  const GradingCurve curve = grading_curve(s.grading, d);
+  const double largest = curve.size.back(), side = std::min(b.length, b.width);
+  if (largest > side)
+    b.check.fail("out_of_range", "specimen.grading.d_max",
+                 num(largest) + " m does not fit the cell, allowed (0, " + num(side) + "] m");
+  const double smallest = curve.size.front(), solid = count * kPi / 6 * d * d * d;
+  if (solid / (kPi / 6 * smallest * smallest * smallest) > 2e7 * 50)
+    b.check.fail("out_of_range", "specimen.grading.d_min",
+                 "the grading's fines would make far more than 2e7 beads; raise d_min");
+  std::vector<double> sizes = sample_diameters(curve, solid, static_cast<std::uint64_t>(s.seed) ^ 0x9e3779b97f4a7c15ULL);
+  if (sizes.size() > 20000000)
+    b.check.fail("out_of_range", "specimen.grading",
+                 "the specimen would hold " + std::to_string(sizes.size()) + " beads (limit 2e7)");
+  std::sort(sizes.begin(), sizes.end(), std::greater<>());
+  return sizes;
+}
+
+// Random pour: the beads placed at random, without overlap, largest first,
+// in a column three specimen heights tall.
+void place_pour(Scene& scene, const Specimen& s, const Cell& b) {
+  const std::vector<double> sizes = pour_sizes(s, b);
+  const int count = static_cast<int>(sizes.size());
+  const double top = 3.0 * s.layers * s.diameter, d_max = sizes.front();
   Prng prng(static_cast<std::uint64_t>(s.seed));
-  SphereGrid grid(d, static_cast<size_t>(count));
+  SphereGrid grid(d_max, static_cast<size_t>(count));
   const size_t first = scene.particles.size();
   const std::int64_t budget = 1000 + 2000LL * count;
   std::int64_t attempts = 0;
   for (int placed = 0; placed < count; ++placed) {
+    const double r = sizes[placed] / 2;
     Vec3 p{};
     bool hit = true;
     while (hit) {
@@ -83,9 +113,10 @@ void place_pour(Scene& scene, const Specimen& s, const Cell& b) {
            prng.uniform(r, top - r)};
       hit = false;
       grid.for_each_near(p, [&](int q) {
-        const Vec3& o = scene.particles[first + q].position;
-        const double dx = p[0] - o[0], dy = p[1] - o[1], dz = p[2] - o[2];
-        hit = hit || dx * dx + dy * dy + dz * dz < d * d;
+        const Particle& o = scene.particles[first + q];
+        const double dx = p[0] - o.position[0], dy = p[1] - o.position[1],
+                     dz = p[2] - o.position[2], reach = r + o.radius;
+        hit = hit || dx * dx + dy * dy + dz * dz < reach * reach;
       });
     }
     grid.insert(placed, p);

@@ -1,21 +1,66 @@
 // [shear_box]: the direct shear apparatus and its specimen
 // (docs/shear-box.md), expanded into walls and beads by build_shear_box().
+#include "solver/apparatus/grading.h"
 #include "solver/apparatus/shear_box.h"
 #include "solver/io/scene_tables.h"
 
 namespace simsols::scene_toml {
 
+namespace {
+
+// [*.specimen.grading]: the law and its keys; the curve is built here so a
+// bad one is refused with its field. Returns the curve's D50 (the
+// specimen's reference diameter).
+double read_grading(const Reader& sp, Specimen& s) {
+  Reader gr = sp.sub("grading", {"law", "d_min", "d_max", "sigma", "exponent", "sizes", "passing"});
+  Grading& g = s.grading;
+  g.law = gr.choice("law", Grading::Law::Single);
+  using Law = Grading::Law;
+  const auto only = [&](std::vector<std::string> keys, const char* laws) {
+    gr.forbid(keys, std::string("only allowed when law = ") + laws);
+  };
+  if (g.law != Law::Fuller) only({"exponent"}, "\"fuller\"");
+  if (g.law != Law::Sieve) only({"sizes", "passing"}, "\"sieve\"");
+  if (g.law == Law::Single || g.law == Law::Sieve)
+    only({"d_min", "d_max"}, "\"uniform\", \"lognormal\" or \"fuller\"");
+  if (g.law != Law::LogNormal) only({"sigma"}, "\"lognormal\"");
+  g.d_min = gr.number("d_min", 0);
+  g.d_max = gr.number("d_max", 0);
+  g.sigma = gr.number("sigma", g.sigma);
+  g.exponent = gr.number("exponent", g.exponent);
+  g.sizes = gr.numbers("sizes", {});
+  g.passing = gr.numbers("passing", {});
+  if (g.law != Law::Single && s.method != Specimen::Method::Pour)
+    gr.fail("conflicting_keys", "law", "a grading needs specimen.method = \"pour\"");
+  const bool sets_d50 = g.law == Law::Uniform || g.law == Law::Fuller || g.law == Law::Sieve;
+  if (sets_d50 && sp.has("diameter"))
+    sp.fail("conflicting_keys", "diameter",
+            std::string("the grading law \"") + choice_name(g.law) +
+                "\" sets the sizes; leave diameter out (D50 is read from the curve)");
+  if (g.law == Law::Single) return sp.number("diameter");
+  const double d50 = sets_d50 ? 0 : sp.number("diameter");
+  try {
+    const GradingCurve curve = grading_curve(g, d50);  // a bad curve is refused here, by field
+    return sets_d50 ? curve.size_at(0.5) : d50;
+  } catch (const GradingError& e) {
+    gr.fail("out_of_range", e.field, e.what());
+  }
+}
+
+}  // namespace
+
 Specimen read_specimen(const Reader& apparatus, const Scene& scene) {
-  Reader sp = apparatus.sub("specimen", {"method", "material", "diameter", "layers", "clearance", "seed"});
+  Reader sp = apparatus.sub("specimen", {"method", "material", "diameter", "layers", "clearance",
+                                         "seed", "grading"});
   Specimen s;
   s.method = sp.choice("method", Specimen::Method::Layers);
   if (s.method == Specimen::Method::Given) {
-    sp.forbid({"material", "diameter", "layers", "clearance", "seed"},
+    sp.forbid({"material", "diameter", "layers", "clearance", "seed", "grading"},
               "only allowed when method = \"layers\" or \"pour\"");
     return s;
   }
   s.material = sp.material("material", scene);
-  s.diameter = sp.number("diameter");
+  s.diameter = read_grading(sp, s);
   const std::int64_t layers = sp.integer("layers");
   if (layers < 1 || layers > 200)
     sp.fail("out_of_range", "layers", std::to_string(layers) + " is out of range, allowed [1, 200]");

@@ -149,7 +149,10 @@ INLINE PairContact pair_contact(PairGap g, lane ri) {
   const lane dist = SEL(g.on, g.d2 * inv_dist, (real)0.5 * g.rsum);
   PairContact k;
   k.nv = v_sel(g.on, v_mul(inv_dist, g.d), V3((lane)1, (lane)0, (lane)0));
-  k.delta = g.rsum - dist;
+  // >= 0: where the partners barely touch, d2 < rsum^2 can still give a
+  // dist a rounding above rsum (rsqrt is not correctly rounded), and a
+  // negative overlap would make the law's sqrt NaN
+  k.delta = fmax(g.rsum - dist, (real)0);
   k.ai = ri - (real)0.5 * k.delta;  // lever arms to the common contact point
   k.aj = g.rj - (real)0.5 * k.delta;
   return k;

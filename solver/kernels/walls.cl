@@ -230,7 +230,7 @@ INLINE WallContact wall_contact(__global const real* restrict walls,
   k.on = (dist2 < o->r * o->r) & (dist2 > (real)0);
   const lane dist = SEL(k.on, sqrt(dist2), (real)0.5 * o->r);
   k.nv = v_sel(k.on, v_mul(1 / dist, to_wall), V3((lane)1, (lane)0, (lane)0));
-  k.delta = o->r - dist;
+  k.delta = fmax(o->r - dist, (real)0);  // >= 0 whatever the rounding (forces.cl)
   k.a = o->r - (real)0.5 * k.delta;
   return k;
 }

@@ -28,6 +28,10 @@ SIMSOLS_CHOICES(Specimen::Method, {Specimen::Method::Layers, "layers"},
                 {Specimen::Method::Pour, "pour"}, {Specimen::Method::Given, "given"})
 SIMSOLS_CHOICES(Specimen::Clearance, {Specimen::Clearance::Shift, "shift"},
                 {Specimen::Clearance::Spread, "spread"})
+// [*.specimen.grading] law
+SIMSOLS_CHOICES(Grading::Law, {Grading::Law::Single, "single"}, {Grading::Law::Uniform, "uniform"},
+                {Grading::Law::LogNormal, "lognormal"}, {Grading::Law::Fuller, "fuller"},
+                {Grading::Law::Sieve, "sieve"})
 
 // [triaxial] path
 SIMSOLS_CHOICES(Triaxial::Path, {Triaxial::Path::ConstantSigma3, "constant_sigma3"},

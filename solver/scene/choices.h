@@ -38,6 +38,7 @@ template <> std::span<const Named<WallShape>> choices();
 template <> std::span<const Named<ShearBox::Loading>> choices();
 template <> std::span<const Named<Specimen::Method>> choices();
 template <> std::span<const Named<Specimen::Clearance>> choices();
+template <> std::span<const Named<Grading::Law>> choices();
 template <> std::span<const Named<Triaxial::Path>> choices();
 
 // The name of `value` ("?" for a value outside the table).

@@ -196,6 +196,18 @@ struct Outputs {
 
 // The specimen of an apparatus with a rectangular cell: how its beads are
 // placed (apparatus/specimen.h).
+// A grading curve: the mass fraction of a specimen passing each size, as a
+// sieve analysis gives it (docs/specimens.md; solver/apparatus/grading.h).
+struct Grading {
+  enum class Law : std::uint8_t { Single, Uniform, LogNormal, Fuller, Sieve };
+  Law law = Law::Single;       // Single: every bead of specimen.diameter
+  double d_min = 0, d_max = 0; // m, the cut-offs (0 = the law's default where it has one)
+  double sigma = 0.25;         // LogNormal: standard deviation of ln d, by mass (D50 = diameter)
+  double exponent = 0.5;       // Fuller: P = (d^n - d_min^n) / (d_max^n - d_min^n)
+  std::vector<double> sizes;   // Sieve: m, increasing
+  std::vector<double> passing; // Sieve: % by mass, from 0 to 100, non-decreasing
+};
+
 struct Specimen {
   enum class Method : std::uint8_t { Layers, Pour, Given };
   enum class Clearance : std::uint8_t { Shift, Spread };
@@ -205,6 +217,7 @@ struct Specimen {
   int layers = 0;                  // Layers: layers; Pour: beads for that many layers
   Clearance clearance = Clearance::Shift;  // Layers: how the row-wall clearance is used
   std::int64_t seed = 1;
+  Grading grading;                 // Pour: the sizes' distribution
 };
 
 // The direct shear apparatus of the reference paper (its section 5) and its
