@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "solver/common/line_fit.h"
 #include "solver/common/number_text.h"
 
 namespace simsols {
@@ -56,13 +57,8 @@ double compression_index(const std::vector<double>& sigma, const std::vector<dou
   if (n < 2 || e.size() != n) return 0;
   std::vector<double> x;
   for (double s : sigma) x.push_back(std::log10(s));
-  const double mx = mean(x), me = mean(e);
-  double sxy = 0, sxx = 0;
-  for (size_t i = 0; i < n; ++i) {
-    sxy += (x[i] - mx) * (e[i] - me);
-    sxx += (x[i] - mx) * (x[i] - mx);
-  }
-  return sxx > 0 ? -sxy / sxx : 0;
+  const LineFit f = fit_line(x, e);
+  return f.fitted ? -f.slope : 0;
 }
 
 OedometerSummary analyse_oedometer(const std::vector<OedometerRow>& rows, int peak,

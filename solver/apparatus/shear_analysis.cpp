@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "solver/common/line_fit.h"
+
 namespace simsols {
 namespace {
 
@@ -374,40 +376,17 @@ ShearSummary parse_shear_summary(const std::string& text) {
 
 MohrCoulomb fit_mohr_coulomb(const std::vector<double>& sigma, const std::vector<double>& tau) {
   MohrCoulomb m;
-  const size_t n = std::min(sigma.size(), tau.size());
-  m.points = static_cast<int>(n);
-  if (n < 2) return m;
-  double sx = 0, sy = 0;
-  for (size_t i = 0; i < n; ++i) {
-    sx += sigma[i];
-    sy += tau[i];
-  }
-  const double mx = sx / n, my = sy / n;
-  double sxx = 0, sxy = 0, ss_tot = 0;
-  for (size_t i = 0; i < n; ++i) {
-    sxx += (sigma[i] - mx) * (sigma[i] - mx);
-    sxy += (sigma[i] - mx) * (tau[i] - my);
-    ss_tot += (tau[i] - my) * (tau[i] - my);
-  }
-  if (sxx <= 0) return m;
-  m.tan_phi = sxy / sxx;
-  m.cohesion = my - m.tan_phi * mx;
+  const LineFit f = fit_line(sigma, tau);
+  m.points = f.points;
+  if (!f.fitted) return m;
+  m.tan_phi = f.slope;
+  m.cohesion = f.intercept;
   m.phi_deg = std::atan(m.tan_phi) * kRad;
-  double ss_res = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const double e = tau[i] - (m.cohesion + m.tan_phi * sigma[i]);
-    ss_res += e * e;
-  }
-  m.r2 = ss_tot > 0 ? 1 - ss_res / ss_tot : 1;
-  m.exact = n == 2;
-  if (m.exact) {
-    m.cohesion_se = m.tan_phi_se = m.phi_se_deg = std::numeric_limits<double>::quiet_NaN();
-    return m;
-  }
-  const double s2 = ss_res / double(n - 2);
-  m.tan_phi_se = std::sqrt(s2 / sxx);
-  m.cohesion_se = std::sqrt(s2 * (1.0 / n + mx * mx / sxx));
-  m.phi_se_deg = m.tan_phi_se / (1 + m.tan_phi * m.tan_phi) * kRad;
+  m.r2 = f.r2;
+  m.exact = f.points == 2;
+  m.tan_phi_se = f.slope_se;
+  m.cohesion_se = f.intercept_se;
+  m.phi_se_deg = m.exact ? f.slope_se : m.tan_phi_se / (1 + m.tan_phi * m.tan_phi) * kRad;
   return m;
 }
 

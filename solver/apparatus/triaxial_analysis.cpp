@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "solver/common/line_fit.h"
 #include "solver/common/number_text.h"
 
 namespace simsols {
@@ -212,28 +213,6 @@ std::vector<double> csv_numbers(const std::string& line, size_t row) {
   return v;
 }
 
-// The least-squares line y = a + b x: {a, b, standard error of b, R^2}.
-std::array<double, 4> line_fit(const std::vector<double>& x, const std::vector<double>& y) {
-  const size_t n = x.size();
-  double mx = 0, my = 0;
-  for (size_t i = 0; i < n; ++i) {
-    mx += x[i] / n;
-    my += y[i] / n;
-  }
-  double sxx = 0, sxy = 0, syy = 0;
-  for (size_t i = 0; i < n; ++i) {
-    sxx += (x[i] - mx) * (x[i] - mx);
-    sxy += (x[i] - mx) * (y[i] - my);
-    syy += (y[i] - my) * (y[i] - my);
-  }
-  const double b = sxx > 0 ? sxy / sxx : 0, a = my - b * mx;
-  double res = 0;
-  for (size_t i = 0; i < n; ++i) res += (y[i] - a - b * x[i]) * (y[i] - a - b * x[i]);
-  const double se = n > 2 && sxx > 0 ? std::sqrt(res / double(n - 2) / sxx)
-                                     : std::numeric_limits<double>::quiet_NaN();
-  return {a, b, se, syy > 0 ? 1 - res / syy : 1};
-}
-
 }  // namespace
 
 std::vector<TriaxialRow> parse_triaxial_rows_csv(const std::string& text) {
@@ -274,48 +253,41 @@ std::vector<TriaxialRow> parse_triaxial_rows_csv(const std::string& text) {
 MohrCoulomb fit_mohr_circles(const std::vector<double>& sigma1, const std::vector<double>& sigma3) {
   MohrCoulomb m;
   const size_t n = std::min(sigma1.size(), sigma3.size());
-  m.points = static_cast<int>(n);
-  if (n < 2) return m;
   std::vector<double> s(n), t(n);
   for (size_t i = 0; i < n; ++i) {
     s[i] = 0.5 * (sigma1[i] + sigma3[i]);
     t[i] = 0.5 * (sigma1[i] - sigma3[i]);
   }
-  const auto [a, b, b_se, r2] = line_fit(s, t);
-  const double sin_phi = std::clamp(b, -0.999999, 0.999999);
+  const LineFit f = fit_line(s, t);
+  m.points = f.points;
+  if (!f.fitted) return m;
+  const double sin_phi = std::clamp(f.slope, -0.999999, 0.999999);
   const double cos_phi = std::sqrt(1 - sin_phi * sin_phi);
   m.phi_deg = std::asin(sin_phi) * kDeg;
   m.tan_phi = sin_phi / cos_phi;
-  m.cohesion = a / cos_phi;
-  m.r2 = r2;
-  m.exact = n == 2;
-  m.phi_se_deg = b_se / cos_phi * kDeg;  // d(phi) = d(sin phi) / cos phi
-  m.tan_phi_se = b_se / (cos_phi * cos_phi * cos_phi);
-  if (m.exact) {
-    m.cohesion_se = b_se;  // NaN
-  } else {
-    double ms = 0, sss = 0;
-    for (double x : s) ms += x / n;
-    for (double x : s) sss += (x - ms) * (x - ms);
-    // The intercept's error, as the slope's scaled by the spread of s.
-    m.cohesion_se = b_se * std::sqrt(sss / n + ms * ms) / cos_phi;
-  }
+  m.cohesion = f.intercept / cos_phi;
+  m.r2 = f.r2;
+  m.exact = f.points == 2;
+  m.phi_se_deg = f.slope_se / cos_phi * kDeg;  // d(phi) = d(sin phi) / cos phi
+  m.tan_phi_se = f.slope_se / (cos_phi * cos_phi * cos_phi);
+  m.cohesion_se = f.intercept_se / cos_phi;  // NaN with two circles
   return m;
 }
 
 CriticalStateLine fit_critical_state_line(const std::vector<double>& p, const std::vector<double>& e) {
   CriticalStateLine c;
   const size_t n = std::min(p.size(), e.size());
-  c.points = static_cast<int>(n);
-  if (n < 2) return c;
   std::vector<double> lnp(n);
   for (size_t i = 0; i < n; ++i) lnp[i] = std::log(p[i] / 1e3);
-  const auto [a, b, b_se, r2] = line_fit(lnp, std::vector<double>(e.begin(), e.begin() + n));
-  c.gamma = a;
-  c.lambda = -b;
-  c.lambda_se = b_se;
-  c.r2 = r2;
+  const LineFit f = fit_line(lnp, e);
+  c.points = f.points;
+  if (!f.fitted) return c;
+  c.gamma = f.intercept;
+  c.lambda = -f.slope;
+  c.lambda_se = f.slope_se;
+  c.r2 = f.r2;
   return c;
 }
+
 
 }  // namespace simsols
