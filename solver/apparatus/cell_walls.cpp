@@ -23,6 +23,18 @@ Wall rectangle_wall(const std::string& name, int material, const Vec3& centre, c
   return w;
 }
 
+std::vector<Wall> cuboid_walls(const std::string& sides, int m, double L, double W, double h,
+                               double platen_z, double reach) {
+  const Vec3 ex{1, 0, 0}, ey{0, 1, 0}, ez{0, 0, 1};
+  const double hu = L / 2 + reach, hv = W / 2 + reach, hz = h / 2 + reach;
+  return {rectangle_wall("floor", m, {L / 2, W / 2, 0}, ez, ex, hu, hv),
+          rectangle_wall(sides + "_x0", m, {0, W / 2, h / 2}, ex, ey, hv, hz),
+          rectangle_wall(sides + "_x1", m, {L, W / 2, h / 2}, {-1, 0, 0}, ey, hv, hz),
+          rectangle_wall(sides + "_y0", m, {L / 2, 0, h / 2}, ey, ex, hu, hz),
+          rectangle_wall(sides + "_y1", m, {L / 2, W, h / 2}, {0, -1, 0}, ex, hu, hz),
+          rectangle_wall("platen", m, {L / 2, W / 2, platen_z}, {0, 0, -1}, ex, hu, hv)};
+}
+
 bool resolve_wall_material(Scene& scene, int& material) {
   if (material < 0) {
     material = scene.material_index("steel");

@@ -1,8 +1,9 @@
-// Pieces shared by the apparatus builders (shear_box.h, oedometer.h): the
+// Pieces shared by the apparatus builders (shear_box.h, oedometer.h, triaxial.h): the
 // rigid plates they are made of and the box material.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "solver/scene/scene_check.h"
 
@@ -19,6 +20,14 @@ Material default_box_steel();
 // A rectangle wall (a thin two-sided plate) centred at `centre`.
 Wall rectangle_wall(const std::string& name, int material, const Vec3& centre, const Vec3& normal,
                     const Vec3& axis_u, double half_u, double half_v);
+
+// A cuboid cell's six plates on [0, L] x [0, W] with the floor at z = 0,
+// in the apparatus' wall order (OedometerWall, TriaxialWall): floor,
+// <sides>_x0, <sides>_x1, <sides>_y0, <sides>_y1 (the side plates, `h`
+// tall), platen (at platen_z, facing down). Each reaches `reach` past the
+// cell's edges (0: exactly the cell's faces).
+std::vector<Wall> cuboid_walls(const std::string& sides, int material, double L, double W,
+                               double h, double platen_z, double reach);
 
 // An apparatus' wall material: -1 becomes the scene's "steel", added (as
 // default_box_steel) when the scene has none. False when `material` names

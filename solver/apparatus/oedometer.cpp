@@ -34,21 +34,16 @@ void add_walls(Scene& scene, Oedometer& o, double top, double r_max) {
   const double L = o.length, W = o.width;
   const double platen_z = top + 0.2 * r_max;
   const double h = platen_z + 4 * r_max;  // the sides' height
-  const Vec3 ex{1, 0, 0}, ey{0, 1, 0}, ez{0, 0, 1};
   o.first_wall = static_cast<int>(scene.walls.size());
-  auto& w = scene.walls;
-  w.push_back(rectangle_wall("floor", m, {L / 2, W / 2, 0}, ez, ex, L / 2, W / 2));
-  w.push_back(rectangle_wall("ring_x0", m, {0, W / 2, h / 2}, ex, ey, W / 2, h / 2));
-  w.push_back(rectangle_wall("ring_x1", m, {L, W / 2, h / 2}, {-1, 0, 0}, ey, W / 2, h / 2));
-  w.push_back(rectangle_wall("ring_y0", m, {L / 2, 0, h / 2}, ey, ex, L / 2, h / 2));
-  w.push_back(rectangle_wall("ring_y1", m, {L / 2, W, h / 2}, {0, -1, 0}, ex, L / 2, h / 2));
-  Wall platen = rectangle_wall("platen", m, {L / 2, W / 2, platen_z}, {0, 0, -1}, ex, L / 2, W / 2);
-  // Switched on and tuned by the loading programme (oedometer_test.h).
-  platen.servo.enabled = true;
-  platen.servo.target_force = o.load_steps.front() * oedometer_area(o);
-  platen.servo.gain = 1;
-  platen.servo.max_speed = o.servo_max_speed;
-  w.push_back(platen);
+  std::vector<Wall> w = cuboid_walls("ring", m, L, W, h, platen_z, 0);
+  // The platen's servo, switched on and tuned by the loading programme
+  // (oedometer_test.h).
+  WallServo& servo = w[kOedPlaten].servo;
+  servo.enabled = true;
+  servo.target_force = o.load_steps.front() * oedometer_area(o);
+  servo.gain = 1;
+  servo.max_speed = o.servo_max_speed;
+  scene.walls.insert(scene.walls.end(), w.begin(), w.end());
 }
 
 void build(Scene& scene) {

@@ -46,18 +46,10 @@ void add_walls(Scene& scene, Triaxial& t, double top, double r_max) {
   const double platen_z = top + 0.2 * r_max;
   const double h = platen_z + 2 * r_max;
   const double reach = 0.5 * std::max({L, W, h});  // past each edge
-  const Vec3 ex{1, 0, 0}, ey{0, 1, 0}, ez{0, 0, 1};
-  const double hu = L / 2 + reach, hv = W / 2 + reach, hz = h / 2 + reach;
-  const double v = t.servo_max_speed;
   t.first_wall = static_cast<int>(scene.walls.size());
-  auto& w = scene.walls;
-  w.push_back(rectangle_wall("floor", m, {L / 2, W / 2, 0}, ez, ex, hu, hv));
-  w.push_back(servo_plate(rectangle_wall("side_x0", m, {0, W / 2, h / 2}, ex, ey, hv, hz), v));
-  w.push_back(servo_plate(rectangle_wall("side_x1", m, {L, W / 2, h / 2}, {-1, 0, 0}, ey, hv, hz), v));
-  w.push_back(servo_plate(rectangle_wall("side_y0", m, {L / 2, 0, h / 2}, ey, ex, hu, hz), v));
-  w.push_back(servo_plate(rectangle_wall("side_y1", m, {L / 2, W, h / 2}, {0, -1, 0}, ex, hu, hz), v));
-  w.push_back(servo_plate(
-      rectangle_wall("platen", m, {L / 2, W / 2, platen_z}, {0, 0, -1}, ex, hu, hv), v));
+  std::vector<Wall> w = cuboid_walls("side", m, L, W, h, platen_z, reach);
+  for (int k = kTriX0; k <= kTriPlaten; ++k) w[k] = servo_plate(w[k], t.servo_max_speed);
+  scene.walls.insert(scene.walls.end(), w.begin(), w.end());
 }
 
 void build(Scene& scene) {
