@@ -144,7 +144,7 @@ CampaignOutcome run_campaign_loop(const CampaignLoop& loop, const CampaignRun& r
     const std::string label = "campaign " + std::to_string(k + 1) + "/" +
                               std::to_string(loop.count) + " " + loop.name(k);
     if (programme_finished(dir.string())) {
-      loop.keep(k, label);
+      loop.keep(k);
       if (!run.quiet) std::fprintf(stderr, "[%s] finished earlier, kept\n", label.c_str());
       continue;
     }
@@ -157,7 +157,7 @@ CampaignOutcome run_campaign_loop(const CampaignLoop& loop, const CampaignRun& r
     o.out_dir = dir.string();
     o.label = label;
     o.quiet = run.quiet;
-    o.resume = fs::exists(dir / "checkpoint.bin");
+    o.resume = fs::exists(dir / "checkpoint.bin") && fs::exists(dir / loop.rows_file);
     o.stop_requested = run.stop_requested;
     o.later_particle_steps = total_cost - done_cost - loop.cost(k);
     const auto t0 = std::chrono::steady_clock::now();
@@ -177,15 +177,9 @@ CampaignOutcome run_campaign(std::vector<CampaignTest>& tests, const std::string
                              const CampaignSpec& spec, const std::string& out_dir,
                              const CampaignRun& run) {
   fs::create_directories(out_dir);
-  CampaignLoop loop;
-  loop.count = tests.size();
-  loop.what = "tests";
-  loop.cost = [&](size_t k) { return tests[k].cost; };
-  loop.dir = [&](size_t k) { return tests[k].dir; };
-  loop.name = [&](size_t k) { return tests[k].scene.name; };
-  loop.keep = [&](size_t k, const std::string&) { keep_finished(tests[k]); };
+  CampaignLoop loop = campaign_loop(tests, "tests", "shear.csv");
+  loop.keep = [&](size_t k) { keep_finished(tests[k]); };
   loop.run = [&](size_t k, ProgrammeRunOptions& o) {
-    o.resume = o.resume && fs::exists(tests[k].dir / "shear.csv");
     tests[k].result = run_shear(tests[k].scene, o);
     return tests[k].result.interrupted;
   };

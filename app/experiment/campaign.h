@@ -21,6 +21,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/experiment/shear_run.h"
@@ -64,23 +65,36 @@ struct CampaignOutcome {
 };
 
 // The loop every campaign runs, whatever its apparatus: for each test, keep
-// it when finished earlier, else run it (resuming its checkpoint), with
-// progress and an ETA over the whole campaign. Test k's callbacks: its
-// estimated cost (particle-steps), its folder, whether it finished earlier
-// (then `keep` reads it back), `run` (true when interrupted) and `print`
-// its result.
+// it when finished earlier, else run it (resuming its checkpoint when its
+// rows file is there too), with progress and an ETA over the whole
+// campaign. Test k's callbacks: its estimated cost (particle-steps), its
+// folder and name, `keep` (read back a test finished earlier), `run` (true
+// when interrupted) and `print` its result. campaign_loop() fills the
+// first three from a test list.
 struct CampaignLoop {
   size_t count = 0;
-  std::string what;  // "tests", "triaxial tests"
+  std::string what;       // "tests", "triaxial tests"
+  std::string rows_file;  // "shear.csv", "triaxial.csv"
   std::function<double(size_t)> cost;
   std::function<std::filesystem::path(size_t)> dir;
   std::function<std::string(size_t)> name;
-  std::function<void(size_t, const std::string& label)> keep;
+  std::function<void(size_t)> keep;
   // Fills in the test's result from a run with these options; true when
   // the run was interrupted.
   std::function<bool(size_t, ProgrammeRunOptions&)> run;
   std::function<void(size_t)> print;
 };
+template <class Test>
+CampaignLoop campaign_loop(std::vector<Test>& tests, std::string what, std::string rows_file) {
+  CampaignLoop loop;
+  loop.count = tests.size();
+  loop.what = std::move(what);
+  loop.rows_file = std::move(rows_file);
+  loop.cost = [&tests](size_t k) { return tests[k].cost; };
+  loop.dir = [&tests](size_t k) { return tests[k].dir; };
+  loop.name = [&tests](size_t k) { return tests[k].scene.name; };
+  return loop;
+}
 CampaignOutcome run_campaign_loop(const CampaignLoop& loop, const CampaignRun& run);
 
 // Runs the tests not finished yet (keeping the results of those that are),

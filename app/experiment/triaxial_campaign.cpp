@@ -103,15 +103,9 @@ CampaignOutcome run_triaxial_campaign(std::vector<TriaxialCampaignTest>& tests,
                                       const std::string& base_name, const std::string& out_dir,
                                       const CampaignRun& run) {
   fs::create_directories(out_dir);
-  CampaignLoop loop;
-  loop.count = tests.size();
-  loop.what = "triaxial tests";
-  loop.cost = [&](size_t k) { return tests[k].cost; };
-  loop.dir = [&](size_t k) { return tests[k].dir; };
-  loop.name = [&](size_t k) { return tests[k].scene.name; };
-  loop.keep = [&](size_t k, const std::string&) { keep_finished(tests[k]); };
+  CampaignLoop loop = campaign_loop(tests, "triaxial tests", "triaxial.csv");
+  loop.keep = [&](size_t k) { keep_finished(tests[k]); };
   loop.run = [&](size_t k, ProgrammeRunOptions& o) {
-    o.resume = o.resume && fs::exists(tests[k].dir / "triaxial.csv");
     tests[k].result = run_triaxial(tests[k].scene, o);
     return tests[k].result.state.interrupted;
   };
