@@ -46,7 +46,8 @@ void check_spec(const Scene& base, const std::string& base_name, const TriaxialC
 // summary and plots rewritten when today's analysis differs).
 void keep_finished(TriaxialCampaignTest& t) {
   t.result.rows = parse_triaxial_rows_csv(read_text(t.dir / "triaxial.csv"));
-  const auto keys = summary_keys(read_text(t.dir / "summary.txt"));
+  const std::string text = read_text(t.dir / "summary.txt");
+  const auto keys = summary_keys(text);
   TriaxialSummary& s = t.result.summary;
   s = TriaxialSummary{};
   s.confining_stress = t.s_kpa * 1e3;
@@ -59,7 +60,7 @@ void keep_finished(TriaxialCampaignTest& t) {
   s.bead_diameter *= 1e-3;
   analyse_triaxial_rows(t.result.rows, s);
   // Today's analysis of the rows, written back when it reads them otherwise.
-  if (const std::string now = triaxial_summary_text(s); now != read_text(t.dir / "summary.txt")) {
+  if (const std::string now = triaxial_summary_text(s); now != text) {
     write_triaxial_plots(t.dir.string(), t.scene.name, t.result.rows, s);
     write_file_atomic((t.dir / "summary.txt").string(), now);
   }
