@@ -12,6 +12,7 @@
 #include "app/cli/interrupt.h"
 #include "app/experiment/campaign.h"
 #include "app/experiment/paper_tests.h"
+#include "app/experiment/preparation.h"
 #include "app/experiment/triaxial_campaign.h"
 #include "solver/io/scene_toml.h"
 
@@ -41,7 +42,7 @@ int report_interrupted(size_t k, size_t count, const std::string& name,
   return interrupt.exit_status();
 }
 
-int triaxial_campaign(const CampaignOptions& opt, const Scene& base, const std::string& base_name) {
+int triaxial_campaign(const CampaignOptions& opt, Scene base, const std::string& base_name) {
   for (const auto& [given, flag] : {std::pair{opt.sizes_given, "--sizes"},
                                     {opt.layers_given, "--layers"},
                                     {opt.displacement_given, "--displacement"}})
@@ -51,10 +52,14 @@ int triaxial_campaign(const CampaignOptions& opt, const Scene& base, const std::
   TriaxialCampaignSpec spec;
   if (opt.stresses_given) spec.stresses_kpa = opt.stresses_kpa;
   spec.precision = precision_flag(opt.precision);
-  std::vector<TriaxialCampaignTest> tests =
-      plan_triaxial_campaign(base, base_name, spec, opt.out_dir);
   InterruptScope interrupt;
   const CampaignRun run{open_command_device(), interrupt.stop_function(), opt.quiet};
+  // every test shears the same poured specimen: one search for its density
+  prepare_to_relative_density(base, run.device, opt.out_dir, [&](const std::string& line) {
+    if (!opt.quiet) std::fprintf(stderr, "[prepare] %s\n", line.c_str());
+  });
+  std::vector<TriaxialCampaignTest> tests =
+      plan_triaxial_campaign(base, base_name, spec, opt.out_dir);
   const CampaignOutcome outcome = run_triaxial_campaign(tests, base_name, opt.out_dir, run);
   if (outcome.interrupted) {
     const TriaxialCampaignTest& t = tests[outcome.interrupted_test];
@@ -72,6 +77,10 @@ int campaign(const CampaignOptions& opt) {
   const Scene base = opt.base.empty() ? parse_scene(default_shear_scene_text(), base_name)
                                       : load_scene(opt.base);
   if (base.triaxial) return triaxial_campaign(opt, base, base_name);
+  if (base.shear_box && base.shear_box->specimen.preparation.relative_density)
+    throw SceneError("not_applicable", base_name, 0, "shear_box.specimen.preparation.relative_density",
+                     "a shear campaign pours a new specimen for each size; give the preparation "
+                     "friction instead (simsols run finds it: its scene.resolved.toml)");
   CampaignSpec spec;
   spec.sizes_mm = opt.sizes_mm;
   spec.stresses_kpa = opt.stresses_kpa;

@@ -26,6 +26,7 @@
 #include "app/experiment/run_cost.h"
 #include "solver/io/scene_toml.h"
 #include "app/experiment/oedometer_run.h"
+#include "app/experiment/preparation.h"
 #include "app/experiment/shear_run.h"
 #include "app/experiment/triaxial_run.h"
 #include "solver/core/simulation.h"
@@ -390,6 +391,10 @@ int run(const RunOptions& opt) {
   if (!opt.frames_dir.empty()) frames = std::make_unique<FrameSeries>(opt, engine);
   const std::shared_ptr<Device> device = frames ? frames->device() : Device::open(engine);
   const std::filesystem::path dir = opt.out_dir;
+  if (scene)
+    prepare_to_relative_density(*scene, device, dir, [&](const std::string& line) {
+      if (!opt.quiet) std::fprintf(stderr, "[prepare] %s\n", line.c_str());
+    });
   InterruptScope interrupt;
   std::unique_ptr<Simulation> sim;
   std::string extra;

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "app/experiment/grading_plots.h"
+#include "app/experiment/preparation.h"
 #include "app/experiment/progress.h"
 #include "app/experiment/run_cost.h"
 #include "solver/io/checkpoint.h"
@@ -48,6 +49,21 @@ void warn_late_builds(Simulation& sim) {
                  static_cast<long long>(sim.state().late_builds));
 }
 
+// packing.txt once the specimen has settled, and its line.
+void report_packing(Simulation& sim, const fs::path& dir, const ProgrammeRunOptions& opt) {
+  const SpecimenCell cell = specimen_cell(sim.scene());
+  if (!cell.specimen) return;
+  const Packing p = measure_specimen(sim);
+  const Preparation& prep = cell.specimen->preparation;
+  write_file_atomic((dir / "packing.txt").string(), packing_text(p, prep));
+  if (opt.quiet) return;
+  char dr[40] = "";
+  if (prep.e_min)
+    std::snprintf(dr, sizeof dr, ", D_r = %.3f", relative_density(p.void_ratio, *prep.e_min, *prep.e_max));
+  std::fprintf(stderr, "[%s] settled: e = %.4f%s, %.2f contacts per bead, fabric anisotropy %.3f\n",
+               opt.label.c_str(), p.void_ratio, dr, p.coordination, p.fabric_anisotropy);
+}
+
 }  // namespace
 
 ProgrammeRunState drive_programme(Simulation& sim, ProgrammeOutputs& out,
@@ -70,9 +86,11 @@ ProgrammeRunState drive_programme(Simulation& sim, ProgrammeOutputs& out,
     }
     const long long budget = opt.stop_after > 0 ? opt.stop_after - (sim.steps() - first) : 1LL << 40;
     if (budget <= 0) break;
+    const bool settling = std::strcmp(test.stage_name(), "settle") == 0;
     try {
       test.advance(std::min<long long>(budget, std::max(1LL, opt.chunk_steps)));
       sim.check();  // before frames, progress and checkpoints look at it
+      if (settling && std::strcmp(test.stage_name(), "settle") != 0) report_packing(sim, dir, opt);
     } catch (const RunawayError& e) {
       // The simulation is at the step before the fault; the driver's state
       // is the one it had then (it only acts at readings, which are guarded).

@@ -1,5 +1,7 @@
 #include "app/lab/lab_experiment.h"
 
+#include "app/experiment/preparation.h"
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -72,6 +74,10 @@ std::string LabExperiment::load_scene_file(const std::string& path) {
     if (!apparatus_kind(sc))
       return path + ": the lab runs shear box, triaxial and oedometer tests; this scene has none "
                     "of the tables [shear_box], [triaxial], [oedometer]";
+    const SpecimenCell cell = specimen_cell(sc);
+    if (cell.specimen && cell.specimen->preparation.relative_density)
+      return path + ": specimen.preparation.relative_density is searched by 'simsols run " + path +
+             " --out DIR'; open DIR/scene.resolved.toml here, which holds the friction it found";
     return adopt_scene(std::move(sc), path, path, false);
   } catch (const std::exception& e) {
     return e.what();

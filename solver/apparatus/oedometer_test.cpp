@@ -66,6 +66,7 @@ void OedometerTest::enter(Stage s) {
   if (stage_ == Stage::Settle) settle_seconds_ = (now - stage_start_) * sim_.dt();
   stage_ = s;
   stage_start_ = now;
+  preparation_friction(sim_, oed_.specimen, s == Stage::Settle);
   next_check_ = now + std::max<std::int64_t>(50, std::llround(kCheckSeconds / sim_.dt()));
   const int platen = oed_.first_wall + kOedPlaten;
   if (s == Stage::Settle || s == Stage::Done) {
@@ -231,6 +232,7 @@ void OedometerTest::restore_state(const std::string& text) {
       step_ >= static_cast<int>(oed_.load_steps.size()))
     throw std::runtime_error("malformed oedometer-test state");
   stage_ = static_cast<Stage>(stage);
+  preparation_friction(sim_, oed_.specimen, started_ && stage_ == Stage::Settle);
   if (count > 10000000) throw std::runtime_error("malformed oedometer-test state");
   rows_.assign(count, {});
   for (OedometerRow& r : rows_)

@@ -148,6 +148,7 @@ void ShearTest::enter(ShearPhase p) {
   phase_ = p;
   phase_start_ = now;
   quiet_checks_ = 0;
+  preparation_friction(sim_, box_.specimen, p == ShearPhase::Settle);
   next_check_ = now + std::max<std::int64_t>(50, steps_for(0.5e-3));
   switch (p) {
     case ShearPhase::Settle:
@@ -398,6 +399,7 @@ void ShearTest::restore_state(const std::string& text) {
   in >> count;
   if (!in || phase < 0 || phase > 3) throw std::runtime_error("malformed shear-test state");
   phase_ = static_cast<ShearPhase>(phase);
+  preparation_friction(sim_, box_.specimen, started_ && phase_ == ShearPhase::Settle);
   rows_.assign(count, {});
   for (ShearRow& r : rows_) {
     in >> r.time >> r.step >> r.displacement >> r.shear_force >> r.shear_force_upper >> r.tau >>

@@ -89,12 +89,35 @@ std::vector<double> pour_sizes(const Specimen& s, const Cell& b) {
   return sizes;
 }
 
+// The pouring column's height: three specimen heights, or the height at
+// which the beads fill the preparation's intensity (its solid fraction).
+double column_height(const Specimen& s, const Cell& b, const std::vector<double>& sizes) {
+  if (s.preparation.intensity <= 0) return 3.0 * s.layers * s.diameter;
+  double solid = 0;
+  for (double d : sizes) solid += kPi / 6 * d * d * d;
+  return std::max(solid / (s.preparation.intensity * b.length * b.width), 1.5 * sizes.front());
+}
+
+// The rain's speed: that of a free fall from the preparation's drop height.
+Vec3 rain_velocity(const Scene& scene, const Specimen& s, const Cell& b) {
+  const double h = s.preparation.drop_height;
+  if (h <= 0) return {};
+  const double g = norm(scene.effects.gravity);
+  if (!(g > 0))
+    b.check.fail("conflicting_keys", "specimen.preparation.drop_height",
+                 "a drop height needs gravity (effects.gravity is zero)");
+  const double v = std::sqrt(2 * g * h);
+  const Vec3& down = scene.effects.gravity;
+  return {v * down[0] / g, v * down[1] / g, v * down[2] / g};
+}
+
 // Random pour: the beads placed at random, without overlap, largest first,
-// in a column three specimen heights tall.
+// in the pouring column, raining at the drop height's speed.
 void place_pour(Scene& scene, const Specimen& s, const Cell& b) {
   const std::vector<double> sizes = pour_sizes(s, b);
   const int count = static_cast<int>(sizes.size());
-  const double top = 3.0 * s.layers * s.diameter, d_max = sizes.front();
+  const double top = column_height(s, b, sizes), d_max = sizes.front();
+  const Vec3 rain = rain_velocity(scene, s, b);
   Prng prng(static_cast<std::uint64_t>(s.seed));
   SphereGrid grid(d_max, static_cast<size_t>(count));
   const size_t first = scene.particles.size();
@@ -120,7 +143,7 @@ void place_pour(Scene& scene, const Specimen& s, const Cell& b) {
       });
     }
     grid.insert(placed, p);
-    scene.particles.push_back({s.material, r, p, {}, {}});
+    scene.particles.push_back({s.material, r, p, rain, {}});
   }
 }
 

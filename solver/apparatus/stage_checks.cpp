@@ -14,6 +14,13 @@ bool settled_under_gravity(Simulation& sim, const SpecimenStats& stats, double e
   return o.kinetic() < 1e-4 * scale;
 }
 
+void preparation_friction(Simulation& sim, const Specimen& specimen, bool settling) {
+  const Preparation& p = specimen.preparation;
+  if (!p.settles_differently()) return;
+  if (!settling) return sim.override_friction(std::nullopt);
+  sim.override_friction(Model::FrictionOverride{p.friction, p.rolling_friction});
+}
+
 double rms_bead_speed(const Observables& o, const SpecimenStats& stats) {
   return std::sqrt(2 * o.kinetic_translational / (o.particles * stats.bead_mass));
 }

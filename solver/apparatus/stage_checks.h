@@ -14,6 +14,11 @@ namespace simsols {
 // gravity, while the beads are still falling from rest).
 bool settled_under_gravity(Simulation& sim, const SpecimenStats& stats, double elapsed, double cap);
 
+// The specimen's preparation friction (scene.h, Preparation) on while it
+// settles, the materials' own once it has: call at every change of stage.
+// Nothing is written for a specimen that settles with its own friction.
+void preparation_friction(Simulation& sim, const Specimen& specimen, bool settling);
+
 // The beads' RMS translational speed (m/s).
 double rms_bead_speed(const Observables& o, const SpecimenStats& stats);
 

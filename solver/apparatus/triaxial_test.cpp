@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "solver/apparatus/packing.h"
 #include "solver/apparatus/stage_checks.h"
 #include "solver/apparatus/triaxial.h"
 #include "solver/core/stress.h"
@@ -21,27 +22,6 @@ constexpr double kSettleShare = 0.3, kConsolidateShare = 0.3;  // progress estim
 const Triaxial& triaxial_of(const Simulation& sim) {
   if (!sim.scene().triaxial) throw std::invalid_argument("TriaxialTest: the scene has no triaxial cell");
   return *sim.scene().triaxial;
-}
-
-// The fabric anisotropy (15/2)(phi_zz - (phi_xx + phi_yy)/2) of the bead
-// pairs' contact normals.
-double fabric_anisotropy(const ContactSample& sample) {
-  const ParticleSnapshot& snap = sample.beads;
-  double f[3] = {0, 0, 0};
-  int n = 0;
-  for (const ContactForce& c : sample.contacts) {
-    if (c.b < 0) continue;
-    Vec3 l{};
-    double len2 = 0;
-    for (int k = 0; k < 3; ++k) {
-      l[k] = snap.position[c.b][k] - snap.position[c.a][k];
-      len2 += l[k] * l[k];
-    }
-    if (len2 <= 0) continue;
-    for (int k = 0; k < 3; ++k) f[k] += l[k] * l[k] / len2;
-    ++n;
-  }
-  return n > 0 ? 7.5 * (f[2] - 0.5 * (f[0] + f[1])) / n : 0;
 }
 
 }  // namespace
@@ -122,6 +102,7 @@ void TriaxialTest::enter(Stage s) {
   stage_ = s;
   stage_start_ = now;
   quiet_checks_ = 0;
+  preparation_friction(sim_, tri_.specimen, s == Stage::Settle);
   next_check_ = now + check_every();
   const int platen = tri_.first_wall + kTriPlaten;
   if (s == Stage::Settle || s == Stage::Done) {
@@ -404,6 +385,7 @@ void TriaxialTest::restore_state(const std::string& text) {
   if (!in || stage < 0 || stage > 3 || count > 10000000)
     throw std::runtime_error("malformed triaxial-test state");
   stage_ = static_cast<Stage>(stage);
+  preparation_friction(sim_, tri_.specimen, started_ && stage_ == Stage::Settle);
   rows_.assign(count, {});
   for (TriaxialRow& r : rows_)
     in >> r.time >> r.step >> r.axial_strain >> r.volumetric_strain >> r.sigma_x >> r.sigma_y >>

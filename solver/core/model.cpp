@@ -64,13 +64,8 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
 
   pairs_ = make_pair_table(scene_);
   const bool dbl = config().double_precision;
-  RealPacker pk(dbl);
-  for (const PairCoefficients& c : pairs_.pairs) {
-    pk.put4(c.e_star, c.g_star, c.gamma_n, c.sliding_friction);
-    pk.put4(c.rolling_friction, std::sqrt(6 * c.g_star / c.e_star), 0, 0);
-    if (config().capillary) pk.put4(c.capillary_tension, c.liquid_volume, c.rupture_distance, 0);
-  }
-  pair_buf_ = device_->alloc(pk.bytes().size(), pk.bytes().data());
+  const std::vector<unsigned char> packed = pack_pairs();
+  pair_buf_ = device_->alloc(packed.size(), packed.data());
 
   RealPacker wk(dbl);
   for (const Wall& w : scene_.walls) {
@@ -83,6 +78,26 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
   }
   wall_buf_ = device_->alloc(wk.bytes().size(), wk.bytes().data());
   local_size_ = std::max(1, device_->options().local_size);
+}
+
+// The pair table as the kernels read it (common.cl), with the friction
+// override applied.
+std::vector<unsigned char> Model::pack_pairs() const {
+  RealPacker pk(config().double_precision);
+  for (const PairCoefficients& c : pairs_.pairs) {
+    const double mu_s = friction_ ? friction_->sliding.value_or(c.sliding_friction) : c.sliding_friction;
+    const double mu_r = friction_ ? friction_->rolling.value_or(c.rolling_friction) : c.rolling_friction;
+    pk.put4(c.e_star, c.g_star, c.gamma_n, mu_s);
+    pk.put4(mu_r, std::sqrt(6 * c.g_star / c.e_star), 0, 0);
+    if (config().capillary) pk.put4(c.capillary_tension, c.liquid_volume, c.rupture_distance, 0);
+  }
+  return pk.bytes();
+}
+
+void Model::override_friction(const std::optional<FrictionOverride>& friction) {
+  friction_ = friction;
+  const std::vector<unsigned char> packed = pack_pairs();
+  device_->write(pair_buf_.get(), packed.size(), packed.data());
 }
 
 size_t Model::device_bytes() const {

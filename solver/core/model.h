@@ -8,6 +8,8 @@
 #pragma once
 
 #include <memory>
+#include <optional>
+#include <vector>
 
 #include "solver/core/cl_device.h"
 #include "solver/core/cl_program.h"
@@ -53,7 +55,20 @@ class Model {
   cl_mem wall_buffer() const { return wall_buf_.get(); }
   size_t device_bytes() const;  // of the constant buffers
 
+  // A specimen's preparation (scene.h, Preparation) may settle it with
+  // other friction than its materials': while `friction` is set, every
+  // pair slides with mu_s = friction->sliding and rolls with
+  // friction->rolling (each the materials' where unset). The only change of
+  // the model after construction; std::nullopt restores the scene's table.
+  struct FrictionOverride {
+    std::optional<double> sliding, rolling;
+  };
+  void override_friction(const std::optional<FrictionOverride>& friction);
+  const std::optional<FrictionOverride>& friction_override() const { return friction_; }
+
  private:
+  std::vector<unsigned char> pack_pairs() const;
+
   std::shared_ptr<Device> device_;
   Scene scene_;
   std::unique_ptr<Program> program_;
@@ -64,6 +79,7 @@ class Model {
   double total_mass_ = 0;
   size_t local_size_ = 64;
   ClMem pair_buf_, wall_buf_;
+  std::optional<FrictionOverride> friction_;
 };
 
 }  // namespace simsols

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,11 @@ class Simulation {
   // Moves a wall at once (no sweep: the caller makes sure it lands clear of
   // the particles, e.g. a platen lowered onto a specimen).
   void set_wall_point(int wall, const Vec3& point);
+  // Settles a specimen with other friction than its materials' (a
+  // preparation, scene.h); std::nullopt restores the materials' (model.h).
+  void override_friction(const std::optional<Model::FrictionOverride>& friction) {
+    model_->override_friction(friction);
+  }
   // Moves the particle in state slot `slot` by dx at once (the accuracy
   // study's round-off twin at the start of shearing).
   void nudge_particle(size_t slot, const Vec3& dx);

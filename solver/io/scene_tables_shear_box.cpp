@@ -3,6 +3,7 @@
 #include "solver/apparatus/grading.h"
 #include "solver/apparatus/shear_box.h"
 #include "solver/io/scene_tables.h"
+#include "solver/common/number_text.h"
 
 namespace simsols::scene_toml {
 
@@ -47,13 +48,46 @@ double read_grading(const Reader& sp, Specimen& s) {
   }
 }
 
+// [*.specimen.preparation]: the settling friction, the pour's rain, a
+// target relative density and the index void ratios (docs/specimens.md).
+Preparation read_preparation(const Reader& sp, const Specimen& s) {
+  Reader r = sp.sub("preparation", {"friction", "rolling_friction", "drop_height", "intensity",
+                                     "relative_density", "e_min", "e_max"});
+  Preparation p;
+  const auto opt = [&](const char* key, double lo, double hi, const char* range) {
+    const std::optional<double> v = r.optional_number(key);
+    if (v) r.check_range(key, *v, *v >= lo && *v <= hi, range);
+    return v;
+  };
+  p.friction = opt("friction", 0, 10, "[0, 10]");
+  p.rolling_friction = opt("rolling_friction", 0, 1, "[0, 1] m");
+  p.relative_density = opt("relative_density", 0, 1, "[0, 1]");
+  p.e_min = opt("e_min", 0.01, 10, "[0.01, 10]");
+  p.e_max = opt("e_max", 0.01, 10, "[0.01, 10]");
+  if (s.method != Specimen::Method::Pour)
+    r.forbid({"drop_height", "intensity"}, "only allowed when specimen.method = \"pour\"");
+  p.drop_height = opt("drop_height", 0, 10, "[0, 10] m").value_or(0);
+  p.intensity = opt("intensity", 0, 0.35, "[0, 0.35]").value_or(0);
+  if (p.relative_density && p.friction)
+    r.fail("conflicting_keys", "relative_density",
+           "a target relative density sets the friction; leave friction out");
+  if (p.e_min.has_value() != p.e_max.has_value())
+    r.fail("missing_field", p.e_min ? "e_max" : "e_min", "e_min and e_max go together");
+  if (p.e_min && !(*p.e_min < *p.e_max))
+    r.fail("out_of_range", "e_max",
+           shortest_number(*p.e_max) + " is out of range, allowed (e_min = " +
+               shortest_number(*p.e_min) + ", 10]");
+  return p;
+}
+
 }  // namespace
 
 Specimen read_specimen(const Reader& apparatus, const Scene& scene) {
   Reader sp = apparatus.sub("specimen", {"method", "material", "diameter", "layers", "clearance",
-                                         "seed", "grading"});
+                                         "seed", "grading", "preparation"});
   Specimen s;
   s.method = sp.choice("method", Specimen::Method::Layers);
+  s.preparation = read_preparation(sp, s);
   if (s.method == Specimen::Method::Given) {
     sp.forbid({"material", "diameter", "layers", "clearance", "seed", "grading"},
               "only allowed when method = \"layers\" or \"pour\"");

@@ -33,10 +33,10 @@ class Loader {
     explicit_particles_ = scene_.particles.size();
     generator_of_ = read_generators(r, scene_);
     read_walls(r, scene_);
+    read_effects(r, scene_);  // before the apparatus: a pour rains under its gravity
     if (auto issue = read_shear_box(r, scene_)) fail(std::move(*issue));
     if (auto issue = read_oedometer(r, scene_)) fail(std::move(*issue));
     if (auto issue = read_triaxial(r, scene_)) fail(std::move(*issue));
-    read_effects(r, scene_);
     read_numerics(r, scene_);
     read_outputs(r, scene_);
     read_view(r, scene_);

@@ -187,6 +187,19 @@ class Writer {
     line("rows", std::to_string(b.rows));
     header("[shear_box.specimen]");
     line("method", toml_string(choice_name(Specimen::Method::Given)));
+    write_preparation("shear_box", b.specimen.preparation);
+  }
+
+  // The settling friction and index void ratios (a target relative density
+  // is written as the friction found for it); the pour's rain is in the
+  // particles' positions and velocities.
+  void write_preparation(const std::string& table, const Preparation& p) {
+    if (!p.friction && !p.rolling_friction && !p.e_min) return;
+    header("[" + table + ".specimen.preparation]");
+    if (p.friction) line("friction", *p.friction);
+    if (p.rolling_friction) line("rolling_friction", *p.rolling_friction);
+    if (p.e_min) line("e_min", *p.e_min);
+    if (p.e_max) line("e_max", *p.e_max);
   }
 
   void write_oedometer(const Oedometer& o) {
@@ -206,6 +219,7 @@ class Writer {
     line("friction_angle", o.friction_angle);
     header("[oedometer.specimen]");
     line("method", toml_string(choice_name(Specimen::Method::Given)));
+    write_preparation("oedometer", o.specimen.preparation);
   }
 
   void write_triaxial(const Triaxial& t) {
@@ -227,6 +241,7 @@ class Writer {
     line("rows", std::to_string(t.rows));
     header("[triaxial.specimen]");
     line("method", toml_string(choice_name(Specimen::Method::Given)));
+    write_preparation("triaxial", t.specimen.preparation);
   }
 
   void write_effects() {

@@ -208,6 +208,20 @@ struct Grading {
   std::vector<double> passing; // Sieve: % by mass, from 0 to 100, non-decreasing
 };
 
+// How a specimen is brought to its density (docs/specimens.md). The
+// friction applies while the specimen settles (lubricated or rough
+// preparation), then the materials' own friction takes over; the pour's
+// drop height and intensity shape its rain.
+struct Preparation {
+  std::optional<double> friction;          // mu_s of every pair while settling; unset: the materials'
+  std::optional<double> rolling_friction;  // mu_r (m) while settling; unset: the materials'
+  double drop_height = 0;  // m, Pour: the beads start at the speed of a free fall from this height
+  double intensity = 0;    // Pour: solid fraction of the raining column, (0, 0.35]; 0: 3 specimen heights tall
+  std::optional<double> relative_density;  // target D_r: the friction is searched (docs/specimens.md)
+  std::optional<double> e_min, e_max;      // the material's index void ratios, when known
+  bool settles_differently() const { return friction || rolling_friction; }
+};
+
 struct Specimen {
   enum class Method : std::uint8_t { Layers, Pour, Given };
   enum class Clearance : std::uint8_t { Shift, Spread };
@@ -218,6 +232,7 @@ struct Specimen {
   Clearance clearance = Clearance::Shift;  // Layers: how the row-wall clearance is used
   std::int64_t seed = 1;
   Grading grading;                 // Pour: the sizes' distribution
+  Preparation preparation;         // how it settles (every method)
 };
 
 // The direct shear apparatus of the reference paper (its section 5) and its

@@ -1,0 +1,227 @@
+#include "app/experiment/preparation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <sstream>
+
+#include "render/plot/chart.h"
+#include "solver/apparatus/oedometer_test.h"
+#include "solver/apparatus/shear_test.h"
+#include "solver/apparatus/triaxial_test.h"
+#include "solver/common/number_text.h"
+#include "solver/io/output.h"
+
+namespace simsols {
+namespace {
+
+std::unique_ptr<LoadingProgramme> make_test(Simulation& sim) {
+  const Scene& s = sim.scene();
+  if (s.shear_box) return std::make_unique<ShearTest>(sim);
+  if (s.triaxial) return std::make_unique<TriaxialTest>(sim);
+  return std::make_unique<OedometerTest>(sim);
+}
+
+DensityTrial trial(const Scene& base, const std::shared_ptr<Device>& device, const char* role,
+                   double friction) {
+  Scene scene = base;
+  Preparation& p = mutable_specimen(scene)->preparation;
+  p.friction = friction;
+  p.relative_density.reset();
+  return {role, friction, settle_specimen(scene, device)};
+}
+
+std::string trial_line(const DensityTrial& t, const DensitySearch& s) {
+  const Packing& p = t.result.packing;
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "%-8s friction %.4f: e = %.4f, Z = %.2f, settled in %.3f s",
+                t.role.c_str(), t.friction, p.void_ratio, p.coordination, t.result.seconds);
+  std::string line = buf;
+  if (s.e_max > s.e_min) {
+    std::snprintf(buf, sizeof buf, ", D_r = %.3f", relative_density(p.void_ratio, s.e_min, s.e_max));
+    line += buf;
+  }
+  return line;
+}
+
+std::string search_csv(const DensitySearch& s) {
+  std::ostringstream o;
+  o << "role,friction,void_ratio,relative_density,coordination,fabric_anisotropy,settle_s\n";
+  for (const DensityTrial& t : s.trials) {
+    const Packing& p = t.result.packing;
+    o << t.role << ',' << shortest_number(t.friction) << ',' << shortest_number(p.void_ratio)
+      << ',' << shortest_number(relative_density(p.void_ratio, s.e_min, s.e_max)) << ','
+      << shortest_number(p.coordination) << ',' << shortest_number(p.fabric_anisotropy) << ','
+      << shortest_number(t.result.seconds) << '\n';
+  }
+  return o.str();
+}
+
+double dr_of(const DensityTrial& t, const DensitySearch& s) {
+  return relative_density(t.result.packing.void_ratio, s.e_min, s.e_max);
+}
+
+// Regula falsi (Illinois) on x = sqrt(friction) between the densest (x = 0,
+// D_r = 1) and the loosest (x = 1, D_r = 0) preparations: the density
+// changes most at small friction, which x spreads out. At most
+// kSearchTrials trials, ending within kSearchTolerance of the target.
+void search(const Scene& scene, const std::shared_ptr<Device>& device, DensitySearch& s,
+            const std::function<void(const std::string&)>& log) {
+  double x0 = 0, f0 = 1 - s.target, x1 = 1, f1 = -s.target;
+  if (std::abs(f0) <= kSearchTolerance || std::abs(f1) <= kSearchTolerance) return;
+  int side = 0;
+  for (int k = 0; k < kSearchTrials; ++k) {
+    const double x = std::clamp(x0 - f0 * (x1 - x0) / (f1 - f0), 0.02, 0.98);
+    s.trials.push_back(trial(scene, device, "trial", x * x * kLooseFriction));
+    log(trial_line(s.trials.back(), s));
+    const double f = dr_of(s.trials.back(), s) - s.target;
+    if (std::abs(f) <= kSearchTolerance) return;
+    if ((f > 0) == (f0 > 0)) {
+      x0 = x, f0 = f;
+      if (side == -1) f1 /= 2;
+      side = -1;
+    } else {
+      x1 = x, f1 = f;
+      if (side == 1) f0 /= 2;
+      side = 1;
+    }
+  }
+}
+
+// density.png: the void ratio each preparation reached against its
+// friction, between the index void ratios, with the target and the choice.
+void density_chart(const DensitySearch& s, const std::string& title, const std::string& path) {
+  plot::Chart c;
+  c.title = title + ": void ratio against preparation friction";
+  c.x_label = "Friction while settling mu_prep";
+  c.y_label = "Void ratio e";
+  plot::Series trials;
+  trials.label = "preparations";
+  trials.line = false;
+  trials.markers = true;
+  for (const DensityTrial& t : s.trials) {
+    trials.x.push_back(t.friction);
+    trials.y.push_back(t.result.packing.void_ratio);
+  }
+  c.series.push_back(trials);
+  const double e_target = s.e_max - s.target * (s.e_max - s.e_min);
+  const auto level = [&](const std::string& label, double e) {
+    plot::Series l;
+    l.label = label;
+    l.dashed = true;
+    l.x = {0, kLooseFriction};
+    l.y = {e, e};
+    c.series.push_back(l);
+  };
+  level("e_max", s.e_max);
+  level("target e (D_r " + shortest_number(s.target) + ")", e_target);
+  level("e_min", s.e_min);
+  for (const DensityTrial& t : s.trials)
+    if (t.friction == s.friction)
+      c.markers.push_back({t.friction, t.result.packing.void_ratio, "chosen"});
+  c.x_min = 0;
+  c.x_max = kLooseFriction;
+  plot::write_chart_png(c, path);
+}
+
+}  // namespace
+
+SpecimenCell specimen_cell(const Scene& s) {
+  if (s.shear_box) return {s.shear_box->length, s.shear_box->width, &s.shear_box->specimen};
+  if (s.triaxial) return {s.triaxial->length, s.triaxial->width, &s.triaxial->specimen};
+  if (s.oedometer) return {s.oedometer->length, s.oedometer->width, &s.oedometer->specimen};
+  return {};
+}
+
+Specimen* mutable_specimen(Scene& s) {
+  return const_cast<Specimen*>(specimen_cell(s).specimen);
+}
+
+Packing measure_specimen(Simulation& sim) {
+  const SpecimenCell cell = specimen_cell(sim.scene());
+  return measure_packing(sample_contacts(sim), cell.length, cell.width, 0);
+}
+
+Settled settle_specimen(const Scene& scene, const std::shared_ptr<Device>& device) {
+  Simulation sim(device, scene);
+  const std::unique_ptr<LoadingProgramme> test = make_test(sim);
+  test->advance(1);
+  while (!test->done() && std::strcmp(test->stage_name(), "settle") == 0) test->advance(5000);
+  Settled s;
+  s.packing = measure_specimen(sim);
+  s.seconds = sim.time();
+  s.steps = sim.steps();
+  return s;
+}
+
+bool prepare_to_relative_density(Scene& scene, const std::shared_ptr<Device>& device,
+                                 const std::filesystem::path& out_dir,
+                                 const std::function<void(const std::string&)>& log) {
+  Specimen* specimen = mutable_specimen(scene);
+  if (!specimen || !specimen->preparation.relative_density) return false;
+  Preparation& prep = specimen->preparation;
+  DensitySearch s;
+  s.target = *prep.relative_density;
+  if (prep.e_min) {
+    s.e_min = *prep.e_min;
+    s.e_max = *prep.e_max;
+  } else {
+    s.trials.push_back(trial(scene, device, "densest", 0));
+    s.trials.push_back(trial(scene, device, "loosest", kLooseFriction));
+    s.e_min = s.trials[0].result.packing.void_ratio;
+    s.e_max = s.trials[1].result.packing.void_ratio;
+    for (const DensityTrial& t : s.trials) log(trial_line(t, s));
+    if (!(s.e_max > s.e_min))
+      throw SceneError("out_of_range", scene.source_path, 0, "specimen.preparation.relative_density",
+                       "the loosest preparation (e = " + shortest_number(s.e_max) +
+                           ") is not looser than the densest (e = " + shortest_number(s.e_min) +
+                           "): the specimen is too small to tell them apart");
+  }
+  search(scene, device, s, log);
+  if (s.trials.empty()) {  // e_min, e_max given and the target at one end: that end's friction
+    s.trials.push_back(trial(scene, device, "trial", s.target >= 0.5 ? 0 : kLooseFriction));
+    log(trial_line(s.trials.back(), s));
+  }
+  const DensityTrial* best = nullptr;
+  for (const DensityTrial& t : s.trials)
+    if (!best || std::abs(dr_of(t, s) - s.target) < std::abs(dr_of(*best, s) - s.target)) best = &t;
+  s.friction = best->friction;
+  s.achieved = dr_of(*best, s);
+  prep.friction = s.friction;
+  prep.e_min = s.e_min;
+  prep.e_max = s.e_max;
+  prep.relative_density.reset();
+  std::filesystem::create_directories(out_dir);
+  write_file_atomic((out_dir / "density.csv").string(), search_csv(s));
+  density_chart(s, scene.name, (out_dir / "density.png").string());
+  char line[160];
+  std::snprintf(line, sizeof line, "D_r %.3f asked, %.3f reached with friction %.4f (e_min %.4f, e_max %.4f)",
+                s.target, s.achieved, s.friction, s.e_min, s.e_max);
+  log(line);
+  return true;
+}
+
+std::string packing_text(const Packing& p, const Preparation& prep) {
+  std::ostringstream o;
+  const auto put = [&](const char* key, double v) { o << key << " = " << shortest_number(v) << '\n'; };
+  put("beads", p.beads);
+  put("void_ratio", p.void_ratio);
+  put("solid_fraction", p.solid_fraction);
+  if (prep.e_min) {
+    put("relative_density", relative_density(p.void_ratio, *prep.e_min, *prep.e_max));
+    put("e_min", *prep.e_min);
+    put("e_max", *prep.e_max);
+  }
+  put("coordination", p.coordination);
+  put("bead_coordination", p.bead_coordination);
+  put("fabric_xx", p.fabric[0]);
+  put("fabric_yy", p.fabric[1]);
+  put("fabric_zz", p.fabric[2]);
+  put("fabric_anisotropy", p.fabric_anisotropy);
+  put("slab_height_mm", p.slab_height * 1e3);
+  if (prep.friction) put("preparation_friction", *prep.friction);
+  return o.str();
+}
+
+}  // namespace simsols
