@@ -30,6 +30,8 @@ PACKAGES=(
   libglfw3-dev
   libimgui-dev
   libstb-dev
+  # Eigen, header-only: a clump's principal axes of inertia (solver/scene/clump.cpp)
+  libeigen3-dev
   xvfb
   xauth
   clinfo
