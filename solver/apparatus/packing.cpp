@@ -48,7 +48,8 @@ double fabric_anisotropy(const ContactSample& sample) {
   return pairs > 0 ? 7.5 * (f[2] - 0.5 * (f[0] + f[1])) / pairs : 0;
 }
 
-Packing measure_packing(const ContactSample& sample, double length, double width, double floor_z) {
+Packing measure_packing(const ContactSample& sample, double length, double width, double floor_z,
+                        std::span<const double> share) {
   const ParticleSnapshot& snap = sample.beads;
   Packing p;
   p.beads = static_cast<int>(snap.position.size());
@@ -61,7 +62,8 @@ Packing measure_packing(const ContactSample& sample, double length, double width
   const double hi = std::max(floor_z + d_max, top - d_max);
   double solid = 0;
   for (int i = 0; i < p.beads; ++i)
-    solid += sphere_volume_between(snap.position[i][2], snap.radius[i], floor_z, hi);
+    solid += sphere_volume_between(snap.position[i][2], snap.radius[i], floor_z, hi) *
+             (share.empty() ? 1.0 : share[i]);
   p.slab_height = hi - floor_z;
   p.solid_fraction = solid / (length * width * p.slab_height);
   p.void_ratio = 1 / p.solid_fraction - 1;

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "solver/core/stress.h"
@@ -42,8 +43,13 @@ double sphere_volume_between(double z, double r, double lo, double hi);
 double fabric_anisotropy(const ContactSample& sample);
 
 // The packing of the beads in a cell of footprint length x width (m) with
-// its floor at z = floor_z.
-Packing measure_packing(const ContactSample& sample, double length, double width, double floor_z);
+// its floor at z = floor_z. `share`, when given, scales each bead's
+// segment: a clump member's share of its union's volume over its sphere's
+// (clump.h, solid_volumes), so overlapping members count once (exactly
+// for a clump wholly inside the slab, in proportion for one cut by its
+// top).
+Packing measure_packing(const ContactSample& sample, double length, double width, double floor_z,
+                        std::span<const double> share = {});
 
 // D_r = (e_max - e) / (e_max - e_min).
 inline double relative_density(double e, double e_min, double e_max) {

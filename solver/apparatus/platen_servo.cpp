@@ -1,5 +1,7 @@
 #include "solver/apparatus/platen_servo.h"
 
+#include "solver/scene/clump.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -17,10 +19,13 @@ constexpr double kIntegralPeriods = 5.0;
 SpecimenStats specimen_stats(const Scene& scene, int wall_material) {
   SpecimenStats s;
   double d = 0, mass = 0;
-  for (const Particle& p : scene.particles) {
+  const std::vector<double> solid = solid_volumes(scene);  // clumps' overlaps once
+  for (size_t i = 0; i < scene.particles.size(); ++i) {
+    const Particle& p = scene.particles[i];
     d += 2 * p.radius;
-    mass += scene.materials[p.material].density * 4.0 / 3.0 * kPi * std::pow(p.radius, 3);
-    s.volume += 4.0 / 3.0 * kPi * std::pow(p.radius, 3);
+    mass += p.clump < 0 ? scene.materials[p.material].density * 4.0 / 3.0 * kPi * std::pow(p.radius, 3)
+                        : scene.materials[p.material].density * solid[i];
+    s.volume += solid[i];
   }
   const double n = static_cast<double>(scene.particles.size());
   s.diameter = d / n;

@@ -2,6 +2,7 @@
 
 #include "solver/apparatus/cell_walls.h"
 #include "solver/apparatus/grading.h"
+#include "solver/scene/clump.h"
 
 #include <algorithm>
 #include <cmath>
@@ -147,6 +148,55 @@ void place_pour(Scene& scene, const Specimen& s, const Cell& b) {
   }
 }
 
+// A pour of clumps: as many grains as hold the solid volume of the
+// layers of volume-equivalent beads, their centroids placed at random in
+// the pouring column with their bounding spheres apart, each turned at
+// random (uniform over rotations), raining as the beads do.
+void place_clump_pour(Scene& scene, const Specimen& s, const Cell& b) {
+  const GrainBody body = grain_body(scene.grains[s.grain]);
+  double reach = 0;  // the bounding sphere about the centroid
+  for (size_t k = 0; k < body.offsets.size(); ++k)
+    reach = std::max(reach, norm(body.offsets[k]) + body.radii[k]);
+  const double side = std::min(b.length, b.width);
+  if (2 * reach > side)
+    b.check.fail("out_of_range", "specimen.grain",
+                 "the grain spans " + num(2 * reach) + " m, more than the cell's " + num(side) + " m");
+  const double solid = beads_per_layer(b.length, b.width, s.diameter) * s.layers * kPi / 6 *
+                       s.diameter * s.diameter * s.diameter;
+  const int count = static_cast<int>(std::ceil(solid / body.mass.volume - 1e-9));
+  // tall enough that the grains' bounding spheres fill at most a quarter of
+  // it (random placement jams near 0.38)
+  const double top = std::max(column_height(s, b, std::vector<double>(count, s.diameter)),
+                              count * 4 * kPi / 3 * reach * reach * reach / (0.25 * b.length * b.width));
+  const Vec3 rain = rain_velocity(scene, s, b);
+  Prng prng(static_cast<std::uint64_t>(s.seed));
+  SphereGrid grid(2 * reach, static_cast<size_t>(count));
+  std::vector<Vec3> placed;
+  const std::int64_t budget = 1000 + 2000LL * count;
+  std::int64_t attempts = 0;
+  while (static_cast<int>(placed.size()) < count) {
+    if (attempts++ == budget)
+      b.check.fail("out_of_range", "specimen.layers",
+                   "could place only " + std::to_string(placed.size()) + " of " +
+                       std::to_string(count) + " grains in the pouring column; use fewer layers");
+    const Vec3 p = {prng.uniform(reach, b.length - reach), prng.uniform(reach, b.width - reach),
+                    prng.uniform(reach, std::max(reach, top - reach))};
+    bool hit = false;
+    grid.for_each_near(p, [&](int q) { hit = hit || norm(sub(p, placed[q])) < 2 * reach; });
+    if (hit) continue;
+    grid.insert(static_cast<int>(placed.size()), p);
+    placed.push_back(p);
+    Clump c;
+    c.grain = s.grain;
+    c.material = s.material;
+    c.position = p;
+    // the grain's frame turned at random (body_orientation adds its principal frame)
+    c.orientation = uniform_rotation(prng.uniform(0, 1), prng.uniform(0, 1), prng.uniform(0, 1));
+    c.velocity = rain;
+    add_clump(scene, c, body);
+  }
+}
+
 // Checks the specimen's settings and places its beads.
 void place_in(Scene& scene, const Specimen& s, const Cell& b) {
   if (s.method == Specimen::Method::Given) return;
@@ -165,6 +215,8 @@ void place_in(Scene& scene, const Specimen& s, const Cell& b) {
          "the scene lists particles; use specimen.method = \"given\" to shear them");
   if (s.method == Specimen::Method::Layers)
     place_layers(scene, s, b);
+  else if (s.grain >= 0)
+    place_clump_pour(scene, s, b);
   else
     place_pour(scene, s, b);
 }

@@ -25,6 +25,7 @@ std::string KernelConfig::build_options() const {
   if (walls) o += " -DHAS_WALLS";
   if (servo) o += " -DHAS_SERVO";
   if (servo_in_finish()) o += " -DSERVO_IN_FINISH";
+  if (clumps) o += " -DHAS_CLUMPS";
   o += " -DSLICE=" + std::to_string(slice);
   o += " -DLANES=" + std::to_string(lanes);
   if (!extra_options.empty()) o += " " + extra_options;
@@ -49,6 +50,14 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
     any_rolling = any_rolling || p.rolling_friction.value_or(0) > 0;
     any_damping = any_damping || p.restitution.value_or(1) < 1;
   }
+  // a specimen may settle with friction its materials lack (Preparation)
+  for (const Specimen* s : {scene.shear_box ? &scene.shear_box->specimen : nullptr,
+                            scene.oedometer ? &scene.oedometer->specimen : nullptr,
+                            scene.triaxial ? &scene.triaxial->specimen : nullptr}) {
+    if (!s) continue;
+    any_friction = any_friction || s->preparation.friction.value_or(0) > 0;
+    any_rolling = any_rolling || s->preparation.rolling_friction.value_or(0) > 0;
+  }
   const Effects& e = scene.effects;
   c.damping = e.damping == DampingModel::Viscous && any_damping;
   c.friction = e.tangential == TangentialModel::Mindlin && any_friction;
@@ -58,6 +67,7 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
   c.fluid = e.fluid == FluidModel::Drag;
   c.walls = !scene.walls.empty();
   for (const Wall& w : scene.walls) c.servo = c.servo || w.servo.enabled;
+  c.clumps = !scene.clumps.empty();
   // CPUs: SIMD lanes, 8 floats or 4 doubles per work item (256-bit
   // registers; measured fastest with PoCL 3.1 on AVX-512, docs/performance.md).
   // GPUs already run one particle per SIMD lane.

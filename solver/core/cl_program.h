@@ -33,6 +33,7 @@ struct KernelConfig {
   bool fluid = false;         // slot fluid = drag
   bool walls = true;
   bool servo = false;  // some wall is servo-controlled
+  bool clumps = false;  // the scene has clumps (clumps.cl)
   int lanes = 1;                   // particles per work item in the contact kernels
   int slice = 32;                  // particles per slice of the neighbour lists (neighbors.cl)
   std::string extra_options;       // appended verbatim (diagnostics, tests)

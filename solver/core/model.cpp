@@ -14,7 +14,6 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
   if (!device_) throw DeviceError("Model: no OpenCL device given (Device::open opens one)");
   if (scene_.particles.empty())
     throw SceneError("no_particles", scene_.source_path, 0, "particles", "the scene has no particles");
-  total_mass_ = scene_.total_mass();
   program_ = std::make_unique<Program>(*device_, make_kernel_config(scene_, *device_));
   const Program& p = *program_;
   kernels_.grid_clear = p.kernel("grid_clear");
@@ -39,6 +38,7 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
     kernels_.reduce_walls = p.kernel("reduce_walls");
   }
   if (config().servo) kernels_.servo_walls = p.kernel("servo_walls");
+  if (config().clumps) kernels_.move_clumps = p.kernel("move_clumps");
 
   rayleigh_dt_ = rayleigh_time_step(scene_);
   dt_ = effective_time_step(scene_);
@@ -78,6 +78,48 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
   }
   wall_buf_ = device_->alloc(wk.bytes().size(), wk.bytes().data());
   local_size_ = std::max(1, device_->options().local_size);
+  make_clumps();
+}
+
+void Model::make_clumps() {
+  const Scene& s = scene_;
+  const size_t n = s.particles.size();
+  particle_mass_.resize(n);
+  for (size_t i = 0; i < n; ++i) particle_mass_[i] = s.mass(s.particles[i]);
+  for (const Grain& g : s.grains) grain_bodies_.push_back(grain_body(g));
+  const bool dbl = config().double_precision;
+  RealPacker inertia(dbl), offsets(dbl);
+  std::vector<std::int32_t> members, body(std::max<size_t>(1, s.clumps.empty() ? 1 : n), -1);
+  std::vector<Vec3> offset(n, Vec3{});
+  for (size_t c = 0; c < s.clumps.size(); ++c) {
+    const Clump& k = s.clumps[c];
+    const GrainBody& b = grain_bodies_[k.grain];
+    const double rho = s.materials[k.material].density, mass = rho * b.mass.volume;
+    double spheres = 0;
+    for (double r : b.radii) spheres += r * r * r;
+    for (int j = 0; j < k.count; ++j) {
+      const size_t i = static_cast<size_t>(k.first + j);
+      particle_mass_[i] = mass * b.radii[j] * b.radii[j] * b.radii[j] / spheres;
+      body[i] = static_cast<std::int32_t>(c);
+      offset[i] = b.offsets[j];
+    }
+    inertia.put4(mass, rho * b.mass.principal[0], rho * b.mass.principal[1], rho * b.mass.principal[2]);
+    members.push_back(k.first);
+    members.push_back(k.count);
+  }
+  total_mass_ = 0;
+  for (double m : particle_mass_) total_mass_ += m;
+  if (s.clumps.empty()) {
+    inertia.put4(0, 0, 0, 0);
+    members = {0, 0};
+    offsets.put4(0, 0, 0, 0);
+  } else {
+    for (const Vec3& o : offset) offsets.put4(o[0], o[1], o[2], 0);
+  }
+  clump_buf_ = device_->alloc(inertia.bytes().size(), inertia.bytes().data());
+  clump_member_buf_ = device_->alloc(members.size() * sizeof(std::int32_t), members.data());
+  body_buf_ = device_->alloc(body.size() * sizeof(std::int32_t), body.data());
+  body_offset_buf_ = device_->alloc(offsets.bytes().size(), offsets.bytes().data());
 }
 
 // The pair table as the kernels read it (common.cl), with the friction
@@ -101,8 +143,12 @@ void Model::override_friction(const std::optional<FrictionOverride>& friction) {
 }
 
 size_t Model::device_bytes() const {
+  const size_t clumps = scene_.clumps.empty()
+                            ? 0
+                            : scene_.clumps.size() * (4 * real_size() + 8) +
+                                  scene_.particles.size() * (4 * real_size() + 4);
   return pairs_.pairs.size() * config().pair_record() * real_size() +
-         scene_.walls.size() * 16 * real_size();
+         scene_.walls.size() * 16 * real_size() + clumps;
 }
 
 }  // namespace simsols

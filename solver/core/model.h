@@ -13,6 +13,7 @@
 
 #include "solver/core/cl_device.h"
 #include "solver/core/cl_program.h"
+#include "solver/scene/clump.h"
 #include "solver/scene/contact_model.h"
 #include "solver/scene/scene.h"
 
@@ -24,6 +25,7 @@ struct Kernels {
   Kernel pair_forces, finish_particles, advance_walls, build_wall_near, wall_widths,
       carry_wall_slots, reset_wall_travel;
   Kernel reduce_observables, reduce_walls, servo_walls;
+  Kernel move_clumps;
 };
 
 class Model {
@@ -50,6 +52,19 @@ class Model {
   size_t real_size() const { return config().double_precision ? 8 : 4; }
   size_t local_size() const { return local_size_; }
   size_t global_size(size_t n) const { return (n + local_size_ - 1) / local_size_ * local_size_; }
+
+  // Clumps (scene.h, Clump; kernels/clumps.cl): per clump (M, I1, I2, I3)
+  // and its member range; per particle its clump (-1 for a free sphere)
+  // and its offset in the clump's body frame; a one-entry stand-in when
+  // the scene has none. The grains as rigid bodies (clump.h), per grain.
+  int clumps() const { return static_cast<int>(scene_.clumps.size()); }
+  cl_mem clump_buffer() const { return clump_buf_.get(); }
+  cl_mem clump_member_buffer() const { return clump_member_buf_.get(); }
+  cl_mem body_buffer() const { return body_buf_.get(); }
+  cl_mem body_offset_buffer() const { return body_offset_buf_.get(); }
+  const std::vector<GrainBody>& grain_bodies() const { return grain_bodies_; }
+  // kg: a free sphere's own; a member's share of its clump, by volume
+  double particle_mass(int i) const { return particle_mass_[i]; }
 
   cl_mem pair_buffer() const { return pair_buf_.get(); }
   cl_mem wall_buffer() const { return wall_buf_.get(); }
@@ -79,7 +94,11 @@ class Model {
   double total_mass_ = 0;
   size_t local_size_ = 64;
   ClMem pair_buf_, wall_buf_;
+  ClMem clump_buf_, clump_member_buf_, body_buf_, body_offset_buf_;
+  std::vector<GrainBody> grain_bodies_;
+  std::vector<double> particle_mass_;
   std::optional<FrictionOverride> friction_;
+  void make_clumps();
 };
 
 }  // namespace simsols

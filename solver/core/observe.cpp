@@ -144,6 +144,43 @@ WallSlots read_wall_slots(const Model& m, State& s) {
           read_array<std::uint32_t>(m, s.wall_off, s.slices + 1)};
 }
 
+std::vector<ClumpState> clump_states(const Model& m, State& s) {
+  const int n = m.clumps();
+  std::vector<ClumpState> out(n);
+  if (n == 0) return out;
+  const std::vector<double> x = read_reals(m, s.clump_pos, 4 * size_t(n));
+  const std::vector<double> q = read_reals(m, s.clump_quat, 4 * size_t(n));
+  const std::vector<double> v = read_reals(m, s.clump_vel, 4 * size_t(n));
+  const std::vector<double> l = read_reals(m, s.clump_mom, 4 * size_t(n));
+  std::vector<float> lo(4 * size_t(n), 0.0f);
+  if (!m.config().double_precision)
+    m.device().read(s.clump_pos_lo.get(), lo.size() * sizeof(float), lo.data());
+  const Scene& sc = m.scene();
+  for (int c = 0; c < n; ++c) {
+    ClumpState& k = out[c];
+    const size_t b = 4 * size_t(c);
+    for (int a = 0; a < 3; ++a) {
+      k.position[a] = x[b + a] + double(lo[b + a]) + m.origin()[a];
+      k.velocity[a] = v[b + a];
+      k.angular_momentum[a] = l[b + a];
+    }
+    k.orientation = {q[b + 3], q[b], q[b + 1], q[b + 2]};
+    const Clump& clump = sc.clumps[c];
+    const GrainBody& g = m.grain_bodies()[clump.grain];
+    const double rho = sc.materials[clump.material].density, mass = rho * g.mass.volume;
+    const Quaternion conj = {k.orientation[0], -k.orientation[1], -k.orientation[2], -k.orientation[3]};
+    const Vec3 lb = quat_rotate(conj, k.angular_momentum);
+    Vec3 wb{};
+    k.kinetic_energy = 0.5 * mass * dot(k.velocity, k.velocity);
+    for (int a = 0; a < 3; ++a) {
+      wb[a] = lb[a] / (rho * g.mass.principal[a]);
+      k.kinetic_energy += 0.5 * lb[a] * wb[a];
+    }
+    k.angular_velocity = quat_rotate(k.orientation, wb);
+  }
+  return out;
+}
+
 std::vector<ContactForce> contact_list(const Model& m, State& s) {
   const int n = s.n;
   std::vector<ContactForce> out;

@@ -8,6 +8,7 @@
 // bit for bit.
 #pragma once
 
+#include <array>
 #include <bit>
 #include <cstdint>
 #include <vector>
@@ -39,6 +40,19 @@ struct WallReaction {
 // of a buffer, as doubles.
 std::vector<double> read_reals(const Model& model, const Buffer& buffer, size_t count,
                                size_t first = 0);
+
+// A clump's rigid-body state (clumps.cl): centroid (absolute, m),
+// orientation (body to scene, w x y z), velocity and angular momentum
+// (scene frame; the half-step values of the leapfrog), and its kinetic
+// energy from them, 1/2 M V^2 + 1/2 sum L_b,k^2 / I_k.
+struct ClumpState {
+  Vec3 position{};
+  std::array<double, 4> orientation{1, 0, 0, 0};
+  Vec3 velocity{}, angular_momentum{};
+  Vec3 angular_velocity{};  // rad/s, scene frame
+  double kinetic_energy = 0;
+};
+std::vector<ClumpState> clump_states(const Model& model, State& state);
 
 Observables observe(const Model& model, State& state);
 std::vector<WallReaction> wall_reactions(const Model& model, State& state);

@@ -69,7 +69,8 @@ std::array<std::uint32_t, 2> size_lists(const Model& m, State& s) {
   set_args(m, k.count_neighbors, arg("pos", s.pos), arg("pos_lo", s.pos_lo),
            arg("count", s.cell_count), arg("start", s.cell_start), arg("sorted", s.sorted),
            arg("nbr_count", s.nbr_count), arg("nbr_upper", s.nbr_upper), arg("flags", s.flags),
-           arg("inv_cell", Real{1.0 / m.cell_size()}), arg("skin", Real{m.skin()}),
+           arg("body", m.body_buffer()), arg("inv_cell", Real{1.0 / m.cell_size()}),
+           arg("skin", Real{m.skin()}),
            arg("table", s.table), arg("n", s.n));
   launch(m, k.count_neighbors, s.n);
   int flags[2] = {0, 0};
@@ -107,7 +108,7 @@ void build_lists(const Model& m, State& s) {
            arg("old_nbr", s.old_nbr), arg("old_hist", s.share), arg("old_stride", old_stride),
            arg("up_off", s.up_off), arg("lo_off", s.lo_off), arg("nbr_upper", s.nbr_upper),
            arg("nbr", s.nbr), arg("mirror", s.mirror), arg("spring", s.spring),
-           arg("stride", s.up_slots), arg("pos_build", s.pos_build),
+           arg("stride", s.up_slots), arg("pos_build", s.pos_build), arg("body", m.body_buffer()),
            arg("inv_cell", Real{1.0 / m.cell_size()}), arg("skin", Real{m.skin()}),
            arg("table", s.table), arg("n", s.n));
   launch(m, k.build_neighbors, s.n);
@@ -225,6 +226,21 @@ void finish_particles(const Model& m, State& s) {
   launch(m, k.finish_particles, lane_groups(m, s.n));
 }
 
+void move_clumps(const Model& m, State& s) {
+  if (!m.config().clumps) return;
+  const Kernels& k = m.kernels();
+  set_args(m, k.move_clumps, arg("pos", s.pos), arg("pos_lo", s.pos_lo), arg("vel", s.vel),
+           arg("omega", s.omega), arg("force", s.force), arg("torque", s.torque),
+           arg("pos_build", s.pos_build), arg("flags", s.flags),
+           arg("body_offset", m.body_offset_buffer()), arg("clump_inertia", m.clump_buffer()),
+           arg("clump_members", m.clump_member_buffer()), arg("clump_pos", s.clump_pos),
+           arg("clump_pos_lo", s.clump_pos_lo), arg("clump_quat", s.clump_quat),
+           arg("clump_vel", s.clump_vel), arg("clump_mom", s.clump_mom),
+           arg("gravity", gravity_arg(m)), arg("dt", Real{m.dt()}), arg("skin", Real{m.skin()}),
+           arg("nclumps", m.clumps()));
+  launch_exact(m, k.move_clumps, m.clumps());
+}
+
 void move_walls(const Model& m, State& s) {
   if (!m.config().walls) return;
   const Kernels& k = m.kernels();
@@ -271,6 +287,7 @@ void step(const Model& m, State& s) {
   detect_contacts(m, s);
   contact_forces(m, s);
   finish_particles(m, s);
+  move_clumps(m, s);
   move_walls(m, s);
   ++s.step;
   s.time = s.step * m.dt();

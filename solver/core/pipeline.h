@@ -9,14 +9,19 @@
 //   finish_particles  per particle, one launch: the partners' shares
 //                     collected, wall contacts (near walls only), leapfrog
 //                     kick-drift                forces.cl, walls.cl, integrate.cl
+//   move_clumps       per clump: the members' forces summed onto the rigid
+//                     body, which moves and turns (leapfrog, NO_SQUISH
+//                     rotation) and carries its members; returns early
+//                     without clumps                               clumps.cl
 //   move_walls        servo walls set their velocity from the summed wall
 //                     reaction, every wall advances; returns early when the
 //                     scene has no walls, and on CPUs, where the last work
 //                     item of finish_particles does it
 //                     (KernelConfig::servo_in_finish)       reduce.cl, walls.cl
 //
-// step() runs the four in this order: two kernel launches per step on CPUs,
-// three or four on GPUs (plus a list build now and then).
+// step() runs the five in this order: two kernel launches per step on CPUs,
+// three or four on GPUs, one more with clumps (plus a list build now and
+// then).
 // Stages only enqueue kernels on the device's in-order queue;
 // detect_contacts reads the flags back every few steps (check_interval).
 // Reductions for observables are in observe.h.
@@ -30,6 +35,7 @@ namespace simsols {
 void detect_contacts(const Model& model, State& state, bool force_rebuild = false);
 void contact_forces(const Model& model, State& state);
 void finish_particles(const Model& model, State& state);
+void move_clumps(const Model& model, State& state);
 void move_walls(const Model& model, State& state);
 
 void step(const Model& model, State& state);

@@ -78,6 +78,10 @@ class Simulation {
     guard_->before_reading();
     return download(*model_, *state_);
   }
+  std::vector<ClumpState> clumps() {
+    guard_->before_reading();
+    return clump_states(*model_, *state_);
+  }
   std::vector<ContactForce> contacts() {
     guard_->before_reading();
     return contact_list(*model_, *state_);

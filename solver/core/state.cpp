@@ -50,6 +50,41 @@ State::State(const Model& model) {
   make_servo(model);
   make_flags(model, v2_start);
   make_step_scratch(model);
+  make_clumps(model);
+}
+
+void State::make_clumps(const Model& model) {
+  Device& d = model.device();
+  const Scene& s = model.scene();
+  const bool dbl = model.config().double_precision;
+  RealPacker x(dbl), lo(false), q(dbl), v(dbl), l(dbl);
+  const Vec3& o = model.origin();
+  for (const Clump& c : s.clumps) {
+    const GrainBody& b = model.grain_bodies()[c.grain];
+    double rel[3];
+    for (int a = 0; a < 3; ++a) rel[a] = c.position[a] - o[a];
+    x.put4(rel[0], rel[1], rel[2], 0);
+    lo.put_float4(float_remainder(rel[0]), float_remainder(rel[1]), float_remainder(rel[2]), 0);
+    const Quaternion r = body_orientation(c, b);
+    q.put4(r[1], r[2], r[3], r[0]);
+    v.put4(c.velocity[0], c.velocity[1], c.velocity[2], 0);
+    // L = R I R^T w, I the principal moments times the density
+    const double rho = s.materials[c.material].density;
+    const Vec3 wb = quat_rotate({r[0], -r[1], -r[2], -r[3]}, c.angular_velocity);
+    const Vec3 lb = {rho * b.mass.principal[0] * wb[0], rho * b.mass.principal[1] * wb[1],
+                     rho * b.mass.principal[2] * wb[2]};
+    const Vec3 ls = quat_rotate(r, lb);
+    l.put4(ls[0], ls[1], ls[2], 0);
+  }
+  if (s.clumps.empty())
+    for (RealPacker* p : {&x, &q, &v, &l}) p->put4(0, 0, 0, 0);
+  if (s.clumps.empty()) lo.put_float4(0, 0, 0, 0);
+  clumps = static_cast<int>(s.clumps.size());
+  clump_pos = make(d, x.bytes().size(), x.data());
+  clump_pos_lo = make(d, lo.bytes().size(), lo.data());
+  clump_quat = make(d, q.bytes().size(), q.data());
+  clump_vel = make(d, v.bytes().size(), v.data());
+  clump_mom = make(d, l.bytes().size(), l.data());
 }
 
 float State::make_particles(const Model& model) {
@@ -64,7 +99,7 @@ float State::make_particles(const Model& model) {
     v2_start = std::max(v2_start, static_cast<float>(q.velocity[0] * q.velocity[0] +
                                                      q.velocity[1] * q.velocity[1] +
                                                      q.velocity[2] * q.velocity[2]));
-    const double mass = s.mass(q);
+    const double mass = model.particle_mass(static_cast<int>(&q - s.particles.data()));
     double rel[3];
     for (int a = 0; a < 3; ++a) rel[a] = q.position[a] - o[a];
     p.put4(rel[0], rel[1], rel[2], q.radius);
@@ -213,7 +248,12 @@ std::vector<std::pair<std::string, const Buffer*>> State::all_buffers() const {
           {"flags", &flags},
           {"obs_partial", &obs_partial},
           {"wall_partial", &wall_partial},
-          {"touching", &touching}};
+          {"touching", &touching},
+          {"clump_pos", &clump_pos},
+          {"clump_pos_lo", &clump_pos_lo},
+          {"clump_quat", &clump_quat},
+          {"clump_vel", &clump_vel},
+          {"clump_mom", &clump_mom}};
 }
 
 size_t State::device_bytes() const {
@@ -224,7 +264,7 @@ size_t State::device_bytes() const {
 
 std::vector<std::pair<std::string, Buffer*>> State::dynamic_buffers() {
   // Grid buffers are rebuilt from positions before use and are not state.
-  return {{"pos", &pos},           {"pos_lo", &pos_lo},         {"vel", &vel},
+  std::vector<std::pair<std::string, Buffer*>> all = {{"pos", &pos},           {"pos_lo", &pos_lo},         {"vel", &vel},
           {"omega", &omega},       {"force", &force},           {"torque", &torque},
           {"pos_build", &pos_build}, {"nbr_count", &nbr_count}, {"nbr_upper", &nbr_upper},
           {"up_off", &up_off},     {"lo_off", &lo_off},       {"nbr", &nbr},
@@ -234,6 +274,12 @@ std::vector<std::pair<std::string, Buffer*>> State::dynamic_buffers() {
           {"wall_spring", &wall_spring}, {"wall_force", &wall_force},
           {"wall_touch", &wall_touch}, {"wall_reaction", &wall_reaction}, {"wall_mean", &wall_mean}, {"servo", &servo},
           {"flags", &flags}};
+  if (clumps > 0)  // scenes without clumps keep their checkpoints' buffer list
+    for (auto [name, b] : std::initializer_list<std::pair<std::string, Buffer*>>{
+             {"clump_pos", &clump_pos}, {"clump_pos_lo", &clump_pos_lo},
+             {"clump_quat", &clump_quat}, {"clump_vel", &clump_vel}, {"clump_mom", &clump_mom}})
+      all.emplace_back(name, b);
+  return all;
 }
 
 void State::grow_walls(const Model& model, int slots) {

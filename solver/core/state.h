@@ -80,8 +80,14 @@ class State {
   // the rolling cap's divisor (forces.cl). Derived from `force`, so not
   // saved: derive_state() rebuilds it after a load.
   Buffer touching;
+  // clumps (clumps.cl): per clump its centroid (relative to the origin, +
+  // float compensation), orientation (body to scene, x y z w), velocity and
+  // angular momentum (scene frame, half-step); one-record stand-ins
+  // without clumps.
+  Buffer clump_pos, clump_pos_lo, clump_quat, clump_vel, clump_mom;
 
   int n = 0;             // particles
+  int clumps = 0;        // rigid clumps of particles
   int slices = 0;        // list slices of KernelConfig::slice particles
   int up_slots = 0;      // allocated upper list slots (the history planes' stride)
   int lo_slots = 0;      // allocated lower list slots
@@ -147,6 +153,8 @@ class State {
   void make_flags(const Model& model, float v2_start);
   // touching, the observables' and the walls' reduction partials.
   void make_step_scratch(const Model& model);
+  // The clumps' bodies from the scene.
+  void make_clumps(const Model& model);
 };
 
 // Slot k of particle i's list given its slice offsets: SLOT in common.cl.

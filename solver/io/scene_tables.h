@@ -23,6 +23,9 @@ void read_materials(const Reader& root, Scene& scene);     // [[materials]]
 void read_interactions(const Reader& root, Scene& scene);  // [[interactions]]
 void read_particles(const Reader& root, Scene& scene);     // [[particles]]
 void read_walls(const Reader& root, Scene& scene);         // [[walls]]
+// [[grains]] and [[clumps]]: each clump's member spheres appended to the
+// particles (solver/scene/clump.h).
+void read_clumps(const Reader& root, Scene& scene);
 
 // scene_tables_generators.cpp: [[generators]], appended to the particles;
 // returns the generator of each generated particle.

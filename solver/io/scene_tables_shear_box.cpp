@@ -3,6 +3,10 @@
 #include "solver/apparatus/grading.h"
 #include "solver/apparatus/shear_box.h"
 #include "solver/io/scene_tables.h"
+
+#include <cmath>
+
+#include "solver/scene/clump.h"
 #include "solver/common/number_text.h"
 
 namespace simsols::scene_toml {
@@ -80,21 +84,41 @@ Preparation read_preparation(const Reader& sp, const Specimen& s) {
   return p;
 }
 
+// specimen.grain: a pour of clumps of a [[grains]] shape; the grain's
+// volume-equivalent diameter stands for `diameter` (docs/specimens.md).
+int read_grain(const Reader& sp, const Scene& scene, const Specimen& s) {
+  const std::string name = sp.string("grain");
+  if (s.method != Specimen::Method::Pour)
+    sp.fail("conflicting_keys", "grain", "clumps are poured: use specimen.method = \"pour\"");
+  for (const char* key : {"diameter", "grading"})
+    if (sp.has(key))
+      sp.fail("conflicting_keys", key,
+              "a pour of grains takes their size from the grain; leave " + std::string(key) + " out");
+  for (size_t g = 0; g < scene.grains.size(); ++g)
+    if (scene.grains[g].name == name) return static_cast<int>(g);
+  sp.fail("unknown_grain", "grain", "no grain named '" + name + "' ([[grains]])");
+}
+
 }  // namespace
 
 Specimen read_specimen(const Reader& apparatus, const Scene& scene) {
   Reader sp = apparatus.sub("specimen", {"method", "material", "diameter", "layers", "clearance",
-                                         "seed", "grading", "preparation"});
+                                         "seed", "grading", "grain", "preparation"});
   Specimen s;
   s.method = sp.choice("method", Specimen::Method::Layers);
   s.preparation = read_preparation(sp, s);
   if (s.method == Specimen::Method::Given) {
-    sp.forbid({"material", "diameter", "layers", "clearance", "seed", "grading"},
+    sp.forbid({"material", "diameter", "layers", "clearance", "seed", "grading", "grain"},
               "only allowed when method = \"layers\" or \"pour\"");
     return s;
   }
   s.material = sp.material("material", scene);
-  s.diameter = read_grading(sp, s);
+  if (sp.has("grain")) {
+    s.grain = read_grain(sp, scene, s);
+    s.diameter = std::cbrt(6 / 3.14159265358979323846 * grain_body(scene.grains[s.grain]).mass.volume);
+  } else {
+    s.diameter = read_grading(sp, s);
+  }
   const std::int64_t layers = sp.integer("layers");
   if (layers < 1 || layers > 200)
     sp.fail("out_of_range", "layers", std::to_string(layers) + " is out of range, allowed [1, 200]");

@@ -24,7 +24,7 @@ class Loader {
   Scene load(const toml::table& root) {
     root_ = &root;
     Reader r(root, "", ctx_,
-             {"scene", "materials", "interactions", "particles", "generators", "walls", "effects",
+             {"scene", "materials", "interactions", "particles", "generators", "grains", "clumps", "walls", "effects",
               "numerics", "output", "shear_box", "oedometer", "triaxial", "view"});
     read_info(r, scene_);
     read_materials(r, scene_);
@@ -32,6 +32,7 @@ class Loader {
     read_particles(r, scene_);
     explicit_particles_ = scene_.particles.size();
     generator_of_ = read_generators(r, scene_);
+    read_clumps(r, scene_);
     read_walls(r, scene_);
     read_effects(r, scene_);  // before the apparatus: a pour rains under its gravity
     if (auto issue = read_shear_box(r, scene_)) fail(std::move(*issue));
@@ -62,8 +63,14 @@ class Loader {
   void note(SceneIssue issue) {
     size_t k = 0;
     if (std::sscanf(issue.field.c_str(), "particles[%zu]", &k) == 1 && k >= explicit_particles_) {
-      issue.message = "generated particle " + std::to_string(k) + ": " + issue.message;
-      issue.field = item("generators", generator_of_[k - explicit_particles_]);
+      if (k < scene_.particles.size() && scene_.particles[k].clump >= 0) {
+        const Clump& c = scene_.clumps[scene_.particles[k].clump];
+        issue.message = "member sphere " + std::to_string(k - c.first) + ": " + issue.message;
+        issue.field = item("clumps", scene_.particles[k].clump);
+      } else if (k - explicit_particles_ < generator_of_.size()) {
+        issue.message = "generated particle " + std::to_string(k) + ": " + issue.message;
+        issue.field = item("generators", generator_of_[k - explicit_particles_]);
+      }
     }
     ctx_.note(issue.code, line_for(issue.field), issue.field, issue.message);
   }

@@ -89,7 +89,9 @@ class Writer {
     write_numerics();
     write_outputs();
     write_view();
-    for (size_t i = 0; i < s_.particles.size(); ++i) write(s_.particles[i], i);
+    for (size_t i = 0; i < s_.particles.size(); ++i)
+      if (s_.particles[i].clump < 0) write(s_.particles[i], i);
+    write_clumps();
     return out_.str();
   }
 
@@ -301,6 +303,33 @@ class Writer {
     if (!v.size.empty()) line("size", toml_string(v.size));
     if (v.chains) line("chains", *v.chains);
     if (v.threshold) line("threshold", *v.threshold);
+  }
+
+  // Grains, then clumps as placed (their members are rebuilt from them).
+  void write_clumps() {
+    for (const Grain& g : s_.grains) {
+      header("[[grains]]");
+      line("name", toml_string(g.name));
+      std::string rows = "[";
+      for (size_t k = 0; k < g.spheres.size(); ++k) {
+        rows += k ? ", [" : "[";
+        for (int c = 0; c < 4; ++c) rows += (c ? ", " : "") + toml_float(g.spheres[k][c]);
+        rows += "]";
+      }
+      line("spheres", rows + "]");
+    }
+    for (size_t i = 0; i < s_.clumps.size(); ++i) {
+      const Clump& c = s_.clumps[i];
+      header("[[clumps]]");
+      line("grain", toml_string(s_.grains[c.grain].name));
+      line("material", toml_string(material_name(s_, c.material, item("clumps", i) + ".material")));
+      line("position", c.position);
+      const auto& q = c.orientation;
+      line("orientation", "[" + toml_float(q[0]) + ", " + toml_float(q[1]) + ", " + toml_float(q[2]) +
+                              ", " + toml_float(q[3]) + "]");
+      if (!is_default_zero(c.velocity)) line("velocity", c.velocity);
+      if (!is_default_zero(c.angular_velocity)) line("angular_velocity", c.angular_velocity);
+    }
   }
 
   void write(const Particle& p, size_t i) {

@@ -132,6 +132,30 @@ class Reader {
     return out;
   }
 
+  // An array of `width`-number arrays, e.g. spheres = [[0, 0, 0, 1e-3], ...].
+  std::vector<std::vector<double>> rows(std::string_view key, size_t width) const {
+    const toml::array* a = as_array(key, require(key));
+    std::vector<std::vector<double>> out;
+    for (size_t k = 0; k < a->size(); ++k) {
+      const toml::node& row = *a->get(k);
+      const toml::array* r = row.as_array();
+      if (!r || r->size() != width)
+        fail("bad_vector", key,
+             "element " + std::to_string(k) + " is not an array of " + std::to_string(width) +
+                 " numbers");
+      out.emplace_back();
+      for (size_t c = 0; c < width; ++c) {
+        const toml::node& e = *r->get(c);
+        if (!e.is_integer() && !e.is_floating_point())
+          fail("wrong_type", key,
+               "element " + std::to_string(k) + "[" + std::to_string(c) + "] is " + type_name(e) +
+                   ", expected a number");
+        out.back().push_back(to_number(key, e));
+      }
+    }
+    return out;
+  }
+
   std::optional<std::int64_t> optional_integer(std::string_view key) const {
     const toml::node* n = get(key);
     if (!n) return std::nullopt;

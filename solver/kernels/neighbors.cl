@@ -35,8 +35,11 @@
 // MAX_CAP of them; returns how many there are).
 INLINE int find_neighbors(int i, real4 pi POS_LO_CARG_FN, __global const uint* count,
                           __global const uint* start, __global const int* sorted,
-                          __global const real4* pos, real inv_cell, real skin, uint table,
-                          int* list) {
+                          __global const real4* pos, __global const int* body, real inv_cell,
+                          real skin, uint table, int* list) {
+#ifdef HAS_CLUMPS
+  const int own = body[i];  // a clump's members never touch each other (clumps.cl)
+#endif
   const int3 ci = cell_of(pi.xyz, inv_cell);
   int len = 0;
   int wanted = 0;
@@ -55,6 +58,9 @@ INLINE int find_neighbors(int i, real4 pi POS_LO_CARG_FN, __global const uint* c
         for (uint s = s0; s < s1; ++s) {
           const int j = sorted[s];
           if (j == i) continue;
+#ifdef HAS_CLUMPS
+          if (own >= 0 && body[j] == own) continue;
+#endif
           const real4 pj = pos[j];
           const real3 d = rel_pos(pi, pj LO(i) LO(j));
           const real cut = pi.w + pj.w + skin;
@@ -81,12 +87,13 @@ __kernel void count_neighbors(__global const real4* pos POS_LO_CARG,
                               __global const uint* count, __global const uint* start,
                               __global const int* sorted, __global int* nbr_count,
                               __global int* nbr_upper, __global volatile int* flags,
-                              real inv_cell, real skin, uint table, int n) {
+                              __global const int* body, real inv_cell, real skin, uint table,
+                              int n) {
   const int i = get_global_id(0);
   if (i >= n) return;
   int list[MAX_CAP];
-  const int wanted = find_neighbors(i, pos[i] POS_LO_PASS, count, start, sorted, pos, inv_cell,
-                                    skin, table, list);
+  const int wanted = find_neighbors(i, pos[i] POS_LO_PASS, count, start, sorted, pos, body,
+                                    inv_cell, skin, table, list);
   if (wanted > MAX_CAP) atomic_max(&flags[1], wanted);
   const int len = min(wanted, MAX_CAP);
   nbr_count[i] = len;
@@ -119,13 +126,13 @@ __kernel void build_neighbors(__global const real4* pos POS_LO_CARG,
                               __global const uint* up_off, __global const uint* lo_off,
                               __global const int* nbr_upper, __global int* nbr,
                               __global int* mirror, __global real* spring, int stride,
-                              __global float4* pos_build, real inv_cell, real skin, uint table,
-                              int n) {
+                              __global float4* pos_build, __global const int* body,
+                              real inv_cell, real skin, uint table, int n) {
   const int i = get_global_id(0);
   if (i >= n) return;
   const real4 pi = pos[i];
   int list[MAX_CAP];
-  const int len = min(MAX_CAP, find_neighbors(i, pi POS_LO_PASS, count, start, sorted, pos,
+  const int len = min(MAX_CAP, find_neighbors(i, pi POS_LO_PASS, count, start, sorted, pos, body,
                                               inv_cell, skin, table, list));
   const int upper = nbr_upper[i];
   const int lower = len - upper;

@@ -1,6 +1,7 @@
 #include "solver/scene/clump.h"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -138,6 +139,86 @@ std::vector<double> slice_cuts(std::span<const ClumpSphere> spheres) {
 }
 
 }  // namespace
+
+Quaternion quat_multiply(const Quaternion& a, const Quaternion& b) {
+  return {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+          a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+          a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+          a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
+}
+
+Vec3 quat_rotate(const Quaternion& q, const Vec3& v) {
+  // v + 2 u x (u x v + w v), u = (x, y, z)
+  const Vec3 u = {q[1], q[2], q[3]};
+  const Vec3 t = cross(u, v);
+  const Vec3 s = {t[0] + q[0] * v[0], t[1] + q[0] * v[1], t[2] + q[0] * v[2]};
+  const Vec3 c = cross(u, s);
+  return {v[0] + 2 * c[0], v[1] + 2 * c[1], v[2] + 2 * c[2]};
+}
+
+GrainBody grain_body(const Grain& grain) {
+  std::vector<ClumpSphere> spheres;
+  for (const auto& s : grain.spheres) spheres.push_back({{s[0], s[1], s[2]}, s[3]});
+  GrainBody b;
+  b.mass = union_mass_properties(spheres);
+  Eigen::Matrix3d axes;  // columns: the principal axes in the grain's frame
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 3; ++i) axes(i, k) = b.mass.axes[k][i];
+  const Eigen::Quaterniond q(axes);
+  b.to_grain = {q.w(), q.x(), q.y(), q.z()};
+  const Quaternion to_body = {q.w(), -q.x(), -q.y(), -q.z()};
+  for (const ClumpSphere& s : spheres) {
+    const Vec3 r = {s.centre[0] - b.mass.centroid[0], s.centre[1] - b.mass.centroid[1],
+                    s.centre[2] - b.mass.centroid[2]};
+    b.offsets.push_back(quat_rotate(to_body, r));
+    b.radii.push_back(s.radius);
+  }
+  return b;
+}
+
+std::vector<double> solid_volumes(const Scene& scene) {
+  std::vector<double> v(scene.particles.size());
+  for (size_t i = 0; i < v.size(); ++i) v[i] = 4.0 / 3.0 * kPi * std::pow(scene.particles[i].radius, 3);
+  if (scene.clumps.empty()) return v;
+  std::vector<double> grain_volume;
+  for (const Grain& g : scene.grains) grain_volume.push_back(grain_body(g).mass.volume);
+  for (const Clump& c : scene.clumps) {
+    double spheres = 0;
+    for (int j = 0; j < c.count; ++j) spheres += v[c.first + j];
+    for (int j = 0; j < c.count; ++j) v[c.first + j] *= grain_volume[c.grain] / spheres;
+  }
+  return v;
+}
+
+Quaternion uniform_rotation(double u1, double u2, double u3) {
+  const double a = std::sqrt(1 - u1), b = std::sqrt(u1);
+  return {b * std::cos(2 * kPi * u3), a * std::sin(2 * kPi * u2), a * std::cos(2 * kPi * u2),
+          b * std::sin(2 * kPi * u3)};
+}
+
+Quaternion body_orientation(const Clump& c, const GrainBody& body) {
+  return quat_multiply(c.orientation, body.to_grain);
+}
+
+void add_clump(Scene& scene, Clump c, const GrainBody& body) {
+  const Quaternion q = body_orientation(c, body);
+  c.first = static_cast<int>(scene.particles.size());
+  c.count = static_cast<int>(body.offsets.size());
+  const int index = static_cast<int>(scene.clumps.size());
+  for (size_t k = 0; k < body.offsets.size(); ++k) {
+    const Vec3 r = quat_rotate(q, body.offsets[k]);
+    const Vec3 spin = cross(c.angular_velocity, r);
+    Particle p;
+    p.material = c.material;
+    p.radius = body.radii[k];
+    p.position = {c.position[0] + r[0], c.position[1] + r[1], c.position[2] + r[2]};
+    p.velocity = {c.velocity[0] + spin[0], c.velocity[1] + spin[1], c.velocity[2] + spin[2]};
+    p.angular_velocity = c.angular_velocity;
+    p.clump = index;
+    scene.particles.push_back(p);
+  }
+  scene.clumps.push_back(c);
+}
 
 DiskUnionMoments disk_union_moments(std::span<const Disk> disks) {
   DiskUnionMoments m;

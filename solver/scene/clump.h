@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "solver/common/vec3.h"
+#include "solver/scene/scene.h"
 
 namespace simsols {
 
@@ -54,5 +55,40 @@ struct Disk {
   double x = 0, y = 0, radius = 0;
 };
 DiskUnionMoments disk_union_moments(std::span<const Disk> disks);
+
+// Unit quaternions (w, x, y, z): products and rotations.
+using Quaternion = std::array<double, 4>;
+Quaternion quat_multiply(const Quaternion& a, const Quaternion& b);
+Vec3 quat_rotate(const Quaternion& q, const Vec3& v);
+
+// A grain as a rigid body: its unit-density mass properties, and its
+// spheres about the centroid in the principal frame (the body frame the
+// kernels integrate in); `to_grain` turns the principal frame into the
+// grain's own.
+struct GrainBody {
+  MassProperties mass;
+  std::vector<Vec3> offsets;  // m, principal frame
+  std::vector<double> radii;
+  Quaternion to_grain{1, 0, 0, 0};
+};
+GrainBody grain_body(const Grain& grain);
+
+// Appends clump c's member spheres to scene.particles (placed from its
+// position and orientation, moving with its velocities) and c, with its
+// member range, to scene.clumps.
+void add_clump(Scene& scene, Clump c, const GrainBody& body);
+
+// Each particle's share of the solid volume (m^3): a free sphere's own
+// volume; a clump member's share of its clump's union volume, in
+// proportion to its sphere's volume (the shares of a clump add up to the
+// union's volume, its overlaps counted once).
+std::vector<double> solid_volumes(const Scene& scene);
+
+// A unit quaternion drawn uniformly over rotations from three numbers
+// uniform in [0, 1) (Shoemake 1992).
+Quaternion uniform_rotation(double u1, double u2, double u3);
+
+// The clump's orientation in the body (principal) frame: body to scene.
+Quaternion body_orientation(const Clump& c, const GrainBody& body);
 
 }  // namespace simsols

@@ -57,6 +57,29 @@ struct Particle {
   Vec3 position{};    // m
   Vec3 velocity{};    // m/s
   Vec3 angular_velocity{};  // rad/s
+  int clump = -1;     // the clump it belongs to (Scene::clumps), -1 for a free sphere
+};
+
+// A grain shape made of overlapping spheres, in its own frame (a clump
+// template: docs/specimens.md).
+struct Grain {
+  std::string name;
+  std::vector<std::array<double, 4>> spheres;  // x, y, z, radius (m)
+};
+
+// A rigid clump of a grain's spheres. Its member spheres are particles
+// [first, first + count) of the scene, placed at read time from the
+// grain's spheres turned by `orientation` (a unit quaternion w, x, y, z,
+// the grain's frame to the scene's) about the union's centroid, which
+// sits at `position`.
+struct Clump {
+  int grain = 0;      // index into Scene::grains
+  int material = 0;
+  Vec3 position{};    // m, the union's centroid
+  std::array<double, 4> orientation{1, 0, 0, 0};
+  Vec3 velocity{};          // m/s, of the centroid
+  Vec3 angular_velocity{};  // rad/s
+  int first = 0, count = 0;  // its member particles
 };
 
 enum class WallShape : std::uint8_t { Plane, Rectangle };
@@ -232,6 +255,7 @@ struct Specimen {
   Clearance clearance = Clearance::Shift;  // Layers: how the row-wall clearance is used
   std::int64_t seed = 1;
   Grading grading;                 // Pour: the sizes' distribution
+  int grain = -1;                  // Pour: clumps of this grain (Scene::grains) instead of beads
   Preparation preparation;         // how it settles (every method)
 };
 
@@ -355,6 +379,8 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<PairOverride> pair_overrides;
   std::vector<Particle> particles;
+  std::vector<Grain> grains;
+  std::vector<Clump> clumps;  // rigid bodies of member particles
   std::vector<Wall> walls;
   Effects effects;
   Numerics numerics;

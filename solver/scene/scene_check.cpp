@@ -306,7 +306,8 @@ void check_outputs(const Scene& s, Found& found) {
   check_number(found, "output.checkpoint_interval", s.outputs.checkpoint_interval, kNonNegative);
 }
 
-// O(N): a hash grid with cells as large as the largest diameter.
+// O(N): a hash grid with cells as large as the largest diameter. The
+// spheres of one clump overlap by design.
 void check_particle_overlaps(const Scene& s) {
   double r_max = 0;
   for (const Particle& p : s.particles) r_max = std::max(r_max, p.radius);
@@ -315,6 +316,7 @@ void check_particle_overlaps(const Scene& s) {
     const Particle& p = s.particles[i];
     grid.for_each_near(p.position, [&](int j) {
       const Particle& q = s.particles[j];
+      if (p.clump >= 0 && p.clump == q.clump) return;  // one rigid grain
       const double overlap = p.radius + q.radius - norm(sub(p.position, q.position));
       const double limit = kMaxOverlapFraction * std::min(p.radius, q.radius);
       if (overlap > limit)

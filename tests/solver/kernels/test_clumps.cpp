@@ -1,0 +1,250 @@
+// Clumps on the device (kernels/clumps.cl): a free asymmetric body keeps
+// its angular momentum and energy and shows the intermediate-axis
+// instability (while spin about the major axis is stable), its members
+// move rigidly and never touch each other, a clump lying on a plane stays
+// there, and a checkpoint resumes it bit for bit.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "solver/apparatus/oedometer_test.h"
+#include "solver/apparatus/platen_servo.h"
+#include "solver/io/checkpoint.h"
+#include "solver/io/scene_toml.h"
+#include "solver/scene/clump.h"
+#include "tests/support/test_support.h"
+
+namespace simsols {
+namespace {
+
+const char* kLump = R"(
+[[materials]]
+name = "glass"
+young_modulus = 62.784e9
+poisson_ratio = 0.2
+density = 2230
+restitution = 0.5
+sliding_friction = 0.3
+rolling_friction = 0
+
+[[grains]]
+name = "lump"
+spheres = [[0, 0, 0, 1e-3], [1.3e-3, 0, 0, 0.7e-3], [0.2e-3, 0.9e-3, 0.3e-3, 0.5e-3]]
+)";
+
+Grain lump() {
+  return {"lump", {{0, 0, 0, 1e-3}, {1.3e-3, 0, 0, 0.7e-3}, {0.2e-3, 0.9e-3, 0.3e-3, 0.5e-3}}};
+}
+
+std::string vec(const Vec3& v) {
+  char b[120];
+  std::snprintf(b, sizeof b, "[%.17g, %.17g, %.17g]", v[0], v[1], v[2]);
+  return b;
+}
+
+// One free lump spinning at `spin` rad/s about its principal axis `axis`,
+// nudged 1 % of that towards the other two; no gravity.
+std::string free_lump(int axis, double spin, const std::string& precision) {
+  const GrainBody b = grain_body(lump());
+  Vec3 w{};
+  for (int k = 0; k < 3; ++k)
+    for (int a = 0; a < 3; ++a) w[a] += spin * (k == axis ? 1 : 1e-2) * b.mass.axes[k][a];
+  return std::string(kLump) + R"(
+[[clumps]]
+grain = "lump"
+material = "glass"
+position = [0, 0, 0]
+angular_velocity = )" + vec(w) + R"(
+
+[effects]
+gravity = [0, 0, 0]
+
+[numerics]
+precision = ")" + precision + R"("
+duration = 1
+)";
+}
+
+// The body-frame angular velocity about principal axis k.
+double body_spin(const ClumpState& c, const GrainBody& b, double rho, int k) {
+  const Vec3 lb = quat_rotate({c.orientation[0], -c.orientation[1], -c.orientation[2],
+                               -c.orientation[3]}, c.angular_momentum);
+  return lb[k] / (rho * b.mass.principal[k]);
+}
+
+TEST(Clumps, AFreeBodyKeepsItsMomentumAndFlipsAboutItsIntermediateAxis) {
+  const GrainBody b = grain_body(lump());
+  const double spin = 5000;
+  for (int axis : {1, 2}) {
+    const Scene scene = parse_scene(free_lump(axis, spin, "double"), "lump.toml");
+    ASSERT_EQ(scene.particles.size(), 3u);
+    Simulation sim(default_device(), scene);
+    const ClumpState c0 = sim.clumps().at(0);
+    const double l0 = norm(c0.angular_momentum), e0 = c0.kinetic_energy;
+    double worst_l = 0, worst_e = 0, lowest = 1e9;
+    const int chunks = 300;
+    const std::int64_t per = std::llround(0.012 / chunks / sim.dt());
+    for (int k = 0; k < chunks; ++k) {
+      sim.advance(per);
+      const ClumpState c = sim.clumps().at(0);
+      worst_l = std::max(worst_l, std::abs(norm(c.angular_momentum) / l0 - 1));
+      worst_e = std::max(worst_e, std::abs(c.kinetic_energy / e0 - 1));
+      lowest = std::min(lowest, body_spin(c, b, 2230, axis) / spin);
+    }
+    std::printf("[measure] spin about principal axis %d: |L| within %.2e, energy within %.2e, "
+                "lowest spin about it %.3f of the start (%lld steps)\n",
+                axis, worst_l, worst_e, lowest, static_cast<long long>(sim.steps()));
+    EXPECT_LT(worst_l, 1e-11);
+    EXPECT_LT(worst_e, 2e-8);
+    if (axis == 1)
+      EXPECT_LT(lowest, -0.9);  // the intermediate axis turned over
+    else
+      EXPECT_GT(lowest, 0.99);  // the major axis holds
+    // the members kept their places in the body and met no force
+    const ParticleSnapshot p = sim.snapshot();
+    const ClumpState c = sim.clumps().at(0);
+    for (size_t i = 0; i < 3; ++i) {
+      const Vec3 want = quat_rotate(c.orientation, b.offsets[i]);
+      for (int a = 0; a < 3; ++a) EXPECT_NEAR(p.position[i][a] - c.position[a], want[a], 1e-12);
+      EXPECT_EQ(norm(p.force[i]), 0);
+    }
+  }
+}
+
+// A flat grain of three equal spheres lying on a plane under gravity:
+// once its elastic bounce has died out it stays, neither sliding nor
+// turning.
+TEST(Clumps, AClumpAtRestOnAPlaneStaysAtRest) {
+  const std::string text = std::string(kLump) + R"(
+[[grains]]
+name = "tripod"
+spheres = [[0, 0, 0, 0.5e-3], [0.8e-3, 0, 0, 0.5e-3], [0.4e-3, 0.69282e-3, 0, 0.5e-3]]
+
+[[clumps]]
+grain = "tripod"
+material = "glass"
+position = [0, 0, 0.5e-3]
+
+[[walls]]
+name = "floor"
+material = "glass"
+point = [0, 0, 0]
+normal = [0, 0, 1]
+
+[numerics]
+precision = "double"
+duration = 1
+)";
+  const Scene scene = parse_scene(text, "rest.toml");
+  Simulation sim(default_device(), scene);
+  sim.advance(std::llround(0.005 / sim.dt()));  // settles onto the plane
+  const ClumpState a = sim.clumps().at(0);
+  sim.advance(std::llround(0.005 / sim.dt()));
+  const ClumpState z = sim.clumps().at(0);
+  double turned = 0;
+  for (int k = 1; k < 4; ++k) turned = std::max(turned, std::abs(z.orientation[k] - a.orientation[k]));
+  const double moved = norm({z.position[0] - a.position[0], z.position[1] - a.position[1],
+                             z.position[2] - a.position[2]});
+  std::printf("[measure] a tripod at rest for 5 ms: moved %.2e m, turned %.2e, speed %.2e m/s, "
+              "height %.6e m\n",
+              moved, turned, norm(z.velocity), z.position[2]);
+  EXPECT_LT(moved, 1e-18);
+  EXPECT_LT(turned, 1e-15);
+  EXPECT_LT(norm(z.velocity), 1e-11);
+  EXPECT_GT(z.position[2], 0.49e-3);  // it lies on the plane, not through it
+  EXPECT_LT(z.position[2], 0.5e-3);
+}
+
+TEST(Clumps, ACheckpointResumesAClumpBitForBit) {
+  const Scene scene = parse_scene(free_lump(1, 2000, "float"), "lump.toml");
+  Simulation a(default_device(), scene);
+  a.advance(500);
+  const std::string path = (std::filesystem::temp_directory_path() / "simsols_clump.bin").string();
+  save_checkpoint(a, path);
+  a.advance(500);
+  std::unique_ptr<Simulation> b = load_checkpoint(default_device(), path);
+  b->advance(500);
+  EXPECT_EQ(a.hash(), b->hash());
+  EXPECT_EQ(a.clumps().at(0).orientation, b->clumps().at(0).orientation);
+  std::filesystem::remove(path);
+}
+
+TEST(Clumps, TheResolvedSceneRebuildsTheSameClumps) {
+  const Scene a = parse_scene(free_lump(1, 2000, "double"), "lump.toml");
+  const Scene b = parse_scene(to_toml(a), "resolved.toml");
+  ASSERT_EQ(b.particles.size(), a.particles.size());
+  ASSERT_EQ(b.clumps.size(), 1u);
+  for (size_t i = 0; i < a.particles.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(b.particles[i].position[k], a.particles[i].position[k]);
+      EXPECT_EQ(b.particles[i].velocity[k], a.particles[i].velocity[k]);
+    }
+  testing::expect_scene_error(std::string(kLump) + "[[clumps]]\ngrain = \"rock\"\nmaterial = \"glass\"\nposition = [0, 0, 0]\n",
+                              "unknown_grain", "clumps[0].grain");
+}
+
+// A pour of clumps into the oedometer: as many grains as hold the solid
+// volume asked, placed apart and turned at random; in float they settle
+// and take their load steps without a runaway, and the test's solid
+// volume counts each union once. Large, soft grains keep it short.
+TEST(Clumps, APourOfClumpsSettlesAndTakesItsLoad) {
+  const Grain big = {"big", {{0, 0, 0, 3e-3}, {3.9e-3, 0, 0, 2.1e-3}, {0.6e-3, 2.7e-3, 0.9e-3, 1.5e-3}}};
+  const std::string text = R"(
+[[materials]]
+name = "soft"
+young_modulus = 1e9
+poisson_ratio = 0.2
+density = 2230
+restitution = 0.5
+sliding_friction = 0.3
+rolling_friction = 0
+
+[[grains]]
+name = "big"
+spheres = [[0, 0, 0, 3e-3], [3.9e-3, 0, 0, 2.1e-3], [0.6e-3, 2.7e-3, 0.9e-3, 1.5e-3]]
+
+[oedometer]
+length = 30e-3
+width = 30e-3
+load_steps = [25e3, 50e3]
+settle_time = 0.3
+step_time = 0.02
+
+[oedometer.specimen]
+method = "pour"
+material = "soft"
+grain = "big"
+layers = 3
+seed = 3
+
+[numerics]
+precision = "float"
+duration = 1
+)";
+  const Scene scene = parse_scene(text, "lumps.toml");
+  const GrainBody b = grain_body(big);
+  const double d_eq = std::cbrt(6 / 3.14159265358979323846 * b.mass.volume);
+  ASSERT_FALSE(scene.clumps.empty());
+  EXPECT_EQ(scene.particles.size(), 3 * scene.clumps.size());
+  const int per_layer = static_cast<int>(std::floor(30e-3 / (d_eq * (1 + 1e-6))));
+  EXPECT_EQ(static_cast<int>(scene.clumps.size()), per_layer * per_layer * 3);
+  const SpecimenStats stats = specimen_stats(scene, 0);
+  EXPECT_NEAR(stats.volume, scene.clumps.size() * b.mass.volume, 1e-12 * stats.volume);
+  Simulation sim(default_device(), scene);
+  OedometerTest test(sim);
+  while (!test.done()) test.advance(1 << 16);  // throws RunawayError on a NaN
+  const std::vector<OedometerRow>& rows = test.rows();
+  ASSERT_FALSE(rows.empty());
+  std::printf("[measure] %zu grains (d_eq %.3f mm) poured, settled and loaded in %lld steps (float): "
+              "e = %.3f at %.0f kPa\n",
+              scene.clumps.size(), d_eq * 1e3, static_cast<long long>(sim.steps()),
+              rows.back().void_ratio, rows.back().sigma_top * 1e-3);
+  EXPECT_GT(rows.back().void_ratio, 0.2);
+  EXPECT_LT(rows.back().void_ratio, 1.5);
+}
+
+}  // namespace
+}  // namespace simsols
