@@ -12,6 +12,7 @@
 #include "solver/apparatus/triaxial_test.h"
 #include "solver/common/number_text.h"
 #include "solver/io/output.h"
+#include "solver/scene/clump.h"
 
 namespace simsols {
 namespace {
@@ -139,8 +140,15 @@ Specimen* mutable_specimen(Scene& s) {
 }
 
 Packing measure_specimen(Simulation& sim) {
-  const SpecimenCell cell = specimen_cell(sim.scene());
-  return measure_packing(sample_contacts(sim), cell.length, cell.width, 0);
+  const Scene& scene = sim.scene();
+  const SpecimenCell cell = specimen_cell(scene);
+  std::vector<double> share;
+  if (!scene.clumps.empty()) {  // members' overlaps counted once
+    share = solid_volumes(scene);
+    for (size_t i = 0; i < share.size(); ++i)
+      share[i] /= 4.0 / 3.0 * 3.14159265358979323846 * std::pow(scene.particles[i].radius, 3);
+  }
+  return measure_packing(sample_contacts(sim), cell.length, cell.width, 0, share);
 }
 
 Settled settle_specimen(const Scene& scene, const std::shared_ptr<Device>& device) {
