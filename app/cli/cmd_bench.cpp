@@ -6,6 +6,9 @@
 //   cubic  simple cubic lattice, 6 contacts per bead: the coordination of a
 //          settled shear-box packing (default)
 //   fcc    face-centred cubic, 12 contacts per bead: twice the contact load
+//   dimers the cubic lattice with neighbours along x joined in pairs into
+//          rigid two-sphere clumps (solver/scene/clump.h): the clumps'
+//          cost next to the same spheres free
 // The first steps (first list build, kernel warm-up) are not timed; each case
 // is then timed `repeat` times and the median rate is printed with the range.
 #include <algorithm>
@@ -21,6 +24,7 @@
 #include "app/cli/commands.h"
 #include "render/view/frames.h"
 #include "solver/core/simulation.h"
+#include "solver/scene/clump.h"
 
 namespace simsols {
 
@@ -71,6 +75,33 @@ Scene bench_scene(int target, Precision precision, bool fcc) {
 
 namespace {
 
+// The packing's beads along x joined in pairs into rigid dimers (the last
+// of an odd row stays free).
+Scene as_dimers(const Scene& beads) {
+  Scene s = beads;
+  s.particles.clear();
+  const std::vector<Particle>& p = beads.particles;
+  const double r = p.front().radius, a = 2 * r * (1 - 2e-4);
+  s.grains = {{"dimer", {{-a / 2, 0, 0, r}, {a / 2, 0, 0, r}}}};
+  const GrainBody body = grain_body(s.grains[0]);
+  const double x0 = p.front().position[0];
+  for (size_t k = 0; k < p.size(); ++k) {
+    const bool even = std::lround((p[k].position[0] - x0) / a) % 2 == 0;
+    const bool pair = even && k + 1 < p.size() && p[k + 1].position[1] == p[k].position[1] &&
+                      p[k + 1].position[2] == p[k].position[2];
+    if (!pair) {
+      s.particles.push_back(p[k]);
+      continue;
+    }
+    Clump c;
+    c.position = {0.5 * (p[k].position[0] + p[k + 1].position[0]), p[k].position[1],
+                  p[k].position[2]};
+    add_clump(s, c, body);
+    ++k;
+  }
+  return s;
+}
+
 struct BenchOptions {
   std::vector<int> sizes{5000, 50000, 500000};
   std::vector<std::string> precisions{"float", "double"};
@@ -112,7 +143,8 @@ int bench(const BenchOptions& opt) {
       continue;
     }
     for (int n : opt.sizes) {
-      Simulation sim(device, bench_scene(n, p, opt.packing == "fcc"));
+      const Scene beads = bench_scene(n, p, opt.packing == "fcc");
+      Simulation sim(device, opt.packing == "dimers" ? as_dimers(beads) : beads);
       sim.advance(5);  // first list build and warm-up, not timed
       device->finish();
       const auto steps = static_cast<std::int64_t>(std::clamp(opt.budget / n, 20.0, 5000.0));
@@ -170,8 +202,10 @@ CommandRunner add_bench_command(CLI::App& app) {
       ->check(CLI::Range(1, 50000000));
   cmd->add_option("--precision", opt->precisions, "float and/or double")
       ->check(CLI::IsMember(choice_names<Precision>()));
-  cmd->add_option("--packing", opt->packing, "cubic (6 contacts per bead, default) or fcc (12)")
-      ->check(CLI::IsMember({"cubic", "fcc"}));
+  cmd->add_option("--packing", opt->packing,
+                  "cubic (6 contacts per bead, default), fcc (12) or dimers (cubic, beads paired "
+                  "into rigid two-sphere clumps)")
+      ->check(CLI::IsMember({"cubic", "fcc", "dimers"}));
   cmd->add_option("--budget", opt->budget, "Particle-steps per timed repetition (default 3e7)")
       ->check(CLI::Range(1e4, 1e11));
   cmd->add_option("--repeat", opt->repeat, "Timed repetitions per case; the median is printed (default 5)")

@@ -238,7 +238,7 @@ void move_clumps(const Model& m, State& s) {
            arg("clump_vel", s.clump_vel), arg("clump_mom", s.clump_mom),
            arg("gravity", gravity_arg(m)), arg("dt", Real{m.dt()}), arg("skin", Real{m.skin()}),
            arg("nclumps", m.clumps()));
-  launch_exact(m, k.move_clumps, m.clumps());
+  launch(m, k.move_clumps, m.clumps());
 }
 
 void move_walls(const Model& m, State& s) {
