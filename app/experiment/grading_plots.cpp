@@ -1,10 +1,12 @@
 #include "app/experiment/grading_plots.h"
 
+#include <cmath>
 #include <filesystem>
 
 #include "render/plot/chart.h"
 #include "solver/apparatus/grading.h"
 #include "solver/io/output.h"
+#include "solver/scene/clump.h"
 #include "solver/scene/choices.h"
 
 namespace simsols {
@@ -34,9 +36,15 @@ const Specimen* graded_specimen(const Scene& scene) {
 void write_grading_files(const Scene& scene, const std::string& dir) {
   const Specimen* s = graded_specimen(scene);
   if (!s) return;
-  std::vector<double> diameters;
-  for (const Particle& p : scene.particles)
-    if (p.material == s->material) diameters.push_back(2 * p.radius);
+  std::vector<double> diameters;  // beads', or grains' volume-equivalent
+  if (s->grain >= 0) {
+    const double d_eq = std::cbrt(6 / 3.14159265358979323846 *
+                                  grain_body(scene.grains[s->grain]).mass.volume);
+    for (const Clump& c : scene.clumps) diameters.push_back(d_eq * c.scale);
+  } else {
+    for (const Particle& p : scene.particles)
+      if (p.material == s->material) diameters.push_back(2 * p.radius);
+  }
   if (diameters.empty()) return;
   const GradingCurve asked = grading_curve(s->grading, s->diameter);
   const std::filesystem::path d = dir;

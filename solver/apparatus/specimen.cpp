@@ -148,46 +148,51 @@ void place_pour(Scene& scene, const Specimen& s, const Cell& b) {
   }
 }
 
-// A pour of clumps: as many grains as hold the solid volume of the
-// layers of volume-equivalent beads, their centroids placed at random in
-// the pouring column with their bounding spheres apart, each turned at
-// random (uniform over rotations), raining as the beads do.
+// A pour of clumps: the pour's sizes (pour_sizes: one per bead the
+// layers would hold, or drawn from the grading) as the grains'
+// volume-equivalent diameters, each grain scaled to its size; centroids
+// placed at random in the pouring column (made taller when the grains'
+// bounding spheres need it), largest first, with their bounding spheres
+// apart; each turned uniformly at random; raining as the beads do.
 void place_clump_pour(Scene& scene, const Specimen& s, const Cell& b) {
   const GrainBody body = grain_body(scene.grains[s.grain]);
-  double reach = 0;  // the bounding sphere about the centroid
+  const double d_eq = std::cbrt(6 / kPi * body.mass.volume);
+  double unit_reach = 0;  // the bounding sphere about the centroid, at scale 1
   for (size_t k = 0; k < body.offsets.size(); ++k)
-    reach = std::max(reach, norm(body.offsets[k]) + body.radii[k]);
-  const double side = std::min(b.length, b.width);
-  if (2 * reach > side)
+    unit_reach = std::max(unit_reach, norm(body.offsets[k]) + body.radii[k]);
+  const std::vector<double> sizes = pour_sizes(s, b);
+  const double largest = unit_reach * sizes.front() / d_eq, side = std::min(b.length, b.width);
+  if (2 * largest > side)
     b.check.fail("out_of_range", "specimen.grain",
-                 "the grain spans " + num(2 * reach) + " m, more than the cell's " + num(side) + " m");
-  const double solid = beads_per_layer(b.length, b.width, s.diameter) * s.layers * kPi / 6 *
-                       s.diameter * s.diameter * s.diameter;
-  const int count = static_cast<int>(std::ceil(solid / body.mass.volume - 1e-9));
-  // tall enough that the grains' bounding spheres fill at most a quarter of
-  // it (random placement jams near 0.38)
-  const double top = std::max(column_height(s, b, std::vector<double>(count, s.diameter)),
-                              count * 4 * kPi / 3 * reach * reach * reach / (0.25 * b.length * b.width));
+                 "the largest grain spans " + num(2 * largest) + " m, more than the cell's " +
+                     num(side) + " m");
+  double bounding = 0;  // the bounding spheres fill at most a quarter of the column (RSA jams near 0.38)
+  for (double d : sizes) bounding += 4 * kPi / 3 * std::pow(unit_reach * d / d_eq, 3);
+  const double top = std::max(column_height(s, b, sizes), bounding / (0.25 * b.length * b.width));
   const Vec3 rain = rain_velocity(scene, s, b);
   Prng prng(static_cast<std::uint64_t>(s.seed));
-  SphereGrid grid(2 * reach, static_cast<size_t>(count));
-  std::vector<Vec3> placed;
-  const std::int64_t budget = 1000 + 2000LL * count;
+  SphereGrid grid(2 * largest, sizes.size());
+  std::vector<std::pair<Vec3, double>> placed;  // centroid, reach
+  const std::int64_t budget = 1000 + 2000LL * static_cast<std::int64_t>(sizes.size());
   std::int64_t attempts = 0;
-  while (static_cast<int>(placed.size()) < count) {
+  while (placed.size() < sizes.size()) {
+    const double scale = sizes[placed.size()] / d_eq, reach = unit_reach * scale;
     if (attempts++ == budget)
       b.check.fail("out_of_range", "specimen.layers",
                    "could place only " + std::to_string(placed.size()) + " of " +
-                       std::to_string(count) + " grains in the pouring column; use fewer layers");
+                       std::to_string(sizes.size()) + " grains in the pouring column; use fewer layers");
     const Vec3 p = {prng.uniform(reach, b.length - reach), prng.uniform(reach, b.width - reach),
                     prng.uniform(reach, std::max(reach, top - reach))};
     bool hit = false;
-    grid.for_each_near(p, [&](int q) { hit = hit || norm(sub(p, placed[q])) < 2 * reach; });
+    grid.for_each_near(p, [&](int q) {
+      hit = hit || norm(sub(p, placed[q].first)) < reach + placed[q].second;
+    });
     if (hit) continue;
     grid.insert(static_cast<int>(placed.size()), p);
-    placed.push_back(p);
+    placed.push_back({p, reach});
     Clump c;
     c.grain = s.grain;
+    c.scale = scale;
     c.material = s.material;
     c.position = p;
     // the grain's frame turned at random (body_orientation adds its principal frame)

@@ -93,7 +93,7 @@ void Model::make_clumps() {
   std::vector<Vec3> offset(n, Vec3{});
   for (size_t c = 0; c < s.clumps.size(); ++c) {
     const Clump& k = s.clumps[c];
-    const GrainBody& b = grain_bodies_[k.grain];
+    const GrainBody b = scaled(grain_bodies_[k.grain], k.scale);
     const double rho = s.materials[k.material].density, mass = rho * b.mass.volume;
     double spheres = 0;
     for (double r : b.radii) spheres += r * r * r;

@@ -166,7 +166,7 @@ std::vector<ClumpState> clump_states(const Model& m, State& s) {
     }
     k.orientation = {q[b + 3], q[b], q[b + 1], q[b + 2]};
     const Clump& clump = sc.clumps[c];
-    const GrainBody& g = m.grain_bodies()[clump.grain];
+    const GrainBody g = scaled(m.grain_bodies()[clump.grain], clump.scale);
     const double rho = sc.materials[clump.material].density, mass = rho * g.mass.volume;
     const Quaternion conj = {k.orientation[0], -k.orientation[1], -k.orientation[2], -k.orientation[3]};
     const Vec3 lb = quat_rotate(conj, k.angular_momentum);

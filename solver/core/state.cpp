@@ -60,7 +60,7 @@ void State::make_clumps(const Model& model) {
   RealPacker x(dbl), lo(false), q(dbl), v(dbl), l(dbl);
   const Vec3& o = model.origin();
   for (const Clump& c : s.clumps) {
-    const GrainBody& b = model.grain_bodies()[c.grain];
+    const GrainBody b = scaled(model.grain_bodies()[c.grain], c.scale);
     double rel[3];
     for (int a = 0; a < 3; ++a) rel[a] = c.position[a] - o[a];
     x.put4(rel[0], rel[1], rel[2], 0);

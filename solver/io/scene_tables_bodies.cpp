@@ -85,13 +85,16 @@ void read_clumps(const Reader& root, Scene& scene) {
   const auto clumps = root.tables("clumps");
   for (size_t i = 0; i < clumps.size(); ++i) {
     Reader r(*clumps[i], item("clumps", i), root.context(),
-             {"grain", "material", "position", "orientation", "velocity", "angular_velocity"});
+             {"grain", "scale", "material", "position", "orientation", "velocity",
+              "angular_velocity"});
     Clump c;
     const std::string name = r.string("grain");
     c.grain = -1;
     for (size_t g = 0; g < scene.grains.size(); ++g)
       if (scene.grains[g].name == name) c.grain = static_cast<int>(g);
     if (c.grain < 0) r.fail("unknown_grain", "grain", "no grain named '" + name + "' ([[grains]])");
+    c.scale = r.number("scale", 1);
+    r.check_range("scale", c.scale, c.scale > 0 && c.scale <= 1e3, "(0, 1000]");
     c.material = r.material("material", scene);
     c.position = r.vec3("position");
     const std::vector<double> q = r.numbers("orientation", {1, 0, 0, 0});

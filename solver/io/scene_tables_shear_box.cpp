@@ -84,16 +84,12 @@ Preparation read_preparation(const Reader& sp, const Specimen& s) {
   return p;
 }
 
-// specimen.grain: a pour of clumps of a [[grains]] shape; the grain's
-// volume-equivalent diameter stands for `diameter` (docs/specimens.md).
+// specimen.grain: a pour of clumps of a [[grains]] shape, sized by
+// volume-equivalent diameter (docs/specimens.md).
 int read_grain(const Reader& sp, const Scene& scene, const Specimen& s) {
   const std::string name = sp.string("grain");
   if (s.method != Specimen::Method::Pour)
     sp.fail("conflicting_keys", "grain", "clumps are poured: use specimen.method = \"pour\"");
-  for (const char* key : {"diameter", "grading"})
-    if (sp.has(key))
-      sp.fail("conflicting_keys", key,
-              "a pour of grains takes their size from the grain; leave " + std::string(key) + " out");
   for (size_t g = 0; g < scene.grains.size(); ++g)
     if (scene.grains[g].name == name) return static_cast<int>(g);
   sp.fail("unknown_grain", "grain", "no grain named '" + name + "' ([[grains]])");
@@ -113,9 +109,12 @@ Specimen read_specimen(const Reader& apparatus, const Scene& scene) {
     return s;
   }
   s.material = sp.material("material", scene);
-  if (sp.has("grain")) {
+  if (sp.has("grain")) {  // sizes are the grains' volume-equivalent diameters
     s.grain = read_grain(sp, scene, s);
-    s.diameter = std::cbrt(6 / 3.14159265358979323846 * grain_body(scene.grains[s.grain]).mass.volume);
+    s.diameter = sp.has("diameter") || sp.has("grading")
+                     ? read_grading(sp, s)
+                     : std::cbrt(6 / 3.14159265358979323846 *
+                                 grain_body(scene.grains[s.grain]).mass.volume);
   } else {
     s.diameter = read_grading(sp, s);
   }

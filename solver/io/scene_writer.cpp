@@ -322,6 +322,7 @@ class Writer {
       const Clump& c = s_.clumps[i];
       header("[[clumps]]");
       line("grain", toml_string(s_.grains[c.grain].name));
+      if (c.scale != 1) line("scale", c.scale);
       line("material", toml_string(material_name(s_, c.material, item("clumps", i) + ".material")));
       line("position", c.position);
       const auto& q = c.orientation;

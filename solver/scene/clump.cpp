@@ -185,7 +185,8 @@ std::vector<double> solid_volumes(const Scene& scene) {
   for (const Clump& c : scene.clumps) {
     double spheres = 0;
     for (int j = 0; j < c.count; ++j) spheres += v[c.first + j];
-    for (int j = 0; j < c.count; ++j) v[c.first + j] *= grain_volume[c.grain] / spheres;
+    const double volume = grain_volume[c.grain] * c.scale * c.scale * c.scale;
+    for (int j = 0; j < c.count; ++j) v[c.first + j] *= volume / spheres;
   }
   return v;
 }
@@ -196,11 +197,28 @@ Quaternion uniform_rotation(double u1, double u2, double u3) {
           b * std::sin(2 * kPi * u3)};
 }
 
+GrainBody scaled(const GrainBody& body, double scale) {
+  if (scale == 1) return body;
+  GrainBody b = body;
+  const double s3 = scale * scale * scale, s5 = s3 * scale * scale;
+  b.mass.volume *= s3;
+  for (int i = 0; i < 3; ++i) {
+    b.mass.centroid[i] *= scale;
+    b.mass.principal[i] *= s5;
+    for (int j = 0; j < 3; ++j) b.mass.inertia[i][j] *= s5;
+  }
+  for (Vec3& o : b.offsets)
+    for (double& x : o) x *= scale;
+  for (double& r : b.radii) r *= scale;
+  return b;
+}
+
 Quaternion body_orientation(const Clump& c, const GrainBody& body) {
   return quat_multiply(c.orientation, body.to_grain);
 }
 
-void add_clump(Scene& scene, Clump c, const GrainBody& body) {
+void add_clump(Scene& scene, Clump c, const GrainBody& unit) {
+  const GrainBody body = scaled(unit, c.scale);
   const Quaternion q = body_orientation(c, body);
   c.first = static_cast<int>(scene.particles.size());
   c.count = static_cast<int>(body.offsets.size());

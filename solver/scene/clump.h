@@ -72,10 +72,12 @@ struct GrainBody {
   Quaternion to_grain{1, 0, 0, 0};
 };
 GrainBody grain_body(const Grain& grain);
+// The same body `scale` times larger (lengths x s, volume x s^3, inertia x s^5).
+GrainBody scaled(const GrainBody& body, double scale);
 
-// Appends clump c's member spheres to scene.particles (placed from its
-// position and orientation, moving with its velocities) and c, with its
-// member range, to scene.clumps.
+// Appends clump c's member spheres to scene.particles (body scaled by
+// c.scale, placed from its position and orientation, moving with its
+// velocities) and c, with its member range, to scene.clumps.
 void add_clump(Scene& scene, Clump c, const GrainBody& body);
 
 // Each particle's share of the solid volume (m^3): a free sphere's own

@@ -69,11 +69,12 @@ struct Grain {
 
 // A rigid clump of a grain's spheres. Its member spheres are particles
 // [first, first + count) of the scene, placed at read time from the
-// grain's spheres turned by `orientation` (a unit quaternion w, x, y, z,
-// the grain's frame to the scene's) about the union's centroid, which
-// sits at `position`.
+// grain's spheres scaled by `scale` and turned by `orientation` (a unit
+// quaternion w, x, y, z, the grain's frame to the scene's) about the
+// union's centroid, which sits at `position`.
 struct Clump {
   int grain = 0;      // index into Scene::grains
+  double scale = 1;   // the grain's size times this (a graded pour's drawn size)
   int material = 0;
   Vec3 position{};    // m, the union's centroid
   std::array<double, 4> orientation{1, 0, 0, 0};

@@ -246,5 +246,57 @@ duration = 1
   EXPECT_LT(rows.back().void_ratio, 1.5);
 }
 
+// A graded pour of grains: each grain scaled to a size drawn from the
+// curve (its volume-equivalent diameter), the solid volume the asked one
+// to within one grain, no two bounding spheres overlapping, and the
+// resolved scene keeps the scales.
+TEST(Clumps, AGradedPourScalesEachGrainToItsDrawnSize) {
+  const std::string text = std::string(kLump) + R"(
+[triaxial]
+length = 30e-3
+width = 30e-3
+
+[triaxial.specimen]
+method = "pour"
+material = "glass"
+grain = "lump"
+diameter = 2.5e-3
+layers = 3
+seed = 5
+
+[triaxial.specimen.grading]
+law = "lognormal"
+sigma = 0.3
+
+[numerics]
+duration = 1
+)";
+  const Scene scene = parse_scene(text, "graded_lumps.toml");
+  const GrainBody unit = grain_body(lump());
+  const double d_eq = std::cbrt(6 / 3.14159265358979323846 * unit.mass.volume);
+  double solid = 0, smallest = 1e9, largest = 0;
+  for (const Clump& c : scene.clumps) {
+    const double d = d_eq * c.scale;
+    solid += unit.mass.volume * std::pow(c.scale, 3);
+    smallest = std::min(smallest, d);
+    largest = std::max(largest, d);
+    for (int k = 0; k < c.count; ++k)
+      EXPECT_NEAR(scene.particles[c.first + k].radius, unit.radii[k] * c.scale, 1e-15);
+  }
+  const int per_layer = static_cast<int>(std::floor(30e-3 / (2.5e-3 * (1 + 1e-6))));
+  const double want = per_layer * per_layer * 3 * 3.14159265358979323846 / 6 * std::pow(2.5e-3, 3);
+  std::printf("[measure] %zu graded grains of %.2f to %.2f mm (volume-equivalent)\n",
+              scene.clumps.size(), smallest * 1e3, largest * 1e3);
+  EXPECT_GE(solid, want);
+  EXPECT_LT(solid, want + unit.mass.volume * std::pow(largest / d_eq, 3));
+  EXPECT_LT(smallest, 0.8 * 2.5e-3);
+  EXPECT_GT(largest, 1.25 * 2.5e-3);
+  EXPECT_NEAR(specimen_stats(scene, 0).volume, solid, 1e-12 * solid);
+  const Scene again = parse_scene(to_toml(scene), "resolved.toml");
+  ASSERT_EQ(again.clumps.size(), scene.clumps.size());
+  for (size_t i = 0; i < scene.particles.size(); ++i)
+    EXPECT_EQ(again.particles[i].radius, scene.particles[i].radius);
+}
+
 }  // namespace
 }  // namespace simsols
