@@ -1,6 +1,5 @@
 #include "app/experiment/grading_plots.h"
 
-#include <cmath>
 #include <filesystem>
 
 #include "render/plot/chart.h"
@@ -25,10 +24,7 @@ plot::Series sieve_series(const std::string& label, const GradingCurve& c) {
 }  // namespace
 
 const Specimen* graded_specimen(const Scene& scene) {
-  const Specimen* s = scene.shear_box   ? &scene.shear_box->specimen
-                      : scene.oedometer ? &scene.oedometer->specimen
-                      : scene.triaxial  ? &scene.triaxial->specimen
-                                        : nullptr;
+  const Specimen* s = scene.specimen();
   return s && s->method == Specimen::Method::Pour && s->grading.law != Grading::Law::Single ? s
                                                                                            : nullptr;
 }
@@ -38,8 +34,7 @@ void write_grading_files(const Scene& scene, const std::string& dir) {
   if (!s) return;
   std::vector<double> diameters;  // beads', or grains' volume-equivalent
   if (s->grain >= 0) {
-    const double d_eq = std::cbrt(6 / 3.14159265358979323846 *
-                                  grain_body(scene.grains[s->grain]).mass.volume);
+    const double d_eq = volume_equivalent_diameter(grain_body(scene.grains[s->grain]));
     for (const Clump& c : scene.clumps) diameters.push_back(d_eq * c.scale);
   } else {
     for (const Particle& p : scene.particles)

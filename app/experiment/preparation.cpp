@@ -27,7 +27,7 @@ std::unique_ptr<LoadingProgramme> make_test(Simulation& sim) {
 DensityTrial trial(const Scene& base, const std::shared_ptr<Device>& device, const char* role,
                    double friction) {
   Scene scene = base;
-  Preparation& p = mutable_specimen(scene)->preparation;
+  Preparation& p = scene.specimen()->preparation;
   p.friction = friction;
   p.relative_density.reset();
   return {role, friction, settle_specimen(scene, device)};
@@ -129,14 +129,10 @@ void density_chart(const DensitySearch& s, const std::string& title, const std::
 }  // namespace
 
 SpecimenCell specimen_cell(const Scene& s) {
-  if (s.shear_box) return {s.shear_box->length, s.shear_box->width, &s.shear_box->specimen};
-  if (s.triaxial) return {s.triaxial->length, s.triaxial->width, &s.triaxial->specimen};
-  if (s.oedometer) return {s.oedometer->length, s.oedometer->width, &s.oedometer->specimen};
+  if (s.shear_box) return {s.shear_box->length, s.shear_box->width, s.specimen()};
+  if (s.triaxial) return {s.triaxial->length, s.triaxial->width, s.specimen()};
+  if (s.oedometer) return {s.oedometer->length, s.oedometer->width, s.specimen()};
   return {};
-}
-
-Specimen* mutable_specimen(Scene& s) {
-  return const_cast<Specimen*>(specimen_cell(s).specimen);
 }
 
 Packing measure_specimen(Simulation& sim) {
@@ -166,7 +162,7 @@ Settled settle_specimen(const Scene& scene, const std::shared_ptr<Device>& devic
 bool prepare_to_relative_density(Scene& scene, const std::shared_ptr<Device>& device,
                                  const std::filesystem::path& out_dir,
                                  const std::function<void(const std::string&)>& log) {
-  Specimen* specimen = mutable_specimen(scene);
+  Specimen* specimen = scene.specimen();
   if (!specimen || !specimen->preparation.relative_density) return false;
   Preparation& prep = specimen->preparation;
   DensitySearch s;

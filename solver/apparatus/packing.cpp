@@ -36,6 +36,11 @@ std::array<double, 3> contact_fabric(const ContactSample& sample, int* pairs) {
   return f;
 }
 
+// (15/2)(phi_zz - (phi_xx + phi_yy)/2) from contact_fabric's sums.
+double anisotropy(const std::array<double, 3>& f, int pairs) {
+  return pairs > 0 ? 7.5 * (f[2] - 0.5 * (f[0] + f[1])) / pairs : 0;
+}
+
 }  // namespace
 
 double sphere_volume_between(double z, double r, double lo, double hi) {
@@ -44,8 +49,8 @@ double sphere_volume_between(double z, double r, double lo, double hi) {
 
 double fabric_anisotropy(const ContactSample& sample) {
   int pairs = 0;
-  const std::array<double, 3> f = contact_fabric(sample, &pairs);
-  return pairs > 0 ? 7.5 * (f[2] - 0.5 * (f[0] + f[1])) / pairs : 0;
+  const std::array<double, 3> sums = contact_fabric(sample, &pairs);
+  return anisotropy(sums, pairs);
 }
 
 Packing measure_packing(const ContactSample& sample, double length, double width, double floor_z,
@@ -70,7 +75,7 @@ Packing measure_packing(const ContactSample& sample, double length, double width
   int pairs = 0;
   const std::array<double, 3> sums = contact_fabric(sample, &pairs);
   for (int k = 0; k < 3; ++k) p.fabric[k] = pairs > 0 ? sums[k] / pairs : 0;
-  p.fabric_anisotropy = fabric_anisotropy(sample);
+  p.fabric_anisotropy = anisotropy(sums, pairs);
   int touches = 0;
   for (const ContactForce& c : sample.contacts) touches += c.b < 0 ? 1 : 2;
   p.coordination = double(touches) / p.beads;

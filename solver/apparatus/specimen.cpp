@@ -156,7 +156,7 @@ void place_pour(Scene& scene, const Specimen& s, const Cell& b) {
 // apart; each turned uniformly at random; raining as the beads do.
 void place_clump_pour(Scene& scene, const Specimen& s, const Cell& b) {
   const GrainBody body = grain_body(scene.grains[s.grain]);
-  const double d_eq = std::cbrt(6 / kPi * body.mass.volume);
+  const double d_eq = volume_equivalent_diameter(body);
   double unit_reach = 0;  // the bounding sphere about the centroid, at scale 1
   for (size_t k = 0; k < body.offsets.size(); ++k)
     unit_reach = std::max(unit_reach, norm(body.offsets[k]) + body.radii[k]);

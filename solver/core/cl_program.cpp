@@ -51,10 +51,7 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
     any_damping = any_damping || p.restitution.value_or(1) < 1;
   }
   // a specimen may settle with friction its materials lack (Preparation)
-  for (const Specimen* s : {scene.shear_box ? &scene.shear_box->specimen : nullptr,
-                            scene.oedometer ? &scene.oedometer->specimen : nullptr,
-                            scene.triaxial ? &scene.triaxial->specimen : nullptr}) {
-    if (!s) continue;
+  if (const Specimen* s = scene.specimen()) {
     any_friction = any_friction || s->preparation.friction.value_or(0) > 0;
     any_rolling = any_rolling || s->preparation.rolling_friction.value_or(0) > 0;
   }

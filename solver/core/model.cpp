@@ -89,7 +89,7 @@ void Model::make_clumps() {
   for (const Grain& g : s.grains) grain_bodies_.push_back(grain_body(g));
   const bool dbl = config().double_precision;
   RealPacker inertia(dbl), offsets(dbl);
-  std::vector<std::int32_t> members, body(std::max<size_t>(1, s.clumps.empty() ? 1 : n), -1);
+  std::vector<std::int32_t> members, body(s.clumps.empty() ? 1 : n, -1);  // a stand-in entry without clumps
   std::vector<Vec3> offset(n, Vec3{});
   for (size_t c = 0; c < s.clumps.size(); ++c) {
     const Clump& k = s.clumps[c];

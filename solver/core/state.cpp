@@ -76,9 +76,10 @@ void State::make_clumps(const Model& model) {
     const Vec3 ls = quat_rotate(r, lb);
     l.put4(ls[0], ls[1], ls[2], 0);
   }
-  if (s.clumps.empty())
+  if (s.clumps.empty()) {  // one-record stand-ins
     for (RealPacker* p : {&x, &q, &v, &l}) p->put4(0, 0, 0, 0);
-  if (s.clumps.empty()) lo.put_float4(0, 0, 0, 0);
+    lo.put_float4(0, 0, 0, 0);
+  }
   clumps = static_cast<int>(s.clumps.size());
   clump_pos = make(d, x.bytes().size(), x.data());
   clump_pos_lo = make(d, lo.bytes().size(), lo.data());

@@ -4,8 +4,6 @@
 #include "solver/apparatus/shear_box.h"
 #include "solver/io/scene_tables.h"
 
-#include <cmath>
-
 #include "solver/scene/clump.h"
 #include "solver/common/number_text.h"
 
@@ -113,8 +111,7 @@ Specimen read_specimen(const Reader& apparatus, const Scene& scene) {
     s.grain = read_grain(sp, scene, s);
     s.diameter = sp.has("diameter") || sp.has("grading")
                      ? read_grading(sp, s)
-                     : std::cbrt(6 / 3.14159265358979323846 *
-                                 grain_body(scene.grains[s.grain]).mass.volume);
+                     : volume_equivalent_diameter(grain_body(scene.grains[s.grain]));
   } else {
     s.diameter = read_grading(sp, s);
   }

@@ -197,6 +197,10 @@ Quaternion uniform_rotation(double u1, double u2, double u3) {
           b * std::sin(2 * kPi * u3)};
 }
 
+double volume_equivalent_diameter(const GrainBody& body) {
+  return std::cbrt(6 / kPi * body.mass.volume);
+}
+
 GrainBody scaled(const GrainBody& body, double scale) {
   if (scale == 1) return body;
   GrainBody b = body;

@@ -72,6 +72,9 @@ struct GrainBody {
   Quaternion to_grain{1, 0, 0, 0};
 };
 GrainBody grain_body(const Grain& grain);
+// The diameter of the sphere of the body's volume, (6 V / pi)^(1/3): a
+// grain's size as a grading counts it.
+double volume_equivalent_diameter(const GrainBody& body);
 // The same body `scale` times larger (lengths x s, volume x s^3, inertia x s^5).
 GrainBody scaled(const GrainBody& body, double scale);
 

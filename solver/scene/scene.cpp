@@ -25,6 +25,17 @@ double Scene::total_mass() const {
   return sum;
 }
 
+const Specimen* Scene::specimen() const {
+  return shear_box   ? &shear_box->specimen
+         : oedometer ? &oedometer->specimen
+         : triaxial  ? &triaxial->specimen
+                     : nullptr;
+}
+
+Specimen* Scene::specimen() {
+  return const_cast<Specimen*>(static_cast<const Scene*>(this)->specimen());
+}
+
 bool Scene::has_gravity() const {
   return effects.gravity[0] != 0 || effects.gravity[1] != 0 || effects.gravity[2] != 0;
 }

@@ -399,6 +399,10 @@ struct Scene {
   double mass(const Particle& p) const;  // kg, a solid sphere of its material
   double total_mass() const;             // kg, of every particle
   bool has_gravity() const;
+  // The specimen of the scene's apparatus (shear box, oedometer or
+  // triaxial cell); nullptr without one.
+  const Specimen* specimen() const;
+  Specimen* specimen();
   // Largest capillary rupture distance of any pair (0 without cohesion), m.
   double rupture_distance() const;
 };
