@@ -82,7 +82,7 @@ Scene as_dimers(const Scene& beads) {
   s.particles.clear();
   const std::vector<Particle>& p = beads.particles;
   const double r = p.front().radius, a = 2 * r * (1 - 2e-4);
-  s.grains = {{"dimer", {{-a / 2, 0, 0, r}, {a / 2, 0, 0, r}}}};
+  s.grains = {{"dimer", {{-a / 2, 0, 0, r}, {a / 2, 0, 0, r}}, ""}};
   const GrainBody body = grain_body(s.grains[0]);
   const double x0 = p.front().position[0];
   for (size_t k = 0; k < p.size(); ++k) {

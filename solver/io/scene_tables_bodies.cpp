@@ -4,7 +4,6 @@
 
 #include <cmath>
 
-#include "solver/scene/clump.h"
 
 namespace simsols::scene_toml {
 
@@ -61,51 +60,6 @@ void read_particles(const Reader& root, Scene& scene) {
     p.velocity = r.vec3("velocity", {});
     p.angular_velocity = r.vec3("angular_velocity", {});
     scene.particles.push_back(p);
-  }
-}
-
-void read_clumps(const Reader& root, Scene& scene) {
-  const auto grains = root.tables("grains");
-  std::vector<GrainBody> bodies;
-  for (size_t i = 0; i < grains.size(); ++i) {
-    Reader r(*grains[i], item("grains", i), root.context(), {"name", "spheres"});
-    Grain g;
-    g.name = r.string("name");
-    for (const Grain& other : scene.grains)
-      if (other.name == g.name) r.fail("duplicate_name", "name", "grain '" + g.name + "' is defined twice");
-    for (const std::vector<double>& row : r.rows("spheres", 4)) {
-      if (!(row[3] > 0)) r.fail("out_of_range", "spheres", "a radius is not > 0 m");
-      g.spheres.push_back({row[0], row[1], row[2], row[3]});
-    }
-    if (g.spheres.empty()) r.fail("out_of_range", "spheres", "a grain needs at least one sphere");
-    if (g.spheres.size() > 64) r.fail("out_of_range", "spheres", "a grain has at most 64 spheres");
-    scene.grains.push_back(g);
-    bodies.push_back(grain_body(g));
-  }
-  const auto clumps = root.tables("clumps");
-  for (size_t i = 0; i < clumps.size(); ++i) {
-    Reader r(*clumps[i], item("clumps", i), root.context(),
-             {"grain", "scale", "material", "position", "orientation", "velocity",
-              "angular_velocity"});
-    Clump c;
-    const std::string name = r.string("grain");
-    c.grain = -1;
-    for (size_t g = 0; g < scene.grains.size(); ++g)
-      if (scene.grains[g].name == name) c.grain = static_cast<int>(g);
-    if (c.grain < 0) r.fail("unknown_grain", "grain", "no grain named '" + name + "' ([[grains]])");
-    c.scale = r.number("scale", 1);
-    r.check_range("scale", c.scale, c.scale > 0 && c.scale <= 1e3, "(0, 1000]");
-    c.material = r.material("material", scene);
-    c.position = r.vec3("position");
-    const std::vector<double> q = r.numbers("orientation", {1, 0, 0, 0});
-    const double norm2 = q.size() == 4 ? q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3] : 0;
-    if (!(norm2 > 1e-12))
-      r.fail("bad_vector", "orientation", "expected a quaternion [w, x, y, z], not zero");
-    const double inv = 1 / std::sqrt(norm2);
-    c.orientation = {q[0] * inv, q[1] * inv, q[2] * inv, q[3] * inv};
-    c.velocity = r.vec3("velocity", {});
-    c.angular_velocity = r.vec3("angular_velocity", {});
-    add_clump(scene, c, bodies[c.grain]);
   }
 }
 

@@ -308,6 +308,7 @@ class Writer {
   // Grains, then clumps as placed (their members are rebuilt from them).
   void write_clumps() {
     for (const Grain& g : s_.grains) {
+      if (!g.origin.empty()) out_ << "\n# " << g.name << ": " << g.origin;
       header("[[grains]]");
       line("name", toml_string(g.name));
       std::string rows = "[";

@@ -37,6 +37,9 @@ SIMSOLS_CHOICES(Grading::Law, {Grading::Law::Single, "single"}, {Grading::Law::U
 SIMSOLS_CHOICES(Triaxial::Path, {Triaxial::Path::ConstantSigma3, "constant_sigma3"},
                 {Triaxial::Path::ConstantP, "constant_p"},
                 {Triaxial::Path::TrueTriaxial, "true_triaxial"})
+// [[grains]] shape
+SIMSOLS_CHOICES(GrainForm, {GrainForm::Elongated, "elongated"}, {GrainForm::Flat, "flat"},
+                {GrainForm::Tetrahedral, "tetrahedral"}, {GrainForm::Sand, "sand"})
 
 #undef SIMSOLS_CHOICES
 

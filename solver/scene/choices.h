@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "solver/scene/grain_templates.h"
 #include "solver/scene/scene.h"
 
 namespace simsols {
@@ -40,6 +41,7 @@ template <> std::span<const Named<Specimen::Method>> choices();
 template <> std::span<const Named<Specimen::Clearance>> choices();
 template <> std::span<const Named<Grading::Law>> choices();
 template <> std::span<const Named<Triaxial::Path>> choices();
+template <> std::span<const Named<GrainForm>> choices();
 
 // The name of `value` ("?" for a value outside the table).
 template <class E>

@@ -253,10 +253,15 @@ MassProperties union_mass_properties(std::span<const ClumpSphere> spheres, int p
   const std::vector<double> cuts = slice_cuts(spheres);
   double v = 0, m1[3] = {0, 0, 0}, m2[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
   std::vector<Disk> disks;
+  // The cuts multiply with the spheres (every pair adds its circle's
+  // extremes) and the slices between them are smooth: past 8 cuts the
+  // panels per cut fall so the total stays near 8 x panels (at least 2 each).
+  const int intervals = std::max<int>(1, static_cast<int>(cuts.size()) - 1);
+  const int per_cut = std::clamp(8 * panels / intervals, std::min(2, panels), panels);
   for (size_t c = 0; c + 1 < cuts.size(); ++c) {
-    const double h = (cuts[c + 1] - cuts[c]) / panels;
+    const double h = (cuts[c + 1] - cuts[c]) / per_cut;
     if (!(h > 0)) continue;
-    for (int p = 0; p < panels; ++p)
+    for (int p = 0; p < per_cut; ++p)
       for (size_t g = 0; g < kNode.size(); ++g) {
         const double z = cuts[c] + h * (p + 0.5 * (kNode[g] + 1)), w = 0.5 * h * kWeight[g];
         const DiskUnionMoments s = slice(spheres, z, disks);

@@ -43,7 +43,9 @@ struct MassProperties {
 };
 
 // `panels` Gauss-Legendre panels (8 points each) between consecutive
-// sphere tops and bottoms.
+// sphere tops and bottoms, fewer (down to 2) once there are more than 8
+// such cuts, so the total stays near 8 x panels: a 32-sphere grain costs
+// about 0.3 s, with its volume exact to ~1e-11.
 MassProperties union_mass_properties(std::span<const ClumpSphere> spheres, int panels = 64);
 
 // Area and moments of a union of disks in the plane (what a slice holds):

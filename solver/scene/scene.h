@@ -65,6 +65,7 @@ struct Particle {
 struct Grain {
   std::string name;
   std::vector<std::array<double, 4>> spheres;  // x, y, z, radius (m)
+  std::string origin;  // how a template made the spheres (grain_templates.h); empty when listed
 };
 
 // A rigid clump of a grain's spheres. Its member spheres are particles
