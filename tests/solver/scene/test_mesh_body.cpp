@@ -10,7 +10,7 @@
 // is off by the cells cut by the surface, about (surface area) x (cell) x
 // (a fraction that averages out), so its error falls as the cells shrink;
 // the tolerances below are about ten times the errors measured
-// (mesh_body's commit message lists them).
+// (listed above VoxelVolumeConverges).
 #include <gtest/gtest.h>
 
 #include <chrono>
