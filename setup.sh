@@ -41,6 +41,8 @@ PACKAGES=(
   libxrandr-dev
   # Boost.Math, header-only: Student's t quantiles (app/experiment/study_stats.cpp)
   libboost-math-dev
+  # Assimp: grain surface meshes, STL/OBJ (solver/scene/mesh_body.cpp)
+  libassimp-dev
 )
 
 PRESET=release
