@@ -2,18 +2,21 @@
 // "Grains"). A grain is listed as spheres or made from a template
 // (grain_templates.h: a named shape); clumps place grains.
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 
 #include "solver/io/scene_tables.h"
 #include "solver/scene/choices.h"
 #include "solver/scene/clump.h"
 #include "solver/scene/grain_templates.h"
+#include "solver/scene/mesh_body.h"
 
 namespace simsols::scene_toml {
 namespace {
 
 const std::vector<std::string> kShapeKeys = {"aspect_ratio", "angularity", "seed", "resolution", "diameter",
-                                             "max_spheres", "coverage", "min_radius_ratio"};
+                                             "max_spheres", "coverage", "min_radius_ratio", "mesh_scale"};
 
 FillOptions read_fill(const Reader& r) {
   FillOptions f;
@@ -33,6 +36,7 @@ Grain shaped_grain(const Reader& r, std::string name) {
   s.form = r.choice("shape", s.form);
   if (s.form == GrainForm::Tetrahedral) r.forbid({"aspect_ratio"}, "a tetrahedron has no aspect ratio");
   if (s.form != GrainForm::Sand) r.forbid({"seed"}, "only a \"sand\" grain draws its planes");
+  r.forbid({"mesh_scale"}, "only allowed with mesh");
   s.aspect_ratio = r.number("aspect_ratio", s.aspect_ratio);
   r.check_range("aspect_ratio", s.aspect_ratio, s.aspect_ratio >= 1 && s.aspect_ratio <= 10, "[1, 10]");
   s.angularity = r.number("angularity", s.angularity);
@@ -53,8 +57,37 @@ Grain shaped_grain(const Reader& r, std::string name) {
   }
 }
 
+// mesh = "file.stl" (or .obj; relative to the scene's folder), its units
+// times mesh_scale in metres, filled at `resolution` cells along its
+// longest side.
+Grain mesh_grain(const Reader& r, std::string name) {
+  r.forbid({"aspect_ratio", "angularity", "seed"}, "only allowed with shape, not with mesh");
+  std::filesystem::path path = r.string("mesh");
+  if (path.is_relative()) path = std::filesystem::path(r.context().file).parent_path() / path;
+  const double scale = r.number("mesh_scale", 1);
+  r.check_range("mesh_scale", scale, scale > 0 && scale <= 1e3, "(0, 1000]");
+  const int resolution = static_cast<int>(r.number("resolution", 64));
+  r.check_range("resolution", resolution, resolution >= 16 && resolution <= 256, "[16, 256]");
+  const double diameter = r.number("diameter", 0);
+  r.check_range("diameter", diameter, diameter >= 0 && diameter <= 1, "[0, 1] m (0: the mesh's own size)");
+  const FillOptions fill = read_fill(r);
+  try {
+    SurfaceMesh mesh = load_surface_mesh(path.string());
+    for (Vec3& v : mesh.vertices) v = simsols::scale(scale, v);
+    TemplateFit fit;
+    Grain g = grain_from_solid(std::move(name), voxelize(mesh, resolution), fill, diameter, &fit);
+    char text[200];
+    std::snprintf(text, sizeof text, "%d spheres cover %.1f %% of the solid; their union has %.3f of its volume",
+                  fit.spheres, 100 * fit.coverage, fit.volume_ratio);
+    g.origin = "mesh " + path.filename().string() + ": " + text;
+    return g;
+  } catch (const std::exception& e) {
+    r.fail("bad_mesh", "mesh", e.what());
+  }
+}
+
 Grain listed_grain(const Reader& r, std::string name) {
-  r.forbid(kShapeKeys, "only allowed with shape (a template), not with spheres");
+  r.forbid(kShapeKeys, "only allowed with shape or mesh (a template), not with spheres");
   Grain g;
   g.name = std::move(name);
   for (const std::vector<double>& row : r.rows("spheres", 4)) {
@@ -70,8 +103,11 @@ Grain read_grain(const Reader& r, const Scene& scene) {
   const std::string name = r.string("name");
   for (const Grain& other : scene.grains)
     if (other.name == name) r.fail("duplicate_name", "name", "grain '" + name + "' is defined twice");
-  if (r.has("spheres") == r.has("shape"))
-    r.fail("missing_key", "spheres", "a grain needs either spheres (a list) or shape (a template)");
+  const int given = r.has("spheres") + r.has("shape") + r.has("mesh");
+  if (given != 1)
+    r.fail(given ? "conflicting_keys" : "missing_field", "spheres",
+           "a grain needs exactly one of spheres (a list), shape (a template) or mesh (a surface file)");
+  if (r.has("mesh")) return mesh_grain(r, name);
   return r.has("shape") ? shaped_grain(r, name) : listed_grain(r, name);
 }
 
@@ -99,7 +135,7 @@ Clump read_clump(const Reader& r, const Scene& scene) {
 }  // namespace
 
 void read_clumps(const Reader& root, Scene& scene) {
-  std::vector<std::string> keys = {"name", "spheres", "shape"};
+  std::vector<std::string> keys = {"name", "spheres", "shape", "mesh"};
   keys.insert(keys.end(), kShapeKeys.begin(), kShapeKeys.end());
   const auto grains = root.tables("grains");
   std::vector<GrainBody> bodies;
