@@ -4,15 +4,30 @@
 
 // Colour map: a 1 x N RGBA8 texture (the table from colormap_table()).
 // Continuous maps: t = (value - min) / (max - min), clamped, nearest entry.
-// Categorical maps: entry round(value) mod N.
+// Categorical maps (u_categorical = 1): entry round(value) mod N.
+// Qualitative maps (u_categorical = 2, identities such as grains): entry
+// 2 (h(k) mod N/2) + (k mod 2) for k = round(value), h the integer hash of
+// plot::qualitative_index (render/plot/colormap.cpp), which this mirrors.
 uniform sampler2D u_colormap;
 uniform int u_colormap_size;
 uniform int u_categorical;
 uniform vec2 u_range;
 
+int qualitative_index(int k) {
+  uint x = uint(k);
+  x ^= x >> 16u;
+  x *= 0x7feb352du;
+  x ^= x >> 15u;
+  x *= 0x846ca68bu;
+  x ^= x >> 16u;
+  return 2 * int(x % uint(u_colormap_size / 2)) + (k & 1);
+}
+
 vec3 map_value(float value) {
   int idx;
-  if (u_categorical != 0) {
+  if (u_categorical == 2) {
+    idx = qualitative_index(int(round(value)));  // value + 0.5 is inexact from 2^23 on
+  } else if (u_categorical != 0) {
     int k = int(floor(value + 0.5));
     idx = ((k % u_colormap_size) + u_colormap_size) % u_colormap_size;
   } else {

@@ -83,6 +83,7 @@ void LabApp::act(const std::string& error) {
 void LabApp::attach_view() {
   if (!exp_->simulation() || exp_->generation() == generation_) return;
   generation_ = exp_->generation();
+  if (!field_chosen) field = default_color_field(exp_->simulation()->scene());
   sim_view_ = std::make_unique<render::SimulationView>(window_->gl(), *exp_->simulation());
   fit_view();
 }

@@ -54,7 +54,10 @@ class LabApp {
   // view settings (public: the script sets them too)
   LabView view = LabView::Transparent;
   int single_view = 3;
+  // The beads' colouring: until one is chosen (panel or script), each
+  // experiment's default (grain with clumps, else layer).
   ColorField field = ColorField::Layer;
+  bool field_chosen = false;
   float threshold = 1.0f;
   bool chains_overlay = false;
 

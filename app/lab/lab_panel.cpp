@@ -21,7 +21,6 @@ namespace {
 
 const char* kViews[] = {"flat opaque", "flat transparent", "force chains",
                         "Alioscopy (full screen)", "eight-view grid", "single view"};
-const char* kFields[] = {"size", "layer", "speed", "displacement", "contacts", "rotation"};
 const char* kPresets[] = {"front", "side", "top", "three-quarter"};
 const char* kApparatus[] = {"shear box", "triaxial", "oedometer"};  // LabApparatusKind's order
 
@@ -235,7 +234,15 @@ void LabApp::draw_view_settings() {
   }
   int f = int(field);
   ImGui::SetNextItemWidth(200);
-  if (ImGui::Combo("colour by", &f, kFields, 6)) field = ColorField(f);
+  const auto name = [](void*, int k, const char** out) {
+    *out = to_string(kColorFields[k]);
+    return true;
+  };
+  if (ImGui::Combo("colour by", &f, +name, nullptr, int(std::size(kColorFields)))) {
+    field = kColorFields[f];
+    field_chosen = true;
+  }
+  if (field == ColorField::Grain) ImGui::TextDisabled("one colour per grain (clump or sphere)");
   ImGui::SetNextItemWidth(200);
   ImGui::SliderFloat("chain threshold (F/F mean)", &threshold, 0, 4, "%.2f");
   ImGui::Checkbox("force chains over the beads", &chains_overlay);

@@ -47,7 +47,7 @@ const LabApp::Script::Command LabApp::Script::kCommands[] = {
     {"resume", "", &Script::resume},
     {"step", "", &Script::step},
     {"view", "opaque|transparent|chains|alioscopy|grid|single", &Script::choose_view},
-    {"color", "size|layer|speed|displacement|contacts|rotation", &Script::choose_color},
+    {"color", "size|layer|speed|displacement|contacts|rotation|grain", &Script::choose_color},
     {"camera", "front|side|top|three-quarter", &Script::choose_camera},
     {"frames", "N", &Script::wait_for_frames},
     {"screenshot", "FILE.png", &Script::take_screenshot},

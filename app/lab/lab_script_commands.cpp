@@ -199,8 +199,12 @@ void LabApp::Script::choose_view(const Line& line) {
 }
 
 void LabApp::Script::choose_color(const Line& line) {
-  if (auto f = parse_color_field(line.argument)) lab.field = *f;
-  else fail(line, "color size|layer|speed|displacement|contacts|rotation", 2);
+  if (auto f = parse_color_field(line.argument)) {
+    lab.field = *f;
+    lab.field_chosen = true;
+  } else {
+    fail(line, "color size|layer|speed|displacement|contacts|rotation|grain", 2);
+  }
 }
 
 void LabApp::Script::choose_camera(const Line& line) {

@@ -250,7 +250,9 @@ void Renderer::bind_colormap(ShaderProgram& p, plot::ColorMap map) {
   gl_.BindTexture(GL_TEXTURE_2D, it->second.tex);
   p.set("u_colormap", 0);
   p.set("u_colormap_size", it->second.size);
-  p.set("u_categorical", map == plot::ColorMap::Categorical ? 1 : 0);
+  p.set("u_categorical", map == plot::ColorMap::Categorical   ? 1
+                         : map == plot::ColorMap::Qualitative ? 2
+                                                              : 0);
 }
 
 void Renderer::set_common(ShaderProgram& p, const ViewSettings& s, bool force_map) {

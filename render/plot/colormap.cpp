@@ -172,6 +172,25 @@ const std::array<Color, 8>& categorical_colors() {
 
 Color from_lab(Lab c) { return quantise(to_gamut(c), c.L); }
 
+// Qualitative: Kelly's colours of maximum contrast (colormap.h), split into
+// two halves of 10, each as varied as the split allows (smallest CIELAB
+// distance within a half ~34, over all 20 ~15): even entries white, yellow,
+// orange, red, buff, yellowish pink, violet, purplish red, yellow green,
+// yellowish brown; odd entries purple, light blue, grey, green, purplish
+// pink, blue, orange yellow, greenish yellow, reddish brown, reddish orange.
+// Even identities take the even entries, odd ones the odd entries.
+constexpr int kQualitative = 20;
+constexpr std::uint32_t kQualitativeRgb[kQualitative] = {
+    0xF2F3F4, 0x875692, 0xF3C300, 0xA1CAF1, 0xF38400, 0x848482, 0xBE0032,
+    0x008856, 0xC2B280, 0xE68FAC, 0xF99379, 0x0067A5, 0x604E97, 0xF6A600,
+    0xB3446C, 0xDCD300, 0x8DB600, 0x882D17, 0x654522, 0xE25822};
+
+Color qualitative_color(int entry) {
+  const std::uint32_t c = kQualitativeRgb[entry];
+  return {static_cast<std::uint8_t>(c >> 16), static_cast<std::uint8_t>((c >> 8) & 0xFF),
+          static_cast<std::uint8_t>(c & 0xFF)};
+}
+
 // ---- the legend -----------------------------------------------------------
 
 struct Theme {
@@ -202,7 +221,9 @@ std::string ratio_label(double v) {
 
 Texts legend_texts(const Legend& lg) {
   Texts t;
-  if (lg.map == ColorMap::Categorical) {
+  if (lg.map == ColorMap::Qualitative) {
+    // identities: no values to show
+  } else if (lg.map == ColorMap::Categorical) {
     const double lo = std::isfinite(lg.min) ? std::round(lg.min) : 0;
     const double hi = std::isfinite(lg.max) ? std::round(lg.max) : lo;
     const int n = static_cast<int>(std::clamp(hi - lo + 1, 1.0, double{kMaxSwatches}));
@@ -235,11 +256,54 @@ struct Placed {
   int w = 0, h = 0, margin = 0;
   Rect bar{0, 0, 0, 0};
   std::vector<Rect> swatches;
-  double title_y = 0, label_x = 0;
+  double title_y = 0, label_x = 0, note_y = 0;
   std::vector<double> tick_y;
   double key_title_y = 0, key_x0 = 0, key_x1 = 0, key_label_x = 0;
   std::vector<double> key_y;
 };
+
+// The colour scale (bar, swatches or strip) from height y of the panel,
+// widening `right` to hold it; returns the height under it.
+double place_scale(const Legend& lg, const Texts& tx, Placed& p, double y, double& right) {
+  const double u = p.u, pad = 12 * u, gap = 8 * u, slack = 1 + 0.2 * p.font;
+  const int x0 = static_cast<int>(std::round(pad)) + 1;  // + the bar's frame
+  if (lg.map == ColorMap::Qualitative) {
+    // a strip of the map's colours, as long as a continuous bar
+    const int n = kQualitative;
+    const int cw = std::max(2, static_cast<int>(std::round(12 * u)));
+    const int ch = std::max(3, static_cast<int>(std::round(18 * u)));
+    const int y0 = static_cast<int>(std::round(y)) + 1;
+    for (int k = 0; k < n; ++k) p.swatches.push_back({x0 + k * cw, y0, x0 + (k + 1) * cw, y0 + ch});
+    p.bar = {x0, y0, x0 + n * cw, y0 + ch};
+    right = std::max(right, p.bar.x1 + 1.0);
+    return p.bar.y1 + 1;
+  }
+  if (lg.map == ColorMap::Categorical) {
+    const int sw = std::max(3, static_cast<int>(std::round(18 * u)));
+    const int sg = std::max(2, static_cast<int>(std::round(6 * u)));
+    const int y0 = static_cast<int>(std::round(y)) + 1;
+    for (std::size_t k = 0; k < tx.categories.size(); ++k) {
+      const int top = y0 + static_cast<int>(k) * (sw + sg);
+      p.swatches.push_back({x0, top, x0 + sw, top + sw});
+    }
+    p.bar = {x0, y0, x0 + sw, p.swatches.back().y1};
+    p.label_x = p.bar.x1 + 1 + gap;
+    for (const std::string& s : tx.categories)
+      right = std::max(right, p.label_x + text_width(s, p.font) + slack);
+    return p.bar.y1 + 1;
+  }
+  // Tick labels are centred on their ticks: room for half a cap above and below.
+  const double over = text_cap_height(p.font) / 2 + 1;
+  const int y0 = static_cast<int>(std::round(y + over));
+  const int len = std::max(8, static_cast<int>(std::round(240 * u)));
+  p.bar = {x0, y0, x0 + std::max(4, static_cast<int>(std::round(22 * u))), y0 + len};
+  for (double t : tx.tick_t) p.tick_y.push_back(p.bar.y1 - 0.5 - t * (len - 1));
+  p.label_x = p.bar.x1 + 1 + p.tick_len + 0.5 * gap;
+  right = std::max(right, p.bar.x1 + 1.0);
+  for (const std::string& s : tx.tick_labels)
+    right = std::max(right, p.label_x + text_width(s, p.font) + slack);
+  return p.bar.y1 + 1 + over;
+}
 
 Placed place(const Legend& lg, const Texts& tx, double u) {
   Placed p;
@@ -257,32 +321,11 @@ Placed place(const Legend& lg, const Texts& tx, double u) {
     y = p.title_y + text_descent(p.title_font) + gap;
     right = pad + text_width(lg.title, p.title_font) + slack;
   }
-  const int x0 = static_cast<int>(std::round(pad)) + 1;  // + the bar's frame
-  if (lg.map == ColorMap::Categorical) {
-    const int sw = std::max(3, static_cast<int>(std::round(18 * u)));
-    const int sg = std::max(2, static_cast<int>(std::round(6 * u)));
-    const int y0 = static_cast<int>(std::round(y)) + 1;
-    for (std::size_t k = 0; k < tx.categories.size(); ++k) {
-      const int top = y0 + static_cast<int>(k) * (sw + sg);
-      p.swatches.push_back({x0, top, x0 + sw, top + sw});
-    }
-    p.bar = {x0, y0, x0 + sw, p.swatches.back().y1};
-    p.label_x = p.bar.x1 + 1 + gap;
-    for (const std::string& s : tx.categories)
-      right = std::max(right, p.label_x + text_width(s, p.font) + slack);
-    y = p.bar.y1 + 1;
-  } else {
-    // Tick labels are centred on their ticks: room for half a cap above and below.
-    const double over = text_cap_height(p.font) / 2 + 1;
-    const int y0 = static_cast<int>(std::round(y + over));
-    const int len = std::max(8, static_cast<int>(std::round(240 * u)));
-    p.bar = {x0, y0, x0 + std::max(4, static_cast<int>(std::round(22 * u))), y0 + len};
-    for (double t : tx.tick_t) p.tick_y.push_back(p.bar.y1 - 0.5 - t * (len - 1));
-    p.label_x = p.bar.x1 + 1 + p.tick_len + 0.5 * gap;
-    right = std::max(right, p.bar.x1 + 1.0);
-    for (const std::string& s : tx.tick_labels)
-      right = std::max(right, p.label_x + text_width(s, p.font) + slack);
-    y = p.bar.y1 + 1 + over;
+  y = place_scale(lg, tx, p, y, right);
+  if (!lg.note.empty()) {
+    p.note_y = y + gap + text_cap_height(p.font);
+    y = p.note_y + text_descent(p.font);
+    right = std::max(right, pad + text_width(lg.note, p.font) + slack);
   }
   if (!lg.width_key.empty()) {
     y += 1.5 * gap;
@@ -323,20 +366,18 @@ void frame_outside(Image& img, Rect r, Color c) {
   for (int y = r.y0; y < r.y1; ++y) set_pixel(img, r.x0 - 1, y, c), set_pixel(img, r.x1, y, c);
 }
 
-// Draws the legend laid out as `p` into `img`, whose top-left pixel is the
-// panel's (the image may be cut short at the right and bottom).
-void render(Image& img, const Legend& lg, const Texts& tx, const Placed& p) {
-  const Theme th = theme(lg.dark);
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x) {
-      const double d = rounded_box_distance(x + 0.5, y + 0.5, p.w, p.h, p.radius);
-      blend_pixel(img, x, y, th.panel, 0.5 - d);
-      blend_pixel(img, x, y, th.border, 1 - std::abs(d + 0.5));  // 1 px on the inner edge
+// The colour scale: the strip, the swatches with their labels, or the bar
+// with its ticks.
+void render_scale(Image& img, const Legend& lg, const Texts& tx, const Placed& p, const Theme& th) {
+  if (lg.map == ColorMap::Qualitative) {
+    for (std::size_t k = 0; k < p.swatches.size(); ++k) {
+      const Rect& s = p.swatches[k];
+      const Color c = qualitative_color(static_cast<int>(k));
+      for (int y = s.y0; y < s.y1; ++y)
+        for (int x = s.x0; x < s.x1; ++x) set_pixel(img, x, y, c);
     }
-  if (!lg.title.empty())
-    draw_text(img, p.bar.x0 - 1, p.title_y, lg.title, p.title_font, th.ink, {}, false, 1.1);
-
-  if (lg.map == ColorMap::Categorical) {
+    frame_outside(img, p.bar, th.frame);
+  } else if (lg.map == ColorMap::Categorical) {
     for (std::size_t k = 0; k < p.swatches.size(); ++k) {
       const Rect& s = p.swatches[k];
       const Color c = colormap_color(ColorMap::Categorical, std::round(lg.min) + k);
@@ -362,6 +403,23 @@ void render(Image& img, const Legend& lg, const Texts& tx, const Placed& p) {
                 {HAlign::left, VAlign::middle});
     }
   }
+}
+
+// Draws the legend laid out as `p` into `img`, whose top-left pixel is the
+// panel's (the image may be cut short at the right and bottom).
+void render(Image& img, const Legend& lg, const Texts& tx, const Placed& p) {
+  const Theme th = theme(lg.dark);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const double d = rounded_box_distance(x + 0.5, y + 0.5, p.w, p.h, p.radius);
+      blend_pixel(img, x, y, th.panel, 0.5 - d);
+      blend_pixel(img, x, y, th.border, 1 - std::abs(d + 0.5));  // 1 px on the inner edge
+    }
+  if (!lg.title.empty())
+    draw_text(img, p.bar.x0 - 1, p.title_y, lg.title, p.title_font, th.ink, {}, false, 1.1);
+
+  render_scale(img, lg, tx, p, th);
+  if (!lg.note.empty()) draw_text(img, p.bar.x0 - 1, p.note_y, lg.note, p.font, th.ink);
 
   if (!lg.width_key.empty()) {
     if (!lg.width_title.empty())
@@ -412,7 +470,26 @@ std::optional<Fitted> fit_legend(int W, int H, const Legend& lg) {
 
 }  // namespace
 
+// An integer hash with good avalanche: "lowbias32" of C. Wellons's
+// hash-prospector (2020), an xorshift-multiply chain. Mirrored in
+// shaders/common.glsl.
+int qualitative_index(std::uint32_t k) {
+  std::uint32_t x = k;
+  x ^= x >> 16;
+  x *= 0x7feb352dU;
+  x ^= x >> 15;
+  x *= 0x846ca68bU;
+  x ^= x >> 16;
+  return static_cast<int>(2 * (x % (kQualitative / 2)) + (k & 1));
+}
+
 Color colormap_color(ColorMap map, double t) {
+  if (map == ColorMap::Qualitative) {
+    const double k = std::isfinite(t) ? std::floor(t + 0.5) : 0.0;
+    // identities beyond 2^31 wrap (the renderer's float values hold 2^24 exactly)
+    const auto id = static_cast<std::uint32_t>(static_cast<std::int64_t>(std::fmod(k, 4294967296.0)));
+    return qualitative_color(qualitative_index(id));
+  }
   if (map == ColorMap::Categorical) {
     if (!std::isfinite(t)) return categorical_colors()[0];
     double k = std::fmod(std::floor(t + 0.5), 8.0);
@@ -432,8 +509,15 @@ Color colormap_color(ColorMap map, double t) {
 }
 
 std::vector<std::uint8_t> colormap_table(ColorMap map, int entries) {
-  if (map == ColorMap::Categorical) entries = 8;
   std::vector<std::uint8_t> out;
+  if (map == ColorMap::Qualitative) {
+    for (int k = 0; k < kQualitative; ++k) {
+      const Color c = qualitative_color(k);
+      out.insert(out.end(), {c.r, c.g, c.b, c.a});
+    }
+    return out;
+  }
+  if (map == ColorMap::Categorical) entries = 8;
   if (entries <= 0) return out;
   out.reserve(static_cast<std::size_t>(entries) * 4);
   for (int i = 0; i < entries; ++i) {
@@ -448,7 +532,8 @@ std::optional<ColorMap> parse_colormap(std::string_view s) {
   std::string lower(s);
   for (char& c : lower) c = static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
   for (ColorMap m :
-       {ColorMap::Sequential, ColorMap::Diverging, ColorMap::Categorical, ColorMap::Force})
+       {ColorMap::Sequential, ColorMap::Diverging, ColorMap::Categorical, ColorMap::Force,
+        ColorMap::Qualitative})
     if (lower == to_string(m)) return m;
   return std::nullopt;
 }
@@ -459,6 +544,7 @@ const char* to_string(ColorMap map) {
     case ColorMap::Diverging: return "diverging";
     case ColorMap::Categorical: return "categorical";
     case ColorMap::Force: return "force";
+    case ColorMap::Qualitative: return "qualitative";
   }
   return "?";
 }

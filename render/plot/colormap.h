@@ -22,13 +22,21 @@
 //   Force        L* 86 -> 27: light greyish orange to dark red, chroma
 //                growing with force, so strong chains stand out and weak
 //                ones recede.
+//   Qualitative  identities (one colour per grain): 20 of the 22 "colours of
+//                maximum contrast" of K. L. Kelly, Color Engineering 3(6),
+//                1965 (in their ISCC-NBS centroid sRGB values), without his
+//                black and olive green, which vanish on the renderer's dark
+//                background. Integer k takes entry 2 (h(k) mod 10) + (k mod 2),
+//                h an integer hash (qualitative_index): unrelated colours for
+//                k and k + 1, never the same one.
 //
 // colormap_table gives the renderer the same colours as a 1D texture, so the
 // shader and the legend agree to the bit.
 //
 // The legend is a semi-opaque rounded panel in a corner: the title, a
 // vertical colour bar (t = 0 at the bottom) with 1-2-5 ticks from chart.h,
-// or one swatch per category, and optionally a key of line widths for force
+// or one swatch per category, or (Qualitative) a strip of its colours and a
+// note in place of values, and optionally a key of line widths for force
 // chains. It is drawn into a copy of its own rectangle that is then written
 // back, so no pixel outside the returned rectangle changes, text included.
 #pragma once
@@ -49,18 +57,27 @@ enum class ColorMap {
   Diverging,    // blue - near white - red, for signed values
   Categorical,  // 8 distinct colours; category k -> colour k mod 8
   Force,        // light grey-orange -> dark red, darker and more saturated
+  Qualitative,  // 20 distinct colours for identities; k -> colour qualitative_index(k)
 };
+
+// Qualitative: the entry (0..19) of identity k (k >= 0; negative k are
+// taken as their two's complement). The shaders (shaders/common.glsl)
+// compute the same.
+int qualitative_index(std::uint32_t k);
 
 // t in [0, 1], clamped (NaN reads as 0). Categorical: t is the category
 // index, rounded to the nearest integer, any value (negative ones cycle too).
+// Qualitative: t is the identity, rounded to the nearest integer (NaN reads
+// as 0).
 Color colormap_color(ColorMap map, double t);
 
 // RGBA8, 4 bytes per entry: `entries` samples at t = i / (entries - 1) (one
 // entry: t = 0; none for entries <= 0). Categorical: always its 8 colours,
-// entry k = category k, whatever `entries` says.
+// entry k = category k, whatever `entries` says. Qualitative: its 20
+// colours, in entry order, likewise.
 std::vector<std::uint8_t> colormap_table(ColorMap map, int entries = 256);
 
-// "sequential", "diverging", "categorical", "force" (any case).
+// "sequential", "diverging", "categorical", "force", "qualitative" (any case).
 std::optional<ColorMap> parse_colormap(std::string_view s);
 const char* to_string(ColorMap map);
 
@@ -73,6 +90,10 @@ struct Legend {
   // Categorical only: category_labels[k] names category min + k; missing
   // labels are the category numbers.
   std::vector<std::string> category_labels;
+  // A line under the bar or the swatches, e.g. what a Qualitative strip
+  // means ("one colour per grain"). Qualitative legends show no values:
+  // min and max are not used.
+  std::string note;
   enum class Corner { TopLeft, TopRight, BottomLeft, BottomRight } corner = Corner::TopRight;
   double scale = 1;  // 1 = sized for a ~1000 px tall image; scaled with the image
   // For force chains: sample lines labelled with force ratios F / F_mean and
@@ -89,9 +110,10 @@ struct LegendLayout {
   Rect panel{0, 0, 0, 0};  // everything drawn lies inside (clipped to the image)
   // Continuous maps: pixel row y of the bar shows
   // t = (bar.y1 - 1 - y) / (bar.y1 - bar.y0 - 1): t = 1 on the top row, 0 on the bottom one.
-  // Categorical: the union of the swatches.
+  // Categorical: the union of the swatches. Qualitative: the strip.
   Rect bar{0, 0, 0, 0};
-  std::vector<Rect> swatches;  // Categorical: category min + k in swatches[k], top to bottom
+  std::vector<Rect> swatches;  // Categorical: category min + k in swatches[k], top to bottom;
+                               // Qualitative: entry k in swatches[k], left to right
   double unit = 0;             // pixels per layout unit (1 at 1000 px tall, before fitting)
 };
 

@@ -37,8 +37,8 @@ void add_frame_flags(CLI::App* cmd, FrameFlags& f) {
           ->capture_default_str();
   f.options["--color-by"] =
       cmd->add_option("--color-by", f.color_by,
-                      "Bead colour: size, layer, speed, displacement, contacts, rotation")
-          ->capture_default_str();
+                      "Bead colour: " + color_field_names() +
+                          " (default: grain for scenes with clumps, else layer)");
   f.options["--mode"] =
       cmd->add_option("--mode", f.mode, "opaque, transparent (see inside) or chains (force chains)")
           ->capture_default_str();
@@ -108,11 +108,9 @@ FrameOptions FrameOptions::resolve(const FrameFlags& flags, const Scene* scene) 
   else throw flag_error("--view", "'" + f.view + "' is not one of: front, side, top, three-quarter");
   if (const std::string p = size_problem(f.size, o.width, o.height); !p.empty())
     throw flag_error("--size", p);
-  if (auto c = parse_color_field(f.color_by)) o.field = *c;
-  else
-    throw flag_error("--color-by", "'" + f.color_by +
-                                       "' is not one of: size, layer, speed, displacement, "
-                                       "contacts, rotation");
+  if (f.color_by.empty()) o.field = scene ? default_color_field(*scene) : ColorField::Layer;
+  else if (auto c = parse_color_field(f.color_by)) o.field = *c;
+  else throw flag_error("--color-by", "'" + f.color_by + "' is not one of: " + color_field_names());
   if (auto m = render::parse_view_mode(f.mode)) o.settings.mode = *m;
   else throw flag_error("--mode", "'" + f.mode + "' is not one of: opaque, transparent, chains");
   o.settings.show_chains = f.chains;
@@ -213,6 +211,7 @@ plot::Image FrameExporter::render() {
   if (opt_.legend) {
     plot::Legend legend;
     legend.title = render::legend_title(opt_.field);
+    legend.note = render::legend_note(opt_.field);
     legend.map = s.bead_map;
     legend.min = s.value_min;
     legend.max = s.value_max;

@@ -39,7 +39,7 @@ struct Scene;
 struct FrameFlags {
   std::string view = "three-quarter";
   std::string size = "1280x720";
-  std::string color_by = "layer";
+  std::string color_by;  // empty: the scene's default (default_color_field, view_pack.h)
   std::string mode = "opaque";
   bool chains = false;
   double threshold = 1.0;
@@ -70,8 +70,9 @@ struct FrameOptions {
   std::string display_path;  // --display (alioscopy); empty = the built-in Alioscopy HD
 
   // The flags, with the scene's [view] hints for those not given on the
-  // command line. Throws SceneError naming the flag (or the scene file and
-  // its view.* field) and the allowed values.
+  // command line; no colouring given either way: grain for a scene with
+  // clumps, else layer (also without a scene). Throws SceneError naming
+  // the flag (or the scene file and its view.* field) and the allowed values.
   static FrameOptions resolve(const FrameFlags& flags, const Scene* scene = nullptr);
 };
 

@@ -25,6 +25,7 @@
 #define FIELD_DISPLACEMENT 3
 #define FIELD_CONTACTS 4
 #define FIELD_ROTATION 5
+#define FIELD_GRAIN 6
 
 // Compensation term of record i (a float4 buffer in float runs; double runs
 // have none and pass a placeholder that is never read).
@@ -64,11 +65,15 @@ INLINE real3 diff_pos(real4 b, real4 b_lo, real4 a, real4 a_lo) {
 // partial[2g], partial[2g+1]: min and max of the field over group g.
 // ref/ref_lo: the reference positions (Displacement, Layer), relative to the
 // model origin like pos. z0/z0_lo: the lowest band centre, relative to the
-// model origin; band: the band height.
+// model origin; band: the band height. body: each particle's clump, -1 for
+// a free sphere (Model::body_buffer; a one-entry stand-in, never read,
+// without HAS_CLUMPS); clumps: their number. Grain: c for the members of
+// clump c, clumps + i for a free sphere i.
 __kernel void pack_beads(__global const real4* pos, __global const real4* pos_lo,
                          __global const real4* vel, __global const real4* omega,
                          __global const real4* force, __global const real4* ref,
-                         __global const real4* ref_lo, real4 origin, real4 origin_lo,
+                         __global const real4* ref_lo, __global const int* body, int clumps,
+                         real4 origin, real4 origin_lo,
                          int field, real z0, real z0_lo, real band,
                          __global float4* beads, __global float* values,
                          __global float* partial, int n, __local float* scratch) {
@@ -105,6 +110,14 @@ __kernel void pack_beads(__global const real4* pos, __global const real4* pos_lo
       case FIELD_ROTATION:
         v = length(omega[i].xyz);
         break;
+      case FIELD_GRAIN: {
+        int grain = clumps + i;
+#ifdef HAS_CLUMPS
+        if (body[i] >= 0) grain = body[i];
+#endif
+        v = (real)grain;
+        break;
+      }
     }
     values[i] = (float)v;
     vmin = vmax = (float)v;

@@ -8,7 +8,15 @@
 namespace simsols::render {
 
 plot::ColorMap colormap_for(ColorField field) {
-  return field == ColorField::Layer ? plot::ColorMap::Categorical : plot::ColorMap::Sequential;
+  switch (field) {
+    case ColorField::Layer: return plot::ColorMap::Categorical;
+    case ColorField::Grain: return plot::ColorMap::Qualitative;
+    default: return plot::ColorMap::Sequential;
+  }
+}
+
+std::string legend_note(ColorField field) {
+  return field == ColorField::Grain ? "one colour per grain" : "";
 }
 
 std::string legend_title(ColorField field) {

@@ -9,9 +9,10 @@
 // its precision at the specimen wherever the scene sits.
 //
 // Colouring: `layer` uses the categorical map (one colour per layer band;
-// shear-box specimens built in layers get their own layer spacing), the
-// other fields the sequential map over their current range, unless the
-// caller fixes a range.
+// shear-box specimens built in layers get their own layer spacing), `grain`
+// the qualitative map (each grain, a clump or a free sphere, in a colour
+// hashed from its number), the other fields the sequential map over their
+// current range, unless the caller fixes a range.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -29,6 +30,8 @@ namespace simsols::render {
 plot::ColorMap colormap_for(ColorField field);
 // "speed (m/s)", "layer", "contacts", ...
 std::string legend_title(ColorField field);
+// The legend's line under the scale: "one colour per grain" for grain, else empty.
+std::string legend_note(ColorField field);
 
 class SimulationView {
  public:

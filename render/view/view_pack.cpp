@@ -17,8 +17,9 @@ std::span<const KernelFile> render_kernel_files();
 
 namespace {
 
-constexpr const char* kNames[] = {"size", "layer", "speed", "displacement", "contacts", "rotation"};
-constexpr const char* kUnits[] = {"m", "", "m/s", "m", "", "rad/s"};
+constexpr const char* kNames[] = {"size",     "layer",    "speed", "displacement",
+                                  "contacts", "rotation", "grain"};
+constexpr const char* kUnits[] = {"m", "", "m/s", "m", "", "rad/s", ""};
 
 // A point relative to the model origin, split for the device: hi in the
 // device precision and, in float runs, lo = what the float could not hold
@@ -77,6 +78,16 @@ std::vector<Vec3> initial_positions(const Scene& scene) {
 const char* to_string(ColorField f) { return kNames[static_cast<int>(f)]; }
 
 const char* unit_of(ColorField f) { return kUnits[static_cast<int>(f)]; }
+
+std::string color_field_names() {
+  std::string s;
+  for (ColorField f : kColorFields) s += (s.empty() ? "" : ", ") + std::string(to_string(f));
+  return s;
+}
+
+ColorField default_color_field(const Scene& scene) {
+  return scene.clumps.empty() ? ColorField::Layer : ColorField::Grain;
+}
 
 std::optional<ColorField> parse_color_field(std::string_view s) {
   for (ColorField f : kColorFields) {
@@ -203,7 +214,8 @@ ViewPacker::Range ViewPacker::pack_beads(ColorField field, cl_mem beads, cl_mem 
   const Split z0 = split(m, {origin_[0], origin_[1], z0_});
   set_args(m, pack_beads_, arg("pos", s.pos), arg("pos_lo", s.pos_lo), arg("vel", s.vel),
            arg("omega", s.omega), arg("force", s.force), arg("ref", ref_), arg("ref_lo", ref_lo_),
-           arg("origin", o.hi), arg("origin_lo", o.lo), arg("field", static_cast<int>(field)),
+           arg("body", m.body_buffer()), arg("clumps", m.clumps()), arg("origin", o.hi),
+           arg("origin_lo", o.lo), arg("field", static_cast<int>(field)),
            arg("z0", Real{z0.hi.z}), arg("z0_lo", Real{z0.lo.z}), arg("band", Real{band_}),
            arg("beads", beads), arg("values", values), arg("partial", bead_partial_), arg("n", n_),
            arg("scratch", Local{m.local_size() * 2 * sizeof(float)}));

@@ -30,6 +30,7 @@
 #include <cstddef>
 #include <memory>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -46,15 +47,25 @@ namespace simsols {
 //   Displacement  |x - x_ref|
 //   Contacts      touching neighbours and walls
 //   Rotation      |omega|
-enum class ColorField { Size, Layer, Speed, Displacement, Contacts, Rotation };
-inline constexpr ColorField kColorFields[] = {ColorField::Size,     ColorField::Layer,
-                                              ColorField::Speed,    ColorField::Displacement,
-                                              ColorField::Contacts, ColorField::Rotation};
+//   Grain         the grain the bead belongs to: c for the members of clump
+//                 c (Scene::clumps), C + i for a free sphere i (C = the
+//                 number of clumps), so every grain has its own number and
+//                 the members of a clump share theirs. Exact in float up to
+//                 C + i = 2^24.
+enum class ColorField { Size, Layer, Speed, Displacement, Contacts, Rotation, Grain };
+inline constexpr ColorField kColorFields[] = {
+    ColorField::Size,     ColorField::Layer,    ColorField::Speed, ColorField::Displacement,
+    ColorField::Contacts, ColorField::Rotation, ColorField::Grain};
 
 const char* to_string(ColorField f);  // "size", "layer", "speed", ...
 // The field named `s` (as to_string writes it, any case); nullopt otherwise.
 std::optional<ColorField> parse_color_field(std::string_view s);
-const char* unit_of(ColorField f);    // "m", "", "m/s", "m", "", "rad/s" (for legends)
+const char* unit_of(ColorField f);    // "m", "", "m/s", "m", "", "rad/s", "" (for legends)
+// "size, layer, speed, displacement, contacts, rotation, grain": for help and errors.
+std::string color_field_names();
+// The colouring a scene is drawn with when none is asked for: grain for
+// scenes with clumps (each grain in its own colour), layer otherwise.
+ColorField default_color_field(const Scene& scene);
 
 class ViewPacker {
  public:

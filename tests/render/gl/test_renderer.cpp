@@ -180,6 +180,36 @@ TEST(Renderer, IntersectingBeadsOccludeByDepth) {
   }
 }
 
+// Qualitative map (grains): the shader's hash (shaders/common.glsl) picks
+// the entry plot::qualitative_index picks, for small and large identities
+// (exact in float up to 2^24).
+TEST(Renderer, QualitativeColoursMatchTheHostHash) {
+  const Gl& gl = context().gl();
+  Renderer r(gl);
+  const int W = 640, H = 160;
+  r.resize(W, H);
+  GeometryBuffers buf(gl);
+  const Camera cam = axis_camera(0.5);
+  const float ids[] = {0, 1, 2, 3, 4, 5, 6, 7, 10, 11, 1000, 123457, 16777215};
+  const int n = int(std::size(ids));
+  std::vector<Bead> beads;
+  for (int k = 0; k < n; ++k)
+    beads.push_back({{float(-0.18 + 0.36 * k / (n - 1)), 0.f, 0.f}, 0.01f, ids[k]});
+  upload(buf, beads);
+  ViewSettings s = flat_settings();
+  s.bead_map = plot::ColorMap::Qualitative;
+  r.draw(cam, buf.geometry(), s);
+  const plot::Image img = r.read_pixels();
+  const ViewProjection v = ViewProjection::of(cam, double(W) / H);
+  const glm::dmat4 vp = v.projection * v.view;
+  for (int k = 0; k < n; ++k) {
+    const glm::dvec4 c = vp * glm::dvec4(glm::dvec3(beads[k].c), 1.0);
+    const int x = int((c.x / c.w * 0.5 + 0.5) * W), y = int((0.5 - c.y / c.w * 0.5) * H);
+    EXPECT_EQ(plot::pixel(img, x, y), plot::colormap_color(plot::ColorMap::Qualitative, ids[k]))
+        << "grain " << ids[k];
+  }
+}
+
 // Weighted blended transparency: one bead gives C a + bg (1 - a); two give
 // the documented formula with the depth weights at the pixel.
 TEST(Renderer, TransparencyBlendsTheDocumentedColours) {

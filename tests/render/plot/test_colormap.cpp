@@ -1,6 +1,7 @@
 // Colour maps and the colour legend (render/plot/colormap.h): lightness ordering
 // of the sequential and force maps measured in CIELAB from the 8-bit output,
-// a neutral symmetric diverging map, distinct cycling categories, tables
+// a neutral symmetric diverging map, distinct cycling categories, hashed
+// qualitative identities, tables
 // equal to the per-value colours, and a legend that stays inside its
 // rectangle, shows the map on its bar and goes to the corner asked for.
 #include <gtest/gtest.h>
@@ -15,7 +16,7 @@ namespace simsols::plot {
 namespace {
 
 constexpr ColorMap kAllMaps[] = {ColorMap::Sequential, ColorMap::Diverging, ColorMap::Categorical,
-                                 ColorMap::Force};
+                                 ColorMap::Force, ColorMap::Qualitative};
 
 struct Lab {
   double L, a, b;
@@ -129,6 +130,44 @@ TEST(Colormap, CategoricalColoursAreDistinctAndCycle) {
   EXPECT_EQ(colormap_color(ColorMap::Categorical, 2.9999999), colormap_color(ColorMap::Categorical, 3));
   EXPECT_EQ(colormap_color(ColorMap::Categorical, 1e12 + 5), colormap_color(ColorMap::Categorical, 5));
   EXPECT_EQ(colormap_color(ColorMap::Categorical, NAN), colormap_color(ColorMap::Categorical, 0));
+}
+
+// Qualitative (identities, e.g. grains): 20 well separated colours, none
+// lost on the renderer's dark background; k and k + 1 never share one,
+// and over many identities every colour is used about equally, with no
+// pattern along k (k and k + 2 share a colour about one time in ten).
+TEST(Colormap, QualitativeColoursAreDistinctAndHashed) {
+  const std::vector<std::uint8_t> t = colormap_table(ColorMap::Qualitative);
+  ASSERT_EQ(t.size(), 80u);
+  EXPECT_EQ(colormap_table(ColorMap::Qualitative, 256).size(), 80u);
+  std::vector<Color> entries;
+  for (int k = 0; k < 20; ++k) entries.push_back({t[4 * k], t[4 * k + 1], t[4 * k + 2], t[4 * k + 3]});
+  for (int i = 0; i < 20; ++i) {
+    EXPECT_EQ(entries[i].a, 255);
+    EXPECT_GT(to_lab(entries[i]).L, 30) << "entry " << i;  // background L* ~9
+    for (int j = i + 1; j < 20; ++j)
+      EXPECT_GT(delta_e(to_lab(entries[i]), to_lab(entries[j])), 15) << i << " vs " << j;
+  }
+  // within each half (even identities, odd identities) the colours are further apart
+  for (int i = 0; i < 20; ++i)
+    for (int j = i + 2; j < 20; j += 2)
+      EXPECT_GT(delta_e(to_lab(entries[i]), to_lab(entries[j])), 30) << i << " vs " << j;
+  std::vector<int> uses(20, 0);
+  int same_as_next = 0, same_two_on = 0;
+  const int n = 20000;
+  for (int k = 0; k < n; ++k) {
+    const int e = qualitative_index(std::uint32_t(k));
+    ASSERT_TRUE(e >= 0 && e < 20);
+    EXPECT_EQ(colormap_color(ColorMap::Qualitative, k), entries[e]);
+    ++uses[e];
+    same_as_next += e == qualitative_index(std::uint32_t(k + 1));
+    same_two_on += e == qualitative_index(std::uint32_t(k + 2));
+  }
+  EXPECT_EQ(same_as_next, 0);
+  EXPECT_NEAR(double(same_two_on) / n, 0.1, 0.02);
+  for (int e = 0; e < 20; ++e) EXPECT_NEAR(uses[e], n / 20, n / 100) << "entry " << e;
+  EXPECT_EQ(colormap_color(ColorMap::Qualitative, 6.9999), colormap_color(ColorMap::Qualitative, 7));
+  EXPECT_EQ(colormap_color(ColorMap::Qualitative, NAN), colormap_color(ColorMap::Qualitative, 0));
 }
 
 TEST(Colormap, TClampedAndOpaque) {
@@ -297,6 +336,38 @@ TEST(Legend, CategoricalSwatchesShowTheCategories) {
       EXPECT_GT(s.y0, L.swatches[k - 1].y1);  // top to bottom, apart
     }
   }
+}
+
+// A qualitative legend shows its colours as a strip and its note, no values.
+TEST(Legend, QualitativeStripAndNote) {
+  Image img = make_image(800, 600);
+  Legend lg;
+  lg.title = "grain";
+  lg.note = "one colour per grain";
+  lg.map = ColorMap::Qualitative;
+  lg.min = 0;
+  lg.max = 5000;
+  lg.dark = true;
+  const Rect r = draw_legend(img, lg);
+  const LegendLayout L = legend_layout(img.width, img.height, lg);
+  const std::vector<std::uint8_t> t = colormap_table(ColorMap::Qualitative);
+  ASSERT_EQ(L.swatches.size(), 20u);
+  for (std::size_t k = 0; k < L.swatches.size(); ++k) {
+    const Rect& s = L.swatches[k];
+    ASSERT_TRUE(inside(r, s.x0, s.y0) && inside(r, s.x1 - 1, s.y1 - 1));
+    EXPECT_EQ(pixel(img, (s.x0 + s.x1) / 2, (s.y0 + s.y1) / 2),
+              (Color{t[4 * k], t[4 * k + 1], t[4 * k + 2], 255}));
+    if (k > 0) {
+      EXPECT_EQ(s.x0, L.swatches[k - 1].x1);  // left to right, side by side
+    }
+  }
+  // the note sits under the strip: some text-coloured pixels there
+  int ink = 0;
+  for (int y = L.bar.y1 + 2; y < r.y1; ++y)
+    for (int x = r.x0; x < r.x1; ++x) ink += pixel(img, x, y).r > 200;
+  EXPECT_GT(ink, 50);
+  // no value labels: the panel is no taller than title, strip, note and padding
+  EXPECT_LT(r.y1 - r.y0, 4 * (L.bar.y1 - L.bar.y0) + 40);
 }
 
 TEST(Legend, TinyImagesGetNothing) {

@@ -1,7 +1,8 @@
 // The renderer's data path (view_pack.h): beads and contact segments packed
 // on the device agree with what the host computes from download() and
 // contact_list(); the view origin, the reference positions and the layer
-// bands do what they say; the segment buffer truncates at its capacity.
+// bands do what they say; the segment buffer truncates at its capacity;
+// the grain field follows the clumps, and no chain joins a clump's members.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,7 +13,11 @@
 #include <vector>
 
 #include "tests/support/test_support.h"
+#include "render/plot/colormap.h"
+#include "render/view/frames.h"
+#include "render/view/sim_view.h"
 #include "render/view/view_pack.h"
+#include "solver/scene/clump.h"
 
 namespace simsols::testing {
 namespace {
@@ -82,6 +87,7 @@ std::vector<double> host_field(ColorField f, const ParticleSnapshot& p,
       case ColorField::Displacement: v[i] = norm(sub(p.position[i], ref[i])); break;
       case ColorField::Contacts: v[i] = p.contacts[i]; break;
       case ColorField::Rotation: v[i] = norm(p.angular_velocity[i]); break;
+      case ColorField::Grain: v[i] = double(i); break;  // no clumps: each bead its own grain
     }
   }
   return v;
@@ -235,6 +241,8 @@ TEST(ViewPackNames, FieldsRoundTripWithUnits) {
   EXPECT_STREQ(unit_of(ColorField::Displacement), "m");
   EXPECT_STREQ(unit_of(ColorField::Contacts), "");
   EXPECT_STREQ(unit_of(ColorField::Rotation), "rad/s");
+  EXPECT_STREQ(unit_of(ColorField::Grain), "");
+  EXPECT_EQ(parse_color_field("Grain"), ColorField::Grain);
 }
 
 TEST_P(ViewPack, SettledBoxBeadsContactsOriginAndBands) {
@@ -399,6 +407,118 @@ TEST_P(ViewPack, BadArgumentsAreRefused) {
   const ViewPacker::Range r = view.pack_beads(ColorField::Size, big.get(), big2.get());
   EXPECT_FLOAT_EQ(r.min, float(kR));
   EXPECT_FLOAT_EQ(r.max, float(kR));
+}
+
+// Three "peanut" clumps of two overlapping spheres (along x) in a row along
+// y, each touching the next with both spheres, between two free spheres
+// that touch a first sphere at the row's ends: particle 0 free, 1-2 clump
+// 0, 3-4 clump 1, 5-6 clump 2, 7 free. No gravity: the overlaps push the
+// grains apart.
+constexpr double kPeanutGap = 0.99 * 2 * kR;  // centre rows: touching, 1 % overlap
+Scene peanut_row(Precision p) {
+  Scene s = empty_scene(p, soft(0.5, 0.3, 0.0));
+  s.grains.push_back({"peanut", {{-0.6 * kR, 0, 0, kR}, {0.6 * kR, 0, 0, kR}}});
+  const GrainBody body = grain_body(s.grains[0]);
+  auto at = [](double x, double y) { return Vec3{kOffset[0] + x, kOffset[1] + y, kOffset[2]}; };
+  s.particles.push_back(sphere(kR, at(-0.6 * kR, -kPeanutGap)));  // beside a clump's first sphere
+  for (int c = 0; c < 3; ++c) {
+    Clump k;
+    k.position = at(0, c * kPeanutGap);
+    add_clump(s, k, body);
+  }
+  s.particles.push_back(sphere(kR, at(-0.6 * kR, 3 * kPeanutGap)));
+  return s;
+}
+
+// The grain field: members of a clump share their clump's number, free
+// spheres count on after the clumps; each grain's colour is the same on
+// all its members and differs from the other grains' here.
+TEST_P(ViewPack, GrainNumbersAndColoursFollowTheClumps) {
+  const Scene scene = peanut_row(GetParam());
+  ASSERT_EQ(scene.particles.size(), 8u);
+  ASSERT_EQ(scene.clumps.size(), 3u);
+  EXPECT_EQ(default_color_field(scene), ColorField::Grain);
+  Simulation sim(default_device(), scene);
+  sim.advance(20);
+  ViewPacker view(sim);
+  const ViewPacker::HostBeads b = view.pack_beads_host(ColorField::Grain);
+  const std::vector<float> want{3, 0, 0, 1, 1, 2, 2, 10};  // C + i for the free spheres
+  ASSERT_EQ(b.values.size(), want.size());
+  for (size_t i = 0; i < want.size(); ++i) EXPECT_EQ(b.values[i], want[i]) << "bead " << i;
+  EXPECT_EQ(b.range.min, 0);
+  EXPECT_EQ(b.range.max, 10);
+  expect_positions(b, sim.snapshot(), view.origin());
+
+  // The colours the renderer gives them (render/plot/colormap.h).
+  const plot::ColorMap map = render::colormap_for(ColorField::Grain);
+  EXPECT_EQ(map, plot::ColorMap::Qualitative);
+  auto colour = [&](size_t i) { return plot::colormap_color(map, b.values[i]); };
+  for (size_t i : {1, 3, 5}) EXPECT_EQ(colour(i), colour(i + 1)) << "clump of bead " << i;
+  const size_t one_per_grain[] = {0, 1, 3, 5, 7};
+  for (size_t a : one_per_grain)
+    for (size_t c : one_per_grain)
+      EXPECT_TRUE(a >= c || !(colour(a) == colour(c))) << "beads " << a << " and " << c;
+}
+
+// The force chains join grains, never two members of one clump (their
+// spheres overlap, but a clump's members are not each other's neighbours).
+TEST_P(ViewPack, ChainsJoinGrainsNotTheMembersOfAClump) {
+  const Scene scene = peanut_row(GetParam());
+  Simulation sim(default_device(), scene);
+  sim.advance(1);
+  ViewPacker view(sim);
+  const ParticleSnapshot p = sim.snapshot();
+  auto nearest = [&](const float* q) {
+    size_t best = 0;
+    double best_d = 1e300;
+    for (size_t i = 0; i < p.position.size(); ++i) {
+      double d = 0;
+      for (int a = 0; a < 3; ++a) d += std::pow(q[a] - (p.position[i][a] - view.origin()[a]), 2);
+      if (d < best_d) best_d = d, best = i;
+    }
+    EXPECT_LT(std::sqrt(best_d), 1e-8);
+    return best;
+  };
+  const ViewPacker::HostContacts c = view.pack_contacts_host(64);
+  // free-clump 0, clump 0-1 (both spheres), 1-2 (both), clump 2-free
+  EXPECT_EQ(c.stats.total, 6u);
+  for (size_t k = 0; k < c.stats.count; ++k) {
+    const size_t i = nearest(&c.segments[8 * k]), j = nearest(&c.segments[8 * k + 4]);
+    const int ci = scene.particles[i].clump, cj = scene.particles[j].clump;
+    EXPECT_TRUE(ci < 0 || ci != cj) << "segment " << k << " joins beads " << i << " and " << j
+                                    << " of clump " << ci;
+  }
+}
+
+// Frames (snapshot, run --frames) of a scene with clumps are coloured by
+// grain unless the flag or the scene's [view] says otherwise; other scenes
+// by layer.
+TEST(ViewPackNames, FramesOfClumpsDefaultToGrain) {
+  const FrameFlags none;
+  EXPECT_EQ(FrameOptions::resolve(none).field, ColorField::Layer);
+  Scene clumps = peanut_row(Precision::Float);
+  const FrameOptions o = FrameOptions::resolve(none, &clumps);
+  EXPECT_EQ(o.field, ColorField::Grain);
+  EXPECT_EQ(o.settings.bead_map, plot::ColorMap::Qualitative);
+  const Scene spheres = cluster_scene(Precision::Float);
+  EXPECT_EQ(FrameOptions::resolve(none, &spheres).field, ColorField::Layer);
+  clumps.view.color_by = "speed";
+  EXPECT_EQ(FrameOptions::resolve(none, &clumps).field, ColorField::Speed);
+  FrameFlags grain;
+  grain.color_by = "grain";
+  EXPECT_EQ(FrameOptions::resolve(grain, &spheres).field, ColorField::Grain);
+}
+
+// Without clumps each bead is its own grain, numbered by its index, and a
+// scene is drawn by layer unless asked otherwise.
+TEST_P(ViewPack, GrainWithoutClumpsIsTheBead) {
+  const Scene scene = cluster_scene(GetParam());
+  EXPECT_EQ(default_color_field(scene), ColorField::Layer);
+  Simulation sim(default_device(), scene);
+  ViewPacker view(sim);
+  const ViewPacker::HostBeads b = view.pack_beads_host(ColorField::Grain);
+  for (size_t i = 0; i < b.values.size(); ++i) EXPECT_EQ(b.values[i], float(i));
+  EXPECT_EQ(b.range.max, float(b.values.size() - 1));
 }
 
 SIMSOLS_BOTH_PRECISIONS(ViewPack);
