@@ -1,6 +1,7 @@
 #include "app/experiment/preparation.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -24,13 +25,25 @@ std::unique_ptr<LoadingProgramme> make_test(Simulation& sim) {
   return std::make_unique<OedometerTest>(sim);
 }
 
+using Log = std::function<void(const std::string&)>;
+
+// The search's preparations, in order: at most kSearchTrials + 2.
+double longest_settle(const Scene& s) {
+  if (s.shear_box) return s.shear_box->settle_time;
+  if (s.triaxial) return s.triaxial->settle_time;
+  return s.oedometer ? s.oedometer->settle_time : 0;
+}
+
 DensityTrial trial(const Scene& base, const std::shared_ptr<Device>& device, const char* role,
-                   double friction) {
+                   double friction, int number, const Log& log) {
   Scene scene = base;
   Preparation& p = scene.specimen()->preparation;
   p.friction = friction;
   p.relative_density.reset();
-  return {role, friction, settle_specimen(scene, device)};
+  char head[96];
+  std::snprintf(head, sizeof head, "preparation %d of at most %d (%s, friction %.4f): ", number,
+                kSearchTrials + 2, role, friction);
+  return {role, friction, settle_specimen(scene, device, [&](const std::string& m) { log(head + m); })};
 }
 
 std::string trial_line(const DensityTrial& t, const DensitySearch& s) {
@@ -68,13 +81,13 @@ double dr_of(const DensityTrial& t, const DensitySearch& s) {
 // changes most at small friction, which x spreads out. At most
 // kSearchTrials trials, ending within kSearchTolerance of the target.
 void search(const Scene& scene, const std::shared_ptr<Device>& device, DensitySearch& s,
-            const std::function<void(const std::string&)>& log) {
+            const Log& log) {
   double x0 = 0, f0 = 1 - s.target, x1 = 1, f1 = -s.target;
   if (std::abs(f0) <= kSearchTolerance || std::abs(f1) <= kSearchTolerance) return;
   int side = 0;
   for (int k = 0; k < kSearchTrials; ++k) {
     const double x = std::clamp(x0 - f0 * (x1 - x0) / (f1 - f0), 0.02, 0.98);
-    s.trials.push_back(trial(scene, device, "trial", x * x * kLooseFriction));
+    s.trials.push_back(trial(scene, device, "trial", x * x * kLooseFriction, int(s.trials.size()) + 1, log));
     log(trial_line(s.trials.back(), s));
     const double f = dr_of(s.trials.back(), s) - s.target;
     if (std::abs(f) <= kSearchTolerance) return;
@@ -147,11 +160,24 @@ Packing measure_specimen(Simulation& sim) {
   return measure_packing(sample_contacts(sim), cell.length, cell.width, 0, share);
 }
 
-Settled settle_specimen(const Scene& scene, const std::shared_ptr<Device>& device) {
+Settled settle_specimen(const Scene& scene, const std::shared_ptr<Device>& device,
+                        const std::function<void(const std::string&)>& progress) {
   Simulation sim(device, scene);
   const std::unique_ptr<LoadingProgramme> test = make_test(sim);
   test->advance(1);
-  while (!test->done() && std::strcmp(test->stage_name(), "settle") == 0) test->advance(5000);
+  const auto start = std::chrono::steady_clock::now();
+  auto next = start + std::chrono::seconds(10);
+  while (!test->done() && std::strcmp(test->stage_name(), "settle") == 0) {
+    test->advance(5000);
+    const auto now = std::chrono::steady_clock::now();
+    if (!progress || now < next) continue;
+    next = now + std::chrono::seconds(10);
+    char line[128];
+    std::snprintf(line, sizeof line, "settling, t = %.4f s of at most %.3f s, step %lld, %.0f s", sim.time(),
+                  longest_settle(scene), static_cast<long long>(sim.steps()),
+                  std::chrono::duration<double>(now - start).count());
+    progress(line);
+  }
   Settled s;
   s.packing = measure_specimen(sim);
   s.seconds = sim.time();
@@ -171,11 +197,12 @@ bool prepare_to_relative_density(Scene& scene, const std::shared_ptr<Device>& de
     s.e_min = *prep.e_min;
     s.e_max = *prep.e_max;
   } else {
-    s.trials.push_back(trial(scene, device, "densest", 0));
-    s.trials.push_back(trial(scene, device, "loosest", kLooseFriction));
+    s.trials.push_back(trial(scene, device, "densest", 0, 1, log));
+    log(trial_line(s.trials.back(), s));
+    s.trials.push_back(trial(scene, device, "loosest", kLooseFriction, 2, log));
     s.e_min = s.trials[0].result.packing.void_ratio;
     s.e_max = s.trials[1].result.packing.void_ratio;
-    for (const DensityTrial& t : s.trials) log(trial_line(t, s));
+    log(trial_line(s.trials.back(), s));
     if (!(s.e_max > s.e_min))
       throw SceneError("out_of_range", scene.source_path, 0, "specimen.preparation.relative_density",
                        "the loosest preparation (e = " + shortest_number(s.e_max) +
@@ -184,7 +211,7 @@ bool prepare_to_relative_density(Scene& scene, const std::shared_ptr<Device>& de
   }
   search(scene, device, s, log);
   if (s.trials.empty()) {  // e_min, e_max given and the target at one end: that end's friction
-    s.trials.push_back(trial(scene, device, "trial", s.target >= 0.5 ? 0 : kLooseFriction));
+    s.trials.push_back(trial(scene, device, "trial", s.target >= 0.5 ? 0 : kLooseFriction, 1, log));
     log(trial_line(s.trials.back(), s));
   }
   const DensityTrial* best = nullptr;

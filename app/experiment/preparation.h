@@ -48,7 +48,10 @@ struct Settled {
   double seconds = 0;
   long long steps = 0;
 };
-Settled settle_specimen(const Scene& scene, const std::shared_ptr<Device>& device);
+// `progress`, when given, hears a line about every 10 s of wall time:
+// the simulated time settled so far and the steps.
+Settled settle_specimen(const Scene& scene, const std::shared_ptr<Device>& device,
+                        const std::function<void(const std::string&)>& progress = {});
 
 // One preparation of the search: its friction and what it gave.
 struct DensityTrial {

@@ -22,6 +22,13 @@ ContactSample sample_contacts(Simulation& sim) {
   s.beads = sim.snapshot();
   s.contacts = sim.contacts();
   s.wall_points = wall_points(sim.model(), sim.state());
+  s.body_centre = s.beads.position;
+  const std::vector<Particle>& particles = sim.scene().particles;
+  if (!sim.scene().clumps.empty()) {
+    const std::vector<ClumpState> clumps = sim.clumps();
+    for (size_t i = 0; i < particles.size(); ++i)
+      if (particles[i].clump >= 0) s.body_centre[i] = clumps[particles[i].clump].position;
+  }
   return s;
 }
 
@@ -35,10 +42,11 @@ Tensor3 love_weber_slab(const ContactSample& sample, const std::vector<Wall>& wa
   const std::vector<ContactForce>& contacts = sample.contacts;
   const std::vector<Vec3>& points = sample.wall_points;
   Tensor3 s{};
+  const std::vector<Vec3>& centre = sample.body_centre.empty() ? snap.position : sample.body_centre;
   for (const ContactForce& c : contacts) {
-    const Vec3& xa = snap.position[c.a];
-    const Vec3 xb = c.b >= 0 ? snap.position[c.b]
-                             : wall_closest_point(walls[-1 - c.b], points[-1 - c.b], xa);
+    const Vec3& xa = centre[c.a];
+    const Vec3 xb = c.b >= 0 ? centre[c.b]
+                             : wall_closest_point(walls[-1 - c.b], points[-1 - c.b], snap.position[c.a]);
     const Vec3 l{xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]};
     const double w = inside_fraction(xa[2], l[2], z_lo, z_hi);
     if (w == 0) continue;

@@ -12,6 +12,14 @@
 // shear plane itself, which is what the wall forces T/A and N/A claim to
 // measure. Body forces (gravity) are left out: below 1% of sigma for the
 // paper's specimens under 50 kPa or more. Compare docs/shear-box.md.
+//
+// Rigid grains (clumps): the average is over bodies, so a branch vector
+// runs between the two grains' centroids (to the contact point for a
+// wall), not between the member spheres that touch. Summed over a body's
+// contacts, f (x_contact - x_centroid) is the grain's share of the stress;
+// the two ends of a contact add up to f (x_B - x_A). Branch vectors
+// between member centres would leave out what each grain carries through
+// its own body (9.8-13 % of the stress in a test of elongated grains).
 #pragma once
 
 #include <array>
@@ -30,6 +38,7 @@ struct ContactSample {
   ParticleSnapshot beads;
   std::vector<ContactForce> contacts;
   std::vector<Vec3> wall_points;
+  std::vector<Vec3> body_centre;  // per bead: its grain's centroid (a free bead's own centre)
 };
 ContactSample sample_contacts(Simulation& sim);
 

@@ -18,6 +18,7 @@
 #include <cmath>
 
 #include "solver/core/stress.h"
+#include "solver/scene/clump.h"
 #include "tests/support/test_support.h"
 
 namespace simsols::testing {
@@ -119,6 +120,37 @@ TEST(LoveWeber, ColumnUnderGravityCarriesTheWeightAbove) {
   EXPECT_EQ(all[0][0], 0);  // the column is exactly vertical
   EXPECT_EQ(all[0][2], 0);
   EXPECT_EQ(all[2][0], 0);
+}
+
+// Two upright dimers (two touching spheres each, a rigid grain) stacked on
+// the floor and settled as the bead column above. A grain's branch
+// vectors run from its centroid: the floor contact from A's centroid (2R)
+// down to the floor, the grains' contact from A's centroid to B's (6R).
+// Between the centroids the planes carry B's weight, above A's centroid
+// and below it both grains' weights: a slab in (2R, 6R) reads B's weight
+// per area, one in (0, 2R) both. Branch vectors between the member
+// spheres (3R to 5R) would read B's weight over only the part of the slab
+// they cross: 0.56 of it for the slab below.
+TEST(LoveWeber, StackedGrainsCarryTheWeightAboveThroughTheirCentroids) {
+  Scene s = stress_scene(0);
+  s.grains = {{"dimer", {{0, 0, -kR, kR}, {0, 0, kR, kR}}, ""}};
+  const GrainBody body = grain_body(s.grains[0]);
+  for (double z : {2 * kR, 6 * kR}) {
+    Clump c;
+    c.position = {0, 0, z};
+    add_clump(s, c, body);
+  }
+  const double w = 2 * mass(s, s.particles[0]) * 9.81;  // one grain: the union of two touching spheres
+  Simulation sim(default_device(), s);
+  sim.advance(30000);
+  const std::vector<ClumpState> g = sim.clumps();
+  const double za = g[0].position[2], zb = g[1].position[2];
+  auto szz = [&](double lo, double hi) { return love_weber_slab(sim, lo, hi, kArea)[2][2]; };
+  const double tol = 5e-9;  // of the weight per area; achieved 4e-10
+  EXPECT_NEAR(szz(za + 0.1 * kR, zb - 0.1 * kR) * kArea / w, 1, tol);
+  EXPECT_NEAR(szz(0.1 * za, 0.9 * za) * kArea / w, 2, tol);
+  const Tensor3 all = love_weber_slab(sim, 0, zb, kArea);
+  EXPECT_NEAR(all[0][2], 0, 1e-12 * all[2][2]);  // a vertical column: 1e-49 Pa from the quaternions' rounding
 }
 
 }  // namespace
