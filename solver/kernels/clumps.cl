@@ -102,13 +102,7 @@ __kernel void move_clumps(__global real4* pos, __global float4* pos_lo, __global
   real4 v = clump_vel[c], l = clump_mom[c], x = clump_pos[c];
   v.xyz += f * (dt / mi.x);
   l.xyz += t * dt;
-#ifdef POS_COMPENSATED
-  float4 lo = clump_pos_lo[c];
-  add_compensated(&x, &lo, v.xyz * dt);
-  clump_pos_lo[c] = lo;
-#else
-  x.xyz += v.xyz * dt;
-#endif
+  DRIFT(&x, clump_pos_lo, c, v.xyz * dt);
   real3 lb = q_rotate((real4)(-q.xyz, q.w), l.xyz);
   turn_about(0, dt / 2, &q, &lb, mi.yzw);
   turn_about(1, dt / 2, &q, &lb, mi.yzw);
@@ -125,7 +119,7 @@ __kernel void move_clumps(__global real4* pos, __global float4* pos_lo, __global
     const real3 r = q_rotate(q, body_offset[i].xyz);
     real4 xi = (real4)(x.xyz, pos[i].w);
 #ifdef POS_COMPENSATED
-    float4 xlo = lo;
+    float4 xlo = clump_pos_lo[c];
     add_compensated(&xi, &xlo, r);
     pos_lo[i] = xlo;
 #else

@@ -107,6 +107,14 @@ INLINE void add_compensated(real4* hi, float4* lo, real3 d) {
   (*hi).xyz = s;
   (*lo).xyz = err;
 }
+// x += d for a position whose low part is lo_at[i] (a particle's or a
+// clump's): the drift of every integrator.
+INLINE void drift_compensated(real4* x, __global float4* lo_at, int i, real3 d) {
+  float4 lo = lo_at[i];
+  add_compensated(x, &lo, d);
+  lo_at[i] = lo;
+}
+#define DRIFT(x, lo_at, i, d) drift_compensated(x, lo_at, i, d)
 #define POS_LO_ARG , __global float4* pos_lo
 #define POS_LO_CARG , __global const float4* pos_lo
 #define POS_LO_SARG , __global const float* restrict pos_lo
@@ -115,6 +123,7 @@ INLINE void add_compensated(real4* hi, float4* lo, real3 d) {
 #define POS_LO_PASS , pos_lo
 #define LO(i) , pos_lo[i]
 #else
+#define DRIFT(x, lo_at, i, d) ((*(x)).xyz += (d))
 #define POS_LO_ARG , __global const real4* pos_lo_unused
 #define POS_LO_CARG , __global const real4* pos_lo_unused
 #define POS_LO_SARG , __global const real* pos_lo_unused

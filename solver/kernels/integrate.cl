@@ -63,13 +63,7 @@ INLINE void integrate_one(int i, __global real4* pos, __global float4* pos_lo,
 #endif
   v.xyz += a * dt;
   w.xyz += tq * (dt / ((real)0.4 * m * x.w * x.w));
-#ifdef POS_COMPENSATED
-  float4 lo = pos_lo[i];
-  add_compensated(&x, &lo, v.xyz * dt);
-  pos_lo[i] = lo;
-#else
-  x.xyz += v.xyz * dt;
-#endif
+  DRIFT(&x, pos_lo, i, v.xyz * dt);
   vel[i] = v;
   omega[i] = w;
   pos[i] = x;
