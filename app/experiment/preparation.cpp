@@ -7,6 +7,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "app/experiment/tamping.h"
 #include "render/plot/chart.h"
 #include "solver/apparatus/oedometer_test.h"
 #include "solver/apparatus/shear_test.h"
@@ -17,13 +18,6 @@
 
 namespace simsols {
 namespace {
-
-std::unique_ptr<LoadingProgramme> make_test(Simulation& sim) {
-  const Scene& s = sim.scene();
-  if (s.shear_box) return std::make_unique<ShearTest>(sim);
-  if (s.triaxial) return std::make_unique<TriaxialTest>(sim);
-  return std::make_unique<OedometerTest>(sim);
-}
 
 using Log = std::function<void(const std::string&)>;
 
@@ -74,6 +68,28 @@ std::string search_csv(const DensitySearch& s) {
 
 double dr_of(const DensityTrial& t, const DensitySearch& s) {
   return relative_density(t.result.packing.void_ratio, s.e_min, s.e_max);
+}
+
+// e_min and e_max: given, or the densest and loosest preparations'.
+void index_void_ratios(const Scene& scene, const std::shared_ptr<Device>& device, DensitySearch& s,
+                       const Log& log) {
+  const Preparation& prep = scene.specimen()->preparation;
+  if (prep.e_min) {
+    s.e_min = *prep.e_min;
+    s.e_max = *prep.e_max;
+  } else {
+    s.trials.push_back(trial(scene, device, "densest", 0, 1, log));
+    log(trial_line(s.trials.back(), s));
+    s.trials.push_back(trial(scene, device, "loosest", kLooseFriction, 2, log));
+    s.e_min = s.trials[0].result.packing.void_ratio;
+    s.e_max = s.trials[1].result.packing.void_ratio;
+    log(trial_line(s.trials.back(), s));
+    if (!(s.e_max > s.e_min))
+      throw SceneError("out_of_range", scene.source_path, 0, "specimen.preparation.relative_density",
+                       "the loosest preparation (e = " + shortest_number(s.e_max) +
+                           ") is not looser than the densest (e = " + shortest_number(s.e_min) +
+                           "): the specimen is too small to tell them apart");
+  }
 }
 
 // Regula falsi (Illinois) on x = sqrt(friction) between the densest (x = 0,
@@ -148,6 +164,13 @@ SpecimenCell specimen_cell(const Scene& s) {
   return {};
 }
 
+std::unique_ptr<LoadingProgramme> make_test(Simulation& sim) {
+  const Scene& s = sim.scene();
+  if (s.shear_box) return std::make_unique<ShearTest>(sim);
+  if (s.triaxial) return std::make_unique<TriaxialTest>(sim);
+  return std::make_unique<OedometerTest>(sim);
+}
+
 Packing measure_specimen(Simulation& sim) {
   const Scene& scene = sim.scene();
   const SpecimenCell cell = specimen_cell(scene);
@@ -185,30 +208,40 @@ Settled settle_specimen(const Scene& scene, const std::shared_ptr<Device>& devic
   return s;
 }
 
+namespace {
+
+// Layered tamping to the preparation's void ratio, or to the one its
+// relative density gives between the index void ratios (given, or found
+// by the densest and loosest preparations).
+bool prepare_by_tamping(Scene& scene, const std::shared_ptr<Device>& device,
+                        const std::filesystem::path& out_dir, const Log& log) {
+  Preparation& prep = scene.specimen()->preparation;
+  double e = prep.void_ratio.value_or(0);
+  if (!prep.void_ratio) {
+    DensitySearch s;
+    index_void_ratios(scene, device, s, log);
+    e = s.e_max - *prep.relative_density * (s.e_max - s.e_min);
+    char line[160];
+    std::snprintf(line, sizeof line, "D_r %.3f asked: e %.4f between e_min %.4f and e_max %.4f",
+                  *prep.relative_density, e, s.e_min, s.e_max);
+    log(line);
+    prep.e_min = s.e_min, prep.e_max = s.e_max;
+  }
+  return tamp_specimen(scene, device, e, out_dir, log);
+}
+
+}  // namespace
+
 bool prepare_to_relative_density(Scene& scene, const std::shared_ptr<Device>& device,
                                  const std::filesystem::path& out_dir,
                                  const std::function<void(const std::string&)>& log) {
   Specimen* specimen = scene.specimen();
+  if (specimen && specimen->preparation.tamping_layers > 0) return prepare_by_tamping(scene, device, out_dir, log);
   if (!specimen || !specimen->preparation.relative_density) return false;
   Preparation& prep = specimen->preparation;
   DensitySearch s;
   s.target = *prep.relative_density;
-  if (prep.e_min) {
-    s.e_min = *prep.e_min;
-    s.e_max = *prep.e_max;
-  } else {
-    s.trials.push_back(trial(scene, device, "densest", 0, 1, log));
-    log(trial_line(s.trials.back(), s));
-    s.trials.push_back(trial(scene, device, "loosest", kLooseFriction, 2, log));
-    s.e_min = s.trials[0].result.packing.void_ratio;
-    s.e_max = s.trials[1].result.packing.void_ratio;
-    log(trial_line(s.trials.back(), s));
-    if (!(s.e_max > s.e_min))
-      throw SceneError("out_of_range", scene.source_path, 0, "specimen.preparation.relative_density",
-                       "the loosest preparation (e = " + shortest_number(s.e_max) +
-                           ") is not looser than the densest (e = " + shortest_number(s.e_min) +
-                           "): the specimen is too small to tell them apart");
-  }
+  index_void_ratios(scene, device, s, log);
   search(scene, device, s, log);
   if (s.trials.empty()) {  // e_min, e_max given and the target at one end: that end's friction
     s.trials.push_back(trial(scene, device, "trial", s.target >= 0.5 ? 0 : kLooseFriction, 1, log));

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/apparatus/apparatus.h"
 #include "solver/apparatus/packing.h"
 #include "solver/core/cl_device.h"
 
@@ -37,6 +38,9 @@ struct SpecimenCell {
   const Specimen* specimen = nullptr;
 };
 SpecimenCell specimen_cell(const Scene& scene);
+
+// The scene's apparatus test (shear, triaxial or oedometer) on `sim`.
+std::unique_ptr<LoadingProgramme> make_test(Simulation& sim);
 
 // The packing of the simulation's specimen now.
 Packing measure_specimen(Simulation& sim);

@@ -2,6 +2,8 @@
 // (docs/shear-box.md), expanded into walls and beads by build_shear_box().
 #include "solver/apparatus/grading.h"
 #include "solver/apparatus/shear_box.h"
+#include <cmath>
+
 #include "solver/io/scene_tables.h"
 
 #include "solver/scene/clump.h"
@@ -50,11 +52,35 @@ double read_grading(const Reader& sp, Specimen& s) {
   }
 }
 
+// Layered tamping (app/experiment/tamping.h): the layers, the target void
+// ratio (or relative_density) and the under-compaction.
+void read_tamping(const Reader& r, const Specimen& s, Preparation& p) {
+  if (!r.has("tamping_layers")) {
+    r.forbid({"void_ratio", "undercompaction"}, "only allowed with tamping_layers");
+    return;
+  }
+  if (s.method != Specimen::Method::Pour)
+    r.fail("conflicting_keys", "tamping_layers", "tamping builds a poured specimen: use specimen.method = \"pour\"");
+  const double layers = r.number("tamping_layers");
+  r.check_range("tamping_layers", layers, layers >= 2 && layers <= 50 && layers == std::floor(layers),
+                "a whole number in [2, 50]");
+  p.tamping_layers = static_cast<int>(layers);
+  p.void_ratio = r.optional_number("void_ratio");
+  if (p.void_ratio) r.check_range("void_ratio", *p.void_ratio, *p.void_ratio > 0.01 && *p.void_ratio <= 10, "(0.01, 10]");
+  p.undercompaction = r.number("undercompaction", p.undercompaction);
+  r.check_range("undercompaction", p.undercompaction, p.undercompaction >= 0 && p.undercompaction <= 0.3, "[0, 0.3]");
+  if (p.void_ratio && r.has("relative_density"))
+    r.fail("conflicting_keys", "void_ratio", "give the target as void_ratio or relative_density, not both");
+  if (!p.void_ratio && !r.has("relative_density"))
+    r.fail("missing_field", "void_ratio", "tamping needs a target: void_ratio or relative_density");
+}
+
 // [*.specimen.preparation]: the settling friction, the pour's rain, a
 // target relative density and the index void ratios (docs/specimens.md).
 Preparation read_preparation(const Reader& sp, const Specimen& s) {
   Reader r = sp.sub("preparation", {"friction", "rolling_friction", "drop_height", "intensity",
-                                     "relative_density", "e_min", "e_max"});
+                                     "relative_density", "e_min", "e_max", "tamping_layers",
+                                     "void_ratio", "undercompaction"});
   Preparation p;
   const auto opt = [&](const char* key, double lo, double hi, const char* range) {
     const std::optional<double> v = r.optional_number(key);
@@ -70,6 +96,7 @@ Preparation read_preparation(const Reader& sp, const Specimen& s) {
     r.forbid({"drop_height", "intensity"}, "only allowed when specimen.method = \"pour\"");
   p.drop_height = opt("drop_height", 0, 10, "[0, 10] m").value_or(0);
   p.intensity = opt("intensity", 0, 0.35, "[0, 0.35]").value_or(0);
+  read_tamping(r, s, p);
   if (p.relative_density && p.friction)
     r.fail("conflicting_keys", "relative_density",
            "a target relative density sets the friction; leave friction out");

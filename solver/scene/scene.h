@@ -244,6 +244,9 @@ struct Preparation {
   double intensity = 0;    // Pour: solid fraction of the raining column, (0, 0.35]; 0: 3 specimen heights tall
   std::optional<double> relative_density;  // target D_r: the friction is searched (docs/specimens.md)
   std::optional<double> e_min, e_max;      // the material's index void ratios, when known
+  int tamping_layers = 0;                  // Pour: built in this many tamped layers (0: poured at once)
+  std::optional<double> void_ratio;        // the tamped specimen's target e (or from relative_density)
+  double undercompaction = 0.05;           // Ladd's U_1: the bottom layer's shortfall of dry density
   bool settles_differently() const { return friction || rolling_friction; }
 };
 

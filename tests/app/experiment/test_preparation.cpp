@@ -13,6 +13,7 @@
 #include <string>
 
 #include "app/experiment/preparation.h"
+#include "app/experiment/tamping.h"
 #include "solver/apparatus/triaxial_test.h"
 #include "solver/io/scene_toml.h"
 #include "tests/support/test_support.h"
@@ -98,5 +99,40 @@ TEST(Preparation, TheTestPoursTheSpecimenTheSearchChose) {
   const double dr = relative_density(run.packing.void_ratio, *p.e_min, *p.e_max);
   std::printf("asked D_r 0.5, reached %.3f with friction %.4f\n", dr, *p.friction);
   EXPECT_NEAR(dr, 0.5, 0.25);
+  std::filesystem::remove_all(dir);
+}
+
+// Layered tamping (app/experiment/tamping.h): three layers tamped to
+// e = 0.85 (between the pour's 0.93 with its own friction and the
+// frictionless 0.78). Each layer's platen stops at its target top
+// (Ladd's under-compaction: the lower layers aim looser), and the built
+// specimen, given to the test, keeps every grain and settles near the
+// target.
+TEST(Preparation, LayeredTampingReachesTheTargetVoidRatio) {
+  Scene scene = scene_with("tamping_layers = 3\nvoid_ratio = 0.85\nundercompaction = 0.05\n");
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "simsols_tamp_test";
+  std::filesystem::remove_all(dir);
+  std::vector<std::string> lines;
+  ASSERT_TRUE(prepare_to_relative_density(scene, default_device(), dir,
+                                          [&](const std::string& l) {
+                                            std::printf("%s\n", l.c_str());
+                                            lines.push_back(l);
+                                          }));
+  EXPECT_EQ(lines.size(), 3u);
+  EXPECT_EQ(scene.triaxial->specimen.method, Specimen::Method::Given);
+  EXPECT_EQ(scene.triaxial->specimen.preparation.tamping_layers, 0);
+  EXPECT_EQ(scene.particles.size(), 150u);
+  EXPECT_NEAR(layer_void_ratio(0.85, 0.05, 1, 3), 1.85 / 0.95 - 1, 1e-15);
+  EXPECT_EQ(layer_void_ratio(0.85, 0.05, 3, 3), 0.85);
+  std::ifstream csv(dir / "tamping.csv");
+  std::string row;
+  std::getline(csv, row);
+  EXPECT_EQ(row, "layer,grains,target_void_ratio,target_top_m,platen_stop_m,platen_stress_Pa,void_ratio");
+  int rows = 0;
+  while (std::getline(csv, row)) ++rows;
+  EXPECT_EQ(rows, 3);
+  const Settled run = settle_specimen(scene, default_device());
+  std::printf("tamped to e = 0.85: the test settles at e = %.4f\n", run.packing.void_ratio);
+  EXPECT_NEAR(run.packing.void_ratio, 0.85, 0.1);
   std::filesystem::remove_all(dir);
 }

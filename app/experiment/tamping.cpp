@@ -1,0 +1,195 @@
+#include "app/experiment/tamping.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "app/experiment/preparation.h"
+#include "solver/common/number_text.h"
+#include "solver/io/output.h"
+#include "solver/scene/clump.h"
+
+namespace simsols {
+namespace {
+
+using Log = std::function<void(const std::string&)>;
+
+// One grain of the poured column: a clump or a free bead, and how low it
+// reaches.
+struct ColumnGrain {
+  double bottom = 0;
+  int clump = -1;  // index into the column's clumps, or -1
+  int particle = -1;
+};
+
+std::vector<ColumnGrain> column_grains(const Scene& column) {
+  std::vector<ColumnGrain> g;
+  for (size_t c = 0; c < column.clumps.size(); ++c) {
+    const Clump& k = column.clumps[c];
+    double bottom = k.position[2];
+    for (int i = k.first; i < k.first + k.count; ++i)
+      bottom = std::min(bottom, column.particles[i].position[2] - column.particles[i].radius);
+    g.push_back({bottom, static_cast<int>(c), -1});
+  }
+  for (size_t i = 0; i < column.particles.size(); ++i)
+    if (column.particles[i].clump < 0)
+      g.push_back({column.particles[i].position[2] - column.particles[i].radius, -1, static_cast<int>(i)});
+  std::sort(g.begin(), g.end(), [](const ColumnGrain& a, const ColumnGrain& b) { return a.bottom < b.bottom; });
+  return g;
+}
+
+// Adds grains [from, to) of the column to `scene`, lowered so the lowest
+// starts `gap` above `floor`; returns their solid volume.
+double add_layer(Scene& scene, const Scene& column, const std::vector<ColumnGrain>& grains, size_t from,
+                 size_t to, double floor, double gap) {
+  const double dz = floor + gap - grains[from].bottom;
+  const std::vector<double> solid = solid_volumes(column);
+  double volume = 0;
+  for (size_t k = from; k < to; ++k) {
+    if (grains[k].clump >= 0) {
+      Clump c = column.clumps[grains[k].clump];
+      c.position[2] += dz;
+      for (int i = c.first; i < c.first + c.count; ++i) volume += solid[i];
+      add_clump(scene, c, grain_body(scene.grains[c.grain]));
+    } else {
+      Particle p = column.particles[grains[k].particle];
+      p.position[2] += dz;
+      volume += solid[grains[k].particle];
+      scene.particles.push_back(p);
+    }
+  }
+  return volume;
+}
+
+// The specimen as it lies now, at rest: beads and clumps rebuilt from the
+// device's state (a clump's grain frame from its body frame).
+Scene at_rest(const Scene& empty, Simulation& sim) {
+  Scene s = empty;
+  const ParticleSnapshot snap = sim.snapshot();
+  const std::vector<ClumpState> clumps = sim.scene().clumps.empty() ? std::vector<ClumpState>{} : sim.clumps();
+  const Scene& was = sim.scene();
+  for (size_t c = 0; c < was.clumps.size(); ++c) {
+    Clump k = was.clumps[c];
+    const GrainBody body = grain_body(s.grains[k.grain]);
+    const Quaternion& t = body.to_grain;
+    k.position = clumps[c].position;
+    k.orientation = quat_multiply(clumps[c].orientation, {t[0], -t[1], -t[2], -t[3]});
+    k.velocity = k.angular_velocity = {};
+    add_clump(s, k, body);
+  }
+  for (size_t i = 0; i < was.particles.size(); ++i) {
+    if (was.particles[i].clump >= 0) continue;
+    Particle p = was.particles[i];
+    p.position = snap.position[i];
+    p.velocity = p.angular_velocity = {};
+    s.particles.push_back(p);
+  }
+  return s;
+}
+
+int platen_of(const Scene& s) {
+  for (size_t w = 0; w < s.walls.size(); ++w)
+    if (s.walls[w].name == "platen") return static_cast<int>(w);
+  throw std::runtime_error("the apparatus has no platen to tamp with");
+}
+
+double specimen_top(Simulation& sim) {
+  const ParticleSnapshot snap = sim.snapshot();
+  double top = 0;
+  for (size_t i = 0; i < snap.position.size(); ++i) top = std::max(top, snap.position[i][2] + snap.radius[i]);
+  return top;
+}
+
+// Lets the layer settle, then brings the platen down from just above the
+// grains at kTampSpeed until it reaches `target` or pushes with
+// kTampStress, lifts it clear and lets the grains come to rest.
+void tamp(Simulation& sim, LoadingProgramme& test, double target, double area, TampedLayer& out) {
+  test.advance(1);
+  while (!test.done() && std::string(test.stage_name()) == "settle") test.advance(2000);
+  const int platen = platen_of(sim.scene());
+  const Vec3 park = sim.wall_point(platen);
+  const double top = specimen_top(sim);
+  sim.set_wall_point(platen, {park[0], park[1], std::max(top, target) + 1e-4});
+  sim.set_wall_velocity(platen, {0, 0, -kTampSpeed});
+  const std::int64_t chunk = std::max<std::int64_t>(1, std::llround(2e-5 / kTampSpeed / sim.dt()));
+  for (;;) {
+    sim.advance(chunk);
+    const double z = sim.wall_point(platen)[2], push = sim.wall_reactions()[platen].force[2] / area;
+    out.platen_stop = z, out.stress = push;
+    if (z <= target || push >= kTampStress) break;
+  }
+  sim.set_wall_velocity(platen, {0, 0, 0});
+  sim.advance(chunk * 20);  // held a moment
+  sim.set_wall_point(platen, park);
+  const std::int64_t rest = std::llround(0.02 / sim.dt());  // the lifted layer springs back and rests
+  sim.advance(rest);
+}
+
+}  // namespace
+
+double layer_void_ratio(double e, double undercompaction, int j, int n) {
+  const double u = n > 1 ? undercompaction * (n - j) / (n - 1) : 0;
+  return (1 + e) / (1 - u) - 1;
+}
+
+std::string tamping_csv(const std::vector<TampedLayer>& layers) {
+  std::ostringstream o;
+  o << "layer,grains,target_void_ratio,target_top_m,platen_stop_m,platen_stress_Pa,void_ratio\n";
+  for (const TampedLayer& l : layers)
+    o << l.layer << ',' << l.grains << ',' << shortest_number(l.target_void_ratio) << ','
+      << shortest_number(l.target_top) << ',' << shortest_number(l.platen_stop) << ','
+      << shortest_number(l.stress) << ',' << shortest_number(l.void_ratio) << '\n';
+  return o.str();
+}
+
+bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double void_ratio,
+                   const std::filesystem::path& out_dir, const Log& log) {
+  Specimen* specimen = scene.specimen();
+  if (!specimen || specimen->preparation.tamping_layers <= 0) return false;
+  const Preparation prep = specimen->preparation;
+  const int n = prep.tamping_layers;
+  const SpecimenCell cell = specimen_cell(scene);
+  const double area = cell.length * cell.width;
+  const std::vector<ColumnGrain> grains = column_grains(scene);
+  Scene empty = scene;
+  empty.particles.clear();
+  empty.clumps.clear();
+  Scene built = empty;
+  std::vector<TampedLayer> layers;
+  double floor = 0, stacked = 0;
+  for (int k = 1; k <= n; ++k) {
+    const size_t from = grains.size() * (k - 1) / n, to = grains.size() * k / n;
+    TampedLayer l;
+    l.layer = k;
+    l.grains = static_cast<int>(to - from);
+    l.target_void_ratio = layer_void_ratio(void_ratio, prep.undercompaction, k, n);
+    const double solid = add_layer(built, scene, grains, from, to, floor, 1e-4);
+    stacked += solid * (1 + l.target_void_ratio) / area;
+    l.target_top = stacked;
+    Simulation sim(device, built);
+    const std::unique_ptr<LoadingProgramme> test = make_test(sim);
+    tamp(sim, *test, l.target_top, area, l);
+    l.void_ratio = measure_specimen(sim).void_ratio;
+    floor = specimen_top(sim);
+    built = at_rest(empty, sim);
+    layers.push_back(l);
+    char line[200];
+    std::snprintf(line, sizeof line,
+                  "layer %d of %d: %d grains, e_j %.4f, platen stopped at %.3f mm (target %.3f mm, %.0f kPa); e %.4f",
+                  k, n, l.grains, l.target_void_ratio, 1e3 * l.platen_stop, 1e3 * l.target_top,
+                  l.stress / 1e3, l.void_ratio);
+    log(line);
+  }
+  Specimen& s = *built.specimen();
+  s.method = Specimen::Method::Given;
+  s.preparation.tamping_layers = 0;
+  s.preparation.void_ratio.reset();
+  s.preparation.relative_density.reset();
+  scene = built;
+  std::filesystem::create_directories(out_dir);
+  write_file_atomic((out_dir / "tamping.csv").string(), tamping_csv(layers));
+  return true;
+}
+
+}  // namespace simsols
