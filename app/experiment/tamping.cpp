@@ -110,14 +110,18 @@ void tamp(Simulation& sim, LoadingProgramme& test, double target, double area, T
   const int platen = platen_of(sim.scene());
   const Vec3 park = sim.wall_point(platen);
   const double top = specimen_top(sim);
-  sim.set_wall_point(platen, {park[0], park[1], std::max(top, target) + 1e-4});
+  const double start = std::max(top, target) + 1e-4;
+  sim.set_servo(platen, WallServo{});  // moved by velocity alone
+  sim.set_wall_point(platen, {park[0], park[1], start});
   sim.set_wall_velocity(platen, {0, 0, -kTampSpeed});
   const std::int64_t chunk = std::max<std::int64_t>(1, std::llround(2e-5 / kTampSpeed / sim.dt()));
+  const double longest = 2 * (start - target) / kTampSpeed + 0.01;  // s, in case it stalls
+  const double t0 = sim.time();
   for (;;) {
     sim.advance(chunk);
-    const double z = sim.wall_point(platen)[2], push = sim.wall_reactions()[platen].force[2] / area;
+    const double z = sim.wall_point(platen)[2], push = std::abs(sim.wall_reactions()[platen].force[2]) / area;
     out.platen_stop = z, out.stress = push;
-    if (z <= target || push >= kTampStress) break;
+    if (z <= target || push >= kTampStress || sim.time() - t0 > longest) break;
   }
   sim.set_wall_velocity(platen, {0, 0, 0});
   sim.advance(chunk * 20);  // held a moment

@@ -123,7 +123,7 @@ TEST(Preparation, LayeredTampingReachesTheTargetVoidRatio) {
   EXPECT_EQ(scene.triaxial->specimen.preparation.tamping_layers, 0);
   EXPECT_EQ(scene.particles.size(), 150u);
   EXPECT_NEAR(layer_void_ratio(0.85, 0.05, 1, 3), 1.85 / 0.95 - 1, 1e-15);
-  EXPECT_EQ(layer_void_ratio(0.85, 0.05, 3, 3), 0.85);
+  EXPECT_NEAR(layer_void_ratio(0.85, 0.05, 3, 3), 0.85, 1e-15);
   std::ifstream csv(dir / "tamping.csv");
   std::string row;
   std::getline(csv, row);
@@ -133,6 +133,6 @@ TEST(Preparation, LayeredTampingReachesTheTargetVoidRatio) {
   EXPECT_EQ(rows, 3);
   const Settled run = settle_specimen(scene, default_device());
   std::printf("tamped to e = 0.85: the test settles at e = %.4f\n", run.packing.void_ratio);
-  EXPECT_NEAR(run.packing.void_ratio, 0.85, 0.1);
+  EXPECT_NEAR(run.packing.void_ratio, 0.85, 0.1);  // 0.821 measured: the platen stops at H_k, the layers spring back
   std::filesystem::remove_all(dir);
 }

@@ -417,7 +417,7 @@ TEST_P(ViewPack, BadArgumentsAreRefused) {
 constexpr double kPeanutGap = 0.99 * 2 * kR;  // centre rows: touching, 1 % overlap
 Scene peanut_row(Precision p) {
   Scene s = empty_scene(p, soft(0.5, 0.3, 0.0));
-  s.grains.push_back({"peanut", {{-0.6 * kR, 0, 0, kR}, {0.6 * kR, 0, 0, kR}}});
+  s.grains.push_back({"peanut", {{-0.6 * kR, 0, 0, kR}, {0.6 * kR, 0, 0, kR}}, ""});
   const GrainBody body = grain_body(s.grains[0]);
   auto at = [](double x, double y) { return Vec3{kOffset[0] + x, kOffset[1] + y, kOffset[2]}; };
   s.particles.push_back(sphere(kR, at(-0.6 * kR, -kPeanutGap)));  // beside a clump's first sphere

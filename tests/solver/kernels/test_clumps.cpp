@@ -36,7 +36,7 @@ spheres = [[0, 0, 0, 1e-3], [1.3e-3, 0, 0, 0.7e-3], [0.2e-3, 0.9e-3, 0.3e-3, 0.5
 )";
 
 Grain lump() {
-  return {"lump", {{0, 0, 0, 1e-3}, {1.3e-3, 0, 0, 0.7e-3}, {0.2e-3, 0.9e-3, 0.3e-3, 0.5e-3}}};
+  return {"lump", {{0, 0, 0, 1e-3}, {1.3e-3, 0, 0, 0.7e-3}, {0.2e-3, 0.9e-3, 0.3e-3, 0.5e-3}}, ""};
 }
 
 std::string vec(const Vec3& v) {
@@ -222,8 +222,7 @@ duration = 1
 // spheres) dropped onto each other on a frictionless floor, no friction
 // anywhere, restitution 0.5: kinetic plus gravitational energy can only
 // fall, though up to 8 x 8 member pairs may touch at once when two such
-// grains meet (measured: never above its start; 38 % lost in 30 ms, the
-// rest sliding on the frictionless floor).
+// grains meet (measured: never above its start; 38 % lost in 30 ms).
 TEST(Clumps, TemplateGrainsCollideWithoutGainingEnergy) {
   const std::string text = R"(
 [[materials]]
@@ -319,7 +318,7 @@ TEST(Clumps, TheResolvedSceneRebuildsTheSameClumps) {
 // and take their load steps without a runaway, and the test's solid
 // volume counts each union once. Large, soft grains keep it short.
 TEST(Clumps, APourOfClumpsSettlesAndTakesItsLoad) {
-  const Grain big = {"big", {{0, 0, 0, 3e-3}, {3.9e-3, 0, 0, 2.1e-3}, {0.6e-3, 2.7e-3, 0.9e-3, 1.5e-3}}};
+  const Grain big = {"big", {{0, 0, 0, 3e-3}, {3.9e-3, 0, 0, 2.1e-3}, {0.6e-3, 2.7e-3, 0.9e-3, 1.5e-3}}, ""};
   const std::string text = R"(
 [[materials]]
 name = "soft"
