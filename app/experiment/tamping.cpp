@@ -8,6 +8,7 @@
 #include "app/experiment/preparation.h"
 #include "solver/common/number_text.h"
 #include "solver/io/output.h"
+#include "solver/apparatus/stage_checks.h"
 #include "solver/scene/clump.h"
 
 namespace simsols {
@@ -41,8 +42,8 @@ std::vector<ColumnGrain> column_grains(const Scene& column) {
 
 // Adds grains [from, to) of the column to `scene`, lowered so the lowest
 // starts `gap` above `floor`; returns their solid volume.
-double add_layer(Scene& scene, const Scene& column, const std::vector<ColumnGrain>& grains, size_t from,
-                 size_t to, double floor, double gap) {
+double add_layer(Scene& scene, const Scene& column, const std::vector<GrainBody>& bodies,
+                 const std::vector<ColumnGrain>& grains, size_t from, size_t to, double floor, double gap) {
   const double dz = floor + gap - grains[from].bottom;
   const std::vector<double> solid = solid_volumes(column);
   double volume = 0;
@@ -51,7 +52,7 @@ double add_layer(Scene& scene, const Scene& column, const std::vector<ColumnGrai
       Clump c = column.clumps[grains[k].clump];
       c.position[2] += dz;
       for (int i = c.first; i < c.first + c.count; ++i) volume += solid[i];
-      add_clump(scene, c, grain_body(scene.grains[c.grain]));
+      add_clump(scene, c, bodies[c.grain]);
     } else {
       Particle p = column.particles[grains[k].particle];
       p.position[2] += dz;
@@ -64,14 +65,14 @@ double add_layer(Scene& scene, const Scene& column, const std::vector<ColumnGrai
 
 // The specimen as it lies now, at rest: beads and clumps rebuilt from the
 // device's state (a clump's grain frame from its body frame).
-Scene at_rest(const Scene& empty, Simulation& sim) {
+Scene at_rest(const Scene& empty, const std::vector<GrainBody>& bodies, Simulation& sim) {
   Scene s = empty;
   const ParticleSnapshot snap = sim.snapshot();
   const std::vector<ClumpState> clumps = sim.scene().clumps.empty() ? std::vector<ClumpState>{} : sim.clumps();
   const Scene& was = sim.scene();
   for (size_t c = 0; c < was.clumps.size(); ++c) {
     Clump k = was.clumps[c];
-    const GrainBody body = grain_body(s.grains[k.grain]);
+    const GrainBody& body = bodies[k.grain];
     const Quaternion& t = body.to_grain;
     k.position = clumps[c].position;
     k.orientation = quat_multiply(clumps[c].orientation, {t[0], -t[1], -t[2], -t[3]});
@@ -92,13 +93,6 @@ int platen_of(const Scene& s) {
   for (size_t w = 0; w < s.walls.size(); ++w)
     if (s.walls[w].name == "platen") return static_cast<int>(w);
   throw std::runtime_error("the apparatus has no platen to tamp with");
-}
-
-double specimen_top(Simulation& sim) {
-  const ParticleSnapshot snap = sim.snapshot();
-  double top = 0;
-  for (size_t i = 0; i < snap.position.size(); ++i) top = std::max(top, snap.position[i][2] + snap.radius[i]);
-  return top;
 }
 
 // Lets the layer settle, then brings the platen down from just above the
@@ -160,6 +154,8 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
   empty.particles.clear();
   empty.clumps.clear();
   Scene built = empty;
+  std::vector<GrainBody> bodies;  // the unit bodies, once per grain (add_clump scales them)
+  for (const Grain& g : scene.grains) bodies.push_back(grain_body(g));
   std::vector<TampedLayer> layers;
   double floor = 0, stacked = 0;
   for (int k = 1; k <= n; ++k) {
@@ -168,7 +164,7 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
     l.layer = k;
     l.grains = static_cast<int>(to - from);
     l.target_void_ratio = layer_void_ratio(void_ratio, prep.undercompaction, k, n);
-    const double solid = add_layer(built, scene, grains, from, to, floor, 1e-4);
+    const double solid = add_layer(built, scene, bodies, grains, from, to, floor, 1e-4);
     stacked += solid * (1 + l.target_void_ratio) / area;
     l.target_top = stacked;
     Simulation sim(device, built);
@@ -176,7 +172,7 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
     tamp(sim, *test, l.target_top, area, l);
     l.void_ratio = measure_specimen(sim).void_ratio;
     floor = specimen_top(sim);
-    built = at_rest(empty, sim);
+    built = at_rest(empty, bodies, sim);
     layers.push_back(l);
     char line[200];
     std::snprintf(line, sizeof line,

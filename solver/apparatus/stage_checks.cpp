@@ -25,13 +25,17 @@ double rms_bead_speed(const Observables& o, const SpecimenStats& stats) {
   return std::sqrt(2 * o.kinetic_translational / (o.particles * stats.bead_mass));
 }
 
-void lower_platen_onto_specimen(Simulation& sim, int platen, double clearance) {
+double specimen_top(Simulation& sim) {
   const ParticleSnapshot snap = sim.snapshot();
   double top = 0;
   for (size_t i = 0; i < snap.position.size(); ++i)
     top = std::max(top, snap.position[i][2] + snap.radius[i]);
+  return top;
+}
+
+void lower_platen_onto_specimen(Simulation& sim, int platen, double clearance) {
   Vec3 p = sim.wall_point(platen);
-  p[2] = std::min(p[2], top + clearance);
+  p[2] = std::min(p[2], specimen_top(sim) + clearance);
   sim.set_wall_point(platen, p);
 }
 

@@ -22,6 +22,9 @@ void preparation_friction(Simulation& sim, const Specimen& specimen, bool settli
 // The beads' RMS translational speed (m/s).
 double rms_bead_speed(const Observables& o, const SpecimenStats& stats);
 
+// The height of the highest bead's top (m; 0 without beads).
+double specimen_top(Simulation& sim);
+
 // Moves the platen (a wall whose normal points down) to `clearance` above
 // the highest bead, never up.
 void lower_platen_onto_specimen(Simulation& sim, int platen, double clearance);

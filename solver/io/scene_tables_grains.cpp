@@ -2,7 +2,6 @@
 // "Grains"). A grain is listed as spheres or made from a template
 // (grain_templates.h: a named shape); clumps place grains.
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 
@@ -76,10 +75,7 @@ Grain mesh_grain(const Reader& r, std::string name) {
     for (Vec3& v : mesh.vertices) v = simsols::scale(scale, v);
     TemplateFit fit;
     Grain g = grain_from_solid(std::move(name), voxelize(mesh, resolution), fill, diameter, &fit);
-    char text[200];
-    std::snprintf(text, sizeof text, "%d spheres cover %.1f %% of the solid; their union has %.3f of its volume",
-                  fit.spheres, 100 * fit.coverage, fit.volume_ratio);
-    g.origin = "mesh " + path.filename().string() + ": " + text;
+    g.origin = "mesh " + path.filename().string() + ": " + describe(fit);
     return g;
   } catch (const std::exception& e) {
     r.fail("bad_mesh", "mesh", e.what());

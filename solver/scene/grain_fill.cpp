@@ -71,8 +71,7 @@ struct Candidate {
 // Visits the cells whose centres lie within `radius` of cell c's centre.
 template <class F>
 void for_cells_in_ball(const VoxelBody& b, std::size_t c, double radius, F&& visit) {
-  const int i0 = static_cast<int>(c % b.nx), j0 = static_cast<int>((c / b.nx) % b.ny);
-  const int k0 = static_cast<int>(c / (static_cast<std::size_t>(b.nx) * b.ny));
+  const auto [i0, j0, k0] = b.cell_at(c);
   const double r = radius / b.cell, r2 = r * r;
   const int reach = static_cast<int>(std::floor(r));
   for (int k = std::max(0, k0 - reach); k <= std::min(b.nz - 1, k0 + reach); ++k)
@@ -86,8 +85,7 @@ void for_cells_in_ball(const VoxelBody& b, std::size_t c, double radius, F&& vis
 // True unless a neighbour's ball holds cell c's: r(n) >= r(c) + |n - c|
 // (to a hundredth of a cell, the transform's round-off).
 bool maximal_ball(const VoxelBody& b, const std::vector<double>& radius, std::size_t c) {
-  const int i0 = static_cast<int>(c % b.nx), j0 = static_cast<int>((c / b.nx) % b.ny);
-  const int k0 = static_cast<int>(c / (static_cast<std::size_t>(b.nx) * b.ny));
+  const auto [i0, j0, k0] = b.cell_at(c);
   for (int dk = -1; dk <= 1; ++dk)
     for (int dj = -1; dj <= 1; ++dj)
       for (int di = -1; di <= 1; ++di) {
@@ -157,9 +155,8 @@ FillResult fill_with_spheres(const VoxelBody& body, const FillOptions& o) {
       covered_solid += body.inside[c] && !covered[c];
       covered[c] = 1;
     });
-    const std::size_t i = top.cell % body.nx, j = (top.cell / body.nx) % body.ny;
-    const std::size_t k = top.cell / (static_cast<std::size_t>(body.nx) * body.ny);
-    out.spheres.push_back({body.centre(int(i), int(j), int(k)), radius[top.cell]});
+    const auto [i, j, k] = body.cell_at(top.cell);
+    out.spheres.push_back({body.centre(i, j, k), radius[top.cell]});
   }
   out.coverage = double(covered_solid) / double(solid);
   return out;

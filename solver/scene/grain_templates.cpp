@@ -157,14 +157,19 @@ Grain grain_from_solid(std::string name, const VoxelBody& solid, const FillOptio
   return g;
 }
 
+std::string describe(const TemplateFit& fit) {
+  char text[160];
+  std::snprintf(text, sizeof text, "%d spheres cover %.1f %% of the solid; their union has %.3f of its volume",
+                fit.spheres, 100 * fit.coverage, fit.volume_ratio);
+  return text;
+}
+
 std::string describe(const GrainShape& s, const TemplateFit& fit) {
-  char text[256];
+  char text[96];
   std::string form = choice_name(s.form);
   if (s.form != GrainForm::Tetrahedral) form += ", aspect ratio " + std::to_string(s.aspect_ratio).substr(0, 4);
-  std::snprintf(text, sizeof text,
-                "%s, angularity %.2f: %d spheres cover %.1f %% of the solid; their union has %.3f of its volume",
-                form.c_str(), s.angularity, fit.spheres, 100 * fit.coverage, fit.volume_ratio);
-  return text;
+  std::snprintf(text, sizeof text, "%s, angularity %.2f: ", form.c_str(), s.angularity);
+  return text + describe(fit);
 }
 
 }  // namespace simsols

@@ -60,8 +60,9 @@ VoxelBody shape_body(const GrainShape& shape);
 Grain grain_from_solid(std::string name, const VoxelBody& solid, const FillOptions& fill,
                        double diameter, TemplateFit* fit = nullptr);
 
-// "elongated, aspect ratio 2, angularity 0.3: 12 spheres cover 95.1 % of
-// the solid; their union has 0.97 of its volume".
+// "12 spheres cover 95.1 % of the solid; their union has 0.970 of its volume".
+std::string describe(const TemplateFit& fit);
+// "elongated, aspect ratio 2.00, angularity 0.30: " + describe(fit).
 std::string describe(const GrainShape& shape, const TemplateFit& fit);
 
 }  // namespace simsols

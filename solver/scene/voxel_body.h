@@ -9,6 +9,7 @@
 // the solid's exact volume) and the filler once for all of them.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -25,6 +26,11 @@ struct VoxelBody {
 
   std::size_t index(int i, int j, int k) const {
     return static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * (j + static_cast<std::size_t>(ny) * k);
+  }
+  // The cell (i, j, k) at `index`: index()'s inverse.
+  std::array<int, 3> cell_at(std::size_t index) const {
+    const std::size_t layer = static_cast<std::size_t>(nx) * ny;
+    return {static_cast<int>(index % nx), static_cast<int>((index / nx) % ny), static_cast<int>(index / layer)};
   }
   Vec3 centre(int i, int j, int k) const {
     return {origin[0] + cell * (i + 0.5), origin[1] + cell * (j + 0.5), origin[2] + cell * (k + 0.5)};
