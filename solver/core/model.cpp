@@ -91,6 +91,7 @@ void Model::make_clumps() {
   RealPacker inertia(dbl), offsets(dbl);
   std::vector<std::int32_t> members, body(s.clumps.empty() ? 1 : n, -1);  // a stand-in entry without clumps
   std::vector<Vec3> offset(n, Vec3{});
+  std::vector<double> body_mass = particle_mass_;  // a free sphere is its own body
   for (size_t c = 0; c < s.clumps.size(); ++c) {
     const Clump& k = s.clumps[c];
     const GrainBody b = scaled(grain_bodies_[k.grain], k.scale);
@@ -102,6 +103,7 @@ void Model::make_clumps() {
       particle_mass_[i] = mass * b.radii[j] * b.radii[j] * b.radii[j] / spheres;
       body[i] = static_cast<std::int32_t>(c);
       offset[i] = b.offsets[j];
+      body_mass[i] = mass;
     }
     inertia.put4(mass, rho * b.mass.principal[0], rho * b.mass.principal[1], rho * b.mass.principal[2]);
     members.push_back(k.first);
@@ -114,7 +116,7 @@ void Model::make_clumps() {
     members = {0, 0};
     offsets.put4(0, 0, 0, 0);
   } else {
-    for (const Vec3& o : offset) offsets.put4(o[0], o[1], o[2], 0);
+    for (size_t i = 0; i < n; ++i) offsets.put4(offset[i][0], offset[i][1], offset[i][2], body_mass[i]);
   }
   clump_buf_ = device_->alloc(inertia.bytes().size(), inertia.bytes().data());
   clump_member_buf_ = device_->alloc(members.size() * sizeof(std::int32_t), members.data());

@@ -197,8 +197,8 @@ void contact_forces(const Model& m, State& s) {
            arg("omega", s.omega), arg("up_off", s.up_off), arg("nbr", s.nbr),
            arg("nbr_upper", s.nbr_upper), arg("spring", s.spring), arg("pairs", m.pair_buffer()),
            arg("share", s.share), arg("force", s.force), arg("torque", s.torque),
-           arg("contacts_last", s.touching), arg("dt", Real{m.dt()}),
-           arg("rolling_damping", Real{m.scene().effects.rolling_damping}),
+           arg("body_offset", m.body_offset_buffer()), arg("contacts_last", s.touching),
+           arg("dt", Real{m.dt()}), arg("rolling_damping", Real{m.scene().effects.rolling_damping}),
            arg("stride", s.up_slots), arg("n", s.n), arg("nmat", m.pairs().n));
   launch(m, k.pair_forces, lane_groups(m, s.n));
 }
@@ -217,7 +217,8 @@ void finish_particles(const Model& m, State& s) {
            arg("wall_stride", s.wall_slots), arg("pairs", m.pair_buffer()),
            arg("wall_touch", s.wall_touch), arg("wall_near", s.wall_near), arg("servo", s.servo),
            arg("wall_partial", s.wall_partial), arg("wall_reaction", s.wall_reaction),
-           arg("wall_mean", s.wall_mean), arg("gravity", gravity_arg(m)),
+           arg("wall_mean", s.wall_mean), arg("body_offset", m.body_offset_buffer()),
+           arg("gravity", gravity_arg(m)),
            arg("fluid", fluid_arg(m)), arg("fluid_viscosity", Real{e.fluid_params.viscosity}),
            arg("dt", Real{m.dt()}), arg("rolling_damping", Real{e.rolling_damping}),
            arg("skin", Real{m.skin()}), arg("stride", s.up_slots), arg("n", s.n),

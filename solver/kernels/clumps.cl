@@ -25,7 +25,10 @@
 // w_i = w = q (L_b / I) q*.
 //
 // Records: clump_inertia (M, I1, I2, I3) with the principal moments; the
-// members of clump c are particles clump_members[c].x .. + .y - 1.
+// members of clump c are particles clump_members[c].x .. + .y - 1;
+// body_offset[i] = (o_i, M of i's body): a free sphere's own mass, a
+// member's clump's. The contact dashpots see the bodies' masses (forces.cl),
+// the members' shares of M (vel.w) serve the observables.
 
 INLINE real3 q_rotate(real4 q, real3 v) {
   const real3 t = cross(q.xyz, v) + q.w * v;

@@ -12,7 +12,8 @@
 // bit. Output per particle: force.xyz and force.w = number of touching
 // neighbours; torque.xyz and torque.w = half the elastic energy of its
 // contacts. Particle records: pos = (x, radius), vel = (v, mass),
-// omega = (w, material).
+// omega = (w, material); with clumps, body_offset = (offset, the body's
+// mass), whose mass the dashpots see (body_mass).
 //
 // The rolling torque of a contact is capped so that alone it would not
 // reverse the relative rolling within a step (contact_law.cl); a bead with k
@@ -64,7 +65,7 @@ INLINE int own_lanes(int base, int n, __global const int* restrict nbr_upper, in
 // wall_contacts).
 typedef struct {
   LanePos p;
-  lane r, m, inertia;
+  lane r, m, inertia;  // m: the body's mass (body_mass); inertia: the sphere's
   v3 v, w;
   real row[LANES];  // material: the particle's row of the pair table
 #if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
@@ -72,16 +73,29 @@ typedef struct {
 #endif
 } Owner;
 
-// Each lane's particle's velocities, mass, inertia and material (and its
+// The mass each lane's particle brings to a contact's dashpot: its body's
+// (a clump member's is its whole clump's, as in LIGGGHTS' multisphere and
+// PFC: the grain is what the contact stops; clumps.cl), else `own`, the
+// particle's mass.
+INLINE lane body_mass(__global const real* restrict body_offset, const int* ii, lane own) {
+#ifdef HAS_CLUMPS
+  return gather(body_offset, ii, 3);
+#else
+  return own;
+#endif
+}
+
+// Each lane's particle's velocities, masses, inertia and material (and its
 // part of the rolling cap's divisor), o->r already gathered.
 INLINE void gather_motion(Owner* o, __global const real* restrict vel,
                           __global const real* restrict omega,
+                          __global const real* restrict body_offset,
                           __global const int* restrict contacts_last, const int* ii) {
   const Lane4 vmi = gather4(vel, ii), wmi = gather4(omega, ii);
   o->v = vmi.xyz;
   o->w = wmi.xyz;
-  o->m = vmi.w;
-  o->inertia = (real)0.4 * o->m * o->r * o->r;
+  o->m = body_mass(body_offset, ii, vmi.w);
+  o->inertia = (real)0.4 * vmi.w * o->r * o->r;
   LANE_STORE(wmi.w, o->row);
 #if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
   o->cap = cap_count(contacts_last, ii);
@@ -90,11 +104,12 @@ INLINE void gather_motion(Owner* o, __global const real* restrict vel,
 
 INLINE Owner gather_owner(__global const real* restrict pos POS_LO_SARG_FN,
                           __global const real* restrict vel, __global const real* restrict omega,
+                          __global const real* restrict body_offset,
                           __global const int* restrict contacts_last, const int* ii) {
   Owner o;
   o.p = gather_pos(pos POS_LO_PASS, ii);
   o.r = gather(pos, ii, 3);
-  gather_motion(&o, vel, omega, contacts_last, ii);
+  gather_motion(&o, vel, omega, body_offset, contacts_last, ii);
   return o;
 }
 
@@ -259,6 +274,7 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
                           __global const int* restrict nbr_upper, __global real* restrict spring,
                           __global const real* restrict pairs, __global real* restrict share,
                           __global real* restrict force, __global real* restrict torque,
+                          __global const real* restrict body_offset,
                           __global const int* restrict contacts_last, real dt,
                           real rolling_damping, int stride, int n, int nmat) {
   const int base = get_global_id(0) * LANES;
@@ -268,7 +284,7 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
   // the lanes lie in one slice (SLICE % LANES == 0), side by side; lanes
   // past n list nothing and store zeros into that slice's padding
   const int first = SLOT(up_off, base, 0);
-  const Owner own = gather_owner(pos POS_LO_PASS, vel, omega, contacts_last, ii);
+  const Owner own = gather_owner(pos POS_LO_PASS, vel, omega, body_offset, contacts_last, ii);
   const size_t plane = (size_t)stride;  // records per history plane
   ContactSums sum = no_contacts();
   for (int q = 0; q < longest; ++q) {
@@ -287,11 +303,11 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
     const Lane4 vmj = gather4(vel, jj), wmj = gather4(omega, jj);
     pair_rows(&own, wmj.w, nmat, pair);
     const PairLanes coef = gather_pairs(pairs, pair, nmat);
-    const lane rstar = own.r * g.rj / g.rsum;
+    const lane rstar = own.r * g.rj / g.rsum, mj = body_mass(body_offset, jj, vmj.w);
     History h = load_history(spring, at, plane);
     const ContactResult c = contact_law_h(
         k.delta, k.nv, contact_velocity(&own, vmj.xyz, wmj.xyz, k), v_sub(own.w, wmj.xyz), rstar,
-        own.m * vmj.w / (own.m + vmj.w), pair_istar(&own, vmj.w, g.rj, contacts_last, jj), coef,
+        own.m * mj / (own.m + mj), pair_istar(&own, vmj.w, g.rj, contacts_last, jj), coef,
         dt, &h.sp, &h.dash, &h.rsp, rolling_damping);
     store_history(spring, at, plane, g.on, h);
 #ifdef HAS_CAPILLARY

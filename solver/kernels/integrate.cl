@@ -118,7 +118,7 @@ __kernel void finish_particles(
     int wall_stride, __global const real* pairs,
     __global int* wall_touch, __global const int* wall_near, __global const real* servo,
     __global real* wall_partial, __global real* wall_reaction, __global real* wall_mean,
-    real4 gravity, real4 fluid, real fluid_viscosity, real dt, real rolling_damping, real skin,
+    __global const real* body_offset, real4 gravity, real4 fluid, real fluid_viscosity, real dt, real rolling_damping, real skin,
     int stride, int n, int nwalls, int nmat, int wall_chunk, int wall_groups) {
   const int base = get_global_id(0) * LANES;
   if (base >= n) return;
@@ -129,7 +129,7 @@ __kernel void finish_particles(
 #ifdef HAS_WALLS
   wall_contacts(base, pos POS_LO_PASS, vel, omega, walls, wall_point WALL_LO_PASS, wall_vel,
                 wall_off, wall_spring, wall_force, wall_stride, pairs, force, torque, wall_touch,
-                wall_near, contacts_last, dt, rolling_damping, n, nwalls, nmat);
+                wall_near, body_offset, contacts_last, dt, rolling_damping, n, nwalls, nmat);
 #endif
   for (int l = 0; l < count; ++l)
     integrate_one(base + l, (__global real4*)pos, (__global float4*)pos_lo,

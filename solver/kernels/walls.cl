@@ -268,7 +268,8 @@ INLINE void store_wall_history(__global real* restrict wall_spring, int wall_str
 }
 
 // The law between each lane's particle and wall w moving at vw (R* = r_i,
-// m* = m_i; roll_inertia the I* of the rolling cap).
+// m* = the mass of i's body, forces.cl body_mass; roll_inertia the I* of
+// the rolling cap).
 INLINE ContactResult wall_law(const Owner* o, WallContact k, v3 vw, lane roll_inertia, int w,
                               __global const real* restrict walls,
                               __global const real* restrict pairs, int nmat, real dt,
@@ -317,6 +318,7 @@ INLINE void wall_contacts(int base, __global const real* restrict pos POS_LO_SAR
                           __global real* restrict force, __global real* restrict torque,
                           __global int* restrict wall_touch,
                           __global const int* restrict wall_near,
+                          __global const real* restrict body_offset,
                           __global const int* restrict contacts_last, real dt,
                           real rolling_damping, int n, int nwalls, int nmat) {
   int ii[LANES], valid[LANES], was[LANES], now[LANES], mask[LANES];
@@ -329,7 +331,7 @@ INLINE void wall_contacts(int base, __global const real* restrict pos POS_LO_SAR
   if (!touched_walls(walls, wall_point WALL_LO_PASS, near, nwalls, &own, valid, mask, was, now))
     return;
 
-  gather_motion(&own, vel, omega, contacts_last, ii);
+  gather_motion(&own, vel, omega, body_offset, contacts_last, ii);
   const Lane4 f0 = gather4(force, ii), t0 = gather4(torque, ii);
   ContactSums sum;  // the pair stage's, which the walls add to
   sum.f = f0.xyz;
