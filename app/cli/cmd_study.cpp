@@ -1,4 +1,5 @@
-// simsols study accuracy: the accuracy study (study.h).
+// simsols study accuracy: the accuracy study (study.h); simsols study
+// shape: the shape study (shape_study.h).
 //
 //   simsols study accuracy --out DIR [--preset quick|full|ci] [--ensemble N] [--knob NAME ...]
 //                                    [--specimen layered|poured] [--box-scale S]
@@ -29,6 +30,7 @@
 #include "app/cli/interrupt.h"
 #include "solver/io/output.h"
 #include "app/experiment/run_cost.h"
+#include "app/experiment/shape_study.h"
 #include "app/experiment/study.h"
 #include "app/experiment/study_ensemble.h"
 #include "app/experiment/study_state.h"
@@ -301,11 +303,43 @@ class StudyRun {
   std::chrono::steady_clock::time_point t0_;
 };
 
+// `simsols study shape --out DIR [--preset quick|ci]`: the shape study
+// (shape_study.h), its results rewritten after each case; a stop (Ctrl-C)
+// ends it after the running case's stage, keeping the finished cases.
+int shape_study(const StudyOptions& opt) {
+  const ShapePreset preset = shape_preset(opt.preset);
+  const std::shared_ptr<Device> device = open_command_device();
+  InterruptScope interrupt;
+  std::vector<ShapeResult> results;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (size_t i = 0; i < preset.cases.size() && !interrupt.requested(); ++i) {
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const std::string eta =
+        i > 0 ? ", ETA " + human_seconds(elapsed / double(i) * double(preset.cases.size() - i)) : "";
+    if (!opt.quiet)
+      std::fprintf(stderr, "[shape %zu/%zu] %s (elapsed %s%s)\n", i + 1, preset.cases.size(),
+                   preset.cases[i].label.c_str(), human_seconds(elapsed).c_str(), eta.c_str());
+    results.push_back(run_shape_case(preset, preset.cases[i], device, [&](const std::string& m) {
+      if (!opt.quiet) std::fprintf(stderr, "[shape %zu/%zu] %s\n", i + 1, preset.cases.size(), m.c_str());
+    }));
+    write_shape_results(results, preset, opt.out);
+  }
+  std::fputs(shape_table(results).c_str(), stdout);
+  std::printf("shape study (%s): %zu of %zu cases; results in %s (shapes.csv, summary.md, "
+              "repose_profiles.png, shear_curves.png)\n",
+              preset.name.c_str(), results.size(), preset.cases.size(), opt.out.c_str());
+  return results.size() < preset.cases.size() ? interrupt.exit_status() : 0;
+}
+
 int study(const StudyOptions& opt) {
   if (opt.what == "table") return print_table(opt);
+  if (opt.what == "shape") {
+    if (opt.out.empty()) throw UsageError("missing_field", "--out", "give an output folder");
+    return shape_study(opt);
+  }
   if (opt.what != "accuracy")
     throw UsageError("bad_enum", "STUDY",
-                     "'" + opt.what + "' is not one of: accuracy, table");
+                     "'" + opt.what + "' is not one of: accuracy, shape, table");
   if (opt.out.empty()) throw UsageError("missing_field", "--out", "give an output folder");
   if (opt.ensemble < 0 || opt.ensemble > 50)
     throw UsageError("out_of_range", "--ensemble",
@@ -339,11 +373,14 @@ int study(const StudyOptions& opt) {
 CommandRunner add_study_command(CLI::App& app) {
   auto opt = std::make_shared<StudyOptions>();
   CLI::App* cmd = app.add_subcommand("study", "Measured studies: what accuracy costs in time");
-  cmd->add_option("study", opt->what, "accuracy (run the study), table (print a study's table)")
+  cmd->add_option("study", opt->what,
+                  "accuracy (run the study), shape (angle of repose and strength against the "
+                  "grains' shape), table (print a study's table)")
       ->required();
   cmd->add_option("--out,-o", opt->out, "Output folder (accuracy)");
   cmd->add_option("--from", opt->from, "A finished study's ensemble.csv (table)");
-  cmd->add_option("--preset", opt->preset, "quick (3 mm of shear, default), full (6 mm), ci (reduced)")
+  cmd->add_option("--preset", opt->preset,
+                  "quick (3 mm of shear, default), full (6 mm), ci (reduced); shape: quick, ci")
       ->capture_default_str();
   cmd->add_option("--knob", opt->knobs,
                   "Only these knobs (with the reference): time step, precision, stiffness, "

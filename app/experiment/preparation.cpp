@@ -7,6 +7,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "app/experiment/progress.h"
 #include "app/experiment/tamping.h"
 #include "render/plot/chart.h"
 #include "solver/apparatus/oedometer_test.h"
@@ -188,17 +189,13 @@ Settled settle_specimen(const Scene& scene, const std::shared_ptr<Device>& devic
   Simulation sim(device, scene);
   const std::unique_ptr<LoadingProgramme> test = make_test(sim);
   test->advance(1);
-  const auto start = std::chrono::steady_clock::now();
-  auto next = start + std::chrono::seconds(10);
+  Ticker ticker;
   while (!test->done() && std::strcmp(test->stage_name(), "settle") == 0) {
     test->advance(5000);
-    const auto now = std::chrono::steady_clock::now();
-    if (!progress || now < next) continue;
-    next = now + std::chrono::seconds(10);
+    if (!progress || !ticker.due()) continue;
     char line[128];
     std::snprintf(line, sizeof line, "settling, t = %.4f s of at most %.3f s, step %lld, %.0f s", sim.time(),
-                  longest_settle(scene), static_cast<long long>(sim.steps()),
-                  std::chrono::duration<double>(now - start).count());
+                  longest_settle(scene), static_cast<long long>(sim.steps()), ticker.elapsed());
     progress(line);
   }
   Settled s;

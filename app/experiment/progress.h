@@ -19,6 +19,27 @@
 
 namespace simsols {
 
+// True at most once per `period` of wall time (lines of the preparation
+// stages); elapsed() is the wall time since it was made, in seconds.
+class Ticker {
+ public:
+  explicit Ticker(std::chrono::seconds period = std::chrono::seconds(10))
+      : period_(period), start_(std::chrono::steady_clock::now()), next_(start_ + period) {}
+  bool due() {
+    const auto now = std::chrono::steady_clock::now();
+    if (now < next_) return false;
+    next_ = now + period_;
+    return true;
+  }
+  double elapsed() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  std::chrono::seconds period_;
+  std::chrono::steady_clock::time_point start_, next_;
+};
+
 class Progress {
  public:
   using Clock = std::function<std::chrono::steady_clock::time_point()>;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "app/experiment/preparation.h"
+#include "app/experiment/progress.h"
 #include "solver/common/number_text.h"
 #include "solver/io/output.h"
 #include "solver/apparatus/stage_checks.h"
@@ -97,10 +98,23 @@ int platen_of(const Scene& s) {
 
 // Lets the layer settle, then brings the platen down from just above the
 // grains at kTampSpeed until it reaches `target` or pushes with
-// kTampStress, lifts it clear and lets the grains come to rest.
-void tamp(Simulation& sim, LoadingProgramme& test, double target, double area, TampedLayer& out) {
+// kTampStress, lifts it clear and lets the grains come to rest. `say`
+// takes a progress line every 10 s.
+void tamp(Simulation& sim, LoadingProgramme& test, double target, double area, TampedLayer& out,
+          const Log& say) {
+  Ticker ticker;
+  const auto tell = [&](const char* what) {
+    if (!ticker.due()) return;
+    char line[160];
+    std::snprintf(line, sizeof line, "layer %d: %s, t = %.4f s, step %lld, %.0f s", out.layer, what,
+                  sim.time(), static_cast<long long>(sim.steps()), ticker.elapsed());
+    say(line);
+  };
   test.advance(1);
-  while (!test.done() && std::string(test.stage_name()) == "settle") test.advance(2000);
+  while (!test.done() && std::string(test.stage_name()) == "settle") {
+    test.advance(2000);
+    tell("settling");
+  }
   const int platen = platen_of(sim.scene());
   const Vec3 park = sim.wall_point(platen);
   const double top = specimen_top(sim);
@@ -116,6 +130,7 @@ void tamp(Simulation& sim, LoadingProgramme& test, double target, double area, T
     const double z = sim.wall_point(platen)[2], push = std::abs(sim.wall_reactions()[platen].force[2]) / area;
     out.platen_stop = z, out.stress = push;
     if (z <= target || push >= kTampStress || sim.time() - t0 > longest) break;
+    tell("tamping");
   }
   sim.set_wall_velocity(platen, {0, 0, 0});
   sim.advance(chunk * 20);  // held a moment
@@ -169,7 +184,7 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
     l.target_top = stacked;
     Simulation sim(device, built);
     const std::unique_ptr<LoadingProgramme> test = make_test(sim);
-    tamp(sim, *test, l.target_top, area, l);
+    tamp(sim, *test, l.target_top, area, l, log);
     l.void_ratio = measure_specimen(sim).void_ratio;
     floor = specimen_top(sim);
     built = at_rest(empty, bodies, sim);
