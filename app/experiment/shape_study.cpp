@@ -140,9 +140,8 @@ double until_heap_rests(Simulation& sim, double d, const ShapeLog& log, ReposeRe
   return sim.time() - t0;
 }
 
-ReposeResult run_repose(const ShapePreset& p, const ShapeCase& c, const std::shared_ptr<Device>& device,
+ReposeResult run_repose(const ShapePreset& p, const Scene& scene, const std::shared_ptr<Device>& device,
                         const ShapeLog& log) {
-  const Scene scene = column(p, c);
   Simulation sim(device, scene);
   const GrainBody body = grain_body(scene.grains[0]);
   const double grain_mass = scene.materials[0].density * body.mass.volume;
@@ -220,13 +219,12 @@ ShapeResult run_shape_case(const ShapePreset& preset, const ShapeCase& c,
   const auto t0 = std::chrono::steady_clock::now();
   ShapeResult r;
   r.shape = c;
-  const Scene probe = parse_scene(poured_scene(preset, c, 5 * preset.diameter, 5 * preset.diameter, 1),
-                                  "shape study (" + c.label + ")");
-  r.fidelity = probe.grains[0].origin;
+  const Scene scene = column(preset, c);
+  r.fidelity = scene.grains[0].origin;
   const auto say = [&](const std::string& m) {
     if (log) log(c.label + ": " + m);
   };
-  r.repose = run_repose(preset, c, device, say);
+  r.repose = run_repose(preset, scene, device, say);
   if (preset.shear) run_shear(preset, c, device, say, r);
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;

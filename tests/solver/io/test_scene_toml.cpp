@@ -3,6 +3,8 @@
 // case per file, each starting with "# expect: <code> [<field>]".
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include <bit>
 #include <cmath>
 #include <cstdlib>
@@ -510,6 +512,29 @@ TEST(SceneToml, BadScenesFailWithTheExpectedCodeAndField) {
     EXPECT_EQ(e.field, field) << e.what();
     EXPECT_NE(std::string(e.what()).find(file.filename().string()), std::string::npos) << e.what();
   }
+}
+
+// Every scene shipped in assets/scenes loads (templates filled, specimens
+// placed): a scene edited without its loader, or the reverse, fails here.
+// The GPU-sized scenes (*_large) are left to their measurement.
+TEST(SceneToml, EveryShippedSceneLoads) {
+  const fs::path dir = assets_dir() / "scenes";
+  int scenes = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.path().extension() != ".toml") continue;
+    const std::string name = entry.path().filename().string();
+    if (name.find("_large") != std::string::npos) continue;  // GPU-sized: docs/specimens.md measures it
+    SCOPED_TRACE(name);
+    EXPECT_NO_THROW({
+      const auto t0 = std::chrono::steady_clock::now();
+      const Scene s = load_scene(entry.path().string());
+      EXPECT_FALSE(s.particles.empty());
+      std::printf("[measure] %s: %zu spheres, loaded in %.2f s\n", name.c_str(), s.particles.size(),
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    });
+    ++scenes;
+  }
+  EXPECT_GE(scenes, 11);
 }
 
 // ---------------------------------------------------------------------------
