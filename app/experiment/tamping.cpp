@@ -7,6 +7,7 @@
 
 #include "app/experiment/preparation.h"
 #include "app/experiment/progress.h"
+#include "solver/common/errors.h"
 #include "solver/common/number_text.h"
 #include "solver/io/output.h"
 #include "solver/apparatus/stage_checks.h"
@@ -196,6 +197,11 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
                   l.stress / 1e3, l.void_ratio);
     log(line);
   }
+  if (built.shear_box && built.shear_box->split_height >= floor)
+    throw SceneError("out_of_range", scene.source_path, 0, "shear_box.split_height",
+                     "the shear plane at " + shortest_number(1e3 * built.shear_box->split_height) +
+                         " mm is above the tamped specimen's top at " + shortest_number(1e3 * floor) +
+                         " mm: set split_height inside (0, " + shortest_number(floor) + ") m");
   Specimen& s = *built.specimen();
   s.method = Specimen::Method::Given;
   s.preparation.tamping_layers = 0;

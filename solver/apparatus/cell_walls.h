@@ -60,8 +60,11 @@ void check_servo_settings(const TableCheck& check, double gain, double max_speed
 
 // The specimen's smallest and largest radius and the heights its beads
 // reach. Fails at specimen.method when there are no beads or one is not
-// inside the cell [0, length] x [0, width] x [0, inf) (named by `cell`:
+// inside the cell [0, length] x [0, width] x [0, inf), pressing into a
+// wall by no more than kWallPress of its radius (named by `cell`:
 // "box", "ring", ...).
+// How far (a share of its radius) a bead may press into a cell wall.
+inline constexpr double kWallPress = 0.05;
 struct SpecimenExtent {
   double r_min, r_max, top, bottom;
 };

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "solver/common/number_text.h"
+#include "solver/scene/clump.h"
 
 namespace simsols {
 namespace {
@@ -56,13 +57,15 @@ double default_split_height(const Scene& scene, const ShearBox& b, const Specime
     const int lower = std::max(1, s.layers / 2);
     return s.layers == 1 ? d / 2 : d / 2 + (lower - 0.5) * spacing;
   }
-  // Mid-height of the given beads, or of a pour once settled (its
-  // volume at a solid fraction of 0.6).
-  double height = e.top - e.bottom;
+  // Mid-height of the given beads, or of a pour once settled: its solid
+  // volume (a clump's overlaps counted once) at the tamping target's void
+  // ratio, or at a solid fraction of 0.6.
+  const double height = e.top - e.bottom;
   if (s.method == Specimen::Method::Pour) {
     double volume = 0;
-    for (const Particle& p : scene.particles) volume += 4.0 / 3.0 * M_PI * std::pow(p.radius, 3);
-    height = volume / (0.6 * b.length * b.width);
+    for (const double v : solid_volumes(scene)) volume += v;
+    const double fraction = s.preparation.void_ratio ? 1 / (1 + *s.preparation.void_ratio) : 0.6;
+    return e.bottom + 0.5 * volume / (fraction * b.length * b.width);
   }
   return e.bottom + 0.5 * height;
 }

@@ -15,8 +15,9 @@
 // the two layers nearest mid-height, at the height they reach once each layer
 // has nested into the one below as far as its clearance lets it shift (an
 // estimate made before settling: d/sqrt(2) apart when the clearance allows
-// half a diameter, d apart for Spread); for Given / Pour beads half their
-// (settled) height.
+// half a diameter, d apart for Spread); for Given beads half their height;
+// for a pour half the height its solid volume (a clump's overlaps once)
+// fills at the tamping target's void ratio, else at a solid fraction 0.6.
 // Automatic values (gap, split height, wall material) are resolved into the
 // ShearBox, so to_toml() writes a scene that rebuilds the same walls.
 #pragma once

@@ -4,6 +4,7 @@
 // analytic peak.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -13,6 +14,7 @@
 #include "solver/io/scene_toml.h"
 #include "solver/apparatus/shear_box.h"
 #include "solver/apparatus/shear_test.h"
+#include "solver/scene/clump.h"
 #include "solver/core/stress.h"
 #include "tests/support/test_support.h"
 
@@ -95,6 +97,47 @@ TEST(ShearBoxScene, PourPlacesTheSameNumberOfBeadsWithoutOverlap) {
       box_toml("method = \"pour\"\nmaterial = \"glass\"\ndiameter = 6.35e-3\nlayers = 4\nseed = 9"),
       "pour.toml");
   EXPECT_EQ(s.particles.size(), 324u);  // validation refuses overlaps
+}
+
+// A pour of clumps splits the box at half the height its grains fill at
+// the tamping target's void ratio, each clump's volume counted once (the
+// members' overlaps are not solid twice).
+TEST(ShearBoxScene, ClumpPourSplitsAtHalfItsSolidHeight) {
+  const Scene s = parse_scene(glass_toml() + R"(
+[[grains]]
+name = "rod"
+shape = "elongated"
+aspect_ratio = 2
+diameter = 6.35e-3
+max_spheres = 4
+
+[shear_box]
+[shear_box.specimen]
+method = "pour"
+material = "glass"
+grain = "rod"
+diameter = 6.35e-3
+layers = 2
+seed = 4
+[shear_box.specimen.preparation]
+tamping_layers = 2
+void_ratio = 0.8
+
+[numerics]
+duration = 1
+)",
+                              "rods.toml");
+  ASSERT_FALSE(s.clumps.empty());
+  double grains = 0, spheres = 0, bottom = 1;
+  for (const Clump& c : s.clumps) grains += grain_body(s.grains[c.grain]).mass.volume * std::pow(c.scale, 3);
+  for (const Particle& p : s.particles) {
+    spheres += 4.0 / 3.0 * std::numbers::pi * std::pow(p.radius, 3);
+    bottom = std::min(bottom, p.position[2] - p.radius);  // the lowest grain's, as placed
+  }
+  const ShearBox& b = *s.shear_box;
+  const double area = shear_area(b);
+  EXPECT_NEAR(b.split_height, bottom + 0.5 * grains * 1.8 / area, 1e-9 * b.split_height);
+  EXPECT_LT(grains, 0.9 * spheres);  // the overlaps would have raised it
 }
 
 TEST(ShearBoxScene, BadValuesNameTheFieldAndRange) {
