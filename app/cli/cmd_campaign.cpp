@@ -81,6 +81,10 @@ int campaign(const CampaignOptions& opt) {
     throw SceneError("not_applicable", base_name, 0, "shear_box.specimen.preparation.relative_density",
                      "a shear campaign pours a new specimen for each size; give the preparation "
                      "friction instead (simsols run finds it: its scene.resolved.toml)");
+  if (base.shear_box && base.shear_box->specimen.preparation.expansion)
+    throw SceneError("not_applicable", base_name, 0, "shear_box.specimen.preparation.expansion",
+                     "a shear campaign pours a new specimen for each size; grow one with simsols run "
+                     "and campaign over its scene.resolved.toml's sizes by hand");
   if (base.shear_box && base.shear_box->specimen.preparation.tamping_layers)
     throw SceneError("not_applicable", base_name, 0, "shear_box.specimen.preparation.tamping_layers",
                      "a shear campaign pours a new specimen for each size; tamp one with simsols run "

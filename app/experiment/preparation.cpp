@@ -7,6 +7,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "app/experiment/expansion.h"
 #include "app/experiment/progress.h"
 #include "app/experiment/tamping.h"
 #include "render/plot/chart.h"
@@ -35,10 +36,14 @@ DensityTrial trial(const Scene& base, const std::shared_ptr<Device>& device, con
   Preparation& p = scene.specimen()->preparation;
   p.friction = friction;
   p.relative_density.reset();
+  p.void_ratio.reset();
   char head[96];
   std::snprintf(head, sizeof head, "preparation %d of at most %d (%s, friction %.4f): ", number,
                 kSearchTrials + 2, role, friction);
-  return {role, friction, settle_specimen(scene, device, [&](const std::string& m) { log(head + m); })};
+  const Log say = [&](const std::string& m) { log(head + m); };
+  if (!p.expansion) return {role, friction, settle_specimen(scene, device, say), nullptr};
+  auto grown = std::make_shared<const Scene>(expand_specimen(scene, device, say).grown);
+  return {role, friction, settle_specimen(*grown, device, say), grown};
 }
 
 std::string trial_line(const DensityTrial& t, const DensitySearch& s) {
@@ -227,6 +232,32 @@ bool prepare_by_tamping(Scene& scene, const std::shared_ptr<Device>& device,
   return tamp_specimen(scene, device, e, out_dir, log);
 }
 
+// Radius expansion with the friction given (or the materials'): one
+// growth, the grown specimen the scene's.
+bool prepare_by_expansion(Scene& scene, const std::shared_ptr<Device>& device, const Log& log) {
+  const Expansion e = expand_specimen(scene, device, log);
+  char line[200];
+  std::snprintf(line, sizeof line, "grown to full size in %.4f s (%lld steps): the lid at %.3f mm pushing %.1f kPa",
+                e.seconds, e.steps, 1e3 * e.lid_height, e.lid_stress / 1e3);
+  log(line);
+  scene = e.grown;
+  return true;
+}
+
+// The search's target D_r: asked, or the one the asked void ratio has
+// between the index void ratios.
+double target_density(const Scene& scene, const DensitySearch& s) {
+  const Preparation& prep = scene.specimen()->preparation;
+  if (prep.relative_density) return *prep.relative_density;
+  const double dr = relative_density(*prep.void_ratio, s.e_min, s.e_max);
+  if (dr < 0 || dr > 1)
+    throw SceneError("out_of_range", scene.source_path, 0, "specimen.preparation.void_ratio",
+                     shortest_number(*prep.void_ratio) + " is out of range, allowed [e_min = " +
+                         shortest_number(s.e_min) + ", e_max = " + shortest_number(s.e_max) +
+                         "] (the densest and loosest preparations)");
+  return dr;
+}
+
 }  // namespace
 
 bool prepare_to_relative_density(Scene& scene, const std::shared_ptr<Device>& device,
@@ -234,11 +265,14 @@ bool prepare_to_relative_density(Scene& scene, const std::shared_ptr<Device>& de
                                  const std::function<void(const std::string&)>& log) {
   Specimen* specimen = scene.specimen();
   if (specimen && specimen->preparation.tamping_layers > 0) return prepare_by_tamping(scene, device, out_dir, log);
-  if (!specimen || !specimen->preparation.relative_density) return false;
+  if (!specimen) return false;
   Preparation& prep = specimen->preparation;
+  const bool grow = prep.expansion;
+  if (grow && !prep.relative_density && !prep.void_ratio) return prepare_by_expansion(scene, device, log);
+  if (!prep.relative_density && !prep.void_ratio) return false;
   DensitySearch s;
-  s.target = *prep.relative_density;
   index_void_ratios(scene, device, s, log);
+  s.target = target_density(scene, s);
   search(scene, device, s, log);
   if (s.trials.empty()) {  // e_min, e_max given and the target at one end: that end's friction
     s.trials.push_back(trial(scene, device, "trial", s.target >= 0.5 ? 0 : kLooseFriction, 1, log));
@@ -249,10 +283,14 @@ bool prepare_to_relative_density(Scene& scene, const std::shared_ptr<Device>& de
     if (!best || std::abs(dr_of(t, s) - s.target) < std::abs(dr_of(*best, s) - s.target)) best = &t;
   s.friction = best->friction;
   s.achieved = dr_of(*best, s);
-  prep.friction = s.friction;
-  prep.e_min = s.e_min;
-  prep.e_max = s.e_max;
-  prep.relative_density.reset();
+  const std::shared_ptr<const Scene> grown = best->grown;
+  if (grown) scene = *grown;  // its preparation holds the friction; `prep` is now that scene's
+  Preparation& chosen = scene.specimen()->preparation;
+  chosen.friction = s.friction;
+  chosen.e_min = s.e_min;
+  chosen.e_max = s.e_max;
+  chosen.relative_density.reset();
+  chosen.void_ratio.reset();
   std::filesystem::create_directories(out_dir);
   write_file_atomic((out_dir / "density.csv").string(), search_csv(s));
   density_chart(s, scene.name, (out_dir / "density.png").string());

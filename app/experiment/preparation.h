@@ -62,6 +62,7 @@ struct DensityTrial {
   std::string role;  // "densest", "loosest", "trial"
   double friction = 0;
   Settled result;
+  std::shared_ptr<const Scene> grown;  // radius expansion: the specimen this trial grew
 };
 struct DensitySearch {
   double e_min = 0, e_max = 0, target = 0;
@@ -74,7 +75,11 @@ struct DensitySearch {
 // given), then the friction that gives the target, and writes it into the
 // scene's preparation (the target itself is then cleared: the scene holds
 // what the test runs). Writes density.csv and density.png in `out_dir`.
-// `log` receives one line per preparation. Returns nothing to do as false.
+// Layered tamping (tamping.h) and radius expansion (expansion.h) build the
+// specimen instead and leave it in the scene, `given`; an expansion to a
+// void ratio or relative density searches the friction the same way, each
+// trial grown. `log` receives one line per preparation. Returns nothing to
+// do as false.
 bool prepare_to_relative_density(Scene& scene, const std::shared_ptr<Device>& device,
                                  const std::filesystem::path& out_dir,
                                  const std::function<void(const std::string&)>& log);

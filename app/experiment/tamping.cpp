@@ -91,12 +91,6 @@ Scene at_rest(const Scene& empty, const std::vector<GrainBody>& bodies, Simulati
   return s;
 }
 
-int platen_of(const Scene& s) {
-  for (size_t w = 0; w < s.walls.size(); ++w)
-    if (s.walls[w].name == "platen") return static_cast<int>(w);
-  throw std::runtime_error("the apparatus has no platen to tamp with");
-}
-
 // Lets the layer settle, then brings the platen down from just above the
 // grains at kTampSpeed until it reaches `target` or pushes with
 // kTampStress, lifts it clear and lets the grains come to rest. `say`
@@ -116,7 +110,7 @@ void tamp(Simulation& sim, LoadingProgramme& test, double target, double area, T
     test.advance(2000);
     tell("settling");
   }
-  const int platen = platen_of(sim.scene());
+  const int platen = platen_wall(sim.scene());
   const Vec3 park = sim.wall_point(platen);
   const double top = specimen_top(sim);
   const double start = std::max(top, target) + 1e-4;

@@ -81,6 +81,9 @@ std::string LabExperiment::load_scene_file(const std::string& path) {
     if (cell.specimen && cell.specimen->preparation.tamping_layers)
       return path + ": specimen.preparation.tamping_layers builds the specimen with 'simsols run " + path +
              " --out DIR'; open DIR/scene.resolved.toml here, which holds the tamped specimen";
+    if (cell.specimen && cell.specimen->preparation.expansion)
+      return path + ": specimen.preparation.expansion grows the specimen with 'simsols run " + path +
+             " --out DIR'; open DIR/scene.resolved.toml here, which holds the grown specimen";
     return adopt_scene(std::move(sc), path, path, false);
   } catch (const std::exception& e) {
     return e.what();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace simsols {
 
@@ -23,6 +24,12 @@ void preparation_friction(Simulation& sim, const Specimen& specimen, bool settli
 
 double rms_bead_speed(const Observables& o, const SpecimenStats& stats) {
   return std::sqrt(2 * o.kinetic_translational / (o.particles * stats.bead_mass));
+}
+
+int platen_wall(const Scene& s) {
+  for (size_t w = 0; w < s.walls.size(); ++w)
+    if (s.walls[w].name == "platen") return static_cast<int>(w);
+  throw std::runtime_error("the apparatus has no platen");
 }
 
 double specimen_top(Simulation& sim) {

@@ -25,6 +25,9 @@ double rms_bead_speed(const Observables& o, const SpecimenStats& stats);
 // The height of the highest bead's top (m; 0 without beads).
 double specimen_top(Simulation& sim);
 
+// The apparatus' platen: the wall named "platen" (throws without one).
+int platen_wall(const Scene& scene);
+
 // Moves the platen (a wall whose normal points down) to `clearance` above
 // the highest bead, never up.
 void lower_platen_onto_specimen(Simulation& sim, int platen, double clearance);

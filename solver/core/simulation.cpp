@@ -2,6 +2,7 @@
 
 #include <array>
 #include <stdexcept>
+#include <vector>
 
 #include "solver/core/real_packer.h"
 
@@ -106,6 +107,23 @@ void Simulation::nudge_particle(size_t slot, const Vec3& dx) {
     guard_->write(&State::pos_lo, slot * sizeof fresh, fresh, sizeof fresh);
   }
   write_real4(&State::pos, slot, at[0], at[1], at[2], p[3]);
+}
+
+void Simulation::scale_radii(double factor) {
+  if (model_->clumps() > 0) throw std::logic_error("scale_radii: the scene has clumps");
+  guard_->before_reading();
+  const size_t n = static_cast<size_t>(model_->particles());
+  std::vector<double> pos = read_reals(*model_, state_->pos, 4 * n);
+  std::vector<double> vel = read_reals(*model_, state_->vel, 4 * n);
+  RealPacker p(model_->config().double_precision), v(model_->config().double_precision);
+  const double cube = factor * factor * factor;
+  for (size_t i = 0; i < n; ++i) {
+    p.put4(pos[4 * i], pos[4 * i + 1], pos[4 * i + 2], pos[4 * i + 3] * factor);
+    v.put4(vel[4 * i], vel[4 * i + 1], vel[4 * i + 2], vel[4 * i + 3] * cube);
+  }
+  guard_->write(&State::pos, 0, p.data(), p.size());
+  guard_->write(&State::vel, 0, v.data(), v.size());
+  guard_->rebuild_lists();
 }
 
 void Simulation::set_wall_point(int wall, const Vec3& p) {

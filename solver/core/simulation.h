@@ -55,6 +55,12 @@ class Simulation {
   // Moves the particle in state slot `slot` by dx at once (the accuracy
   // study's round-off twin at the start of shearing).
   void nudge_particle(size_t slot, const Vec3& dx);
+  // Scales every particle's radius by `factor` (and its mass by factor^3)
+  // where it is, and rebuilds the lists: radius expansion
+  // (app/experiment/expansion.h). Spheres only; the scene's radii (and
+  // the grid's cells, sized from them) are not changed: grow no bead past
+  // the radius its cell was sized for (Numerics::skin leaves the room).
+  void scale_radii(double factor);
   // Mean force the particles exerted on each wall over the steps since the
   // previous call (which restarts the means); needs a servo wall in the
   // scene (the servo stage keeps the sums). Empty when there is none.

@@ -56,9 +56,12 @@ double read_grading(const Reader& sp, Specimen& s) {
 // ratio (or relative_density) and the under-compaction.
 void read_tamping(const Reader& r, const Specimen& s, Preparation& p) {
   if (!r.has("tamping_layers")) {
-    r.forbid({"void_ratio", "undercompaction"}, "only allowed with tamping_layers");
+    r.forbid({"undercompaction"}, "only allowed with tamping_layers");
+    if (!p.expansion) r.forbid({"void_ratio"}, "only allowed with tamping_layers or expansion");
     return;
   }
+  if (p.expansion)
+    r.fail("conflicting_keys", "tamping_layers", "a specimen is tamped or grown by expansion, not both");
   if (s.method != Specimen::Method::Pour)
     r.fail("conflicting_keys", "tamping_layers", "tamping builds a poured specimen: use specimen.method = \"pour\"");
   const double layers = r.number("tamping_layers");
@@ -75,12 +78,27 @@ void read_tamping(const Reader& r, const Specimen& s, Preparation& p) {
     r.fail("missing_field", "void_ratio", "tamping needs a target: void_ratio or relative_density");
 }
 
+// Radius expansion (app/experiment/expansion.h): spheres poured, grown in
+// the closed cell to a target (void_ratio, relative_density) or with the
+// friction given.
+void read_expansion(const Reader& r, const Specimen& s, Preparation& p) {
+  p.expansion = r.boolean("expansion", false);
+  if (!p.expansion) return;
+  if (s.method != Specimen::Method::Pour)
+    r.fail("conflicting_keys", "expansion", "expansion grows a poured specimen: use specimen.method = \"pour\"");
+  r.forbid({"drop_height", "intensity"}, "not allowed with expansion (the beads grow in place, no rain)");
+  p.void_ratio = r.optional_number("void_ratio");
+  if (p.void_ratio) r.check_range("void_ratio", *p.void_ratio, *p.void_ratio > 0.01 && *p.void_ratio <= 10, "(0.01, 10]");
+  if (p.void_ratio && (r.has("relative_density") || r.has("friction")))
+    r.fail("conflicting_keys", "void_ratio", "give one target: void_ratio, relative_density or friction");
+}
+
 // [*.specimen.preparation]: the settling friction, the pour's rain, a
 // target relative density and the index void ratios (docs/specimens.md).
 Preparation read_preparation(const Reader& sp, const Specimen& s) {
   Reader r = sp.sub("preparation", {"friction", "rolling_friction", "drop_height", "intensity",
                                      "relative_density", "e_min", "e_max", "tamping_layers",
-                                     "void_ratio", "undercompaction"});
+                                     "void_ratio", "undercompaction", "expansion"});
   Preparation p;
   const auto opt = [&](const char* key, double lo, double hi, const char* range) {
     const std::optional<double> v = r.optional_number(key);
@@ -96,6 +114,7 @@ Preparation read_preparation(const Reader& sp, const Specimen& s) {
     r.forbid({"drop_height", "intensity"}, "only allowed when specimen.method = \"pour\"");
   p.drop_height = opt("drop_height", 0, 10, "[0, 10] m").value_or(0);
   p.intensity = opt("intensity", 0, 0.35, "[0, 0.35]").value_or(0);
+  read_expansion(r, s, p);
   read_tamping(r, s, p);
   if (p.relative_density && p.friction)
     r.fail("conflicting_keys", "relative_density",
@@ -135,6 +154,8 @@ Specimen read_specimen(const Reader& apparatus, const Scene& scene) {
   }
   s.material = sp.material("material", scene);
   if (sp.has("grain")) {  // sizes are the grains' volume-equivalent diameters
+    if (s.preparation.expansion)
+      sp.fail("conflicting_keys", "grain", "expansion grows spheres; pour or tamp a specimen of clumps");
     s.grain = read_grain(sp, scene, s);
     s.diameter = sp.has("diameter") || sp.has("grading")
                      ? read_grading(sp, s)

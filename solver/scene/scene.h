@@ -245,8 +245,9 @@ struct Preparation {
   std::optional<double> relative_density;  // target D_r: the friction is searched (docs/specimens.md)
   std::optional<double> e_min, e_max;      // the material's index void ratios, when known
   int tamping_layers = 0;                  // Pour: built in this many tamped layers (0: poured at once)
-  std::optional<double> void_ratio;        // the tamped specimen's target e (or from relative_density)
+  std::optional<double> void_ratio;        // target e of tamping or expansion (or from relative_density)
   double undercompaction = 0.05;           // Ladd's U_1: the bottom layer's shortfall of dry density
+  bool expansion = false;                  // Pour of spheres: grown in the closed cell (radius expansion)
   bool settles_differently() const { return friction || rolling_friction; }
 };
 

@@ -136,3 +136,93 @@ TEST(Preparation, LayeredTampingReachesTheTargetVoidRatio) {
   EXPECT_NEAR(run.packing.void_ratio, 0.85, 0.1);  // 0.821 measured: the platen stops at H_k, the layers spring back
   std::filesystem::remove_all(dir);
 }
+
+// Radius expansion (app/experiment/expansion.h): the pour's beads grown in
+// the closed cell from 75 % of their size, gravity off, under a lid. The
+// friction while they grow sets the density, as in a pour; the grown
+// specimen is the pour's beads, each at its own size, inside the cell.
+TEST(Preparation, RadiusExpansionGrowsTheBeadsAndFrictionSetsTheDensity) {
+  double e[2] = {0, 0};
+  const double friction[2] = {0, 1};
+  for (int k = 0; k < 2; ++k) {
+    const std::string prep = "expansion = true\nfriction = " + std::to_string(friction[k]) + "\n";
+    const Scene poured = scene_with(prep);
+    Scene scene = poured;
+    int lines = 0;
+    ASSERT_TRUE(prepare_to_relative_density(scene, default_device(), std::filesystem::temp_directory_path(),
+                                            [&](const std::string& l) {
+                                              std::printf("%s\n", l.c_str());
+                                              ++lines;
+                                            }));
+    EXPECT_GE(lines, 1);
+    const Specimen& s = scene.triaxial->specimen;
+    EXPECT_EQ(s.method, Specimen::Method::Given);
+    EXPECT_FALSE(s.preparation.expansion);
+    ASSERT_EQ(scene.particles.size(), poured.particles.size());
+    for (size_t i = 0; i < scene.particles.size(); ++i) {
+      const Particle& p = scene.particles[i];
+      EXPECT_EQ(p.radius, poured.particles[i].radius);
+      EXPECT_GT(p.position[2], 0.5 * p.radius);  // pressing into the floor by less than half a radius
+    }
+    const Settled run = settle_specimen(scene, default_device());
+    e[k] = run.packing.void_ratio;
+    std::printf("grown with friction %g: the test settles at e = %.4f, Z = %.2f\n", friction[k], e[k],
+                run.packing.coordination);
+  }
+  EXPECT_LT(e[0] + 0.05, e[1]);
+}
+
+// A target void ratio: the friction searched between the index void ratios
+// (given here, those of the test above: 0.773 and 1.005), each trial an
+// expansion; the test then settles the very specimen the chosen trial grew.
+TEST(Preparation, RadiusExpansionToAVoidRatioKeepsTheChosenTrialsSpecimen) {
+  Scene scene = scene_with("expansion = true\nvoid_ratio = 0.85\ne_min = 0.773\ne_max = 1.005\n");
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "simsols_expand_test";
+  std::filesystem::remove_all(dir);
+  ASSERT_TRUE(prepare_to_relative_density(scene, default_device(), dir,
+                                          [&](const std::string& l) { std::printf("%s\n", l.c_str()); }));
+  const Specimen& s = scene.triaxial->specimen;
+  EXPECT_EQ(s.method, Specimen::Method::Given);
+  ASSERT_TRUE(s.preparation.friction);
+  EXPECT_FALSE(s.preparation.void_ratio);
+  double chosen_e = -1;
+  std::ifstream csv(dir / "density.csv");
+  std::string row;
+  std::getline(csv, row);
+  while (std::getline(csv, row)) {
+    std::stringstream in(row);
+    std::string role, f, e;
+    std::getline(in, role, ',');
+    std::getline(in, f, ',');
+    std::getline(in, e, ',');
+    if (std::stod(f) == *s.preparation.friction) chosen_e = std::stod(e);
+  }
+  ASSERT_GT(chosen_e, 0);
+  const Settled run = settle_specimen(scene, default_device());
+  EXPECT_NEAR(run.packing.void_ratio, chosen_e, 1e-9 * chosen_e);
+  std::printf("asked e = 0.85, reached %.4f with friction %.4f\n", run.packing.void_ratio, *s.preparation.friction);
+  EXPECT_NEAR(run.packing.void_ratio, 0.85, 0.02);  // 0.848 measured; the search is content within D_r 0.05 (e 0.012)
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Preparation, RadiusExpansionRefusesWhatItCannotGrow) {
+  const std::string grain = R"(
+[[grains]]
+name = "rod"
+shape = "elongated"
+aspect_ratio = 2
+diameter = 6.35e-3
+max_spheres = 2
+)";
+  std::string clumps = soft_cell("expansion = true\n");
+  clumps.replace(clumps.find("seed = 2\n"), 9, "seed = 2\ngrain = \"rod\"\n");
+  simsols::testing::expect_scene_error(grain + clumps, "conflicting_keys", "triaxial.specimen.grain");
+  simsols::testing::expect_scene_error(soft_cell("expansion = true\ntamping_layers = 3\nvoid_ratio = 0.8\n"),
+                              "conflicting_keys", "triaxial.specimen.preparation.tamping_layers");
+  simsols::testing::expect_scene_error(soft_cell("expansion = true\nvoid_ratio = 0.8\nfriction = 0.2\n"),
+                              "conflicting_keys", "triaxial.specimen.preparation.void_ratio");
+  simsols::testing::expect_scene_error(soft_cell("void_ratio = 0.8\n"), "unknown_key",
+                              "triaxial.specimen.preparation.void_ratio");
+  simsols::testing::expect_scene_error(soft_cell("expansion = true\ndrop_height = 0.05\n"), "unknown_key",
+                              "triaxial.specimen.preparation.drop_height");
+}
