@@ -29,6 +29,7 @@ PACKAGES=(
   libglm-dev
   libglfw3-dev
   libimgui-dev
+  # stb_image / stb_image_write: the PNG codec (render/plot/png.cpp)
   libstb-dev
   # Eigen, header-only: a clump's principal axes of inertia (solver/scene/clump.cpp)
   libeigen3-dev

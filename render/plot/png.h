@@ -1,15 +1,14 @@
 // PNG files for Image: charts of `simsols campaign`, renderer frames, and
-// reading them back in tests. Written from the PNG specification (ISO/IEC
-// 15948) on top of zlib for deflate and CRC-32; nothing else.
+// reading them back in tests. The codec is stb's (Debian libstb-dev:
+// stb_image_write to encode, stb_image to decode); this file adapts it to
+// Image and to the project's errors.
 //
-//   encode_png  8-bit RGBA, non-interlaced: IHDR, one IDAT, IEND. Each row
-//               gets the filter that minimises the sum of |bytes| (the
-//               specification's heuristic) unless one filter is forced.
-//   decode_png  8-bit greyscale, grey+alpha, RGB or RGBA, non-interlaced, all
-//               five filter types; anything else is a std::runtime_error.
-//   write_png   atomic: writes `path.tmp`, then renames it over `path`; on
-//               failure removes the temporary file and throws
-//               std::runtime_error naming the path.
+//   encode_png  8-bit RGBA, non-interlaced, zlib-compressed by stb.
+//   decode_png  any PNG stb_image reads (8-bit grey, grey+alpha, RGB, RGBA,
+//               palette, interlaced, 16-bit reduced to 8), as RGBA; anything
+//               else is a std::runtime_error with stb's reason.
+//   write_png   atomic (solver/common/atomic_file.h): the file appears whole
+//               or not at all; IoError names the path.
 #pragma once
 
 #include <string>
@@ -18,9 +17,7 @@
 
 namespace simsols::plot {
 
-enum class PngFilter { none = 0, sub = 1, up = 2, average = 3, paeth = 4, adaptive = 5 };
-
-std::string encode_png(const Image& img, PngFilter filter = PngFilter::adaptive);
+std::string encode_png(const Image& img);
 Image decode_png(const std::string& bytes);
 void write_png(const Image& img, const std::string& path);
 Image read_png(const std::string& path);

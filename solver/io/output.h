@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
+#include "solver/common/atomic_file.h"  // write_file_atomic
 #include "solver/core/observe.h"
 
 namespace simsols {
 
-void write_file_atomic(const std::string& path, const std::string& content);
 // One number through a printf conversion ("%.3f", "%g"): the tables and
 // labels of every report share it.
 std::string format_number(const char* printf_format, double value);

@@ -59,17 +59,13 @@ fs::path temp_dir() {
   return d;
 }
 
-TEST(Png, RoundTripEveryFilter) {
-  const Image img = varied_image(37, 23);
-  for (PngFilter f : {PngFilter::none, PngFilter::sub, PngFilter::up, PngFilter::average,
-                      PngFilter::paeth, PngFilter::adaptive}) {
-    const Image back = decode_png(encode_png(img, f));
-    EXPECT_EQ(back.width, 37);
-    EXPECT_EQ(back.height, 23);
-    EXPECT_EQ(back.rgba, img.rgba) << "filter " << static_cast<int>(f);
+TEST(Png, RoundTrip) {
+  for (const Image& img : {varied_image(37, 23), varied_image(300, 17), make_image(1, 1, {1, 2, 3, 4})}) {
+    const Image back = decode_png(encode_png(img));
+    EXPECT_EQ(back.width, img.width);
+    EXPECT_EQ(back.height, img.height);
+    EXPECT_EQ(back.rgba, img.rgba);
   }
-  const Image one = make_image(1, 1, {1, 2, 3, 4});
-  EXPECT_EQ(decode_png(encode_png(one)).rgba, one.rgba);
 }
 
 TEST(Png, SignatureAndHeader) {
@@ -93,7 +89,7 @@ TEST(Png, SignatureAndHeader) {
 TEST(Png, RejectsCorruptData) {
   std::string png = encode_png(varied_image(8, 8));
   EXPECT_THROW(decode_png(png.substr(0, png.size() / 2)), std::runtime_error);
-  png[40] ^= 0x55;  // inside IDAT: CRC mismatch
+  png[25] = 5;  // IHDR: no such colour type
   EXPECT_THROW(decode_png(png), std::runtime_error);
   EXPECT_THROW(decode_png("not a png"), std::runtime_error);
 }
