@@ -18,6 +18,13 @@ namespace {
 
 using Log = std::function<void(const std::string&)>;
 
+// A platen that reaches its target pushing less than this found the layer
+// already denser than aimed: tamping compacts, it cannot loosen.
+constexpr double kLooseLayerStress = 1e3;  // Pa
+constexpr const char* kLooseLayerNote =
+    " (the layer settled denser than aimed, and tamping cannot loosen it: a higher "
+    "specimen.preparation.friction settles the layers looser)";
+
 // One grain of the poured column: a clump or a free bead, and how low it
 // reaches.
 struct ColumnGrain {
@@ -189,7 +196,7 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
                   "layer %d of %d: %d grains, e_j %.4f, platen stopped at %.3f mm (target %.3f mm, %.0f kPa); e %.4f",
                   k, n, l.grains, l.target_void_ratio, 1e3 * l.platen_stop, 1e3 * l.target_top,
                   l.stress / 1e3, l.void_ratio);
-    log(line);
+    log(l.stress < kLooseLayerStress ? std::string(line) + kLooseLayerNote : std::string(line));
   }
   if (built.shear_box && built.shear_box->split_height >= floor)
     throw SceneError("out_of_range", scene.source_path, 0, "shear_box.split_height",
