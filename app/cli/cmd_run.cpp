@@ -3,7 +3,8 @@
 // Order matters for "nothing half-written": the scene is loaded and
 // validated and the kernels are built before the output folder is touched.
 // Outputs in DIR: scene.toml (the file as given), scene.resolved.toml (the
-// exact scene used, explicit particles), series.csv, particles_<step>.csv/.vtk,
+// exact scene used, explicit particles), series.csv, particles_<step>.csv,
+// paraview/ (the ParaView series, solver/io/paraview.h),
 // checkpoint.bin (latest; `--resume DIR` continues from it bit for bit).
 // When a step runs away (guard.h) the run stops there: fault.txt says at
 // which step and which particle, fault_checkpoint.bin holds the state just
@@ -22,6 +23,7 @@
 #include "render/view/frames.h"
 #include "app/cli/interrupt.h"
 #include "solver/io/output.h"
+#include "solver/io/paraview.h"
 #include "app/experiment/progress.h"
 #include "app/experiment/run_cost.h"
 #include "solver/io/scene_toml.h"
@@ -102,11 +104,11 @@ std::string step_name(const char* stem, std::int64_t step, const char* ext) {
   return buf;
 }
 
-void dump(Simulation& sim, const std::filesystem::path& dir) {
-  const ParticleSnapshot snap = sim.snapshot();
-  const Outputs& o = sim.scene().outputs;
-  if (o.dump_csv) write_particles_csv(dir / step_name("particles", sim.steps(), "csv"), snap);
-  if (o.dump_vtk) write_particles_vtk(dir / step_name("particles", sim.steps(), "vtk"), snap, sim.time());
+// The particles' CSV (dump_csv) and the ParaView series (dump_vtk) of this step.
+void dump(Simulation& sim, const std::filesystem::path& dir, ParaviewSeries* paraview) {
+  if (sim.scene().outputs.dump_csv)
+    write_particles_csv(dir / step_name("particles", sim.steps(), "csv"), sim.snapshot());
+  if (paraview) paraview->write(sim);
 }
 
 void print_summary(const ShearRunResult& r, const std::string& dir) {
@@ -205,13 +207,16 @@ int run_plain(Simulation& sim, const RunOptions& opt, FrameSeries* frames,
     series.append(sim.time(), sim.steps(), sim.observe(), sim.wall_reactions(),
                   wall_points(sim.model(), sim.state()));
   };
+  std::optional<ParaviewSeries> paraview;
+  if (sim.scene().outputs.dump_vtk) paraview.emplace(dir / "paraview", opt.resume ? sim.steps() : -1);
+  ParaviewSeries* pv = paraview ? &*paraview : nullptr;
   const auto checkpoint = [&] {
     series.flush();
     save_checkpoint(sim, (dir / "checkpoint.bin").string());
   };
   if (!opt.resume) {
     record();
-    if (c.dump > 0) dump(sim, dir);
+    if (c.dump > 0) dump(sim, dir, pv);
   }
   if (frames) frames->after_steps(sim, false);
   Progress progress("run", c.total, sim.dt(), sim.model().particles(), opt.quiet);
@@ -224,7 +229,7 @@ int run_plain(Simulation& sim, const RunOptions& opt, FrameSeries* frames,
       sim.advance(1);
       const std::int64_t s = sim.steps();
       if (s % c.series == 0 || s == c.total) record();
-      if (c.dump > 0 && s % c.dump == 0) dump(sim, dir);
+      if (c.dump > 0 && s % c.dump == 0) dump(sim, dir, pv);
       if (c.checkpoint > 0 && s % c.checkpoint == 0) checkpoint();
       if (frames) frames->after_steps(sim, false);
       progress.update(s);
@@ -242,7 +247,7 @@ int run_plain(Simulation& sim, const RunOptions& opt, FrameSeries* frames,
   }
   progress.finish(sim.steps());
   checkpoint();
-  if (!stopped && (c.dump == 0 || sim.steps() % c.dump != 0)) dump(sim, dir);
+  if (!stopped && (c.dump == 0 || sim.steps() % c.dump != 0)) dump(sim, dir, pv);
   if (sim.state().late_builds > 0)
     std::fprintf(stderr,
                  "warning: %lld neighbour-list checks found a particle beyond skin/2 (lists may "

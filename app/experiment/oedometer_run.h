@@ -6,7 +6,8 @@
 //   oedometer.csv                     one row per check while loading (OedometerRow)
 //   summary.txt                       Cc, Cs, K0, Jaky, side friction, the steps' ends
 //   e_log_sigma.png, k0.png, settlement.png   oedometer_plots.h
-//   particles_final.vtk               the specimen at the end, for ParaView
+//   paraview/                         the ParaView series (every output.dump_interval
+//                                     and the end; solver/io/paraview.h)
 //   checkpoint.bin                    latest state; `--resume` continues from it
 //   fault.txt, fault_checkpoint.bin   only when a step ran away
 // summary.txt is written last: its presence means the test finished.

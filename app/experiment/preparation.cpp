@@ -23,6 +23,14 @@ namespace {
 
 using Log = std::function<void(const std::string&)>;
 
+// Renumbers ids 0, 1, ... in order of their values.
+void compact_ids(std::vector<int>& ids) {
+  std::vector<int> sorted = ids;
+  std::sort(sorted.begin(), sorted.end());
+  sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+  for (int& id : ids) id = static_cast<int>(std::lower_bound(sorted.begin(), sorted.end(), id) - sorted.begin());
+}
+
 // The search's preparations, in order: at most kSearchTrials + 2.
 double longest_settle(const Scene& s) {
   if (s.shear_box) return s.shear_box->settle_time;
@@ -180,13 +188,18 @@ std::unique_ptr<LoadingProgramme> make_test(Simulation& sim) {
 Packing measure_specimen(Simulation& sim) {
   const Scene& scene = sim.scene();
   const SpecimenCell cell = specimen_cell(scene);
-  std::vector<double> share;
+  GrainMap grains;
   if (!scene.clumps.empty()) {  // members' overlaps counted once
-    share = solid_volumes(scene);
-    for (size_t i = 0; i < share.size(); ++i)
-      share[i] /= 4.0 / 3.0 * 3.14159265358979323846 * std::pow(scene.particles[i].radius, 3);
+    grains.share = solid_volumes(scene);
+    const int clumps = static_cast<int>(scene.clumps.size());
+    for (size_t i = 0; i < grains.share.size(); ++i) {
+      const Particle& b = scene.particles[i];
+      grains.share[i] /= 4.0 / 3.0 * 3.14159265358979323846 * std::pow(b.radius, 3);
+      grains.grain.push_back(b.clump >= 0 ? b.clump : clumps + static_cast<int>(i));
+    }
+    compact_ids(grains.grain);
   }
-  return measure_packing(sample_contacts(sim), cell.length, cell.width, 0, share);
+  return measure_packing(sample_contacts(sim), cell.length, cell.width, 0, grains);
 }
 
 Settled settle_specimen(const Scene& scene, const std::shared_ptr<Device>& device,
@@ -305,6 +318,9 @@ std::string packing_text(const Packing& p, const Preparation& prep) {
   std::ostringstream o;
   const auto put = [&](const char* key, double v) { o << key << " = " << shortest_number(v) << '\n'; };
   put("beads", p.beads);
+  put("grains", p.grains);
+  put("bulk_void_ratio", p.bulk_void_ratio);
+  put("height_mm", p.height * 1e3);
   put("void_ratio", p.void_ratio);
   put("solid_fraction", p.solid_fraction);
   if (prep.e_min) {
@@ -313,7 +329,7 @@ std::string packing_text(const Packing& p, const Preparation& prep) {
     put("e_max", *prep.e_max);
   }
   put("coordination", p.coordination);
-  put("bead_coordination", p.bead_coordination);
+  put("grain_coordination", p.grain_coordination);
   put("fabric_xx", p.fabric[0]);
   put("fabric_yy", p.fabric[1]);
   put("fabric_zz", p.fabric[2]);

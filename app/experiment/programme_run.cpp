@@ -1,9 +1,12 @@
 #include "app/experiment/programme_run.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 
 #include "app/experiment/grading_plots.h"
 #include "app/experiment/preparation.h"
@@ -11,6 +14,7 @@
 #include "app/experiment/run_cost.h"
 #include "solver/io/checkpoint.h"
 #include "solver/io/output.h"
+#include "solver/io/paraview.h"
 #include "solver/io/scene_toml.h"
 
 namespace simsols {
@@ -60,8 +64,11 @@ void report_packing(Simulation& sim, const fs::path& dir, const ProgrammeRunOpti
   char dr[40] = "";
   if (prep.e_min)
     std::snprintf(dr, sizeof dr, ", D_r = %.3f", relative_density(p.void_ratio, *prep.e_min, *prep.e_max));
-  std::fprintf(stderr, "[%s] settled: e = %.4f%s, %.2f contacts per bead, fabric anisotropy %.3f\n",
-               opt.label.c_str(), p.void_ratio, dr, p.coordination, p.fabric_anisotropy);
+  std::fprintf(stderr,
+               "[%s] settled: e = %.4f to the top at %.3f mm, %.4f in the slab below%s, %.2f contacts per "
+               "grain, fabric anisotropy %.3f\n",
+               opt.label.c_str(), p.bulk_void_ratio, 1e3 * p.height, p.void_ratio, dr, p.coordination,
+               p.fabric_anisotropy);
 }
 
 }  // namespace
@@ -79,7 +86,16 @@ ProgrammeRunState drive_programme(Simulation& sim, ProgrammeOutputs& out,
   const long long first = sim.steps();
   bool announced = test.measuring();
   ProgrammeRunState state;
+  std::optional<ParaviewSeries> paraview;
+  const Outputs& o = sim.scene().outputs;
+  if (o.dump_vtk) paraview.emplace(dir / "paraview", opt.resume ? sim.steps() : -1);
+  const long long dump_every = o.dump_interval > 0 ? std::max(1LL, std::llround(o.dump_interval / sim.dt())) : 0;
+  long long next_dump = dump_every > 0 ? (sim.steps() / dump_every + (opt.resume ? 1 : 0)) * dump_every : -1;
   while (!test.done()) {
+    if (paraview && next_dump >= 0 && sim.steps() >= next_dump) {
+      paraview->write(sim);
+      next_dump = (sim.steps() / dump_every + 1) * dump_every;
+    }
     if (opt.stop_requested && opt.stop_requested()) {
       state.interrupted = true;
       break;
@@ -118,7 +134,10 @@ ProgrammeRunState drive_programme(Simulation& sim, ProgrammeOutputs& out,
   state.steps = sim.steps();
   state.particles = sim.model().particles();
   state.dt = sim.dt();
-  if (state.finished) out.write_results(sim, dir, state.wall_seconds);
+  if (state.finished) {
+    out.write_results(sim, dir, state.wall_seconds);
+    if (paraview) paraview->write(sim);
+  }
   return state;
 }
 

@@ -37,7 +37,6 @@ class ShearOutputs : public ProgrammeOutputs {
   void write_results(Simulation& sim, const fs::path& dir, double wall_seconds) override {
     ShearSummary summary = test_.summary();
     summary.wall_seconds = wall_seconds;
-    write_particles_vtk((dir / "particles_final.vtk").string(), sim.snapshot(), sim.time());
     write_shear_plots(dir.string(), sim.scene().name, test_.rows(), summary);
     write_file_atomic((dir / "summary.txt").string(), shear_summary_text(summary));
   }

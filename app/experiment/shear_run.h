@@ -7,7 +7,8 @@
 //   shear.csv                         one row per measurement (see ShearRow)
 //   summary.txt                       peak / residual / dilatancy / servo band
 //   shear_stress.png, shear_ratio.png, dilation.png   the paper's Figures 3-7 axes
-//   particles_final.vtk               the specimen at the end, for ParaView
+//   paraview/                         the ParaView series (every output.dump_interval
+//                                     and the end; solver/io/paraview.h)
 //   checkpoint.bin                    latest state; `--resume` continues from it
 //   fault.txt, fault_checkpoint.bin   only when a step ran away (guard.h): what,
 //                                     where, and the state just before it

@@ -187,7 +187,7 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
     Simulation sim(device, built);
     const std::unique_ptr<LoadingProgramme> test = make_test(sim);
     tamp(sim, *test, l.target_top, area, l, log);
-    l.void_ratio = measure_specimen(sim).void_ratio;
+    l.void_ratio = measure_specimen(sim).bulk_void_ratio;
     floor = specimen_top(sim);
     built = at_rest(empty, bodies, sim);
     layers.push_back(l);
@@ -198,6 +198,10 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
                   l.stress / 1e3, l.void_ratio);
     log(l.stress < kLooseLayerStress ? std::string(line) + kLooseLayerNote : std::string(line));
   }
+  char done[160];
+  std::snprintf(done, sizeof done, "tamped: e = %.4f to the highest grain's top at %.3f mm (aimed %.4f)",
+                layers.back().void_ratio, 1e3 * floor, void_ratio);
+  log(done);
   if (built.shear_box && built.shear_box->split_height >= floor)
     throw SceneError("out_of_range", scene.source_path, 0, "shear_box.split_height",
                      "the shear plane at " + shortest_number(1e3 * built.shear_box->split_height) +

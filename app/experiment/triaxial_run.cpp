@@ -28,7 +28,6 @@ class TriaxialOutputs : public ProgrammeOutputs {
   void write_results(Simulation& sim, const fs::path& dir, double wall_seconds) override {
     TriaxialSummary summary = test_.summary();
     summary.wall_seconds = wall_seconds;
-    write_particles_vtk((dir / "particles_final.vtk").string(), sim.snapshot(), sim.time());
     write_triaxial_plots(dir.string(), sim.scene().name, test_.rows(), summary);
     write_file_atomic((dir / "summary.txt").string(), triaxial_summary_text(summary));
   }

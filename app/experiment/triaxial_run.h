@@ -6,7 +6,7 @@
 //   triaxial.csv                      one row per axial_strain / rows (TriaxialRow)
 //   summary.txt                       peak and critical state, dilatancy, wall vs internal stress
 //   stress_ratio.png, deviator.png, volumetric.png, e_log_p.png   triaxial_plots.h
-//   particles_final.vtk, checkpoint.bin, fault.txt   as for the shear test
+//   paraview/, checkpoint.bin, fault.txt   as for the shear test
 // summary.txt is written last: its presence means the test finished.
 #pragma once
 

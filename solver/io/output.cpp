@@ -1,6 +1,5 @@
 #include "solver/io/output.h"
 
-#include <bit>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -13,18 +12,6 @@ namespace simsols {
 namespace {
 
 std::string fmt(double v) { return format_number("%.9g", v); }
-
-// Legacy VTK binary data is big endian.
-void put_be(std::string& out, float v) {
-  std::uint32_t u = std::bit_cast<std::uint32_t>(v);
-  if constexpr (std::endian::native == std::endian::little) u = __builtin_bswap32(u);
-  out.append(reinterpret_cast<const char*>(&u), 4);
-}
-void put_be(std::string& out, std::int32_t v) {
-  std::uint32_t u = static_cast<std::uint32_t>(v);
-  if constexpr (std::endian::native == std::endian::little) u = __builtin_bswap32(u);
-  out.append(reinterpret_cast<const char*>(&u), 4);
-}
 
 }  // namespace
 
@@ -62,38 +49,6 @@ void write_particles_csv(const std::string& path, const ParticleSnapshot& p) {
       for (double c : *v) s += "," + fmt(c);
     s += "," + std::to_string(p.contacts[i]) + "\n";
   }
-  write_file_atomic(path, s);
-}
-
-void write_particles_vtk(const std::string& path, const ParticleSnapshot& p, double time) {
-  const size_t n = p.radius.size();
-  std::string s = "# vtk DataFile Version 3.0\nSimSols particles t=" + fmt(time) +
-                  "\nBINARY\nDATASET POLYDATA\nPOINTS " + std::to_string(n) + " float\n";
-  for (size_t i = 0; i < n; ++i)
-    for (double c : p.position[i]) put_be(s, static_cast<float>(c));
-  s += "\nVERTICES " + std::to_string(n) + " " + std::to_string(2 * n) + "\n";
-  for (size_t i = 0; i < n; ++i) {
-    put_be(s, std::int32_t{1});
-    put_be(s, static_cast<std::int32_t>(i));
-  }
-  s += "\nPOINT_DATA " + std::to_string(n) + "\n";
-  s += "SCALARS radius float 1\nLOOKUP_TABLE default\n";
-  for (size_t i = 0; i < n; ++i) put_be(s, static_cast<float>(p.radius[i]));
-  auto vectors = [&](const char* name, const std::vector<Vec3>& v) {
-    s += std::string("\nVECTORS ") + name + " float\n";
-    for (size_t i = 0; i < n; ++i)
-      for (double c : v[i]) put_be(s, static_cast<float>(c));
-  };
-  vectors("velocity", p.velocity);
-  vectors("angular_velocity", p.angular_velocity);
-  vectors("force", p.force);
-  auto ints = [&](const char* name, const std::vector<int>& v) {
-    s += std::string("\nSCALARS ") + name + " int 1\nLOOKUP_TABLE default\n";
-    for (size_t i = 0; i < n; ++i) put_be(s, static_cast<std::int32_t>(v[i]));
-  };
-  ints("contacts", p.contacts);
-  ints("material", p.material);
-  s += "\n";
   write_file_atomic(path, s);
 }
 

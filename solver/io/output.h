@@ -1,8 +1,9 @@
 // Output: files a run leaves for people and for ParaView.
 //
-//   particles_<step>.csv / .vtk  one row / point per particle (legacy binary
-//                                VTK polydata: radius, velocity, angular
-//                                velocity, force, contacts, material)
+//   particles_<step>.csv         one row per particle (radius, position,
+//                                velocity, angular velocity, force,
+//                                contacts, material); ParaView's series
+//                                are paraview.h's
 //   series.csv                   one row per output step (TimeSeries)
 //
 // Every file is written to a temporary name and renamed, so no reader (and
@@ -28,7 +29,6 @@ std::vector<std::string> split_csv_line(const std::string& line);
 // The whole file as text; empty when it cannot be read.
 std::string read_text(const std::string& path);
 void write_particles_csv(const std::string& path, const ParticleSnapshot& p);
-void write_particles_vtk(const std::string& path, const ParticleSnapshot& p, double time);
 
 class TimeSeries {
  public:

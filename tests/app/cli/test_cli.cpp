@@ -169,8 +169,12 @@ TEST(Cli, ShearTestStopAndResumeGivesTheSameRows) {
   EXPECT_EQ(sa.substr(0, sa.find("wall_seconds")), sb.substr(0, sb.find("wall_seconds")));
   EXPECT_NE(sa.find("wall_seconds"), std::string::npos);
   for (const char* f : {"summary.txt", "shear.csv", "shear_stress.png", "shear_ratio.png",
-                        "dilation.png", "particles_final.vtk", "checkpoint.bin"})
+                        "dilation.png", "paraview/particles.pvd", "paraview/contacts.pvd",
+                        "paraview/walls.pvd", "checkpoint.bin"})
     EXPECT_TRUE(fs::exists(b / f)) << f;
+  // the resumed run's series ends where the whole run's does
+  const std::string pvd = read(b / "paraview" / "particles.pvd");
+  EXPECT_EQ(pvd, read(a / "paraview" / "particles.pvd"));
   EXPECT_EQ(read(a / "shear.csv").substr(0, 20), "time_s,step,displace");
 }
 

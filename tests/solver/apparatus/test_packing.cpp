@@ -56,11 +56,52 @@ TEST(Packing, ACubicLatticeHasItsTextbookVoidRatioAndFabric) {
   EXPECT_NEAR(p.slab_height, (n - 1) * d, 1e-15);
   EXPECT_NEAR(p.solid_fraction, kPi / 6, 1e-12);
   EXPECT_NEAR(p.void_ratio, 6 / kPi - 1, 1e-12);
-  EXPECT_NEAR(p.bead_coordination, 2.0 * 3 * n * n * (n - 1) / (n * n * n), 1e-12);
+  EXPECT_NEAR(p.bulk_void_ratio, 6 / kPi - 1, 1e-12);  // the lattice fills the box to its top
+  EXPECT_NEAR(p.height, n * d, 1e-15);
+  EXPECT_EQ(p.grains, n * n * n);
+  EXPECT_NEAR(p.grain_coordination, 2.0 * 3 * n * n * (n - 1) / (n * n * n), 1e-12);
   for (double f : p.fabric) EXPECT_NEAR(f, 1.0 / 3, 1e-12);
   EXPECT_NEAR(p.fabric_anisotropy, 0, 1e-12);
   EXPECT_NEAR(measure_packing(vertical, side, side, 0).fabric_anisotropy, 7.5, 1e-12);
   EXPECT_NEAR(fabric_anisotropy(vertical), 7.5, 1e-12);
+}
+
+// The same lattice as grains of two beads side by side along x (member
+// contacts are never listed): 32 dimers, 64 distinct neighbouring pairs
+// though the y and z neighbours touch by two member contacts each, so 4
+// grains per grain; the floor's 16 bead contacts are 8 grain contacts.
+// The slab leaves out one dimer's length (2 d) below the top.
+TEST(Packing, GrainsOfSeveralBeadsCountTheirContactsOnce) {
+  const int n = 4;
+  const double d = 1e-3, side = n * d;
+  ContactSample s;
+  GrainMap map;
+  auto at = [&](int i, int j, int k) { return (k * n + j) * n + i; };
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        s.beads.position.push_back({(i + 0.5) * d, (j + 0.5) * d, (k + 0.5) * d});
+        s.beads.radius.push_back(d / 2);
+        map.share.push_back(1);
+        map.grain.push_back(at(i, j, k) / 2);
+      }
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        if (i + 1 < n && i % 2 == 1) s.contacts.push_back({at(i, j, k), at(i + 1, j, k), {}});
+        if (j + 1 < n) s.contacts.push_back({at(i, j, k), at(i, j + 1, k), {}});
+        if (k + 1 < n) s.contacts.push_back({at(i, j, k), at(i, j, k + 1), {}});
+        if (k == 0) s.contacts.push_back({at(i, j, k), -1, {}});
+      }
+  const Packing p = measure_packing(s, side, side, 0, map);
+  EXPECT_EQ(p.beads, 64);
+  EXPECT_EQ(p.grains, 32);
+  EXPECT_NEAR(p.grain_coordination, 4.0, 1e-12);
+  EXPECT_NEAR(p.coordination, (2.0 * 64 + 8) / 32, 1e-12);
+  EXPECT_NEAR(p.slab_height, 2 * d, 1e-15);
+  EXPECT_NEAR(p.void_ratio, 6 / kPi - 1, 1e-12);
+  map.share.assign(64, 0.5);  // members overlapping to half their volume
+  EXPECT_NEAR(measure_packing(s, side, side, 0, map).bulk_void_ratio, 12 / kPi - 1, 1e-12);
 }
 
 std::string poured(const std::string& preparation) {

@@ -1,4 +1,4 @@
-// Files a run leaves (solver/io/output.h): the particle CSV and legacy VTK
+// Files a run leaves (solver/io/output.h): the particle CSV
 // as documented, series.csv's rows and resume, and writes that are atomic.
 // No device: snapshots and observables are built by hand.
 #include <signal.h>
@@ -95,78 +95,6 @@ TEST_F(Output, ParticlesCsvAsDocumented) {
   // the exactly printable ones read back exactly
   EXPECT_NE(read_text(path("particles_0.csv")).find("\n0,0,0.001,0.00125,-3.5,2e-05,"),
             std::string::npos);
-}
-
-// Legacy VTK, binary: text headers, then big-endian 4-byte floats and ints.
-class VtkReader {
- public:
-  explicit VtkReader(std::string text) : s_(std::move(text)) {}
-  std::string line() {
-    const size_t e = s_.find('\n', at_);
-    if (e == std::string::npos) throw std::runtime_error("VTK: missing line");
-    std::string l = s_.substr(at_, e - at_);
-    at_ = e + 1;
-    return l;
-  }
-  std::uint32_t word() {
-    if (at_ + 4 > s_.size()) throw std::runtime_error("VTK: short data");
-    std::uint32_t u;
-    std::memcpy(&u, s_.data() + at_, 4);
-    at_ += 4;
-    return std::endian::native == std::endian::little ? __builtin_bswap32(u) : u;
-  }
-  float real() { return std::bit_cast<float>(word()); }
-  std::int32_t integer() { return static_cast<std::int32_t>(word()); }
-  bool done() const { return at_ == s_.size(); }
-
- private:
-  std::string s_;
-  size_t at_ = 0;
-};
-
-void expect_vectors(VtkReader& r, const std::string& name, const std::vector<Vec3>& v) {
-  EXPECT_EQ(r.line(), "");
-  EXPECT_EQ(r.line(), "VECTORS " + name + " float");
-  for (const Vec3& x : v)
-    for (double c : x) EXPECT_EQ(r.real(), static_cast<float>(c)) << name;
-}
-
-void expect_ints(VtkReader& r, const std::string& name, const std::vector<int>& v) {
-  EXPECT_EQ(r.line(), "");
-  EXPECT_EQ(r.line(), "SCALARS " + name + " int 1");
-  EXPECT_EQ(r.line(), "LOOKUP_TABLE default");
-  for (int x : v) EXPECT_EQ(r.integer(), x) << name;
-}
-
-TEST_F(Output, ParticlesVtkAsDocumented) {
-  const ParticleSnapshot p = sample_snapshot();
-  write_particles_vtk(path("particles_0.vtk"), p, 0.0123456789012);
-  VtkReader r(read_text(path("particles_0.vtk")));
-  EXPECT_EQ(r.line(), "# vtk DataFile Version 3.0");
-  EXPECT_EQ(r.line(), "SimSols particles t=0.0123456789");
-  EXPECT_EQ(r.line(), "BINARY");
-  EXPECT_EQ(r.line(), "DATASET POLYDATA");
-  EXPECT_EQ(r.line(), "POINTS 3 float");
-  for (const Vec3& x : p.position)
-    for (double c : x) EXPECT_EQ(r.real(), static_cast<float>(c)) << "points";
-  EXPECT_EQ(r.line(), "");
-  EXPECT_EQ(r.line(), "VERTICES 3 6");
-  for (int i = 0; i < 3; ++i) {
-    EXPECT_EQ(r.integer(), 1);
-    EXPECT_EQ(r.integer(), i);
-  }
-  EXPECT_EQ(r.line(), "");
-  EXPECT_EQ(r.line(), "POINT_DATA 3");
-  EXPECT_EQ(r.line(), "SCALARS radius float 1");
-  EXPECT_EQ(r.line(), "LOOKUP_TABLE default");
-  for (double x : p.radius) EXPECT_EQ(r.real(), static_cast<float>(x)) << "radius";
-  expect_vectors(r, "velocity", p.velocity);
-  expect_vectors(r, "angular_velocity", p.angular_velocity);
-  expect_vectors(r, "force", p.force);
-  expect_ints(r, "contacts", p.contacts);
-  expect_ints(r, "material", p.material);
-  EXPECT_EQ(r.line(), "");
-  EXPECT_TRUE(r.done()) << "nothing after the last field";
 }
 
 // Bytes as given (NUL, CR LF, no trailing newline), replacing the old file,
