@@ -31,6 +31,10 @@ PACKAGES=(
   libimgui-dev
   # stb_image / stb_image_write: the PNG codec (render/plot/png.cpp)
   libstb-dev
+  # FreeType: the text of charts and legends (render/plot/font.cpp)
+  libfreetype-dev
+  # DejaVu Sans, read at run time by render/plot/font.cpp and the lab's ImGui font
+  fonts-dejavu-core
   # Eigen, header-only: a clump's principal axes of inertia (solver/scene/clump.cpp)
   libeigen3-dev
   xvfb

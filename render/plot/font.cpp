@@ -1,236 +1,124 @@
 #include "render/plot/font.h"
 
-#include <array>
-#include <charconv>
+#include <ft2build.h>
+#include FT_FREETYPE_H
+#include FT_BBOX_H
+#include FT_OUTLINE_H
+#include FT_TRUETYPE_TABLES_H
+
+#include <algorithm>
 #include <cmath>
-#include <numbers>
+#include <cstdint>
+#include <filesystem>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 namespace simsols::plot {
 namespace {
 
-// Glyph outlines: strokes separated by ';'. A stroke is a sequence of points
-// "x,y" and elliptical arcs "(cx,cy,rx,ry,a0,a1)" (degrees, counter-clockwise
-// from +x, y up; a1 < a0 runs clockwise), joined in order into one polyline.
-// `width` is the ink width; glyphs start at x = 0.
-struct GlyphDef {
-  char32_t code;
-  double width;
-  const char* strokes;
-};
+// Where distributions install DejaVu: Debian and Ubuntu (fonts-dejavu-core)
+// first, then Fedora, Arch and others.
+constexpr const char* kFontDirs[] = {"/usr/share/fonts/truetype/dejavu",
+                                     "/usr/share/fonts/dejavu-sans-fonts",
+                                     "/usr/share/fonts/dejavu", "/usr/share/fonts/TTF",
+                                     "/usr/local/share/fonts"};
+constexpr const char* kRegularFile = "DejaVuSans.ttf";
+constexpr const char* kBoldFile = "DejaVuSans-Bold.ttf";
 
-constexpr GlyphDef kGlyphs[] = {
-    {U' ', 1.2, ""},
-    {U'!', 0, "0,10 0,3; 0,0 0,0.3"},
-    {U'"', 2, "0,10 0,7.5; 2,10 2,7.5"},
-    {U'#', 6.5, "1.5,0 2.5,10; 4,0 5,10; 0,3.3 6,3.3; 0.5,6.7 6.5,6.7"},
-    {U'$', 6, "(3,7,2.8,2,20,270) (3,3,3,2,90,-160); 3,11 3,-1"},
-    {U'%', 7, "0.5,0 6.5,10; (1.4,8.3,1.4,1.7,0,360); (5.6,1.7,1.4,1.7,0,360)"},
-    {U'&', 7, "7,0 1.3,6.6 (2.6,8.4,1.4,1.6,230,-40) 0.6,3 (2.7,2.5,2.4,2.5,160,330) 6.5,4.5"},
-    {U'\'', 0, "0,10 0,7.5"},
-    {U'(', 2, "(3.5,4,3.5,7,120,240)"},
-    {U')', 2, "(-1.5,4,3.5,7,60,-60)"},
-    {U'*', 5, "2.5,10 2.5,5; 0.3,8.9 4.7,6.1; 0.3,6.1 4.7,8.9"},
-    {U'+', 6, "0,4 6,4; 3,1 3,7"},
-    {U',', 1, "1,0.6 1,0 0,-2"},
-    {U'-', 4, "0,4 4,4"},
-    {U'.', 0, "0,0 0,0.3"},
-    {U'/', 4, "0,-1 4,10"},
-    {U':', 0, "0,0 0,0.3; 0,6.7 0,7"},
-    {U';', 1, "1,6.7 1,7; 1,0.6 1,0 0,-2"},
-    {U'<', 6, "6,7 0,4 6,1"},
-    {U'=', 6, "0,5.5 6,5.5; 0,2.5 6,2.5"},
-    {U'>', 6, "0,7 6,4 0,1"},
-    {U'?', 5.5, "(2.75,7.5,2.75,2.5,160,-70) 2.75,3; 2.75,0 2.75,0.3"},
-    {U'@', 8,
-     "6,6.5 6,3.2 (7,3.2,1,1.2,180,360) 8,4.5 (4,4.5,4,5.5,0,300); "
-     "(4.2,4.8,1.8,2,0,360)"},
-    {U'A', 7, "0,0 3.5,10 7,0; 1.4,3.5 5.6,3.5"},
-    {U'B', 6.5, "0,0 0,10 3.5,10 (3.5,7.5,2.5,2.5,90,-90) 0,5; 3.8,5 (3.8,2.5,2.7,2.5,90,-90) 0,0"},
-    {U'C', 6.5, "(3.5,5,3.5,5,45,315)"},
-    {U'D', 6.5, "0,0 0,10 2.5,10 (2.5,5,4,5,90,-90) 0,0"},
-    {U'E', 5.5, "5.5,10 0,10 0,0 5.5,0; 0,5 4.5,5"},
-    {U'F', 5.5, "5.5,10 0,10 0,0; 0,5 4.5,5"},
-    {U'G', 7, "(3.5,5,3.5,5,45,360) 4,5"},
-    {U'H', 6, "0,0 0,10; 6,0 6,10; 0,5 6,5"},
-    {U'I', 3, "1.5,0 1.5,10; 0,10 3,10; 0,0 3,0"},
-    {U'J', 5, "5,10 5,3 (2.5,3,2.5,3,0,-180)"},
-    {U'K', 6, "0,0 0,10; 6,10 0,3.5; 2,5.4 6,0"},
-    {U'L', 5.5, "0,10 0,0 5.5,0"},
-    {U'M', 7.5, "0,0 0,10 3.75,2.5 7.5,10 7.5,0"},
-    {U'N', 6, "0,0 0,10 6,0 6,10"},
-    {U'O', 7, "(3.5,5,3.5,5,0,360)"},
-    {U'P', 6, "0,0 0,10 3.5,10 (3.5,7.25,2.5,2.75,90,-90) 0,4.5"},
-    {U'Q', 7, "(3.5,5,3.5,5,0,360); 4.2,2.8 7.2,-0.5"},
-    {U'R', 6, "0,0 0,10 3.5,10 (3.5,7.25,2.5,2.75,90,-90) 0,4.5; 3.5,4.5 6,0"},
-    {U'S', 6, "(3,7.5,2.8,2.5,20,270) (3,2.5,3,2.5,90,-160)"},
-    {U'T', 6, "0,10 6,10; 3,10 3,0"},
-    {U'U', 6, "0,10 0,3 (3,3,3,3,180,360) 6,10"},
-    {U'V', 6.5, "0,10 3.25,0 6.5,10"},
-    {U'W', 9, "0,10 2,0 4.5,8 7,0 9,10"},
-    {U'X', 6, "0,0 6,10; 0,10 6,0"},
-    {U'Y', 6, "0,10 3,5 6,10; 3,5 3,0"},
-    {U'Z', 6, "0,10 6,10 0,0 6,0"},
-    {U'[', 2.5, "2.5,11 0,11 0,-2 2.5,-2"},
-    {U'\\', 4, "0,10 4,-1"},
-    {U']', 2.5, "0,11 2.5,11 2.5,-2 0,-2"},
-    {U'^', 5, "0,6 2.5,10 5,6"},
-    {U'_', 6, "0,-2 6,-2"},
-    {U'`', 1.5, "0,10 1.5,8"},
-    {U'a', 5.5, "(2.75,3.5,2.75,3.5,0,360); 5.5,7 5.5,0"},
-    {U'b', 5.5, "0,10 0,0; (2.75,3.5,2.75,3.5,0,360)"},
-    {U'c', 5.2, "(2.9,3.5,2.9,3.5,40,320)"},
-    {U'd', 5.5, "(2.75,3.5,2.75,3.5,0,360); 5.5,10 5.5,0"},
-    {U'e', 5.5, "0,3.5 5.5,3.5 (2.75,3.5,2.75,3.5,0,315)"},
-    {U'f', 4, "(3.2,8.5,1.6,1.5,30,180) 1.6,0; 0,7 4,7"},
-    {U'g', 5.5, "(2.75,3.5,2.75,3.5,0,360); 5.5,7 5.5,-1 (2.75,-1,2.75,2,0,-150)"},
-    {U'h', 5.5, "0,10 0,0; (2.75,4.25,2.75,2.75,180,0) 5.5,0"},
-    {U'i', 0, "0,0 0,7; 0,9.3 0,9.6"},
-    {U'j', 2, "2,7 2,-1.5 (0.5,-1.5,1.5,1.5,0,-150); 2,9.3 2,9.6"},
-    {U'k', 5, "0,0 0,10; 5,7 0,2.5; 1.8,4 5.2,0"},
-    {U'l', 1.7, "0.5,10 0.5,1.2 (1.7,1.2,1.2,1.2,180,270)"},
-    {U'm', 8, "0,0 0,7; (2,5,2,2,180,0) 4,0; (6,5,2,2,180,0) 8,0"},
-    {U'n', 5.5, "0,0 0,7; (2.75,4.25,2.75,2.75,180,0) 5.5,0"},
-    {U'o', 5.8, "(2.9,3.5,2.9,3.5,0,360)"},
-    {U'p', 5.5, "0,7 0,-3; (2.75,3.5,2.75,3.5,0,360)"},
-    {U'q', 5.5, "(2.75,3.5,2.75,3.5,0,360); 5.5,7 5.5,-3"},
-    {U'r', 4.3, "0,0 0,7; (3.2,4.2,3.2,2.8,180,70)"},
-    {U's', 5.2, "(2.6,5.25,2.4,1.75,20,270) (2.6,1.75,2.6,1.75,90,-160)"},
-    {U't', 3.8, "1.5,9.5 1.5,1.2 (2.7,1.2,1.2,1.2,180,270) 3.8,0; 0,7 3.8,7"},
-    {U'u', 5.5, "0,7 0,2.75 (2.75,2.75,2.75,2.75,180,360); 5.5,7 5.5,0"},
-    {U'v', 5.5, "0,7 2.75,0 5.5,7"},
-    {U'w', 8, "0,7 2,0 4,5.5 6,0 8,7"},
-    {U'x', 5.5, "0,0 5.5,7; 0,7 5.5,0"},
-    {U'y', 5.5, "0,7 2.75,0; 5.5,7 2.75,0 1.6,-2.6 0.5,-3"},
-    {U'z', 5.5, "0,7 5.5,7 0,0 5.5,0"},
-    {U'{', 3, "3,11 1.8,10.4 1.5,9 1.5,6 0,4.5 1.5,3 1.5,0 1.8,-1.4 3,-2"},
-    {U'|', 0, "0,11 0,-2"},
-    {U'}', 3, "0,11 1.2,10.4 1.5,9 1.5,6 3,4.5 1.5,3 1.5,0 1.2,-1.4 0,-2"},
-    {U'~', 6, "(1.5,3.8,1.5,1,180,0) (4.5,3.8,1.5,1,180,360)"},
-    {U'0', 5.5, "(2.75,5,2.75,5,0,360)"},
-    {U'1', 5.5, "1.2,8 3,10 3,0"},
-    {U'2', 5.5, "(2.75,7.25,2.75,2.75,160,-35) 0,0 5.5,0"},
-    {U'3', 5.5, "(2.75,7.6,2.5,2.4,150,-90) (2.75,2.6,2.75,2.6,90,-150)"},
-    {U'4', 5.5, "4,0 4,10 0,3 5.5,3"},
-    {U'5', 5.5, "5.2,10 0.6,10 0.3,5.4 (2.75,3.2,2.75,3.2,140,-150)"},
-    {U'6', 5.5, "(2.75,3,2.75,3,0,360); (5.5,3,5.5,7,180,105)"},
-    {U'7', 5.5, "0,10 5.5,10 1.8,0"},
-    {U'8', 5.5, "(2.75,7.6,2.4,2.4,0,360); (2.75,2.6,2.75,2.6,0,360)"},
-    {U'9', 5.5, "(2.75,7,2.75,3,0,360); (0,7,5.5,7,0,-75)"},
-    // Greek and symbols
-    {U'σ', 7, "7,7 2.75,7 (2.75,3.5,2.75,3.5,90,450)"},
-    {U'τ', 6, "0,7 6,7; 3,7 3,1.2 (4.2,1.2,1.2,1.2,180,270) 5,0"},
-    {U'φ', 6, "(3,3.5,3,3.3,0,360); 3,10 3,-3"},
-    {U'ψ', 6, "0,7 0,4 (3,4,3,3,180,360) 6,7; 3,9 3,-3"},
-    {U'δ', 5.5, "(3,8.8,2.2,1.2,40,240) 3.91,5.72 (2.75,3,2.75,3,65,425)"},
-    {U'ε', 5.6, "(3,5.3,2.6,1.7,30,270) (3.2,1.8,3,1.8,90,330)"},
-    {U'μ', 5.5, "0,-3 0,7; (2.75,2.75,2.75,2.75,180,360) 5.5,7; 5.5,2.75 5.5,0"},
-    {U'ρ', 5.5, "0,-3 0,3.5 (2.75,3.5,2.75,3.5,180,540)"},
-    {U'Δ', 7, "0,0 3.5,10 7,0 0,0"},
-    {U'θ', 5.8, "(2.9,5,2.9,5,0,360); 0,5 5.8,5"},
-    {U'γ', 5.8, "0,7 2.9,1; 5.8,7 2.9,1 2.9,-3"},
-    {U'ω', 8, "0,6.5 (2,3,2,3,180,360) 4,5; 4,3 (6,3,2,3,180,360) 8,6.5"},
-    {U'π', 6.5, "0,7 6.5,7; 1.8,7 1.8,0; 4.8,7 4.8,0"},
-    {U'–', 5, "0,4 5,4"},
-    {U'—', 10, "0,4 10,4"},
-    {U'′', 1, "1,10 0,7.5"},
-    {U'‘', 1, "0,7.5 0,8.1 1,10"},
-    {U'’', 1, "1,10 1,9.4 0,7.5"},
-    {U'“', 3, "0,7.5 0,8.1 1,10; 2,7.5 2,8.1 3,10"},
-    {U'”', 3, "1,10 1,9.4 0,7.5; 3,10 3,9.4 2,7.5"},
-    {U'°', 3, "(1.5,8.5,1.5,1.5,0,360)"},
-    {U'·', 0, "0,4 0,4.3"},
-    {U'±', 6, "0,5 6,5; 3,8 3,2; 0,0 6,0"},
-    {U'×', 5, "0.5,1.5 5.5,6.5; 0.5,6.5 5.5,1.5"},
-    {U'−', 6, "0,4 6,4"},
-    {0xFFFD, 5, "0,0 5,0 5,8 0,8 0,0"},  // replacement: a box
-};
+// Unhinted outlines: hinting would snap stems to whole pixels and change
+// widths with the size, and text is placed at fractional positions anyway.
+constexpr FT_Int32 kLoadFlags = FT_LOAD_NO_HINTING | FT_LOAD_NO_BITMAP;
+constexpr double kMaxSize = 4096;
+constexpr double kStemPerWeight = 0.085;  // em of stem width per unit of weight
 
-// Superscripts reuse a glyph, scaled and raised.
-constexpr std::pair<char32_t, char32_t> kSuperscripts[] = {
-    {U'⁰', U'0'}, {U'¹', U'1'}, {U'²', U'2'}, {U'³', U'3'}, {U'⁴', U'4'}, {U'⁵', U'5'},
-    {U'⁶', U'6'}, {U'⁷', U'7'}, {U'⁸', U'8'}, {U'⁹', U'9'}, {U'⁺', U'+'}, {U'⁻', U'-'}};
-constexpr double kSuperScale = 0.62, kSuperRaise = 5.0;
-
-constexpr double kEm = 14.0;   // units per size_px
-constexpr double kCap = 10.0;  // cap height
-constexpr double kDescent = 3.0;
-constexpr double kSpacing = 2.6;  // between the ink boxes of adjacent glyphs
-
-struct Glyph {
-  double width = 0;
-  std::vector<std::vector<Point>> strokes;  // font units, y up
-};
-
-// The numbers of a token such as "(1,2.5,3,3,0,-90)" or "4,-1" (locale-free).
-std::vector<double> numbers(std::string_view tok) {
-  std::vector<double> v;
-  const char *p = tok.data(), *end = p + tok.size();
-  while (p < end) {
-    if (*p == '(' || *p == ')' || *p == ',') {
-      ++p;
-      continue;
-    }
-    double d = 0;
-    const auto r = std::from_chars(p, end, d);
-    if (r.ec != std::errc{}) break;
-    v.push_back(d);
-    p = r.ptr;
+std::string find_font(const char* name) {
+  for (const char* dir : kFontDirs) {
+    const std::filesystem::path p = std::filesystem::path(dir) / name;
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(p, ec)) return p.string();
   }
-  return v;
+  throw std::runtime_error(std::string("font file ") + kFontDirs[0] + "/" + name +
+                           " not found (nor in the other standard font folders): install "
+                           "Debian's package fonts-dejavu-core (apt-get install fonts-dejavu-core)");
 }
 
-Glyph parse_glyph(const GlyphDef& def) {
-  Glyph g{def.width, {}};
-  std::vector<Point> line;
-  const std::string s = def.strokes;
-  std::size_t i = 0;
-  while (i <= s.size()) {
-    if (i == s.size() || s[i] == ';') {
-      if (!line.empty()) g.strokes.push_back(std::move(line));
-      line.clear();
-      ++i;
-      continue;
-    }
-    if (s[i] == ' ') {
-      ++i;
-      continue;
-    }
-    const std::size_t end = s.find_first_of(" ;", i);
-    const std::string tok = s.substr(i, end == std::string::npos ? std::string::npos : end - i);
-    i = end == std::string::npos ? s.size() : end;
-    const std::vector<double> v = numbers(tok);
-    if (tok[0] == '(' && v.size() == 6) {
-      const auto [cx, cy, rx, ry, a0, a1] = std::array{v[0], v[1], v[2], v[3], v[4], v[5]};
-      const int n = std::max(4, static_cast<int>(std::ceil(std::abs(a1 - a0) / 12.0)));
-      for (int k = 0; k <= n; ++k) {
-        const double a = (a0 + (a1 - a0) * k / n) * std::numbers::pi / 180.0;
-        line.push_back({cx + rx * std::cos(a), cy + ry * std::sin(a)});
+// The FreeType library and the two faces, opened once. FreeType objects are
+// not thread-safe, so every use holds `mutex`.
+class Fonts {
+ public:
+  Fonts() {
+    if (FT_Init_FreeType(&lib_) != 0) throw std::runtime_error("FreeType could not be initialised");
+    try {
+      regular_ = open(find_font(kRegularFile));
+      try {
+        bold_ = open(find_font(kBoldFile));
+      } catch (const std::runtime_error&) {
+        bold_ = nullptr;  // weights above 1.2 embolden the regular face instead
       }
-    } else if (v.size() == 2) {
-      line.push_back({v[0], v[1]});
+    } catch (...) {
+      FT_Done_FreeType(lib_);
+      throw;
     }
+    const double upem = regular_->units_per_EM;
+    cap_em_ = cap_height_units(regular_) / upem;
+    descent_em_ = -regular_->descender / upem;
   }
-  return g;
-}
+  ~Fonts() { FT_Done_FreeType(lib_); }  // closes the faces too
+  Fonts(const Fonts&) = delete;
+  Fonts& operator=(const Fonts&) = delete;
 
-// Parsed once, immutable afterwards.
-const std::unordered_map<char32_t, Glyph>& glyphs() {
-  static const std::unordered_map<char32_t, Glyph> table = [] {
-    std::unordered_map<char32_t, Glyph> t;
-    for (const GlyphDef& d : kGlyphs) t[d.code] = parse_glyph(d);
-    for (auto [sup, base] : kSuperscripts) {
-      Glyph g = t.at(base);
-      g.width *= kSuperScale;
-      for (auto& line : g.strokes)
-        for (Point& p : line) p = {p.x * kSuperScale, p.y * kSuperScale + kSuperRaise};
-      t[sup] = std::move(g);
-    }
-    return t;
-  }();
-  return table;
+  std::mutex mutex;
+  FT_Face regular() const { return regular_; }
+  FT_Face bold() const { return bold_; }
+  double cap_em() const { return cap_em_; }
+  double descent_em() const { return descent_em_; }
+
+  // Sets the face's em to size_px pixels (26.6 fixed point, 72 dpi: points
+  // are pixels); call with `mutex` held.
+  void set_size(FT_Face face, double size_px) {
+    const auto size = static_cast<FT_F26Dot6>(std::lround(size_px * 64));
+    FT_F26Dot6& current = face == bold_ ? bold_size_ : regular_size_;
+    if (current == size) return;
+    if (FT_Set_Char_Size(face, 0, size, 72, 72) != 0)
+      throw std::runtime_error("FreeType cannot set the text size " + std::to_string(size_px));
+    current = size;
+  }
+
+ private:
+  FT_Face open(const std::string& path) {
+    FT_Face face = nullptr;
+    if (const FT_Error e = FT_New_Face(lib_, path.c_str(), 0, &face); e != 0)
+      throw std::runtime_error("cannot read the font file " + path + " (FreeType error " +
+                               std::to_string(e) + ")");
+    return face;
+  }
+
+  // OS/2 sCapHeight where the table has it (version 2 and later), else the
+  // height of "H" (DejaVu's table is version 1).
+  static double cap_height_units(FT_Face face) {
+    const auto* os2 = static_cast<const TT_OS2*>(FT_Get_Sfnt_Table(face, FT_SFNT_OS2));
+    if (os2 && os2->version >= 2 && os2->sCapHeight > 0) return os2->sCapHeight;
+    FT_BBox box{};
+    if (FT_Load_Char(face, 'H', FT_LOAD_NO_SCALE | FT_LOAD_NO_HINTING) != 0 ||
+        FT_Outline_Get_BBox(&face->glyph->outline, &box) != 0 || box.yMax <= 0)
+      return 0.7 * face->units_per_EM;
+    return static_cast<double>(box.yMax);
+  }
+
+  FT_Library lib_ = nullptr;
+  FT_Face regular_ = nullptr, bold_ = nullptr;
+  FT_F26Dot6 regular_size_ = -1, bold_size_ = -1;
+  double cap_em_ = 0.7, descent_em_ = 0.2;
+};
+
+// Built on the first call (thread-safe); a failure throws and leaves it to
+// the next call.
+Fonts& fonts() {
+  static Fonts f;
+  return f;
 }
 
 // UTF-8 to code points; malformed sequences become U+FFFD.
@@ -253,55 +141,154 @@ std::u32string decode_utf8(std::string_view s) {
   return out;
 }
 
-const Glyph& glyph_for(char32_t c) {
-  const auto& t = glyphs();
-  const auto it = t.find(c);
-  return it != t.end() ? it->second : t.at(0xFFFD);
+// A string laid out along its baseline, in pixels from the first glyph's
+// origin: where each glyph's origin goes and the extent of the ink.
+struct PlacedGlyph {
+  FT_UInt index;
+  double pen;
+};
+struct Line {
+  std::vector<PlacedGlyph> glyphs;
+  double ink_lo = 0, ink_hi = 0;
+  double width() const { return ink_hi - ink_lo; }
+};
+
+// Unhinted advances plus kerning; call with the mutex held and the size set.
+Line lay_out(FT_Face face, const std::u32string& text) {
+  Line line;
+  double pen = 0;
+  FT_UInt prev = 0;
+  const bool kerning = FT_HAS_KERNING(face);
+  for (char32_t c : text) {
+    const FT_UInt index = FT_Get_Char_Index(face, c);  // 0: the missing-glyph box
+    FT_Vector kern{0, 0};
+    if (kerning && !line.glyphs.empty() &&
+        FT_Get_Kerning(face, prev, index, FT_KERNING_UNFITTED, &kern) == 0)
+      pen += kern.x / 64.0;
+    prev = index;
+    if (FT_Load_Glyph(face, index, kLoadFlags) != 0) continue;
+    const FT_GlyphSlot g = face->glyph;
+    const double advance = g->linearHoriAdvance / 65536.0;
+    double lo = pen, hi = pen + advance;  // a space: its advance
+    FT_BBox box{};
+    if (g->outline.n_points > 0 && FT_Outline_Get_BBox(&g->outline, &box) == 0)
+      lo = pen + box.xMin / 64.0, hi = pen + box.xMax / 64.0;
+    line.ink_lo = line.glyphs.empty() ? lo : std::min(line.ink_lo, lo);
+    line.ink_hi = line.glyphs.empty() ? hi : std::max(line.ink_hi, hi);
+    line.glyphs.push_back({index, pen});
+    pen += advance;
+  }
+  return line;
 }
 
-double width_units(const std::u32string& text) {
-  double w = 0;
-  for (char32_t c : text) w += glyph_for(c).width + kSpacing;
-  return text.empty() ? 0 : w - kSpacing;
+// One glyph's coverage: w x h bytes whose top-left pixel is (x, y).
+struct Bitmap {
+  int x = 0, y = 0, w = 0, h = 0;
+  std::vector<std::uint8_t> cov;
+};
+
+// Renders the glyph in the face's slot with its origin at image point
+// (gx, gy), turned a quarter turn counter-clockwise if asked.
+std::optional<Bitmap> render_glyph(FT_Face face, double gx, double gy, bool rotate90,
+                                   double embolden_px) {
+  FT_Outline& o = face->glyph->outline;
+  if (o.n_points == 0) return std::nullopt;
+  if (embolden_px != 0) FT_Outline_Embolden(&o, static_cast<FT_Pos>(std::lround(embolden_px * 64)));
+  if (rotate90) {
+    FT_Matrix quarter{0, -0x10000, 0x10000, 0};  // (x, y) -> (-y, x), y up
+    FT_Outline_Transform(&o, &quarter);
+  }
+  // FreeType's y runs up from the integer point (ix, iy); the fraction goes
+  // into the outline, so glyphs sit at their exact positions.
+  const double ix = std::floor(gx), iy = std::floor(gy);
+  FT_Outline_Translate(&o, static_cast<FT_Pos>(std::lround((gx - ix) * 64)),
+                       -static_cast<FT_Pos>(std::lround((gy - iy) * 64)));
+  if (FT_Render_Glyph(face->glyph, FT_RENDER_MODE_NORMAL) != 0) return std::nullopt;
+  const FT_Bitmap& b = face->glyph->bitmap;
+  if (b.pixel_mode != FT_PIXEL_MODE_GRAY || b.width == 0 || b.rows == 0) return std::nullopt;
+  Bitmap bm{static_cast<int>(ix) + face->glyph->bitmap_left,
+            static_cast<int>(iy) - face->glyph->bitmap_top, static_cast<int>(b.width),
+            static_cast<int>(b.rows), {}};
+  bm.cov.resize(static_cast<std::size_t>(bm.w) * bm.h);
+  const int pitch = std::abs(b.pitch);
+  for (int r = 0; r < bm.h; ++r) {
+    const int src = b.pitch > 0 ? r : bm.h - 1 - r;  // a negative pitch runs bottom-up
+    std::copy_n(b.buffer + static_cast<std::size_t>(src) * pitch, bm.w, &bm.cov[r * bm.w]);
+  }
+  return bm;
 }
+
+// Sums the glyphs' coverage into one mask and blends it once.
+void blend_coverage(Image& img, const std::vector<Bitmap>& maps, Color color) {
+  if (maps.empty()) return;
+  int x0 = img.width, y0 = img.height, x1 = 0, y1 = 0;
+  for (const Bitmap& m : maps)
+    x0 = std::min(x0, m.x), y0 = std::min(y0, m.y), x1 = std::max(x1, m.x + m.w),
+    y1 = std::max(y1, m.y + m.h);
+  x0 = std::max(x0, 0), y0 = std::max(y0, 0);
+  x1 = std::min(x1, img.width), y1 = std::min(y1, img.height);
+  if (x1 <= x0 || y1 <= y0) return;
+  const int w = x1 - x0;
+  std::vector<std::uint16_t> sum(static_cast<std::size_t>(w) * (y1 - y0), 0);
+  for (const Bitmap& m : maps)
+    for (int r = std::max(0, y0 - m.y); r < m.h && m.y + r < y1; ++r)
+      for (int c = std::max(0, x0 - m.x); c < m.w && m.x + c < x1; ++c)
+        sum[static_cast<std::size_t>(m.y + r - y0) * w + (m.x + c - x0)] += m.cov[r * m.w + c];
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x)
+      if (const int s = sum[static_cast<std::size_t>(y - y0) * w + (x - x0)]; s > 0)
+        blend_pixel(img, x, y, color, std::min(s, 255) / 255.0);
+}
+
+bool drawable_size(double size_px) { return size_px > 0 && size_px <= kMaxSize; }
 
 }  // namespace
 
 double text_width(std::string_view utf8, double size_px) {
-  return width_units(decode_utf8(utf8)) * size_px / kEm;
+  if (!drawable_size(size_px)) return 0;
+  Fonts& f = fonts();
+  const std::lock_guard lock(f.mutex);
+  f.set_size(f.regular(), size_px);
+  return lay_out(f.regular(), decode_utf8(utf8)).width();
 }
 
-double text_cap_height(double size_px) { return kCap * size_px / kEm; }
-double text_descent(double size_px) { return kDescent * size_px / kEm; }
+double text_cap_height(double size_px) { return fonts().cap_em() * size_px; }
+double text_descent(double size_px) { return fonts().descent_em() * size_px; }
+
+std::string text_font_file(bool bold) { return find_font(bold ? kBoldFile : kRegularFile); }
 
 double draw_text(Image& img, double x, double y, std::string_view utf8, double size_px, Color color,
                  Anchor anchor, bool rotate90, double weight) {
-  const std::u32string text = decode_utf8(utf8);
-  const double s = size_px / kEm;
-  const double w = width_units(text);
-  // Offset of the anchor from the text origin (left end of the baseline), units.
-  const double du = anchor.h == HAlign::left ? 0 : anchor.h == HAlign::center ? w / 2 : w;
-  const double dv = anchor.v == VAlign::baseline ? 0
-                    : anchor.v == VAlign::top    ? kCap
-                    : anchor.v == VAlign::middle ? kCap / 2
-                                                 : -kDescent;
-  std::vector<std::vector<Point>> lines;
-  double pen = 0;
-  for (char32_t c : text) {
-    const Glyph& g = glyph_for(c);
-    for (const auto& stroke : g.strokes) {
-      std::vector<Point> line;
-      for (const Point& p : stroke) {
-        const double u = (pen + p.x - du) * s, v = (p.y - dv) * s;
-        line.push_back(rotate90 ? Point{x - v, y - u} : Point{x + u, y - v});
-      }
-      lines.push_back(std::move(line));
-    }
-    pen += g.width + kSpacing;
+  if (!drawable_size(size_px) || !std::isfinite(x) || !std::isfinite(y)) return 0;
+  Fonts& f = fonts();
+  const std::lock_guard lock(f.mutex);
+  weight = std::isfinite(weight) ? std::clamp(weight, 0.5, 3.0) : 1.0;
+  FT_Face face = weight > 1.2 && f.bold() ? f.bold() : f.regular();
+  const double embolden = face == f.bold() ? 0 : (weight - 1) * kStemPerWeight * size_px;
+  f.set_size(face, size_px);
+  const Line line = lay_out(face, decode_utf8(utf8));
+  const double w = line.width();
+  // The anchor: along the text from the pen origin, and above the baseline.
+  const double along = line.ink_lo + (anchor.h == HAlign::left     ? 0
+                                      : anchor.h == HAlign::center ? w / 2
+                                                                   : w);
+  const double cap = f.cap_em() * size_px, descent = f.descent_em() * size_px;
+  const double up = anchor.v == VAlign::baseline ? 0
+                    : anchor.v == VAlign::top    ? cap
+                    : anchor.v == VAlign::middle ? cap / 2
+                                                 : -descent;
+  // Pen origin in the image; the text runs along +x, or up (-y) when rotated.
+  const double ox = rotate90 ? x + up : x - along, oy = rotate90 ? y + along : y + up;
+  constexpr double kFar = 1e7;  // keeps pixel coordinates in int range
+  std::vector<Bitmap> maps;
+  for (const PlacedGlyph& g : line.glyphs) {
+    const double gx = rotate90 ? ox : ox + g.pen, gy = rotate90 ? oy - g.pen : oy;
+    if (std::abs(gx) > kFar || std::abs(gy) > kFar) continue;
+    if (FT_Load_Glyph(face, g.index, kLoadFlags) != 0) continue;
+    if (auto bm = render_glyph(face, gx, gy, rotate90, embolden)) maps.push_back(std::move(*bm));
   }
-  const double thickness = std::max(1.0, size_px * 0.085) * weight;
-  stroke_polylines(img, lines, thickness, color);
-  return w * s;
+  blend_coverage(img, maps, color);
+  return w;
 }
 
 }  // namespace simsols::plot

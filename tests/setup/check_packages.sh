@@ -48,6 +48,8 @@ RUNTIME=(
   "exe:xvfb-run|tests/app/lab/test_lab.cpp runs the lab under it"
   "exe:Xvfb|xvfb-run starts it"
   "exe:xauth|xvfb-run calls it"
+  "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf|render/plot/font.cpp draws text with it"
+  "/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf|render/plot/font.cpp draws bold text with it"
 )
 
 cache() { sed -n "s/^$1:[A-Z]*=//p" "$BUILD/CMakeCache.txt"; }
