@@ -112,6 +112,24 @@ Color quantise(const std::array<double, 3>& rgb, double target_L) {
 
 // ---- the maps -------------------------------------------------------------
 
+// CIELAB of a linear sRGB colour.
+Lab linear_to_lab(double r, double g, double b) {
+  const double X = (0.4124564 * r + 0.3575761 * g + 0.1804375 * b) / kWhiteX;
+  const double Y = luminance(r, g, b);
+  const double Z = (0.0193339 * r + 0.1191920 * g + 0.9503041 * b) / kWhiteZ;
+  constexpr double d = 6.0 / 29;
+  const auto f = [](double v) { return v > d * d * d ? std::cbrt(v) : v / (3 * d * d) + 4.0 / 29; };
+  return {116 * f(Y) - 16, 500 * (f(X) - f(Y)), 200 * (f(Y) - f(Z))};
+}
+
+// CIELAB of an sRGB colour with channels in [0, 1].
+Lab srgb_to_lab(const std::array<double, 3>& c) {
+  const auto dec = [](double v) {
+    return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+  };
+  return linear_to_lab(dec(c[0]), dec(c[1]), dec(c[2]));
+}
+
 // Control points at t = i / (n - 1). L* is linear from the first to the last;
 // a* and b* pass through every point on a uniform Catmull-Rom spline.
 template <std::size_t N>
@@ -130,17 +148,88 @@ Lab ramp(const std::array<Lab, N>& p, double t) {
           cr(a.b, b.b, c.b, d.b)};
 }
 
-// Sequential: violet-blue (hue ~ -53°) turning through blue and teal to
-// green and a warm yellow; chroma ~60 at both ends, ~30 in the teal, where
-// sRGB is narrowest at that lightness.
-constexpr std::array<Lab, 5> kSequential{
-    {{14, 38, -50}, {33.25, 20, -53}, {52.5, -24, -17}, {71.75, -52, 32}, {91, -10, 72}}};
+// A uniform Catmull-Rom spline through all three coordinates of points at
+// t = i / (n - 1); beyond the ends the line through the last two points
+// continues, so the end segments keep their slope.
+template <std::size_t N>
+Lab spline(const std::array<Lab, N>& p, double t) {
+  constexpr int n = static_cast<int>(N);
+  const double x = t * (n - 1);
+  const int i = std::clamp(static_cast<int>(std::floor(x)), 0, n - 2);
+  const double s = x - i, s2 = s * s, s3 = s2 * s;
+  const auto P = [&](int k) -> Lab {
+    if (k < 0) return {2 * p[0].L - p[1].L, 2 * p[0].a - p[1].a, 2 * p[0].b - p[1].b};
+    if (k > n - 1)
+      return {2 * p[n - 1].L - p[n - 2].L, 2 * p[n - 1].a - p[n - 2].a, 2 * p[n - 1].b - p[n - 2].b};
+    return p[k];
+  };
+  const auto cr = [&](double p0, double p1, double p2, double p3) {
+    return 0.5 * (2 * p1 + (p2 - p0) * s + (2 * p0 - 5 * p1 + 4 * p2 - p3) * s2 +
+                  (3 * p1 - p0 - 3 * p2 + p3) * s3);
+  };
+  const Lab a = P(i - 1), b = P(i), c = P(i + 1), d = P(i + 2);
+  return {cr(a.L, b.L, c.L, d.L), cr(a.a, b.a, c.a, d.a), cr(a.b, b.b, c.b, d.b)};
+}
 
-// Diverging: both halves end at the same neutral centre, with the same L* at
-// their outer ends.
-constexpr Lab kNeutral{96.5, 0, 0};
-constexpr std::array<Lab, 3> kDivergingBlue{{{36, 22, -60}, {66.25, -4, -36}, kNeutral}};
-constexpr std::array<Lab, 3> kDivergingRed{{kNeutral, {66.25, 36, 30}, {36, 56, 40}}};
+// Sequential: viridis (colormap.h), its published 256-entry table read at
+// every 15th entry (t = k / 17), sRGB channels in [0, 1].
+constexpr double kViridis[18][3] = {
+    {0.267004, 0.004874, 0.329415}, {0.281924, 0.089666, 0.412415},
+    {0.280255, 0.165693, 0.476498}, {0.263663, 0.237631, 0.518762},
+    {0.237441, 0.305202, 0.541921}, {0.208623, 0.367752, 0.552675},
+    {0.182256, 0.426184, 0.557120}, {0.159194, 0.482237, 0.558073},
+    {0.137770, 0.537492, 0.554906}, {0.121148, 0.592739, 0.544641},
+    {0.128087, 0.647749, 0.523491}, {0.180653, 0.701402, 0.488189},
+    {0.274149, 0.751988, 0.436601}, {0.395174, 0.797475, 0.367757},
+    {0.535621, 0.835785, 0.281908}, {0.688944, 0.865448, 0.182725},
+    {0.845561, 0.887322, 0.099702}, {0.993248, 0.906157, 0.143936}};
+
+Lab viridis(double t) {
+  static const std::array<Lab, 18> points = [] {
+    std::array<Lab, 18> p{};
+    for (std::size_t k = 0; k < p.size(); ++k)
+      p[k] = srgb_to_lab({kViridis[k][0], kViridis[k][1], kViridis[k][2]});
+    return p;
+  }();
+  return spline(points, t);
+}
+
+// Diverging: Moreland's cool-warm (colormap.h), in his Msh coordinates:
+// M = |(L*, a*, b*)|, s = acos(L* / M) (0 for a grey), h = atan2(b*, a*).
+struct Msh {
+  double M, s, h;
+};
+
+Msh to_msh(Lab c) {
+  const double M = std::sqrt(c.L * c.L + c.a * c.a + c.b * c.b);
+  return {M, M > 0 ? std::acos(std::clamp(c.L / M, -1.0, 1.0)) : 0.0, std::atan2(c.b, c.a)};
+}
+
+Lab from_msh(Msh c) {
+  return {c.M * std::cos(c.s), c.M * std::sin(c.s) * std::cos(c.h),
+          c.M * std::sin(c.s) * std::sin(c.h)};
+}
+
+// The paper's "adjust hue": the hue a grey of magnitude M_grey takes on the
+// way to the saturated colour `sat`, turned away from it so that the hue
+// change stays even in perceptual distance.
+double adjust_hue(Msh sat, double M_grey) {
+  if (sat.M >= M_grey) return sat.h;
+  const double spin = sat.s * std::sqrt(M_grey * M_grey - sat.M * sat.M) / (sat.M * std::sin(sat.s));
+  return sat.h > -std::numbers::pi / 3 ? sat.h + spin : sat.h - spin;
+}
+
+// Linear in Msh from the cool end to a grey of M = max(88, the ends' M) at
+// t = 1/2 and on to the warm end; the grey's hue is adjusted towards the
+// end of each half.
+Lab cool_warm(double t) {
+  static const Msh cool = to_msh(srgb_to_lab({59 / 255.0, 76 / 255.0, 192 / 255.0}));
+  static const Msh warm = to_msh(srgb_to_lab({180 / 255.0, 4 / 255.0, 38 / 255.0}));
+  const Msh end = t < 0.5 ? cool : warm;
+  const double grey_M = std::max({cool.M, warm.M, 88.0}), grey_h = adjust_hue(end, grey_M);
+  const double u = std::abs(2 * t - 1);  // 0 at the centre, 1 at the end
+  return from_msh({grey_M + (end.M - grey_M) * u, end.s * u, grey_h + (end.h - grey_h) * u});
+}
 
 // Force: near-neutral warm light grey, orange, red, dark red.
 constexpr std::array<Lab, 4> kForce{
@@ -499,12 +588,12 @@ Color colormap_color(ColorMap map, double t) {
   t = std::isnan(t) ? 0.0 : std::clamp(t, 0.0, 1.0);
   switch (map) {
     case ColorMap::Diverging:
-      return from_lab(t < 0.5 ? ramp(kDivergingBlue, 2 * t) : ramp(kDivergingRed, 2 * t - 1));
+      return from_lab(cool_warm(t));
     case ColorMap::Force:
       return from_lab(ramp(kForce, t));
     case ColorMap::Sequential:
     default:
-      return from_lab(ramp(kSequential, t));
+      return from_lab(viridis(t));
   }
 }
 

@@ -1,27 +1,41 @@
 // Colour maps for the 3D renderer (particles coloured by speed, stress,
 // force or category) and the colour legend drawn over its frames.
 //
-// The continuous maps are designed here from a few control points in CIELAB
-// (D65), not copied from any published table. Lightness L* runs linearly in
-// t, so equal steps of value look like equal steps of colour and a map still
-// reads when printed in grey; a* and b* follow a Catmull-Rom spline through
-// the control points, so the hue turns without kinks. A point outside sRGB
-// would lose chroma at constant L* (the control points below stay inside).
-// Rounding to 8 bits picks, among the 8 floor/ceil combinations of the
-// channels, the one nearest the intended L*, which keeps lightness strictly
-// monotonic even between neighbouring entries of a 256-entry table.
+// Sequential and Diverging are published perceptual maps and Qualitative a
+// published set of colours; Categorical and Force are designed here from a
+// few control points in CIELAB (D65). Continuous maps are rounded to 8 bits
+// by picking, among the 8 floor/ceil combinations of the channels, the one
+// nearest the intended L*, which keeps lightness strictly monotonic even
+// between neighbouring entries of a 256-entry table.
 //
-//   Sequential   L* 14 -> 91: dark blue-violet, blue, teal, green, yellow.
-//   Diverging    L* 36 -> 96.5 -> 36: blue, near white, red. Each half is its
-//                own spline meeting at a neutral centre, and the lightness is
-//                symmetric about t = 1/2, so neither sign looks stronger.
+//   Sequential   viridis: S. van der Walt and N. Smith, "A Better Default
+//                Colormap for Matplotlib", SciPy 2015 (matplotlib's default
+//                map, dedicated to the public domain, CC0). Dark purple, blue,
+//                teal, green, yellow, L* 15 -> 91, designed in CAM02-UCS to be
+//                uniform, to read in grey and for the common colour-vision
+//                deficiencies. Its published 256-entry table at every 15th
+//                entry, joined by a Catmull-Rom spline in CIELAB: every entry
+//                of the table is matched within 0.55 ΔE*ab (mean 0.05).
+//   Diverging    cool-warm: K. Moreland, "Diverging Color Maps for Scientific
+//                Visualization", Advances in Visual Computing (ISVC 2009),
+//                LNCS 5876, pp. 92-103. Blue sRGB (59, 76, 192) through a grey
+//                (221, 221, 221), L* 88, to red (180, 4, 38), interpolated
+//                linearly in the paper's Msh space (magnitude, saturation,
+//                hue of CIELAB) with its hue adjustment at the grey; the
+//                ends have the same L* (37.7), so neither sign looks stronger.
+//                It reproduces the paper's 33-entry table to one level.
 //   Categorical  8 colours of similar chroma spread over hue, neighbours far
 //                apart in hue and lightness (smallest CIELAB distance ~38);
 //                mid lightness, so lit and shaded sides of a sphere both
 //                keep their hue.
 //   Force        L* 86 -> 27: light greyish orange to dark red, chroma
 //                growing with force, so strong chains stand out and weak
-//                ones recede.
+//                ones recede. L* runs linearly in t; a* and b* follow a
+//                Catmull-Rom spline through the control points. Chains are
+//                drawn over beads coloured by viridis or the categorical
+//                colours: a red ramp keeps them apart (cividis, the other
+//                published sequential map of its kind, runs blue to yellow
+//                like viridis).
 //   Qualitative  identities (one colour per grain): 20 of the 22 "colours of
 //                maximum contrast" of K. L. Kelly, Color Engineering 3(6),
 //                1965 (in their ISCC-NBS centroid sRGB values), without his
@@ -53,8 +67,8 @@
 namespace simsols::plot {
 
 enum class ColorMap {
-  Sequential,   // dark blue-violet -> teal -> green -> yellow, lightness increasing
-  Diverging,    // blue - near white - red, for signed values
+  Sequential,   // viridis: dark purple -> teal -> green -> yellow, lightness increasing
+  Diverging,    // Moreland's cool-warm: blue - light grey - red, for signed values
   Categorical,  // 8 distinct colours; category k -> colour k mod 8
   Force,        // light grey-orange -> dark red, darker and more saturated
   Qualitative,  // 20 distinct colours for identities; k -> colour qualitative_index(k)
