@@ -24,6 +24,7 @@
 #include "app/cli/interrupt.h"
 #include "solver/io/output.h"
 #include "solver/io/paraview.h"
+#include "app/cli/video.h"
 #include "app/experiment/progress.h"
 #include "app/experiment/run_cost.h"
 #include "solver/io/scene_toml.h"
@@ -48,6 +49,8 @@ struct RunOptions {
   bool explain = false;       // print the compiled effect slots and exit
   std::string frames_dir;     // --frames: PNG frames every `frames_every` steps
   long long frames_every = 0;
+  std::string video;          // --video: the frames encoded by ffmpeg (video.h)
+  int fps = 30;
   FrameFlags frame;
 };
 
@@ -273,6 +276,10 @@ void check_flags(const RunOptions& opt) {
   if (opt.frames_dir.empty() && opt.frames_every > 0)
     throw UsageError("missing_field", "--frames",
                      "--every needs --frames DIR (the folder for the PNG frames)");
+  if (!opt.video.empty() && opt.frames_dir.empty())
+    throw UsageError("missing_field", "--frames", "--video needs --frames DIR --every N (its frames)");
+  if (!opt.video.empty() && !opt.video.ends_with(".mp4"))
+    throw UsageError("out_of_range", "--video", "'" + opt.video + "': the video is an MP4 file, name it *.mp4");
   if (opt.duration != 0 && !(opt.duration > 0 && std::isfinite(opt.duration)))
     throw UsageError("out_of_range", "--duration", "must be a finite time > 0 s");
 }
@@ -379,7 +386,7 @@ int finish_triaxial(const TriaxialRunResult& r, const RunOptions& opt,
   return r.state.interrupted ? interrupt.exit_status() : 0;
 }
 
-int run(const RunOptions& opt) {
+int run_scene(const RunOptions& opt) {
   if (opt.explain) return explain(opt);
   check_flags(opt);
   if (opt.resume && programme_finished(opt.out_dir)) {
@@ -431,6 +438,13 @@ int run(const RunOptions& opt) {
   return run_plain(*sim, opt, frames.get(), interrupt);
 }
 
+// The run, then its frames as a video when --video asks.
+int run(const RunOptions& opt) {
+  const int status = run_scene(opt);
+  if (!opt.video.empty() && !opt.explain) std::printf("  %s\n", encode_video(opt.frames_dir, opt.video, opt.fps).message.c_str());
+  return status;
+}
+
 }  // namespace
 
 CommandRunner add_run_command(CLI::App& app) {
@@ -451,6 +465,9 @@ CommandRunner add_run_command(CLI::App& app) {
   cmd->add_option("--frames", opt->frames_dir, "Write PNG frames (offscreen) into this folder");
   cmd->add_option("--every", opt->frames_every, "Steps between frames (with --frames)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--video", opt->video,
+                  "With --frames: encode the frames into this MP4 file with ffmpeg (when installed)");
+  cmd->add_option("--fps", opt->fps, "Frames per second of --video (default 30)")->check(CLI::Range(1, 240));
   add_frame_flags(cmd, opt->frame);
   return [opt] { return run(*opt); };
 }

@@ -347,6 +347,43 @@ TEST(Cli, RunWritesAFrameEveryNSteps) {
   EXPECT_NE(bad.out.find("--every"), std::string::npos) << bad.out;
 }
 
+// --video hands the frames to ffmpeg in PATH: here a stand-in that logs its
+// arguments and writes the file it is given, so the test sees the command
+// and the rename of the finished file; without ffmpeg the frames stay and
+// the run says how to encode them. Bad --video flags are refused.
+TEST(Cli, RunEncodesItsFramesWithFfmpeg) {
+  const fs::path out = fresh_dir("video"), bin = out / "bin", frames = out / "frames";
+  fs::create_directories(bin);
+  std::ofstream(bin / "ffmpeg") << "#!/bin/sh\necho \"$@\" > " << (out / "ffmpeg_args.txt").string()
+                                << "\nfor a; do last=$a; done\necho video > \"$last\"\n";
+  fs::permissions(bin / "ffmpeg", fs::perms::owner_all);
+  const std::string args = "run " + kScene + " --duration 0.0005 --frames " + frames.string() +
+                           " --every 1000 --size 64x48 -q --video " + (out / "film.mp4").string();
+  const Result r = simsols::testing::shell("PATH=" + bin.string() + ":/usr/bin:/bin " + std::string(SIMSOLS_EXE) +
+                                           " " + args + " --out " + (out / "a").string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(read(out / "film.mp4"), "video\n");
+  EXPECT_FALSE(fs::exists(out / "film.mp4.part"));
+  const std::string logged = read(out / "ffmpeg_args.txt");
+  EXPECT_NE(logged.find("-framerate 30 -pattern_type glob -i " + frames.string() + "/frame_*.png"),
+            std::string::npos) << logged;
+  EXPECT_NE(r.out.find("video " + (out / "film.mp4").string()), std::string::npos) << r.out;
+  const Result none = simsols::testing::shell("PATH=/nonexistent " + std::string(SIMSOLS_EXE) + " " + args +
+                                              " --out " + (out / "b").string() + " --fps 12");
+  ASSERT_EQ(none.status, 0) << none.out;
+  EXPECT_NE(none.out.find("ffmpeg not found"), std::string::npos) << none.out;
+  EXPECT_NE(none.out.find("-framerate 12"), std::string::npos) << none.out;
+  EXPECT_FALSE(fs::is_empty(frames));
+  const Result no_frames = run("run " + kScene + " --out " + (out / "c").string() + " --video x.mp4");
+  EXPECT_EQ(no_frames.status, 2) << no_frames.out;
+  EXPECT_NE(no_frames.out.find("--frames"), std::string::npos) << no_frames.out;
+  const Result avi = run("run " + kScene + " --out " + (out / "d").string() + " --frames " + frames.string() +
+                         " --every 10 --video x.avi");
+  EXPECT_EQ(avi.status, 2) << avi.out;
+  EXPECT_NE(avi.out.find("x.avi"), std::string::npos) << avi.out;
+  EXPECT_FALSE(fs::exists(out / "c") || fs::exists(out / "d"));
+}
+
 // A scene's [view] section sets the defaults; flags override; a bad value
 // names the file and the field.
 TEST(Cli, SceneViewHintsAndOverrides) {
