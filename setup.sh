@@ -35,6 +35,8 @@ PACKAGES=(
   libfreetype-dev
   # DejaVu Sans, read at run time by render/plot/font.cpp and the lab's ImGui font
   fonts-dejavu-core
+  # VTK for Python: the test that reads a run's ParaView series back (tests/app/cli/test_paraview_vtk.py)
+  python3-vtk9
   # Eigen, header-only: a clump's principal axes of inertia (solver/scene/clump.cpp)
   libeigen3-dev
   xvfb
@@ -140,7 +142,7 @@ cmd_run() {
         --view three-quarter --mode chains --threshold 1 --size 1600x900 ||
       say "warning: no offscreen OpenGL here, so no specimen pictures (see docs/rendering.md)"
   fi
-  say "Results are in $PWD/$DEFAULT_OUT (summary.txt, shear.csv, shear_stress.png, shear_ratio.png, dilation.png, specimen.png, force_chains.png, particles_final.vtk for ParaView, checkpoint.bin, scene.toml)"
+  say "Results are in $PWD/$DEFAULT_OUT (summary.txt, shear.csv, shear_stress.png, shear_ratio.png, dilation.png, specimen.png, force_chains.png, paraview/*.pvd for ParaView, checkpoint.bin, scene.toml)"
   say "Resume with: $BIN run --resume --out $DEFAULT_OUT"
 }
 

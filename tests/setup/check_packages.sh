@@ -50,6 +50,8 @@ RUNTIME=(
   "exe:xauth|xvfb-run calls it"
   "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf|render/plot/font.cpp draws text with it"
   "/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf|render/plot/font.cpp draws bold text with it"
+  "exe:/usr/bin/python3|tests/app/cli/test_paraview_vtk.py runs under Debian's Python"
+  "/usr/lib/python3/dist-packages/vtkmodules/__init__.py|tests/app/cli/test_paraview_vtk.py reads the ParaView series with VTK"
 )
 
 cache() { sed -n "s/^$1:[A-Z]*=//p" "$BUILD/CMakeCache.txt"; }
