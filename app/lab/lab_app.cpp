@@ -10,11 +10,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
+#include <string>
 
 #include "solver/core/engine_options.h"
 #include "solver/common/errors.h"
 #include "app/lab/lab_script.h"
 #include "render/view/particle_bridge.h"
+#include "render/plot/font.h"
 #include "render/plot/png.h"
 #include "render/view/view_pack.h"
 
@@ -26,6 +29,29 @@ double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
 constexpr float kPanelWidth = 430;  // pixels at scale 1
+constexpr float kFontSize = 14;     // pixels: the em of the lab's text
+
+// The lab's text is DejaVu Sans, the face of the charts (render/plot/font.h):
+// ImGui's built-in font has no Greek letters. The atlas holds Latin-1,
+// Greek, general punctuation (′ – —), super- and subscripts (⁻ ₃) and the
+// minus and comparison signs, so labels can read τ/σ, σ′v, φ, ε_v, σ₃.
+void load_lab_font() {
+  static const ImWchar kRanges[] = {0x0020, 0x00FF, 0x0370, 0x03FF, 0x2000, 0x206F, 0x2070,
+                                    0x209F, 0x2212, 0x2212, 0x2264, 0x2265, 0};
+  ImGuiIO& io = ImGui::GetIO();
+  std::string problem;
+  try {
+    const std::string path = plot::text_font_file();
+    if (io.Fonts->AddFontFromFileTTF(path.c_str(), kFontSize, nullptr, kRanges)) return;
+    problem = "Dear ImGui could not read the font " + path;
+  } catch (const std::runtime_error& e) {
+    problem = e.what();
+  }
+  std::fprintf(stderr,
+               "simsols lab: %s; using ImGui's built-in font, which shows no Greek letters\n",
+               problem.c_str());
+  io.Fonts->AddFontDefault();
+}
 }  // namespace
 
 LabApp::LabApp(const LabOptions& options) : opt_(options) {
@@ -35,6 +61,7 @@ LabApp::LabApp(const LabOptions& options) : opt_(options) {
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the user's folder
   ImGui::StyleColorsDark();
+  load_lab_font();
   ImGui_ImplGlfw_InitForOpenGL(window_->handle(), true);
   ImGui_ImplOpenGL3_Init("#version 330");
   // The OpenCL device shares the window's GL context where it can.

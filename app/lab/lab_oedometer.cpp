@@ -119,8 +119,8 @@ std::string LabOedometer::state_lines() {
 // The compression curve e - log sigma'_v (every row) and the load
 // programme as it runs (the platen's stress against time).
 std::vector<LabPlot> LabOedometer::live_plots() const {
-  LabPlot e{"e - log sigma'v", "sigma'v (kPa, log)", "void ratio e"};
-  LabPlot load{"load programme", "time (s)", "sigma'v at the platen (kPa)"};
+  LabPlot e{"e – log σ′v", "σ′v (kPa, log)", "void ratio e"};
+  LabPlot load{"load programme", "time (s)", "σ′v at the platen (kPa)"};
   e.x_log = true;
   for (const OedometerRow& r : test_.rows()) {
     if (r.sigma_top > 0) {

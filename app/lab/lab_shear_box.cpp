@@ -73,7 +73,7 @@ class LabShearBox : public LabApparatus {
     if (test_.rows().empty()) return {};
     const ShearRow& r = test_.rows().back();
     char buf[160];
-    std::snprintf(buf, sizeof buf, "dx = %.3f mm, sigma = %.1f kPa, tau = %.1f kPa (%zu rows)",
+    std::snprintf(buf, sizeof buf, "dx = %.3f mm, σ = %.1f kPa, τ = %.1f kPa (%zu rows)",
                   r.displacement * 1e3, r.sigma * 1e-3, r.tau * 1e-3, test_.rows().size());
     return buf;
   }
@@ -115,8 +115,8 @@ class LabShearBox : public LabApparatus {
 // the summaries: the first peak of tau/sigma (shear_analysis.h).
 std::vector<LabPlot> LabShearBox::live_plots() const {
   const char* dx = "horizontal displacement (mm)";
-  LabPlot ratio{"tau/sigma", dx, "tau/sigma (-)"};
-  LabPlot tau{"shear stress", dx, "tau (kPa)"};
+  LabPlot ratio{"τ/σ", dx, "τ/σ (-)"};
+  LabPlot tau{"shear stress", dx, "τ (kPa)"};
   LabPlot dil{"dilation", dx, "vertical displacement (mm)"};
   for (const ShearRow& r : test_.rows()) {
     ratio.x.push_back(r.displacement * 1e3);

@@ -1,7 +1,7 @@
-// The triaxial test in the lab (lab_apparatus.h): "apply sigma3" settles the
+// The triaxial test in the lab (lab_apparatus.h): "Apply σ₃" settles the
 // beads and consolidates them isotropically, then the five servo plates
-// hold sigma3 (TriaxialTest::hold_when_consolidated) until "start
-// compression"; sigma3 and the strain rate can be changed at any stage.
+// hold σ₃ (TriaxialTest::hold_when_consolidated) until "start
+// compression"; σ₃ and the strain rate can be changed at any stage.
 #include <cstdio>
 #include <sstream>
 
@@ -33,8 +33,8 @@ class LabTriaxial : public LabApparatus {
     switch (s) {
       case LabStage::Loading:
         return test_.stage() == TriaxialTest::Stage::Settle ? "settling under gravity"
-                                                            : "consolidating to sigma3";
-      case LabStage::Loaded: return "consolidated, sigma3 held";
+                                                            : "consolidating to σ₃";
+      case LabStage::Loaded: return "consolidated, σ₃ held";
       case LabStage::Running: return "compressing";
       case LabStage::Done: return "compression finished";
       default: return to_string(s);
@@ -42,7 +42,7 @@ class LabTriaxial : public LabApparatus {
   }
   bool holding() const override { return test_.consolidated_now() && test_.holding(); }
 
-  const char* load_label() const override { return "Apply sigma3 (consolidate)"; }
+  const char* load_label() const override { return "Apply σ₃ (consolidate)"; }
   const char* start_label() const override { return "Start compression"; }
   std::string begin_loading() override { return {}; }
   std::string start(LabStage s) override {
@@ -54,17 +54,17 @@ class LabTriaxial : public LabApparatus {
       test_.hold_when_consolidated(false);
       return {};
     }
-    return s == LabStage::Prepared ? "apply sigma3 first (consolidate)"
+    return s == LabStage::Prepared ? "apply σ₃ first (consolidate)"
                                    : "the compression has already started";
   }
 
   std::vector<LabSetting> settings() const override {
-    return {{"stress", "sigma3", "kPa", test_.confining_stress() * 1e-3},
+    return {{"stress", "σ₃", "kPa", test_.confining_stress() * 1e-3},
             {"rate", "axial strain rate", "1/s", test_.strain_rate()}};
   }
   std::string set(const std::string& key, double value, Scene& scene) override {
     if (key == "stress") {
-      if (!(value > 0) || value > 1e6) return "sigma3 must be in (0, 1e6] kPa";
+      if (!(value > 0) || value > 1e6) return "σ₃ must be in (0, 1e6] kPa";
       if (scene.triaxial) scene.triaxial->confining_stress = value * 1e3;
       test_.set_confining_stress(value * 1e3);
       return {};
@@ -102,15 +102,15 @@ std::string LabTriaxial::progress_text() const {
   if (test_.rows().empty()) {
     const auto s = test_.checked_stress();
     std::snprintf(buf, sizeof buf,
-                  "plates at the last check: %.1f, %.1f, %.1f kPa (p' = %.1f kPa)\n"
-                  "consolidated at sigma3 = %.0f kPa: %s",
+                  "plates at the last check: %.1f, %.1f, %.1f kPa (p′ = %.1f kPa)\n"
+                  "consolidated at σ₃ = %.0f kPa: %s",
                   s[0] * 1e-3, s[1] * 1e-3, s[2] * 1e-3, (s[0] + s[1] + s[2]) / 3 * 1e-3,
                   test_.confining_stress() * 1e-3, test_.consolidated_now() ? "yes" : "not yet");
     return buf;
   }
   const TriaxialRow& r = test_.rows().back();
   std::snprintf(buf, sizeof buf,
-                "eps_a = %.3f %%, q = %.1f kPa, p' = %.1f kPa, eps_v = %.3f %%, e = %.4f\n"
+                "ε_a = %.3f %%, q = %.1f kPa, p′ = %.1f kPa, ε_v = %.3f %%, e = %.4f\n"
                 "%zu rows, I = %.2g",
                 100 * r.axial_strain, r.q * 1e-3, r.p * 1e-3, 100 * r.volumetric_strain,
                 r.void_ratio, test_.rows().size(), r.inertial_number);
@@ -141,8 +141,8 @@ std::string LabTriaxial::state_lines() {
 // q and eps_v against eps_a, and the path in e - log p'.
 std::vector<LabPlot> LabTriaxial::live_plots() const {
   LabPlot q{"deviator stress", "axial strain (%)", "q (kPa)"};
-  LabPlot v{"volumetric strain", "axial strain (%)", "eps_v (%), compression +"};
-  LabPlot e{"e - log p'", "p' (kPa, log)", "void ratio e"};
+  LabPlot v{"volumetric strain", "axial strain (%)", "ε_v (%), compression +"};
+  LabPlot e{"e – log p′", "p′ (kPa, log)", "void ratio e"};
   e.x_log = true;
   for (const TriaxialRow& r : test_.rows()) {
     q.x.push_back(100 * r.axial_strain);

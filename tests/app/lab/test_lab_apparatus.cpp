@@ -191,10 +191,10 @@ class LabApparatus : public ::testing::Test {
     auto def = read_state(p("default.state"));
     EXPECT_EQ(def["scene"], "built-in triaxial.toml");
 
-    // consolidated, sigma3 held: p' within 1 % of 100 kPa
+    // consolidated, σ₃ held: p' within 1 % of 100 kPa
     auto c = read_state(p("consolidated.state"));
     EXPECT_EQ(c["apparatus"], "triaxial");
-    EXPECT_EQ(c["stage"], "consolidated, sigma3 held");
+    EXPECT_EQ(c["stage"], "consolidated, σ₃ held");
     EXPECT_EQ(c["consolidated"], "1");
     EXPECT_EQ(c["rows"], "0");
     std::printf("[measure] consolidated after %s steps: p' %s kPa, sigma %s %s %s kPa\n",
