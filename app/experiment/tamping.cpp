@@ -21,6 +21,8 @@ using Log = std::function<void(const std::string&)>;
 // A platen that reaches its target pushing less than this found the layer
 // already denser than aimed: tamping compacts, it cannot loosen.
 constexpr double kLooseLayerStress = 1e3;  // Pa
+constexpr double kLiftSlower = 10;  // the platen rises this much slower than it came down
+
 constexpr const char* kLooseLayerNote =
     " (the layer settled denser than aimed, and tamping cannot loosen it: a higher "
     "specimen.preparation.friction settles the layers looser)";
@@ -98,9 +100,30 @@ Scene at_rest(const Scene& empty, const std::vector<GrainBody>& bodies, Simulati
   return s;
 }
 
+// Stops every wall where it is. A settled test starts its consolidation
+// at once (a triaxial cell's side plates then press the specimen on their
+// servos): tamping is done in a still mould.
+void hold_walls(Simulation& sim) {
+  const std::vector<Wall>& walls = sim.scene().walls;
+  for (int w = 0; w < static_cast<int>(walls.size()); ++w) {
+    if (walls[w].servo.enabled) sim.set_servo(w, WallServo{});
+    sim.set_wall_velocity(w, {0, 0, 0});
+  }
+}
+
+// Raises the platen at kTampSpeed / kLiftSlower until it no longer
+// touches the grains (or is back at `start`), `chunk` steps at a time. A
+// tamper lifted at once releases the packing's elastic energy at once and
+// throws grains up; unloaded slowly, the layer stays where it was tamped.
+void unload(Simulation& sim, int platen, double start, std::int64_t chunk) {
+  sim.set_wall_velocity(platen, {0, 0, kTampSpeed / kLiftSlower});
+  while (sim.wall_reactions()[platen].force[2] != 0 && sim.wall_point(platen)[2] < start) sim.advance(chunk);
+  sim.set_wall_velocity(platen, {0, 0, 0});
+}
+
 // Lets the layer settle, then brings the platen down from just above the
 // grains at kTampSpeed until it reaches `target` or pushes with
-// kTampStress, lifts it clear and lets the grains come to rest. `say`
+// kTampStress, lifts it off slowly and lets the grains come to rest. `say`
 // takes a progress line every 10 s.
 void tamp(Simulation& sim, LoadingProgramme& test, double target, double area, TampedLayer& out,
           const Log& say) {
@@ -117,6 +140,7 @@ void tamp(Simulation& sim, LoadingProgramme& test, double target, double area, T
     test.advance(2000);
     tell("settling");
   }
+  hold_walls(sim);
   const int platen = platen_wall(sim.scene());
   const Vec3 park = sim.wall_point(platen);
   const double top = specimen_top(sim);
@@ -136,6 +160,7 @@ void tamp(Simulation& sim, LoadingProgramme& test, double target, double area, T
   }
   sim.set_wall_velocity(platen, {0, 0, 0});
   sim.advance(chunk * 20);  // held a moment
+  unload(sim, platen, start, chunk * kLiftSlower);
   sim.set_wall_point(platen, park);
   const std::int64_t rest = std::llround(0.02 / sim.dt());  // the lifted layer springs back and rests
   sim.advance(rest);
@@ -174,7 +199,7 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
   std::vector<GrainBody> bodies;  // the unit bodies, once per grain (add_clump scales them)
   for (const Grain& g : scene.grains) bodies.push_back(grain_body(g));
   std::vector<TampedLayer> layers;
-  double floor = 0, stacked = 0;
+  double floor = 0, solid_total = 0;
   for (int k = 1; k <= n; ++k) {
     const size_t from = grains.size() * (k - 1) / n, to = grains.size() * k / n;
     TampedLayer l;
@@ -182,8 +207,9 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
     l.grains = static_cast<int>(to - from);
     l.target_void_ratio = layer_void_ratio(void_ratio, prep.undercompaction, k, n);
     const double solid = add_layer(built, scene, bodies, grains, from, to, floor, 1e-4);
-    stacked += solid * (1 + l.target_void_ratio) / area;
-    l.target_top = stacked;
+    // the layers below at the target (this one's tamping compacts them to it), this one looser
+    l.target_top = (solid_total * (1 + void_ratio) + solid * (1 + l.target_void_ratio)) / area;
+    solid_total += solid;
     Simulation sim(device, built);
     const std::unique_ptr<LoadingProgramme> test = make_test(sim);
     tamp(sim, *test, l.target_top, area, l, log);
@@ -198,9 +224,12 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
                   l.stress / 1e3, l.void_ratio);
     log(l.stress < kLooseLayerStress ? std::string(line) + kLooseLayerNote : std::string(line));
   }
-  char done[160];
-  std::snprintf(done, sizeof done, "tamped: e = %.4f to the highest grain's top at %.3f mm (aimed %.4f)",
-                layers.back().void_ratio, 1e3 * floor, void_ratio);
+  char done[200];
+  std::snprintf(done, sizeof done,
+                "tamped: e = %.4f at the platen's last stop, %.3f mm (aimed %.4f); unloaded, %.4f to the "
+                "highest grain's top at %.3f mm",
+                area * layers.back().platen_stop / solid_total - 1, 1e3 * layers.back().platen_stop, void_ratio,
+                layers.back().void_ratio, 1e3 * floor);
   log(done);
   if (built.shear_box && built.shear_box->split_height >= floor)
     throw SceneError("out_of_range", scene.source_path, 0, "shear_box.split_height",

@@ -11,12 +11,15 @@
 // under-compaction, falling linearly from U_1 at the bottom to 0 at the
 // top:
 //   U_j = U_1 (n - j) / (n - 1),   1 + e_j = (1 + e) / (1 - U_j)
-// and the platen stops at the top the layers up to k then need,
-//   H_k = sum_{j <= k} V_s,j (1 + e_j) / A,
-// V_s,j the layer's solid volume, A the cell's area. It also stops when it
-// pushes with more than kTampStress over the cell's area: a hand tamper's
-// force is limited, and a target denser than the grains allow must not
-// crush them.
+// and the platen stops at the top the layers up to k then need, those
+// below at the target (tamping layer k compacts them to it; Ladd's
+// h_k = (H/n)(k - 1 + 1 + U_k) for equal layers),
+//   H_k = [(1 + e) sum_{j < k} V_s,j + (1 + e_k) V_s,k] / A,
+// V_s,j the layer's solid volume, A the cell's area; the last stops at the
+// specimen's height for e. It also stops when it pushes with more than
+// kTampStress over the cell's area: a target denser than the grains allow
+// must not crush them (1 MPa presses glass-stiff grains into each other by
+// well under 0.1 % of their size, soft test beads by a few per cent).
 //
 // The layers are the poured column's grains, lowest first, n equal shares
 // (so every layer has the specimen's grading); each falls from just above
@@ -37,7 +40,7 @@
 
 namespace simsols {
 
-inline constexpr double kTampStress = 200e3;  // Pa: the most the platen pushes with
+inline constexpr double kTampStress = 1e6;  // Pa: the most the platen pushes with
 inline constexpr double kTampSpeed = 0.05;    // m/s: the platen's speed down and up
 
 struct TampedLayer {
