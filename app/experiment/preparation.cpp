@@ -23,14 +23,6 @@ namespace {
 
 using Log = std::function<void(const std::string&)>;
 
-// Renumbers ids 0, 1, ... in order of their values.
-void compact_ids(std::vector<int>& ids) {
-  std::vector<int> sorted = ids;
-  std::sort(sorted.begin(), sorted.end());
-  sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
-  for (int& id : ids) id = static_cast<int>(std::lower_bound(sorted.begin(), sorted.end(), id) - sorted.begin());
-}
-
 // The search's preparations, in order: at most kSearchTrials + 2.
 double longest_settle(const Scene& s) {
   if (s.shear_box) return s.shear_box->settle_time;
@@ -191,13 +183,12 @@ Packing measure_specimen(Simulation& sim) {
   GrainMap grains;
   if (!scene.clumps.empty()) {  // members' overlaps counted once
     grains.share = solid_volumes(scene);
-    const int clumps = static_cast<int>(scene.clumps.size());
+    int free_beads = static_cast<int>(scene.clumps.size());  // numbered after the clumps
     for (size_t i = 0; i < grains.share.size(); ++i) {
       const Particle& b = scene.particles[i];
       grains.share[i] /= 4.0 / 3.0 * 3.14159265358979323846 * std::pow(b.radius, 3);
-      grains.grain.push_back(b.clump >= 0 ? b.clump : clumps + static_cast<int>(i));
+      grains.grain.push_back(b.clump >= 0 ? b.clump : free_beads++);
     }
-    compact_ids(grains.grain);
   }
   return measure_packing(sample_contacts(sim), cell.length, cell.width, 0, grains);
 }
