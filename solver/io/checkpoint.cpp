@@ -97,7 +97,7 @@ Header read_header(std::ifstream& in, const std::string& path) {
     refuse(path, "format version " + std::to_string(h.version) +
                      ", written before the sliced neighbour lists; this build reads version " +
                      std::to_string(kCheckpointVersion) + ": rerun the run from its scene");
-  if (h.version != kCheckpointVersion && h.version != 5 && h.version != 6)
+  if (h.version > kCheckpointVersion || h.version < 5)
     refuse(path, "format version " + std::to_string(h.version) + ", this build reads version " +
                      std::to_string(kCheckpointVersion));
   h.payload = r.pod<std::uint64_t>();
@@ -122,6 +122,13 @@ void write_payload(Writer& w, Simulation& sim, const std::string& extra) {
     w.str(name);
     w.bytes(data.data(), data.size());
   }
+  // The shares of the last step: not state (every step writes them before
+  // reading them), but what the contact forces are read from (contact_list,
+  // the force chains), so a loaded run shows the forces it was saved with.
+  data.resize(s.share.bytes);
+  sim.model().device().read(s.share.get(), s.share.bytes, data.data());
+  w.str("share");
+  w.bytes(data.data(), data.size());
   w.str(extra);
 }
 
@@ -143,19 +150,6 @@ std::vector<char> regroup_slot_records(const std::vector<char>& in, size_t slots
   return out;
 }
 
-// Versions 5 and 6 kept the shares as two planes (every slot's force record,
-// then every slot's torque record); since version 7 a slot's two records lie
-// side by side.
-std::vector<char> interleave_shares(const std::vector<char>& in, size_t slots, size_t real) {
-  const size_t record = 4 * real;
-  if (in.size() < 2 * slots * record) return in;
-  std::vector<char> out(in.size(), 0);
-  for (size_t s = 0; s < slots; ++s)
-    for (size_t p = 0; p < 2; ++p)
-      std::memcpy(&out[(2 * s + p) * record], &in[(p * slots + s) * record], record);
-  return out;
-}
-
 // Version 5 also held the lower slots' partner ids (nbr_lo), which only the
 // list build needs: skipped.
 void read_buffers(Reader& r, Simulation& sim, std::uint32_t version) {
@@ -171,11 +165,14 @@ void read_buffers(Reader& r, Simulation& sim, std::uint32_t version) {
     if (version < 7 && name == "spring")
       data = regroup_slot_records(data, size_t(s.up_slots), sim.model().config().slice,
                                   sim.model().real_size());
-    if (version < 7 && name == "share")
-      data = interleave_shares(data, size_t(s.up_slots), sim.model().real_size());
     if (data.size() != buf->bytes) r.fail("buffer '" + name + "' has the wrong size");
     sim.model().device().write(buf->get(), data.size(), data.data());
   }
+  if (version < 8) return;  // no shares saved: the pair forces are known after a step
+  if (r.str() != "share") r.fail("buffer 'share' missing");
+  const std::vector<char> shares = r.bytes();
+  if (shares.size() != s.share.bytes) r.fail("buffer 'share' has the wrong size");
+  sim.model().device().write(s.share.get(), shares.size(), shares.data());
 }
 
 }  // namespace

@@ -2,22 +2,24 @@
 // continues bit for bit as if it had never stopped (same device, same
 // precision).
 //
-// File layout (format version 7, little endian):
+// File layout (format version 8, little endian):
 //   "SIMSOLS-CKPT"   12 bytes of magic
-//   version          u32 (7)
+//   version          u32 (8)
 //   payload bytes    u64
 //   payload CRC-32   u32 (zlib's crc32 of the payload)
 //   payload          the scene as exact TOML (to_toml), step, list builds,
 //                    next list check, late builds, the allocated upper and
 //                    lower neighbour-list slots and wall slots (three i32), every
-//                    dynamic buffer as (name, byte count, bytes), then the
+//                    dynamic buffer as (name, byte count, bytes), the
+//                    shares of the last step ("share", the pair forces the
+//                    contact list and the force chains read), then the
 //                    driver's `extra` (e.g. the shear test's loading program)
 // The whole file is verified (size and checksum) before anything is built
 // from it, so a damaged file is refused with the reason instead of
-// resuming from garbage. Files of versions 5 and 6 load: their history
-// records (spring) are regrouped by component, their shares interleaved,
-// and version 5's one extra buffer, the lower slots' partner ids, is
-// skipped. Files of versions 3 and 4 (fixed-capacity neighbour lists) are
+// resuming from garbage. Files of versions 5 to 7 load without shares
+// (their pair forces are known after the next step); those of 5 and 6 have
+// their history records (spring) regrouped by component, and version 5's
+// one extra buffer, the lower slots' partner ids, is skipped. Files of versions 3 and 4 (fixed-capacity neighbour lists) are
 // refused with that reason: rerun them from their scene.
 //
 // Files are written to a temporary name in the same folder and renamed, so
@@ -33,7 +35,7 @@
 
 namespace simsols {
 
-inline constexpr std::uint32_t kCheckpointVersion = 7;
+inline constexpr std::uint32_t kCheckpointVersion = 8;
 
 // `extra`: the state of whatever drives the run (e.g. the shear test's
 // loading program), stored verbatim and handed back by load_checkpoint.

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "solver/io/checkpoint.h"
+#include "solver/core/observe.h"
 #include "solver/common/errors.h"
 #include "solver/common/input_file.h"
 #include "solver/io/scene_toml.h"
@@ -197,13 +198,9 @@ std::vector<char> put_together(const Payload& p, std::uint32_t version) {
   return f;
 }
 
-// Versions 5 and 6 kept each history record whole (spring: x, y, z, w of a
-// slot together), the shares as a force plane and a torque plane, and version 5 one more buffer, the lower slots'
-// partner ids ("nbr_lo", before "mirror"). Files written that way load to
-// the state a version 7 file gives, and run on the same.
-TEST_F(CheckpointFile, VersionsFiveAndSixLoadToTheSameState) {
-  // a packed block of 18 beads, sliding and spinning: loaded springs in
-  // every slice
+// A packed block of 18 beads on a floor, sliding and spinning: loaded
+// springs in every slice, bead and wall contacts.
+Scene sliding_block() {
   Scene block = empty_scene(Precision::Float, glass(0.5, 0.3, 1e-5));
   for (int k = 0; k < 18; ++k)
     block.particles.push_back(sphere(1e-3,
@@ -212,7 +209,36 @@ TEST_F(CheckpointFile, VersionsFiveAndSixLoadToTheSameState) {
   block.walls.push_back(plane("floor", {0, 0, 0}, {0, 0, 1}));
   block.effects.gravity = {3, 2, -9.81};  // the block slides and settles
   validate_scene(block, "block");
-  auto sim = std::make_unique<Simulation>(default_device(), block);
+  return block;
+}
+
+// A loaded run shows the contact forces it was saved with (what the force
+// chains and the contact series draw), before it takes a step.
+TEST_F(CheckpointFile, LoadedRunsKeepTheirContactForces) {
+  Simulation sim(default_device(), sliding_block());
+  sim.advance(2000);
+  const std::vector<ContactForce> saved = contact_list(sim.model(), sim.state());
+  const auto pairs = std::count_if(saved.begin(), saved.end(),
+                                   [](const ContactForce& c) { return c.b >= 0; });
+  ASSERT_GE(pairs, 9) << "the block should rest on its contacts";
+  const fs::path f = dir_ / "forces.bin";
+  save_checkpoint(sim, f.string());
+  auto loaded = load_checkpoint(default_device(), f.string());
+  const std::vector<ContactForce> read = contact_list(loaded->model(), loaded->state());
+  ASSERT_EQ(read.size(), saved.size());
+  for (size_t c = 0; c < saved.size(); ++c) {
+    EXPECT_EQ(read[c].a, saved[c].a);
+    EXPECT_EQ(read[c].b, saved[c].b);
+    for (int a = 0; a < 3; ++a) EXPECT_EQ(read[c].force[a], saved[c].force[a]) << "contact " << c;
+  }
+}
+
+// Versions 5 to 7 kept no shares; 5 and 6 kept each history record whole
+// (spring: x, y, z, w of a slot together), and version 5 one more buffer,
+// the lower slots' partner ids ("nbr_lo", before "mirror"). Files written
+// that way load to the state a version 8 file gives, and run on the same.
+TEST_F(CheckpointFile, VersionsFiveToSevenLoadToTheSameState) {
+  auto sim = std::make_unique<Simulation>(default_device(), sliding_block());
   sim->advance(2000);
   const std::uint64_t at_save = sim->hash();
   const fs::path now_file = dir_ / "block.bin";
@@ -220,25 +246,20 @@ TEST_F(CheckpointFile, VersionsFiveAndSixLoadToTheSameState) {
   const size_t slots = size_t(sim->state().up_slots);
   const int slice = sim->model().config().slice;
   const size_t real = sim->model().real_size();
-  const Payload now = take_apart(read_bytes(now_file), sim->state().dynamic_buffers().size());
+  // the dynamic buffers and the shares
+  const Payload now = take_apart(read_bytes(now_file), sim->state().dynamic_buffers().size() + 1);
   for (const auto& [name, bytes] : now.buffers) {
     if (name != "spring") continue;
     EXPECT_NE(std::count(bytes.begin(), bytes.end(), char(0)), std::ptrdiff_t(bytes.size()))
         << "no spring loaded: the test would not see a misplaced record";
   }
   sim->advance(200);
-  for (std::uint32_t version : {5u, 6u}) {
+  for (std::uint32_t version : {5u, 6u, 7u}) {
     Payload old = now;
+    ASSERT_EQ(old.buffers.back().first, "share");
+    old.buffers.pop_back();
     for (auto& [name, bytes] : old.buffers) {
-      if (name == "share") {  // a slot's force and torque records -> two planes
-        std::vector<char> planes(bytes.size(), 0);
-        const size_t record = 4 * real;
-        for (size_t s = 0; s < slots; ++s)
-          for (size_t p = 0; p < 2; ++p)
-            std::memcpy(&planes[(p * slots + s) * record], &bytes[(2 * s + p) * record], record);
-        bytes = planes;
-      }
-      if (name != "spring") continue;
+      if (version == 7 || name != "spring") continue;
       std::vector<char> whole(bytes.size(), 0);
       const size_t plane = 4 * slots * real;
       for (size_t p = 0; p + plane <= bytes.size(); p += plane)
