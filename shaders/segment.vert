@@ -1,41 +1,57 @@
-// segment.vert — one screen-space quad per segment (instanced, 4 vertices).
-// Force chains: a_p0/a_p1 = (end xyz, |F_n|); the width in pixels is
-//   w = clamp(u_width_px * |F_n| / u_mean_force, 1, u_max_width_px)
-// and segments with |F_n| / u_mean_force < u_threshold collapse (not drawn).
+// segment.vert — one screen-space capsule per segment (instanced, 4 vertices
+// of a quad that covers it).
+// Force chains: a_p0 = (a.xyz, |F_n|), a_p1 = (b.xyz, kind: 0 bead pair,
+// 1 wall contact). A tube of world radius
+//   r = max(r_min, r_max |F_n| / F_max),   u_tube_radius = (r_max, r_min)
+// projected at the segment's ends (their mean, at least 0.75 px), drawn
+// where |F_n| >= F_thr; u_force_range = (F_thr, F_max). The colour
+// coordinate is t = (|F_n| - F_thr) / (F_max - F_thr).
 // Fixed lines (wall edges): u_fixed_width_px > 0 sets the width and
-// u_fixed_color the colour.
+// segment.frag's u_fixed_color the colour.
 layout(location = 0) in vec4 a_p0;
 layout(location = 1) in vec4 a_p1;
 
 uniform mat4 u_view;
 uniform mat4 u_proj;
 uniform vec2 u_viewport;     // pixels
-uniform float u_mean_force;
-uniform float u_threshold;
-uniform float u_width_px;
-uniform float u_max_width_px;
+uniform vec2 u_force_range;  // F_thr, F_max (N)
+uniform vec2 u_tube_radius;  // r_max, r_min (m)
 uniform float u_fixed_width_px;
 
-out float v_ratio;
+out vec2 v_local;       // pixels: along the segment from a, across from its axis
+flat out float v_length;  // pixels from a to b
+flat out float v_radius;  // pixels
+flat out float v_t;       // colour coordinate
+flat out float v_wall;    // 1 for a wall contact
 
 void main() {
-  float ratio = u_fixed_width_px > 0.0 ? 1.0 : a_p0.w / max(u_mean_force, 1e-30);
-  v_ratio = ratio;
+  bool fixed_width = u_fixed_width_px > 0.0;
+  float force = a_p0.w;
   vec4 c0 = u_proj * u_view * vec4(a_p0.xyz, 1.0);
   vec4 c1 = u_proj * u_view * vec4(a_p1.xyz, 1.0);
   vec2 s0 = c0.xy / c0.w * 0.5 * u_viewport;
   vec2 s1 = c1.xy / c1.w * 0.5 * u_viewport;
   vec2 d = s1 - s0;
   float len = length(d);
-  if ((u_fixed_width_px <= 0.0 && ratio < u_threshold) || len < 1e-6) {
+  if ((!fixed_width && force < u_force_range.x) || len < 1e-6 || c0.w <= 0.0 || c1.w <= 0.0) {
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: nothing drawn
     return;
   }
-  float w = u_fixed_width_px > 0.0 ? u_fixed_width_px
-                                   : clamp(u_width_px * ratio, 1.0, u_max_width_px);
-  vec2 nrm = vec2(-d.y, d.x) / len;
-  float side = (gl_VertexID & 2) != 0 ? 0.5 : -0.5;
-  vec4 c = (gl_VertexID & 1) != 0 ? c1 : c0;
-  c.xy += nrm * side * w / (0.5 * u_viewport) * c.w;
+  float r = max(u_tube_radius.y, u_tube_radius.x * force / max(u_force_range.y, 1e-30));
+  float px = r * u_proj[1][1] * 0.5 * u_viewport.y;  // pixels per unit of 1/w
+  float radius = fixed_width ? 0.5 * u_fixed_width_px : max(0.75, 0.5 * px * (1.0 / c0.w + 1.0 / c1.w));
+  vec2 along = d / len;
+  vec2 across = vec2(-along.y, along.x);
+  float end = (gl_VertexID & 1) != 0 ? 1.0 : 0.0;
+  float side = (gl_VertexID & 2) != 0 ? 1.0 : -1.0;
+  vec4 c = end > 0.0 ? c1 : c0;
+  vec2 offset = along * (end > 0.0 ? radius : -radius) + across * side * radius;
+  c.xy += offset / (0.5 * u_viewport) * c.w;
   gl_Position = c;
+  v_local = vec2(end * len + dot(offset, along), side * radius);
+  v_length = len;
+  v_radius = radius;
+  float span = u_force_range.y - u_force_range.x;
+  v_t = span > 0.0 ? clamp((force - u_force_range.x) / span, 0.0, 1.0) : 1.0;
+  v_wall = a_p1.w;
 }

@@ -12,6 +12,7 @@ uniform mat4 u_proj;
 uniform int u_ortho;
 uniform int u_lighting;
 uniform float u_alpha;
+uniform vec4 u_flat_color;  // a > 0: every bead in this colour (ghost beads)
 
 void main() {
   // Ray from the eye (or, orthographic, along -z through the quad point).
@@ -29,7 +30,7 @@ void main() {
   vec4 clip = u_proj * vec4(hit, 1.0);
   gl_FragDepth = 0.5 * (clip.z / clip.w) + 0.5;
 
-  vec3 base = map_value(v_value);
+  vec3 base = u_flat_color.a > 0.0 ? u_flat_color.rgb : map_value(v_value);
   vec3 color = base;
   if (u_lighting != 0) {
     vec3 n = (hit - v_centre) / v_radius;

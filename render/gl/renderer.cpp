@@ -74,9 +74,13 @@ void GeometryBuffers::upload_beads(const std::vector<float>& xyzr, const std::ve
   if (n) gl_.BufferSubData(GL_ARRAY_BUFFER, 0, n * 4, values.data());
   gl_.BindBuffer(GL_ARRAY_BUFFER, GLuint(prev));
   geom_.bead_count = n;
+  double sum = 0;
+  for (std::size_t k = 0; k < n; ++k) sum += xyzr[4 * k + 3];
+  geom_.bead_radius = n ? float(sum / double(n)) : 0.f;
 }
 
-void GeometryBuffers::upload_segments(const std::vector<float>& segments, float mean_force) {
+void GeometryBuffers::upload_segments(const std::vector<float>& segments, float mean_force,
+                                      float max_force) {
   const std::size_t n = segments.size() / 8;
   reserve(0, n);
   GLint prev = 0;
@@ -86,6 +90,7 @@ void GeometryBuffers::upload_segments(const std::vector<float>& segments, float 
   gl_.BindBuffer(GL_ARRAY_BUFFER, GLuint(prev));
   geom_.segment_count = n;
   geom_.mean_force = mean_force;
+  geom_.max_force = max_force;
 }
 
 // -------------------------------------------------------------- Renderer
@@ -311,6 +316,9 @@ void Renderer::draw_beads(ShaderProgram& p, const FrameGeometry& g, const ViewSe
   set_common(p, s, false);
   p.set("u_lighting", s.lighting ? 1 : 0);
   p.set("u_alpha", alpha);
+  // chains mode: every bead the same faint colour, so the chains carry the colour
+  const bool ghost = s.mode == ViewMode::Chains;
+  p.set("u_flat_color", s.ghost_color.r, s.ghost_color.g, s.ghost_color.b, ghost ? 1.f : 0.f);
   gl_.BindVertexArray(vao_);
   gl_.BindBuffer(GL_ARRAY_BUFFER, g.beads);
   gl_.EnableVertexAttribArray(0);
@@ -344,10 +352,12 @@ void Renderer::draw_opaque(const FrameGeometry& g, const ViewSettings& s) {
 
   if (s.chains_visible() && g.segment_count > 0) {
     set_common(*segment_, s, true);
-    segment_->set("u_mean_force", g.mean_force);
-    segment_->set("u_threshold", s.chain_threshold);
-    segment_->set("u_width_px", s.chain_width_px);
-    segment_->set("u_max_width_px", s.chain_max_width_px);
+    const float f_min = s.chain_threshold * g.mean_force;
+    segment_->set("u_force_range", f_min, std::max(g.max_force, f_min));
+    segment_->set("u_tube_radius", g.bead_radius * s.chain_radius,
+                  g.bead_radius * s.chain_min_radius);
+    segment_->set("u_wall_color", s.wall_chain_color.r, s.wall_chain_color.g, s.wall_chain_color.b,
+                  1.f);
     segment_->set("u_fixed_width_px", 0.f);
     draw_segments(g.segments, g.segment_count);
   }

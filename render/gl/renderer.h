@@ -17,8 +17,11 @@
 //
 // Formulas (docs/rendering.md):
 //   bead:  exact ray-sphere hit, Lambert + ambient + Blinn highlight
-//   chain: width_px = clamp(chain_width_px * F/F_mean, 1, chain_max_width_px),
-//          hidden where F/F_mean < chain_threshold; colour from the Force map
+//   chain: a tube (shaded screen-space capsule) of radius
+//          r = R_mean max(chain_min_radius, chain_radius F/F_max), drawn where
+//          F/F_mean >= chain_threshold; bead pairs coloured by the Force map
+//          at t = (F - F_thr)/(F_max - F_thr), F_thr = chain_threshold F_mean;
+//          wall contacts in wall_chain_color
 //   OIT:   C = (sum C_i a_i w_i / sum a_i w_i)(1 - prod(1 - a_i)) + C_0 prod(1 - a_i),
 //          w_i = a_i max(0.01, 100 (1 - d_i)^3), d_i the depth in the scene's range
 #pragma once
@@ -49,13 +52,15 @@ struct WallQuad {
 
 // GL buffers with what to draw. beads: float4 (x, y, z, radius) per bead;
 // values: one float per bead (the colour field); segments: two float4
-// (end xyz, |F_n|) per contact.
+// (a.xyz, |F_n|), (b.xyz, kind: 0 bead pair, 1 wall contact) per contact.
 struct FrameGeometry {
   GLuint beads = 0, values = 0;
   std::size_t bead_count = 0;
   GLuint segments = 0;
   std::size_t segment_count = 0;
-  float mean_force = 0;  // N, over all contacts (sets the chain widths)
+  float mean_force = 0;   // N, over all contacts (the chain threshold)
+  float max_force = 0;    // N, over all contacts (the widest chain, the top of the colour bar)
+  float bead_radius = 0;  // m, the beads' mean radius (the chains' width scale)
   std::vector<WallQuad> walls;
   glm::dvec3 lo{0}, hi{0};  // bounds of everything drawn (depth range of the OIT weight)
 };
@@ -67,14 +72,16 @@ std::optional<ViewMode> parse_view_mode(std::string_view s);
 struct ViewSettings {
   ViewMode mode = ViewMode::Opaque;
   float bead_alpha = 0.3f;          // transparent mode
-  float chains_bead_alpha = 0.06f;  // chains mode: faint beads around the chains
+  float chains_bead_alpha = 0.07f;  // chains mode: faint beads around the chains
+  glm::vec3 ghost_color{0.72f, 0.75f, 0.80f};  // chains mode: the faint beads' colour
   bool lighting = true;
   bool show_beads = true;
   bool show_walls = true;
   bool show_chains = false;  // overlay in any mode; always on in chains mode
-  float chain_threshold = 1.0f;  // F/F_mean below which a contact is not drawn
-  float chain_width_px = 2.0f;   // at F = F_mean
-  float chain_max_width_px = 10.0f;
+  float chain_threshold = 1.0f;   // F/F_mean below which a contact is not drawn
+  float chain_radius = 0.45f;     // tube radius at F_max, in mean bead radii
+  float chain_min_radius = 0.1f;  // the thinnest tube, in mean bead radii
+  glm::vec3 wall_chain_color{0.58f, 0.62f, 0.70f};  // bead-wall contacts
   plot::ColorMap bead_map = plot::ColorMap::Sequential;
   float value_min = 0, value_max = 1;
   plot::Color background{22, 24, 28};
@@ -95,8 +102,10 @@ class GeometryBuffers {
 
   // Makes room for `beads` beads and `segments` segments (GL_STREAM_DRAW).
   void reserve(std::size_t beads, std::size_t segments);
+  // Also sets the geometry's bead_radius (their mean radius).
   void upload_beads(const std::vector<float>& xyzr, const std::vector<float>& values);
-  void upload_segments(const std::vector<float>& segments, float mean_force);
+  // segments: 8 floats per contact (FrameGeometry); forces in N.
+  void upload_segments(const std::vector<float>& segments, float mean_force, float max_force);
   GLuint beads() const { return beads_; }
   GLuint values() const { return values_; }
   GLuint segments() const { return segments_; }

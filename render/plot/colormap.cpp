@@ -338,6 +338,18 @@ Texts legend_texts(const Legend& lg) {
   return t;
 }
 
+// The note's lines (split at '\n'); none for an empty note.
+std::vector<std::string> note_lines(const std::string& note) {
+  std::vector<std::string> lines;
+  std::size_t at = 0;
+  while (at < note.size()) {
+    const std::size_t end = std::min(note.find('\n', at), note.size());
+    lines.push_back(note.substr(at, end - at));
+    at = end + 1;
+  }
+  return lines;
+}
+
 // The legend laid out at `u` pixels per unit, relative to the panel's
 // top-left corner.
 struct Placed {
@@ -345,7 +357,8 @@ struct Placed {
   int w = 0, h = 0, margin = 0;
   Rect bar{0, 0, 0, 0};
   std::vector<Rect> swatches;
-  double title_y = 0, label_x = 0, note_y = 0;
+  double title_y = 0, label_x = 0;
+  std::vector<double> note_y;  // one baseline per line of the note
   std::vector<double> tick_y;
   double key_title_y = 0, key_x0 = 0, key_x1 = 0, key_label_x = 0;
   std::vector<double> key_y;
@@ -411,10 +424,11 @@ Placed place(const Legend& lg, const Texts& tx, double u) {
     right = pad + text_width(lg.title, p.title_font) + slack;
   }
   y = place_scale(lg, tx, p, y, right);
-  if (!lg.note.empty()) {
-    p.note_y = y + gap + text_cap_height(p.font);
-    y = p.note_y + text_descent(p.font);
-    right = std::max(right, pad + text_width(lg.note, p.font) + slack);
+  const std::vector<std::string> lines = note_lines(lg.note);
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    p.note_y.push_back(y + (k == 0 ? gap : 0.3 * gap) + text_cap_height(p.font));
+    y = p.note_y.back() + text_descent(p.font);
+    right = std::max(right, pad + text_width(lines[k], p.font) + slack);
   }
   if (!lg.width_key.empty()) {
     y += 1.5 * gap;
@@ -508,7 +522,9 @@ void render(Image& img, const Legend& lg, const Texts& tx, const Placed& p) {
     draw_text(img, p.bar.x0 - 1, p.title_y, lg.title, p.title_font, th.ink, {}, false, 1.1);
 
   render_scale(img, lg, tx, p, th);
-  if (!lg.note.empty()) draw_text(img, p.bar.x0 - 1, p.note_y, lg.note, p.font, th.ink);
+  const std::vector<std::string> lines = note_lines(lg.note);
+  for (std::size_t k = 0; k < lines.size(); ++k)
+    draw_text(img, p.bar.x0 - 1, p.note_y[k], lines[k], p.font, th.ink);
 
   if (!lg.width_key.empty()) {
     if (!lg.width_title.empty())

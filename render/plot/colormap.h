@@ -104,8 +104,8 @@ struct Legend {
   // Categorical only: category_labels[k] names category min + k; missing
   // labels are the category numbers.
   std::vector<std::string> category_labels;
-  // A line under the bar or the swatches, e.g. what a Qualitative strip
-  // means ("one colour per grain"). Qualitative legends show no values:
+  // Lines under the bar or the swatches (split at '\n'), e.g. what a
+  // Qualitative strip means ("one colour per grain"). Qualitative legends show no values:
   // min and max are not used.
   std::string note;
   enum class Corner { TopLeft, TopRight, BottomLeft, BottomRight } corner = Corner::TopRight;

@@ -202,27 +202,49 @@ std::string FrameExporter::describe() const {
   return s;
 }
 
+namespace {
+
+// The force chains' key: the colour bar in newtons from the threshold to the
+// largest force, what is drawn, and how wall contacts look.
+plot::Legend chain_legend(const render::ViewSettings& s, const render::FrameGeometry& g) {
+  plot::Legend legend;
+  legend.title = "normal force (N)";
+  legend.map = plot::ColorMap::Force;
+  legend.min = double(s.chain_threshold) * g.mean_force;
+  legend.max = std::max(double(g.max_force), legend.min);
+  char line[160];
+  std::snprintf(line, sizeof line, "drawn: F \u2265 %.3g \u00d7 mean (%.3g N)\nwidth \u221d force; grey: wall contacts",
+                double(s.chain_threshold), legend.min);
+  legend.note = line;
+  legend.dark = true;
+  return legend;
+}
+
+}  // namespace
+
 plot::Image FrameExporter::render() {
   if (!sim_) throw render::RenderError("FrameExporter::render before attach()");
-  const bool chains = opt_.settings.chains_visible();
   const render::ViewSettings s = update_view();
-  renderer_->draw(camera_, sim_->view->geometry(), s);
+  const render::FrameGeometry g = sim_->view->geometry();
+  renderer_->draw(camera_, g, s);
   plot::Image img = renderer_->read_pixels();
-  if (opt_.legend) {
-    plot::Legend legend;
-    legend.title = render::legend_title(opt_.field);
-    legend.note = render::legend_note(opt_.field);
-    legend.map = s.bead_map;
-    legend.min = s.value_min;
-    legend.max = s.value_max;
-    legend.dark = true;
-    if (chains)
-      for (double ratio : {1.0, 2.0, 4.0})
-        if (ratio >= s.chain_threshold)
-          legend.width_key.push_back(
-              {ratio, std::clamp(s.chain_width_px * ratio, 1.0, double(s.chain_max_width_px))});
-    if (!legend.width_key.empty()) legend.width_title = "normal force / mean";
-    plot::draw_legend(img, legend);
+  if (!opt_.legend) return img;
+  if (s.mode == render::ViewMode::Chains) {  // the beads are ghosts: the chains' key only
+    plot::draw_legend(img, chain_legend(s, g));
+    return img;
+  }
+  plot::Legend legend;
+  legend.title = render::legend_title(opt_.field);
+  legend.note = render::legend_note(opt_.field);
+  legend.map = s.bead_map;
+  legend.min = s.value_min;
+  legend.max = s.value_max;
+  legend.dark = true;
+  plot::draw_legend(img, legend);
+  if (s.chains_visible()) {
+    plot::Legend chains = chain_legend(s, g);
+    chains.corner = plot::Legend::Corner::BottomRight;
+    plot::draw_legend(img, chains);
   }
   return img;
 }

@@ -137,6 +137,7 @@ ViewPacker::ContactStats ParticleBridge::update_contacts(bool walls) {
   if (!shared_) read_into_gl(gl_, device_, segments_.get(), buffers_.segments(), stats.count * 32);
   buffers_.mutable_geometry().segment_count = stats.count;
   buffers_.mutable_geometry().mean_force = float(stats.mean_force);
+  buffers_.mutable_geometry().max_force = float(stats.max_force);
   return stats;
 }
 

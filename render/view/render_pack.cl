@@ -153,13 +153,14 @@ INLINE real3 to_wall(__global const real4* walls, __global const real4* wall_poi
 }
 #endif
 
-// Appends one segment (2 float4) if there is room; the counter counts all.
+// Appends one segment (2 float4: a and |F_n|, b and the kind, 0 for a bead
+// pair and 1 for a wall contact) if there is room; the counter counts all.
 INLINE void emit(__global float4* segments, volatile __global int* counter, int capacity,
-                 real3 a, real3 b, real fn) {
+                 real3 a, real3 b, real fn, float kind) {
   const int at = atomic_inc(counter);
   if (at >= capacity) return;
   segments[2 * at] = (float4)(convert_float3(a), (float)fn);
-  segments[2 * at + 1] = (float4)(convert_float3(b), (float)fn);
+  segments[2 * at + 1] = (float4)(convert_float3(b), kind);
 }
 
 // |F . e| for the unit vector along d (|F| if d vanishes).
@@ -201,7 +202,7 @@ __kernel void pack_contacts(__global const real4* pos, __global const real4* pos
       const real4 y = pos[j];
       const real4 y_lo = LO_AT(pos_lo, j);
       const real fn = normal_part(f.xyz, diff_pos(y, y_lo, x, x_lo));
-      emit(segments, counter, capacity, a, diff_pos(y, y_lo, origin, origin_lo), fn);
+      emit(segments, counter, capacity, a, diff_pos(y, y_lo, origin, origin_lo), fn, 0.0f);
       count += 1;
       sum += fn;
       most = fmax(most, fn);
@@ -214,7 +215,7 @@ __kernel void pack_contacts(__global const real4* pos, __global const real4* pos
       if (f.w == (real)0) continue;
       const real3 t = to_wall(walls, wall_point, wall_point_lo, w, x, x_lo);
       const real fn = normal_part(f.xyz, t);
-      emit(segments, counter, capacity, a, a + t, fn);
+      emit(segments, counter, capacity, a, a + t, fn, 1.0f);
       count += 1;
       sum += fn;
       most = fmax(most, fn);

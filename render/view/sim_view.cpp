@@ -72,10 +72,14 @@ SimulationView::SimulationView(const Gl& gl, Simulation& sim)
   // larger than the specimen so they can slide past each other: the view
   // frames the specimen, not them).
   glm::dvec3 lo(1e300), hi(-1e300);
+  double radii = 0;
   for (const Particle& p : scene.particles) {
     lo = glm::min(lo, to_glm(p.position) - p.radius);
     hi = glm::max(hi, to_glm(p.position) + p.radius);
+    radii += p.radius;
   }
+  if (!scene.particles.empty())  // the force chains' width scale
+    buffers_.mutable_geometry().bead_radius = float(radii / double(scene.particles.size()));
   const bool beads = lo.x <= hi.x;
   const glm::dvec3 reach = beads ? 0.5 * (hi - lo) : glm::dvec3(1e300);
   const glm::dvec3 wall_lo = beads ? lo - reach : glm::dvec3(-1e300),

@@ -112,7 +112,8 @@ class ViewPacker {
     double max_force = 0;   // N
   };
   // One segment per touching contact of the last force evaluation, 2 float4
-  // each: (a.xyz, |F_n|), (b.xyz, |F_n|) relative to origin(). A bead pair:
+  // each: (a.xyz, |F_n|), (b.xyz, kind) relative to origin(), kind 0 for a
+  // bead pair and 1 for a bead-wall contact. A bead pair:
   // a, b the centres of the lower and the higher index, F_n the component of
   // the contact force along b - a. A bead-wall contact (when `walls`): a the
   // centre, b the closest point of the wall, F_n the component along b - a.

@@ -281,10 +281,11 @@ TEST(Renderer, TransparencyBlendsTheDocumentedColours) {
   EXPECT_LE(worst, 2.0) << "largest channel error in 8-bit levels";
 }
 
-// A force chain between two beads lies on the projected segment with the
-// documented width: clamp(chain_width_px * F/F_mean, 1, max) pixels; below
-// the threshold it is not drawn.
-TEST(Renderer, ForceChainWhereProjectedWithDocumentedWidth) {
+// A force chain is a tube on the projected segment, as wide as the
+// projection of its documented diameter 2 R_mean max(chain_min_radius,
+// chain_radius F/F_max); below the threshold it is not drawn; a wall contact
+// has the wall-contact colour; a stronger chain is darker.
+TEST(Renderer, ForceChainTubeWhereProjectedWithDocumentedWidth) {
   const Gl& gl = context().gl();
   Renderer r(gl);
   const int W = 400, H = 300;
@@ -294,24 +295,27 @@ TEST(Renderer, ForceChainWhereProjectedWithDocumentedWidth) {
   ViewSettings s = flat_settings();
   s.show_beads = false;
   s.show_chains = true;
-  s.chain_threshold = 0.5f;
-  s.chain_width_px = 2.0f;
-  s.chain_max_width_px = 12.0f;
-  upload(buf, {{{0, 0, 0}, 0.01f, 0}});
-  // segment 1 horizontal at z = 0.02, F = 3 F_mean -> 6 px; segment 2 at
-  // z = -0.02, F = 1.5 F_mean -> 3 px; segment 3 vertical, F = 0.3 F_mean:
-  // under the threshold
-  const float mean = 2.0f;
-  const std::vector<float> seg = {-0.03f, 0, 0.02f, 6.0f, 0.03f, 0, 0.02f, 6.0f,
-                                  -0.03f, 0, -0.02f, 3.0f, 0.03f, 0, -0.02f, 3.0f,
-                                  0.045f, 0, -0.03f, 0.6f, 0.045f, 0, 0.03f, 0.6f};
-  buf.upload_segments(seg, mean);
+  s.chain_threshold = 0.5f;  // F >= 1 N drawn
+  s.chain_radius = 0.45f;
+  s.chain_min_radius = 0.1f;
+  upload(buf, {{{0, 0, 0}, 0.01f, 0}});  // R_mean = 10 mm: tubes of 4.5 mm at F_max
+  // pair 1 horizontal at z = 0.02, F = F_max = 6 N; pair 2 at z = -0.02,
+  // F = 3 N; pair 3 vertical at x = 0.045, F = 0.6 N: under the threshold;
+  // a wall contact vertical at x = -0.045, F = 6 N
+  const float mean = 2.0f, most = 6.0f;
+  const std::vector<float> seg = {-0.03f, 0, 0.02f,  6.0f, 0.03f,   0, 0.02f,  0,
+                                  -0.03f, 0, -0.02f, 3.0f, 0.03f,   0, -0.02f, 0,
+                                  0.045f, 0, -0.03f, 0.6f, 0.045f,  0, 0.03f,  0,
+                                  -0.045f, 0, -0.03f, 6.0f, -0.045f, 0, 0.03f, 1};
+  buf.upload_segments(seg, mean, most);
   buf.mutable_geometry().lo = {-0.05, -0.01, -0.05};
   buf.mutable_geometry().hi = {0.05, 0.01, 0.05};
   r.draw(cam, buf.geometry(), s);
   const plot::Image img = r.read_pixels();
-  for (auto [z, width] : {std::pair{0.02, 6}, std::pair{-0.02, 3}}) {
+  for (auto [z, radius] : {std::pair{0.02, 0.0045}, std::pair{-0.02, 0.00225}}) {
     const auto mid = cam.project({0, 0, z}, W, H).pixel;
+    const double width = std::abs(cam.project({0, 0, z + radius}, W, H).pixel.y -
+                                  cam.project({0, 0, z - radius}, W, H).pixel.y);
     const int x = int(mid.x);
     int covered = 0, first = -1;
     for (int y = 0; y < H; ++y)
@@ -320,22 +324,29 @@ TEST(Renderer, ForceChainWhereProjectedWithDocumentedWidth) {
         covered++;
         if (first < 0) first = y;
       }
-    EXPECT_NEAR(covered, width, 1) << "segment at z = " << z;
-    // centred on the projected line
-    EXPECT_NEAR(first + covered / 2.0, mid.y, 1.0) << "segment at z = " << z;
-    // the end points: inside, and nothing beyond them
+    EXPECT_NEAR(covered, width, 1.5) << "tube at z = " << z;
+    EXPECT_NEAR(first + covered / 2.0, mid.y, 1.0) << "tube at z = " << z;  // centred
+    // a round cap: past the end by its radius on the axis, not beyond
     const auto end = cam.project({0.03, 0, z}, W, H).pixel;
-    EXPECT_FALSE(is_background(img, int(end.x) - 2, int(mid.y)));
-    EXPECT_TRUE(is_background(img, int(end.x) + 3, int(mid.y)));
+    EXPECT_FALSE(is_background(img, int(end.x + 0.5 * width) - 2, int(mid.y)));
+    EXPECT_TRUE(is_background(img, int(end.x + 0.5 * width) + 2, int(mid.y)));
   }
   const auto weak = cam.project({0.045, 0, 0}, W, H).pixel;
   for (int dx = -3; dx <= 3; ++dx) EXPECT_TRUE(is_background(img, int(weak.x) + dx, int(weak.y)));
-  // thicker means stronger: the 3 F_mean chain is darker than the 1.5 one
-  const auto c1 = plot::pixel(img, int(cam.project({0, 0, 0.02}, W, H).pixel.x),
-                              int(cam.project({0, 0, 0.02}, W, H).pixel.y));
-  const auto c2 = plot::pixel(img, int(cam.project({0, 0, -0.02}, W, H).pixel.x),
-                              int(cam.project({0, 0, -0.02}, W, H).pixel.y));
+  // on its axis a tube shows its colour: the wall contact the wall-contact colour
+  const auto wall = cam.project({-0.045, 0, 0}, W, H).pixel;
+  const plot::Color w = plot::pixel(img, int(wall.x), int(wall.y));
+  EXPECT_NEAR(w.r, 255 * s.wall_chain_color.r, 3);
+  EXPECT_NEAR(w.g, 255 * s.wall_chain_color.g, 3);
+  EXPECT_NEAR(w.b, 255 * s.wall_chain_color.b, 3);
+  // stronger is darker (the Force map): the 6 N chain against the 3 N one
+  const auto p1 = cam.project({0, 0, 0.02}, W, H).pixel, p2 = cam.project({0, 0, -0.02}, W, H).pixel;
+  const auto c1 = plot::pixel(img, int(p1.x), int(p1.y)), c2 = plot::pixel(img, int(p2.x), int(p2.y));
   EXPECT_LT(c1.r + c1.g + c1.b, c2.r + c2.g + c2.b);
+  const plot::Color top = plot::colormap_color(plot::ColorMap::Force, 1.0);
+  EXPECT_NEAR(c1.r, top.r, 3);
+  EXPECT_NEAR(c1.g, top.g, 3);
+  EXPECT_NEAR(c1.b, top.b, 3);
 }
 
 // draw() leaves the caller's framebuffer, viewport, blending and depth state
@@ -437,7 +448,7 @@ GoldenScene golden_scene() {
       const glm::vec3 pa = g.beads[a].c, pb = g.beads[b].c;
       if (glm::length(pa - pb) > 1.2f * h) continue;
       const float f = 1.0f + 3.0f * std::abs(std::sin(float(a * 7 + b * 3)));
-      g.segments.insert(g.segments.end(), {pa.x, pa.y, pa.z, f, pb.x, pb.y, pb.z, f});
+      g.segments.insert(g.segments.end(), {pa.x, pa.y, pa.z, f, pb.x, pb.y, pb.z, 0.f});
     }
   const float L = 2.2f * h, H = 1.6f * h;
   g.walls = {{{0, 0, 0}, {L, 0, 0}, {0, L, 0}},
@@ -455,10 +466,13 @@ plot::Image render_golden(GlContext& ctx, ViewMode mode, double yaw_offset = 0,
   GeometryBuffers buf(ctx.gl());
   const GoldenScene g = golden_scene();
   upload(buf, g.beads);
-  float mean = 0;
-  for (size_t k = 3; k < g.segments.size(); k += 8) mean += g.segments[k];
+  float mean = 0, most = 0;
+  for (size_t k = 3; k < g.segments.size(); k += 8) {
+    mean += g.segments[k];
+    most = std::max(most, g.segments[k]);
+  }
   mean /= float(g.segments.size() / 8);
-  buf.upload_segments(g.segments, mean);
+  buf.upload_segments(g.segments, mean, most);
   buf.mutable_geometry().walls = g.walls;
   buf.mutable_geometry().lo = {-0.025, -0.025, 0};
   buf.mutable_geometry().hi = {0.025, 0.025, 0.035};

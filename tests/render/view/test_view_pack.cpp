@@ -192,7 +192,7 @@ size_t match_segments(const std::vector<float>& seg, size_t count,
   size_t matched = 0;
   for (size_t s = 0; s < count; ++s) {
     const float* q = &seg[8 * s];
-    EXPECT_EQ(q[3], q[7]) << "segment " << s << ": both ends carry |F_n|";
+    EXPECT_TRUE(q[7] == 0.0f || q[7] == 1.0f) << "segment " << s << ": kind " << q[7];
     size_t best = host.size();
     double best_err = 1e300;
     for (size_t h = 0; h < host.size(); ++h) {
@@ -211,6 +211,7 @@ size_t match_segments(const std::vector<float>& seg, size_t count,
     ++matched;
     EXPECT_NEAR(q[3], host[best].fn, 1e-4 * host[best].fn + 1e-6 * st.max)
         << "segment " << s << (host[best].wall ? " (wall)" : " (pair)");
+    EXPECT_EQ(q[7], host[best].wall ? 1.0f : 0.0f) << "segment " << s << ": its kind";
   }
   return matched;
 }
