@@ -18,6 +18,7 @@
 #include "solver/core/engine_options.h"
 #include "solver/io/checkpoint.h"
 #include "app/cli/commands.h"
+#include "app/experiment/test_title.h"
 #include "solver/scene/contact_model.h"
 #include "solver/common/errors.h"
 #include "render/view/frames.h"
@@ -63,7 +64,9 @@ class FrameSeries {
         exporter_(FrameOptions::resolve(flags_), engine) {}
   // The device that shares the exporter's GL context: the run's.
   const std::shared_ptr<Device>& device() const { return exporter_.device(); }
-  void after_steps(Simulation& sim, bool shearing) {
+  // `caption`: the test's state for the picture (LoadingProgramme::caption),
+  // empty for a plain run.
+  void after_steps(Simulation& sim, bool shearing, const std::string& caption = {}) {
     if (!attached_) {
       exporter_.attach(sim, flags_);
       std::filesystem::create_directories(dir_);
@@ -75,6 +78,7 @@ class FrameSeries {
     if (shearing && !shearing_) exporter_.set_reference();
     shearing_ = shearing;
     if (sim.steps() < next_) return;
+    exporter_.set_caption(test_title(sim.scene()), caption);
     char name[64];
     std::snprintf(name, sizeof name, "frame_%09lld.png", static_cast<long long>(sim.steps()));
     exporter_.write((std::filesystem::path(dir_) / name).string());
@@ -330,7 +334,9 @@ ShearRunOptions shear_options(const RunOptions& opt, const std::shared_ptr<Devic
   shear.stop_requested = interrupt.stop_function();
   if (frames) {
     shear.chunk_steps = std::min(2000LL, frames->every());
-    shear.after_chunk = [frames](Simulation& s, bool shearing) { frames->after_steps(s, shearing); };
+    shear.after_chunk = [frames](Simulation& s, const LoadingProgramme& test) {
+      frames->after_steps(s, test.measuring(), test.caption());
+    };
   }
   return shear;
 }

@@ -17,6 +17,9 @@
 #include "solver/io/checkpoint.h"
 #include "solver/common/input_file.h"
 #include "app/cli/commands.h"
+#include "app/experiment/preparation.h"
+#include "app/experiment/programme_run.h"
+#include "app/experiment/test_title.h"
 #include "solver/common/errors.h"
 #include "render/view/frames.h"
 #include "solver/io/scene_toml.h"
@@ -42,6 +45,16 @@ void check_output_path(const std::string& out, const char* flag) {
     throw UsageError("io", out, 0, flag, "the folder '" + dir.string() + "' does not exist");
 }
 
+// The caption of a checkpoint's test: its programme restored from the
+// checkpoint's driver state (empty for a run without an apparatus).
+std::string test_caption(Simulation& sim, const std::string& state, const std::string& path) {
+  const Scene& s = sim.scene();
+  if (!s.shear_box && !s.triaxial && !s.oedometer) return "";
+  const std::unique_ptr<LoadingProgramme> test = make_test(sim);
+  restore_programme(*test, state, std::filesystem::path(path).parent_path().string());
+  return test->caption();
+}
+
 int snapshot(const SnapshotOptions& opt) {
   FrameFlags flags = opt.frame;
   gl_from_environment(flags);
@@ -60,11 +73,13 @@ int snapshot(const SnapshotOptions& opt) {
 
   // Before the simulation: it opens the device that shares its GL context.
   FrameExporter exporter(frame, engine_options_from_environment());
+  std::string programme;  // a checkpoint's test state
   std::unique_ptr<Simulation> sim =
-      checkpoint ? load_checkpoint(exporter.device(), opt.input)
+      checkpoint ? load_checkpoint(exporter.device(), opt.input, &programme)
                  : std::make_unique<Simulation>(exporter.device(), scene);
   if (opt.steps > 0) sim->advance(opt.steps);
   exporter.attach(*sim, flags);
+  exporter.set_caption(test_title(sim->scene()), checkpoint ? test_caption(*sim, programme, opt.input) : "");
   frame = FrameOptions::resolve(flags, &sim->scene());  // as attach() applied it
   exporter.write(opt.out);
   std::fprintf(stderr, "[snapshot] %s\n", exporter.describe().c_str());

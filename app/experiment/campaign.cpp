@@ -1,4 +1,5 @@
 #include "app/experiment/campaign.h"
+#include "app/experiment/test_title.h"
 
 #include <algorithm>
 #include <chrono>
@@ -76,7 +77,7 @@ void check_spec(const Scene& base, const std::string& base_name, const CampaignS
 // A test finished earlier, read back.
 void keep_finished(CampaignTest& t) {
   t.result.rows = parse_shear_rows_csv(read_text(t.dir / "shear.csv"));
-  t.result.summary = reanalysed(t.dir, t.scene.name, t.result.rows);
+  t.result.summary = reanalysed(t.dir, test_title(t.scene), t.result.rows);
   t.result.finished = true;
 }
 

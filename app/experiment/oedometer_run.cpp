@@ -1,4 +1,5 @@
 #include "app/experiment/oedometer_run.h"
+#include "app/experiment/test_title.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -28,7 +29,7 @@ class OedometerOutputs : public ProgrammeOutputs {
   void write_results(Simulation& sim, const fs::path& dir, double wall_seconds) override {
     OedometerSummary summary = test_.summary();
     summary.wall_seconds = wall_seconds;
-    write_oedometer_plots(dir.string(), sim.scene().name, test_.rows(), summary);
+    write_oedometer_plots(dir.string(), test_title(sim.scene()), test_.rows(), summary);
     write_file_atomic((dir / "summary.txt").string(), oedometer_summary_text(summary));
   }
 

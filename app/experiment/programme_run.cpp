@@ -115,7 +115,7 @@ ProgrammeRunState drive_programme(Simulation& sim, ProgrammeOutputs& out,
       out.save_rows(dir);
       throw;
     }
-    if (opt.after_chunk) opt.after_chunk(sim, test.measuring());
+    if (opt.after_chunk) opt.after_chunk(sim, test);
     if (!announced && test.measuring()) {
       announced = true;
       if (!opt.quiet) out.on_measuring(opt.label);

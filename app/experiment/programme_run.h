@@ -30,9 +30,9 @@ struct ProgrammeRunOptions {
   long long stop_after = 0;    // stop (checkpointed) after this many steps; 0 = no limit
   double checkpoint_seconds = 60;  // wall time between checkpoints
   // Called after every chunk of at most `chunk_steps` steps (frame export):
-  // the simulation and whether the measured stage (LoadingProgramme::
-  // measuring) has begun.
-  std::function<void(Simulation&, bool measuring)> after_chunk;
+  // the simulation and the programme (whether its measured stage has begun,
+  // its caption).
+  std::function<void(Simulation&, const LoadingProgramme&)> after_chunk;
   long long chunk_steps = 2000;
   // Polled between chunks (Ctrl-C, interrupt.h): when it answers true the
   // run writes its checkpoint and rows and returns with `interrupted`.

@@ -1,4 +1,5 @@
 #include "app/experiment/shear_run.h"
+#include "app/experiment/test_title.h"
 
 #include <unistd.h>
 
@@ -37,7 +38,7 @@ class ShearOutputs : public ProgrammeOutputs {
   void write_results(Simulation& sim, const fs::path& dir, double wall_seconds) override {
     ShearSummary summary = test_.summary();
     summary.wall_seconds = wall_seconds;
-    write_shear_plots(dir.string(), sim.scene().name, test_.rows(), summary);
+    write_shear_plots(dir.string(), test_title(sim.scene()), test_.rows(), summary);
     write_file_atomic((dir / "summary.txt").string(), shear_summary_text(summary));
   }
 

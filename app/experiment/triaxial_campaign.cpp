@@ -1,4 +1,5 @@
 #include "app/experiment/triaxial_campaign.h"
+#include "app/experiment/test_title.h"
 
 #include <cstdio>
 
@@ -61,7 +62,7 @@ void keep_finished(TriaxialCampaignTest& t) {
   analyse_triaxial_rows(t.result.rows, s);
   // Today's analysis of the rows, written back when it reads them otherwise.
   if (const std::string now = triaxial_summary_text(s); now != text) {
-    write_triaxial_plots(t.dir.string(), t.scene.name, t.result.rows, s);
+    write_triaxial_plots(t.dir.string(), test_title(t.scene), t.result.rows, s);
     write_file_atomic((t.dir / "summary.txt").string(), now);
   }
   t.result.state.finished = true;

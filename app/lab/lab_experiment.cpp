@@ -1,4 +1,5 @@
 #include "app/lab/lab_experiment.h"
+#include "app/experiment/test_title.h"
 
 #include "app/experiment/preparation.h"
 
@@ -280,7 +281,7 @@ std::string LabExperiment::export_results(const std::string& dir) {
   if (!app_ || app_->rows() == 0) return "no rows to export yet";
   try {
     std::filesystem::create_directories(dir);
-    app_->export_results(std::filesystem::path(dir).string(), scene_.name);
+    app_->export_results(std::filesystem::path(dir).string(), test_title(scene_));
     return {};
   } catch (const std::exception& e) {
     return e.what();

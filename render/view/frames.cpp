@@ -10,6 +10,7 @@
 #include "solver/common/did_you_mean.h"
 #include "solver/common/errors.h"
 #include "render/plot/png.h"
+#include "render/view/frame_caption.h"
 #include "render/view/sim_view.h"
 #include "solver/core/simulation.h"
 
@@ -196,6 +197,19 @@ void FrameExporter::set_reference() {
   if (sim_) sim_->view->packer().set_reference();
 }
 
+void FrameExporter::set_caption(std::string title, std::string state) {
+  title_ = std::move(title);
+  state_ = std::move(state);
+}
+
+void FrameExporter::annotate(plot::Image& img) const {
+  char when[96];
+  std::snprintf(when, sizeof when, "step %lld · t = %.4g s", static_cast<long long>(sim_->sim->steps()),
+                sim_->sim->time());
+  render::draw_caption(img, {title_, state_.empty() ? std::string(when) : state_ + " · " + when});
+  render::draw_scale_bar(img, camera_);
+}
+
 std::string FrameExporter::describe() const {
   std::string s = context_->description();
   if (sim_) s += "; particle buffers: " + sim_->view->bridge().path();
@@ -229,6 +243,7 @@ plot::Image FrameExporter::render() {
   renderer_->draw(camera_, g, s);
   plot::Image img = renderer_->read_pixels();
   if (!opt_.legend) return img;
+  annotate(img);
   if (s.mode == render::ViewMode::Chains) {  // the beads are ghosts: the chains' key only
     plot::draw_legend(img, chain_legend(s, g));
     return img;

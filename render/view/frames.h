@@ -98,6 +98,10 @@ class FrameExporter {
   void attach(Simulation& sim, const FrameFlags& flags);
   // The reference for the displacement field: the current positions.
   void set_reference();
+  // The caption of the next frames (with the legend: not under
+  // --no-legend): the test's title and its state, to which the step and
+  // the simulated time are added. A scale bar comes with it.
+  void set_caption(std::string title, std::string state);
   render::Camera& camera() { return camera_; }
 
   plot::Image render();
@@ -112,6 +116,8 @@ class FrameExporter {
 
  private:
   void write_alioscopy(const std::string& path);
+  // The caption and the scale bar.
+  void annotate(plot::Image& img) const;
   // Packs the current state for drawing; the settings with the colour range.
   render::ViewSettings update_view();
 
@@ -123,6 +129,7 @@ class FrameExporter {
   struct Attached;
   std::unique_ptr<Attached> sim_;
   render::Camera camera_;
+  std::string title_, state_;
 };
 
 }  // namespace simsols

@@ -60,6 +60,9 @@ class LoadingProgramme {
   }
   // A one-line description of where the test is, for progress lines.
   virtual std::string status() const = 0;
+  // What a picture of the test says of its state, with the symbols of the
+  // plots: "δ = 2.62 mm, τ/σ = 0.157, σ = 160 kPa" (UTF-8).
+  virtual std::string caption() const = 0;
 
   // The programme's own state (not the Simulation's), for checkpoints.
   virtual std::string save_state() const = 0;

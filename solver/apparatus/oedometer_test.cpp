@@ -178,6 +178,18 @@ OedometerTest::StepCount OedometerTest::step_count() const {
   return c;
 }
 
+std::string OedometerTest::caption() const {
+  char buf[200];
+  if (rows_.empty()) {
+    std::snprintf(buf, sizeof buf, "%s", stage_name());
+  } else {
+    const OedometerRow& r = rows_.back();
+    std::snprintf(buf, sizeof buf, "σᵥ = %.1f kPa, e = %.4f, K₀ = %.3f", r.sigma_top * 1e-3,
+                  r.void_ratio, r.k0);
+  }
+  return buf;
+}
+
 std::string OedometerTest::status() const {
   char buf[200];
   if (stage_ == Stage::Load && !rows_.empty()) {

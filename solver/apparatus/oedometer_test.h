@@ -51,6 +51,7 @@ class OedometerTest : public LoadingProgramme {
   bool measuring() const override { return stage_ == Stage::Load; }
   StepCount step_count() const override;
   std::string status() const override;
+  std::string caption() const override;
   std::string save_state() const override;
   void restore_state(const std::string& text) override;  // throws std::runtime_error
 

@@ -347,6 +347,18 @@ std::string ShearTest::status() const {
   return buf;
 }
 
+std::string ShearTest::caption() const {
+  char buf[200];
+  if (rows_.empty()) {
+    std::snprintf(buf, sizeof buf, "%s", phase_name(phase_));
+  } else {
+    const ShearRow& r = rows_.back();
+    std::snprintf(buf, sizeof buf, "δ = %.2f mm, τ/σ = %.3f, σ = %.1f kPa", r.displacement * 1e3,
+                  r.sigma > 0 ? r.tau / r.sigma : 0, r.sigma * 1e-3);
+  }
+  return buf;
+}
+
 ShearSummary ShearTest::summary() const {
   ShearSummary s;
   s.normal_stress_target = sigma_target_;

@@ -59,6 +59,7 @@ class ShearTest : public LoadingProgramme {
   bool measuring() const override { return phase_ == ShearPhase::Shear; }
   StepCount step_count() const override;
   std::string status() const override;
+  std::string caption() const override;
   std::string save_state() const override;
   void restore_state(const std::string& text) override;  // throws std::runtime_error when malformed
 

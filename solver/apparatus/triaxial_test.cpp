@@ -325,6 +325,18 @@ TriaxialTest::StepCount TriaxialTest::step_count() const {
   return c;
 }
 
+std::string TriaxialTest::caption() const {
+  char buf[200];
+  if (rows_.empty()) {
+    std::snprintf(buf, sizeof buf, "%s", stage_name());
+  } else {
+    const TriaxialRow& r = rows_.back();
+    std::snprintf(buf, sizeof buf, "εₐ = %.2f %%, q/p′ = %.3f, φ′ = %.1f°", r.axial_strain * 100,
+                  r.p > 0 ? r.q / r.p : 0, r.friction_angle);
+  }
+  return buf;
+}
+
 std::string TriaxialTest::status() const {
   char buf[200];
   if (stage_ == Stage::Compress && !rows_.empty()) {

@@ -174,6 +174,7 @@ class FakeProgramme : public LoadingProgramme {
   bool measuring() const override { return true; }
   StepCount step_count() const override { return count; }
   std::string status() const override { return "shear dx = 1.000/3.000 mm"; }
+  std::string caption() const override { return ""; }
   std::string save_state() const override { return ""; }
   void restore_state(const std::string&) override {}
 };

@@ -1,6 +1,6 @@
 // What the renderer draws of a running simulation (render/view/sim_view.h):
 // the force chains of a loaded column show the column's contacts and
-// nothing else.
+// nothing else; the caption's scale bar.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +8,7 @@
 
 #include "render/gl/gl_context.h"
 #include "render/gl/renderer.h"
+#include "render/view/frame_caption.h"
 #include "render/view/sim_view.h"
 #include "solver/core/engine_options.h"
 #include "solver/core/simulation.h"
@@ -110,4 +111,38 @@ TEST(SimulationView, ChainsOfALoadedColumnShowItsContactsAndNothingElse) {
     EXPECT_NEAR(c.b, 255 * s.wall_chain_color.b, 4) << "wall contact at z = " << z;
     EXPECT_NEAR(c.r, 255 * s.wall_chain_color.r, 4) << "wall contact at z = " << z;
   }
+}
+
+// The scale bar is 1, 2 or 5 times a power of ten, the largest that fits.
+TEST(FrameCaption, ScaleBarLengthsAreOneTwoFive) {
+  EXPECT_DOUBLE_EQ(scale_bar_length(0.037), 0.02);
+  EXPECT_DOUBLE_EQ(scale_bar_length(0.01), 0.01);
+  EXPECT_DOUBLE_EQ(scale_bar_length(0.0099), 0.005);
+  EXPECT_DOUBLE_EQ(scale_bar_length(0.0021), 0.002);
+  EXPECT_DOUBLE_EQ(scale_bar_length(7.0), 5.0);
+}
+
+// The bar is as long as the length it names, measured at the camera's
+// target: 10 mm of the world at the target span the bar's pixels.
+TEST(FrameCaption, ScaleBarSpansItsLengthAtTheTarget) {
+  plot::Image img = plot::make_image(900, 600, {0, 0, 0});
+  Camera cam;
+  cam.set_preset(ViewPreset::Front);
+  cam.target = {0, 0, 0};
+  cam.distance = 0.2;
+  const plot::Rect r = draw_scale_bar(img, cam);
+  ASSERT_GT(r.x1, r.x0);
+  const double per_m = std::abs(cam.project({1e-3, 0, 0}, 900, 600).pixel.x -
+                                cam.project({0, 0, 0}, 900, 600).pixel.x) / 1e-3;
+  const double length = scale_bar_length(900 / 6.0 / per_m);
+  // the bar: the longest run of light pixels on a row of the panel
+  int longest = 0;
+  for (int y = r.y0; y < r.y1; ++y) {
+    int run = 0;
+    for (int x = r.x0; x < r.x1; ++x) {
+      run = plot::pixel(img, x, y).r > 200 ? run + 1 : 0;
+      longest = std::max(longest, run);
+    }
+  }
+  EXPECT_NEAR(longest, length * per_m, 2.0);
 }

@@ -1,0 +1,30 @@
+// Titles made from what a scene sets up (app/experiment/test_title.h), and
+// the scale bar's lengths (render/view/frame_caption.h).
+#include <gtest/gtest.h>
+
+#include "app/experiment/test_title.h"
+#include "solver/io/scene_toml.h"
+
+using namespace simsols;
+
+namespace {
+std::string asset(const std::string& name) {
+  return std::string(SIMSOLS_SOURCE_DIR) + "/assets/scenes/" + name;
+}
+}  // namespace
+
+TEST(TestTitle, SaysTheApparatusTheSpecimenAndTheStress) {
+  EXPECT_EQ(test_title(load_scene(asset("shear_box.toml"))),
+            "Direct shear, 6.35 mm glass beads, σ = 160 kPa");
+  EXPECT_EQ(test_title(load_scene(asset("triaxial_sand.toml"))),
+            "Triaxial, sand grains (D50 4.76 mm), σ₃ = 100 kPa");
+  Scene s = load_scene(asset("shear_box.toml"));
+  s.shear_box->normal_stress = 280e3;
+  s.shear_box->specimen.diameter = 2.38125e-3;
+  EXPECT_EQ(test_title(s), "Direct shear, 2.38 mm glass beads, σ = 280 kPa");
+  s.shear_box.reset();
+  s.description = "A bead on a plane";
+  EXPECT_EQ(test_title(s), "A bead on a plane");
+  s.description.clear();
+  EXPECT_EQ(test_title(s), s.name);
+}
