@@ -4,8 +4,9 @@
 //             v = (Y - (3X + c) + phase) mod 8, or with flip_slant
 //             (-Y - (3X + c) + phase) mod 8; view = v or 7 - v (reversed);
 //             X, Y physical screen pixels, Y from the top
-//   u_mode 1  a 4 x 2 grid of the views, view 0 top left, each letterboxed
-//             to keep the views' aspect (that of the output)
+//   u_mode 1  a u_grid.x by u_grid.y grid of the views (grid_layout in
+//             alioscopy.h), view 0 top left, each fitted in its cell with
+//             the views' aspect (that of the output) kept
 //   u_mode 2  view u_single, full size
 uniform sampler2DArray u_views;
 uniform ivec2 u_output;         // output size, pixels
@@ -15,6 +16,7 @@ uniform int u_reversed;
 uniform int u_flip_slant;
 uniform int u_mode;
 uniform int u_single;
+uniform ivec2 u_grid;           // columns, rows
 
 int view_of(int X, int Y, int c) {
   int s = (u_flip_slant != 0 ? -Y : Y) - (3 * X + c) + u_phase;
@@ -32,18 +34,19 @@ void main() {
     for (int c = 0; c < 3; ++c) rgb[c] = texture(u_views, vec3(uv, float(view_of(X, Y, c))))[c];
     emit(rgb, 1.0, 0.0);
   } else if (u_mode == 1) {
-    vec2 cell = vec2(u_output) / vec2(4.0, 2.0);
-    int col = min(int(float(f.x) / cell.x), 3);
-    int row = min(int(float(row_from_top) / cell.y), 1);
+    vec2 cell = vec2(u_output) / vec2(u_grid);
+    int col = min(int(float(f.x) / cell.x), u_grid.x - 1);
+    int row = min(int(float(row_from_top) / cell.y), u_grid.y - 1);
+    int view = row * u_grid.x + col;
     float aspect = float(u_output.x) / float(u_output.y);
     vec2 shown = aspect > cell.x / cell.y ? vec2(cell.x, cell.x / aspect)
                                           : vec2(cell.y * aspect, cell.y);
-    vec2 origin = vec2(float(col), float(1 - row)) * cell + 0.5 * (cell - shown);
+    vec2 origin = vec2(float(col), float(u_grid.y - 1 - row)) * cell + 0.5 * (cell - shown);
     vec2 local = (vec2(f) + 0.5 - origin) / shown;
-    if (any(lessThan(local, vec2(0.0))) || any(greaterThan(local, vec2(1.0))))
+    if (view >= 8 || any(lessThan(local, vec2(0.0))) || any(greaterThan(local, vec2(1.0))))
       emit(vec3(0.0), 1.0, 0.0);
     else
-      emit(texture(u_views, vec3(local, float(row * 4 + col))).rgb, 1.0, 0.0);
+      emit(texture(u_views, vec3(local, float(view))).rgb, 1.0, 0.0);
   } else {
     emit(texture(u_views, vec3(uv, float(u_single))).rgb, 1.0, 0.0);
   }

@@ -209,6 +209,20 @@ void LabApp::draw_view(int x, int y, int w, int h) {
   const int dx = view == LabView::Alioscopy ? 0 : x, dy = view == LabView::Alioscopy ? 0 : y;
   gl.BlitFramebuffer(0, 0, ow, oh, dx, dy, dx + ow, dy + oh, GL_COLOR_BUFFER_BIT, GL_NEAREST);
   gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (view == LabView::Grid) label_grid(x, fh - (y + h), w, h);
+}
+
+// "view k" over each view of the grid (x, top: the grid's top-left corner
+// in framebuffer pixels from the window's top left).
+void LabApp::label_grid(int x, int top, int w, int h) {
+  const render::GridLayout g = alioscopy_->grid();
+  const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
+  ImDrawList* list = ImGui::GetBackgroundDrawList();  // over the 3D view, under the panels
+  for (int k = 0; k < 8; ++k) {
+    const plot::Rect c = g.cell(k, w, h, double(w) / std::max(1, h));
+    const ImVec2 at((x + c.x0) / scale.x + 6, (top + c.y0) / scale.y + 4);
+    list->AddText(at, IM_COL32(236, 238, 242, 255), ("view " + std::to_string(k)).c_str());
+  }
 }
 
 void LabApp::save_screenshot(const std::string& path) {

@@ -69,6 +69,7 @@ class LabApp {
   void take_script_screenshot();
   void attach_view();
   void draw_view(int x, int y, int w, int h);
+  void label_grid(int x, int top, int w, int h);
   void draw_panel(int panel_width);
   void draw_controls();  // the panel's sections, one function each (lab_panel.cpp):
   void draw_stage_and_message(LabStage stage);

@@ -159,6 +159,38 @@ void AlioscopyOutput::render_views(Renderer& renderer, const StereoRig& rig_in,
   }
 }
 
+namespace {
+// The size of a view of `aspect` fitted in a cell of cw x ch.
+std::pair<double, double> fitted(double cw, double ch, double aspect) {
+  return aspect > cw / ch ? std::pair{cw, cw / aspect} : std::pair{ch * aspect, ch};
+}
+}  // namespace
+
+GridLayout grid_layout(int width, int height, double aspect) {
+  GridLayout best;
+  double most = -1;
+  for (int columns = 1; columns <= 8; ++columns) {
+    const int rows = (8 + columns - 1) / columns;
+    const auto [w, h] = fitted(double(width) / columns, double(height) / rows, aspect);
+    if (w * h > most * (1 + 1e-9)) {
+      most = w * h;
+      best = {columns, rows};
+    }
+  }
+  return best;
+}
+
+plot::Rect GridLayout::cell(int k, int width, int height, double aspect) const {
+  const double cw = double(width) / columns, ch = double(height) / rows;
+  const auto [w, h] = fitted(cw, ch, aspect);
+  const double x0 = (k % columns) * cw + 0.5 * (cw - w), y0 = (k / columns) * ch + 0.5 * (ch - h);
+  return {int(std::lround(x0)), int(std::lround(y0)), int(std::lround(x0 + w)), int(std::lround(y0 + h))};
+}
+
+GridLayout AlioscopyOutput::grid() const {
+  return grid_layout(out_w_, out_h_, double(out_w_) / std::max(1, out_h_));
+}
+
 void AlioscopyOutput::compose(Mode mode, int single_view, glm::ivec2 window) {
   GLint fbo = 0, vp[4] = {}, program = 0, vao = 0, active = 0, tex = 0;
   gl_.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
@@ -184,6 +216,8 @@ void AlioscopyOutput::compose(Mode mode, int single_view, glm::ivec2 window) {
   program_->set("u_flip_slant", profile_.flip_slant ? 1 : 0);
   program_->set("u_mode", int(mode));
   program_->set("u_single", std::clamp(single_view, 0, profile_.views - 1));
+  const GridLayout g = grid();
+  gl_.Uniform2i(program_->uniform("u_grid"), g.columns, g.rows);
   gl_.BindVertexArray(vao_);
   gl_.DrawArrays(GL_TRIANGLES, 0, 3);
 

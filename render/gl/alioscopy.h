@@ -21,7 +21,9 @@
 // AlioscopyOutput owns the views (a 2D texture array, one layer per view),
 // renders them with a Renderer and a StereoRig, and composes:
 //   Interleaved  the image for the screen
-//   Grid         the eight views in a 4 x 2 grid, view 0 top left
+//   Grid         the eight views in the grid that shows them largest
+//                (grid_layout: 3 x 3 for views of the output's aspect, the
+//                ninth cell empty), view 0 top left, left to right
 //   Single       one view, full size
 // deinterleave() is the lens simulation: what the eye behind the lenses
 // would get of view k from an interleaved image.
@@ -92,6 +94,18 @@ int alioscopy_view(int x, int y, int c, const DisplayProfile& profile);
 plot::Image deinterleave(const plot::Image& interleaved, int k, const DisplayProfile& profile,
                          glm::ivec2 window = {0, 0});
 
+// The grid of the Grid mode for an output of width x height and views of
+// `aspect` (width / height): the columns and rows (columns x rows >= 8,
+// as few rows as that many columns allow) that show each view largest
+// when fitted in its cell with its aspect kept.
+struct GridLayout {
+  int columns = 4, rows = 2;
+  // Where view k is shown, in output pixels from the top left (x0, y0
+  // inclusive, x1, y1 exclusive); for labels drawn over the grid.
+  plot::Rect cell(int k, int width, int height, double aspect) const;
+};
+GridLayout grid_layout(int width, int height, double aspect);
+
 class AlioscopyOutput {
  public:
   enum class Mode { Interleaved, Grid, Single };
@@ -121,6 +135,8 @@ class AlioscopyOutput {
   // Composes into the output framebuffer. `window` is the output's
   // top-left pixel on the physical screen (Interleaved only).
   void compose(Mode mode, int single_view = 0, glm::ivec2 window = {0, 0});
+  // The Grid mode's layout for the current output (views of its aspect).
+  GridLayout grid() const;
   plot::Image read_pixels() const;
   plot::Image read_view(int k) const;
   GLuint framebuffer() const { return out_fbo_; }

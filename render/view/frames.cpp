@@ -7,6 +7,7 @@
 
 #include "render/gl/alioscopy.h"
 #include "render/plot/colormap.h"
+#include "render/plot/font.h"
 #include "solver/common/did_you_mean.h"
 #include "solver/common/errors.h"
 #include "render/plot/png.h"
@@ -282,6 +283,21 @@ std::vector<std::string> FrameExporter::outputs(const std::string& path) const {
   return files;
 }
 
+namespace {
+
+// "view k" in the top left corner of each view of a grid image.
+void label_views(plot::Image& img, const render::GridLayout& grid) {
+  const double aspect = double(img.width) / img.height;
+  for (int k = 0; k < 8; ++k) {
+    const plot::Rect c = grid.cell(k, img.width, img.height, aspect);
+    const double size = std::max(11.0, 0.06 * (c.y1 - c.y0));
+    plot::draw_text(img, c.x0 + 0.5 * size, c.y0 + 1.4 * size, "view " + std::to_string(k), size,
+                    {236, 238, 242});
+  }
+}
+
+}  // namespace
+
 void FrameExporter::write_alioscopy(const std::string& path) {
   const render::DisplayProfile profile = display_profile(opt_.display_path);
   if (!alioscopy_) alioscopy_ = std::make_unique<render::AlioscopyOutput>(context_->gl(), profile);
@@ -294,7 +310,9 @@ void FrameExporter::write_alioscopy(const std::string& path) {
     plot::write_png(alioscopy_->read_pixels(), files[0]);
     for (int k = 0; k < 8; ++k) plot::write_png(alioscopy_->read_view(k), files[1 + k]);
     alioscopy_->compose(render::AlioscopyOutput::Mode::Grid);
-    plot::write_png(alioscopy_->read_pixels(), files[9]);
+    plot::Image grid = alioscopy_->read_pixels();
+    label_views(grid, alioscopy_->grid());
+    plot::write_png(grid, files[9]);
   } catch (const IoError& e) {
     throw IoError(std::string("cannot write the frame: ") + e.what());
   }

@@ -132,15 +132,49 @@ TEST(Alioscopy, GridAndSingleViewShowTheViews) {
     out.fill_view(v, {level(v, 0) / 255.f, level(v, 1) / 255.f, level(v, 2) / 255.f, 1});
   out.compose(AlioscopyOutput::Mode::Grid);
   plot::Image g = out.read_pixels();
+  const GridLayout grid = out.grid();
+  EXPECT_EQ(grid.columns, 3);  // 2:1 views in 3 x 3 cells of 2:1: none letterboxed
+  EXPECT_EQ(grid.rows, 3);
   for (int v = 0; v < 8; ++v) {
-    const int cx = (v % 4) * 100 + 50, cy = (v / 4) * 100 + 50;  // view 0 top left
-    const plot::Color px = plot::pixel(g, cx, cy);
-    EXPECT_EQ(px.r, level(v, 0)) << v;
-    EXPECT_EQ(px.b, level(v, 2)) << v;
+    const plot::Rect c = grid.cell(v, 400, 200, 2.0);
+    for (auto [x, y] : {std::pair{c.x0 + 1, c.y0 + 1}, std::pair{(c.x0 + c.x1) / 2, (c.y0 + c.y1) / 2},
+                        std::pair{c.x1 - 2, c.y1 - 2}}) {  // view 0 top left, its whole cell
+      const plot::Color px = plot::pixel(g, x, y);
+      EXPECT_EQ(px.r, level(v, 0)) << v;
+      EXPECT_EQ(px.b, level(v, 2)) << v;
+    }
   }
+  const plot::Color ninth = plot::pixel(g, 350, 180);  // the empty ninth cell
+  EXPECT_EQ(ninth.r + ninth.g + ninth.b, 0);
   out.compose(AlioscopyOutput::Mode::Single, 6);
   g = out.read_pixels();
   EXPECT_EQ(plot::pixel(g, 7, 190).g, level(6, 1));
+}
+
+// The grid shows each view largest: 3 x 3 for views of the output's own
+// aspect (cells of that aspect, nothing letterboxed); cells lie inside the
+// output without overlapping, in reading order.
+TEST(Alioscopy, GridLayoutShowsTheViewsLargest) {
+  for (auto [w, h] : {std::pair{1920, 1080}, std::pair{1400, 860}, std::pair{400, 200}}) {
+    const double aspect = double(w) / h;
+    const GridLayout g = grid_layout(w, h, aspect);
+    EXPECT_EQ(g.columns * g.rows, 9) << w << "x" << h;
+    double area = 0;
+    for (int k = 0; k < 8; ++k) {
+      const plot::Rect c = g.cell(k, w, h, aspect);
+      EXPECT_GE(c.x0, 0);
+      EXPECT_GE(c.y0, 0);
+      EXPECT_LE(c.x1, w);
+      EXPECT_LE(c.y1, h);
+      EXPECT_NEAR(double(c.x1 - c.x0) / (c.y1 - c.y0), aspect, 2.0 * aspect / (c.y1 - c.y0));  // 1 px
+      area += double(c.x1 - c.x0) * (c.y1 - c.y0);
+      if (k > 0) {
+        const plot::Rect p = g.cell(k - 1, w, h, aspect);
+        EXPECT_TRUE(c.y0 > p.y0 || c.x0 >= p.x1) << "view " << k << " after view " << k - 1;
+      }
+    }
+    EXPECT_NEAR(area / (double(w) * h), 8.0 / 9.0, 0.02);  // a 4 x 2 grid showed 8/16
+  }
 }
 
 TEST(Alioscopy, ProfileErrorsNameFileFieldAndRange) {
