@@ -276,9 +276,12 @@ int LabApp::run() {
     gl.ClearColor(0.086f, 0.094f, 0.11f, 1);
     gl.Clear(GL_COLOR_BUFFER_BIT);
     const int panel = view == LabView::Alioscopy ? 0 : int(kPanelWidth);
+    // the live plots in a column at the right, the 3D view between
+    const bool plots = view != LabView::Alioscopy && exp_->apparatus() != nullptr;
+    plots_width_ = plots ? int(std::clamp(0.28f * float(fw - panel), 300.f, 520.f)) : 0;
     view_x_ = panel;
     view_y_ = 0;
-    view_w_ = std::max(1, fw - panel);
+    view_w_ = std::max(1, fw - panel - plots_width_);
     view_h_ = std::max(1, fh);
     draw_view(view_x_, view_y_, view_w_, view_h_);
     if (record_ && sim_view_ && (frame_no_++ % std::max(1, record_every_)) == 0) {

@@ -83,8 +83,8 @@ class LabApp {
   void draw_view_settings();
   void draw_save();
   bool draw_effect_slots();  // lab_effects.cpp; true when a slot changed
-  void draw_plots();
-  void draw_status(int panel_width);
+  void draw_plots();   // in the column right of the 3D view
+  void draw_status();  // under the 3D view, wrapped to its width
   void draw_help();
   void draw_close_dialog();
 
@@ -115,6 +115,9 @@ class LabApp {
   int dragging_ = -1;
   double last_x_ = 0, last_y_ = 0;
   int view_x_ = 0, view_y_ = 0, view_w_ = 1, view_h_ = 1;
+  int plots_width_ = 0;  // the live plots' column at the right (0: none)
+  int plots_shown_ = 0;  // live plots drawn last frame, all inside the window (-1: some cut)
+  float plot_height_ = 0;  // pixels each
 };
 
 int run_lab(const LabOptions& options);

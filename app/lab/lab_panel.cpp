@@ -36,8 +36,8 @@ void LabApp::draw_panel(int panel_width) {
     ImGui::Begin("SimSols lab", nullptr,
                  ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
     draw_controls();
-    draw_plots();
     ImGui::End();
+    draw_plots();
   } else {
     // Alioscopy full screen: a small overlay to get back
     ImGui::SetNextWindowPos({10, 10});
@@ -45,7 +45,7 @@ void LabApp::draw_panel(int panel_width) {
     if (ImGui::Button("Back to the flat view")) view = LabView::Transparent;
     ImGui::End();
   }
-  draw_status(panel_width);
+  draw_status();
   if (help_) draw_help();
   if (close_asked_) draw_close_dialog();
 }
@@ -295,45 +295,62 @@ void LabApp::draw_save() {
   ImGui::TextDisabled("Load checkpoint reads the path in the scene field.");
 }
 
-// The apparatus' live plots (LabApparatus::live_plots), stacked.
+// The apparatus' live plots (LabApparatus::live_plots), stacked in the
+// column right of the 3D view, all of them in its height (no scrolling).
 void LabApp::draw_plots() {
   LabApparatus* a = exp_->apparatus();
-  if (!a || !ImGui::CollapsingHeader("Live plots", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  const std::vector<LabPlot> plots = a->live_plots();
-  const float w = ImGui::GetContentRegionAvail().x;
-  const float h = std::max(120.0f, (ImGui::GetContentRegionAvail().y - 40) / float(plots.size()));
-  for (std::size_t i = 0; i < plots.size(); ++i)
-    draw_lab_plot(("##plot" + std::to_string(i)).c_str(), plots[i], w, h);
-}
-
-void LabApp::draw_status(int panel_width) {
+  if (!a || plots_width_ <= 0) return;
   int fw = 0, fh = 0;
   glfwGetFramebufferSize(window_->handle(), &fw, &fh);
-  ImGui::SetNextWindowPos({float(panel_width) + 8, float(fh) - 8}, 0, {0, 1});
+  const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
+  ImGui::SetNextWindowPos({float(fw - plots_width_) / scale.x, 0});
+  ImGui::SetNextWindowSize({float(plots_width_) / scale.x, float(fh) / scale.y});
+  ImGui::Begin("Live plots", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoScrollbar);
+  const std::vector<LabPlot> plots = a->live_plots();
+  const float w = ImGui::GetContentRegionAvail().x, spacing = ImGui::GetStyle().ItemSpacing.y;
+  const float h = (ImGui::GetContentRegionAvail().y - spacing * float(plots.size() - 1)) /
+                  float(std::max<std::size_t>(1, plots.size()));
+  for (std::size_t i = 0; i < plots.size(); ++i)
+    draw_lab_plot(("##plot" + std::to_string(i)).c_str(), plots[i], w, std::max(80.0f, h));
+  // what fits (scripts' state files): plots whose bottom lies inside the window
+  plots_shown_ = ImGui::GetCursorScreenPos().y - spacing <= float(fh) / scale.y + 0.5f ? int(plots.size()) : -1;
+  plot_height_ = h * scale.y;
+  ImGui::End();
+}
+
+void LabApp::draw_status() {
+  const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
+  const float width = float(view_w_) / scale.x - 16;
+  ImGui::SetNextWindowPos({float(view_x_) / scale.x + 8, float(view_h_) / scale.y - 8}, 0, {0, 1});
+  ImGui::SetNextWindowSizeConstraints({0, 0}, {width, 1e6f});
   ImGui::SetNextWindowBgAlpha(0.6f);
   ImGui::Begin("##status", nullptr,
                ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
                    ImGuiWindowFlags_NoInputs);
+  ImGui::PushTextWrapPos(width - 8);
   Simulation* sim = exp_->simulation();
   if (sim) {
     const LabApparatus* a = exp_->apparatus();
     const double inertial = a ? a->inertial_number() : 0;
-    ImGui::Text("t = %.5f s   %.0f steps/s   %d beads   %zu contacts   I = %.2g   dt = %.3g s   %s",
+    ImGui::TextWrapped("t = %.5f s   %.0f steps/s   %d beads   %zu contacts   I = %.2g   dt = %.3g s   %s",
                 sim->time(), exp_->steps_per_second(), sim->model().particles(), contacts_,
                 inertial, sim->dt(), sim->model().config().double_precision ? "double" : "float");
     if (const std::string w = a ? a->warning() : std::string(); !w.empty())
       ImGui::TextColored({1.0f, 0.6f, 0.2f, 1.0f}, "%s", w.c_str());
     std::string device = sim->model().device().name();
     if (device.size() > 48) device = device.substr(0, 45) + "...";
-    ImGui::Text("%s   %s   %.0f fps (view at %.0f%%)   H: help", device.c_str(),
+    ImGui::TextWrapped("%s   %s   %.0f fps (view at %.0f%%)   H: help", device.c_str(),
                 sim_view_ ? (sim_view_->bridge().shared() ? "buffers shared (CL-GL)" : "buffers copied")
                           : "",
                 fps_, render_scale_ * 100);
-    ImGui::Text("compiled: %s",
+    ImGui::TextWrapped("compiled: %s",
                 compiled_slots_line(sim->scene(), sim->model().config()).c_str());
   } else {
     ImGui::Text("%s   %.0f fps   (H: help)", exp_->stage_text().c_str(), fps_);
   }
+  ImGui::PopTextWrapPos();
   ImGui::End();
 }
 

@@ -16,15 +16,23 @@ void draw_lab_plot(const char* id, const LabPlot& p, float width, float height) 
   const ImVec2 avail = ImGui::GetContentRegionAvail();
   const float fh = ImGui::GetFontSize();
   ImGui::TextUnformatted(p.title.c_str());
+  if (p.peak && *p.peak < p.y.size()) {  // the peak's value on the title line, off the curve
+    ImGui::SameLine();
+    ImGui::TextColored({1.0f, 0.47f, 0.24f, 1.0f}, "peak %.3g", p.y[*p.peak]);
+  }
+  // the y axis' name on the title line, right-aligned (off the curve)
+  const ImU32 axis = IM_COL32(150, 155, 165, 255);
+  const float yw = ImGui::CalcTextSize(p.y_label.c_str()).x;
+  ImGui::GetWindowDrawList()->AddText({o.x + avail.x - yw - 0.4f * fh, o.y}, axis, p.y_label.c_str());
   // plot area: left margin for tick labels, bottom for ticks and x title
-  const ImVec2 a(o.x + 4.2f * fh, o.y + 1.4f * fh);
+  const ImVec2 a(o.x + 4.2f * fh, o.y + 1.6f * fh);
   const ImVec2 b(o.x + avail.x - 0.6f * fh, o.y + avail.y - 2.3f * fh);
   if (b.x - a.x < 20 || b.y - a.y < 20) {
     ImGui::EndChild();
     return;
   }
-  const ImU32 axis = IM_COL32(150, 155, 165, 255), grid = IM_COL32(60, 64, 72, 255),
-              line = IM_COL32(90, 170, 255, 255), peak = IM_COL32(255, 120, 60, 255);
+  const ImU32 grid = IM_COL32(60, 64, 72, 255), line = IM_COL32(90, 170, 255, 255),
+              peak = IM_COL32(255, 120, 60, 255), goal = IM_COL32(120, 210, 140, 255);
   // the points drawn: x as plotted (log10 on a log axis), x <= 0 left out there
   std::vector<double> px, py;
   std::vector<std::size_t> index;  // into p.x
@@ -46,6 +54,11 @@ void draw_lab_plot(const char* id, const LabPlot& p, float width, float height) 
       y1 = std::max(0.0, y1);
     }
   }
+  if (p.target) {
+    y0 = px.empty() ? std::min(0.0, *p.target) : std::min(y0, *p.target);
+    y1 = px.empty() ? *p.target : std::max(y1, *p.target);
+  }
+  if (y1 > y0) y1 += 0.08 * (y1 - y0);  // headroom: the top of the curve and the peak marker
   if (p.x_log) x0 = std::floor(x0), x1 = std::max(x0 + 1, std::ceil(x1));  // whole decades
   if (x1 <= x0) x1 = x0 + 1;
   if (y1 <= y0) y1 = y0 + (y0 != 0 ? 0.01 * std::fabs(y0) : 1);
@@ -76,19 +89,22 @@ void draw_lab_plot(const char* id, const LabPlot& p, float width, float height) 
   dl->AddRect(a, b, axis);
   const ImVec2 xl = ImGui::CalcTextSize(p.x_label.c_str());
   dl->AddText({(a.x + b.x - xl.x) / 2, b.y + 1.2f * fh}, axis, p.x_label.c_str());
-  dl->AddText({a.x + 0.3f * fh, a.y + 0.1f * fh}, axis, p.y_label.c_str());
   std::vector<ImVec2> pts;
   pts.reserve(px.size());
   for (std::size_t i = 0; i < px.size(); ++i) pts.push_back({X(px[i]), Y(py[i])});
   dl->PushClipRect(a, b, true);
+  if (p.target) {  // dashed, labelled at its right end
+    const float ty = Y(*p.target);
+    for (float x = a.x; x < b.x; x += 10) dl->AddLine({x, ty}, {std::min(x + 6, b.x), ty}, goal, 1.5f);
+    const ImVec2 ts = ImGui::CalcTextSize("target");
+    dl->AddText({b.x - ts.x - 4, ty + 2}, goal, "target");
+  }
   if (pts.size() >= 2) dl->AddPolyline(pts.data(), int(pts.size()), line, 0, 2.0f);
   const auto marked = p.peak ? std::find(index.begin(), index.end(), *p.peak) : index.end();
   if (marked != index.end()) {
     const ImVec2 q = pts[std::size_t(marked - index.begin())];
     dl->AddCircle(q, 5, peak, 16, 2.0f);
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "peak %.3g", p.y[*p.peak]);
-    dl->AddText({q.x + 6, q.y - fh - 2}, peak, buf);
+
   }
   dl->PopClipRect();
   ImGui::EndChild();

@@ -1,8 +1,12 @@
 // Live plots of the lab, drawn with Dear ImGui's draw lists: one curve,
 // axes with 1-2-5 ticks (chart.h's nice_ticks, so they read like the PNG
-// plots of the campaign), units in the axis titles, the peak marked; x on
-// a log axis when asked (e - log p', e - log sigma'v), decades labelled by
-// value, points at x <= 0 left out (as chart.h's Chart::x_log).
+// plots of the campaign), the title and the y axis' name with its unit on
+// the line above the plot area and the x axis' under it (never over the
+// curve), the peak marked (its value on the title line), a target drawn
+// as a dashed line (the normal stress the platen follows); 8 % headroom
+// above the highest point, so the curve and the peak marker stay inside; x on a log axis when asked
+// (e - log p', e - log sigma'v), decades labelled by value, points at
+// x <= 0 left out (as chart.h's Chart::x_log).
 #pragma once
 
 #include <optional>
@@ -18,6 +22,7 @@ struct LabPlot {
   std::string title, x_label, y_label;
   std::vector<double> x, y;
   std::optional<std::size_t> peak;  // index of the marked point
+  std::optional<double> target;     // a dashed horizontal line at this y, labelled "target"
   bool x_log = false;
 };
 

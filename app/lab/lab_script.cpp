@@ -92,6 +92,7 @@ std::string LabApp::state_text() {
   }
   if (a) o << a->state_lines();
   o << "fps = " << fps_ << "\nrender_scale = " << render_scale_ << "\n";
+  o << "live_plots = " << plots_shown_ << "\nlive_plot_height_px = " << plot_height_ << "\n";
   return o.str();
 }
 

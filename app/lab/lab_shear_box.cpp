@@ -111,14 +111,19 @@ class LabShearBox : public LabApparatus {
   ShearTest test_;
 };
 
-// tau/sigma, tau and the dilation against the displacement, the peak as in
-// the summaries: the first peak of tau/sigma (shear_analysis.h).
+// tau/sigma, tau, sigma with its target and the dilation against the
+// displacement, the peak as in the summaries: the first peak of tau/sigma
+// (shear_analysis.h).
 std::vector<LabPlot> LabShearBox::live_plots() const {
   const char* dx = "horizontal displacement (mm)";
-  LabPlot ratio{"τ/σ", dx, "τ/σ (-)"};
+  LabPlot ratio{"stress ratio", dx, "τ/σ (-)"};
   LabPlot tau{"shear stress", dx, "τ (kPa)"};
+  LabPlot sigma{"normal stress", dx, "σ (kPa)"};
   LabPlot dil{"dilation", dx, "vertical displacement (mm)"};
+  if (test_.normal_stress() > 0) sigma.target = test_.normal_stress() * 1e-3;
   for (const ShearRow& r : test_.rows()) {
+    sigma.x.push_back(r.displacement * 1e3);
+    sigma.y.push_back(r.sigma * 1e-3);
     ratio.x.push_back(r.displacement * 1e3);
     ratio.y.push_back(r.sigma > 0 ? r.tau / r.sigma : 0);
     tau.x.push_back(r.displacement * 1e3);
@@ -129,7 +134,7 @@ std::vector<LabPlot> LabShearBox::live_plots() const {
   const FirstPeak first = first_peak(test_.rows(), test_.normal_stress(),
                                      kPeakRecoveryDiameters * test_.bead_diameter());
   if (first.row >= 0) ratio.peak = tau.peak = std::size_t(first.row);
-  return {ratio, tau, dil};
+  return {ratio, tau, sigma, dil};
 }
 
 }  // namespace

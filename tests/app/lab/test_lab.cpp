@@ -101,6 +101,20 @@ TEST(Lab, ScriptedSessionShearsChangesStressAndCheckpoints) {
     }
   EXPECT_GT(panel_colours.size(), 30u) << "panel drawn";
   EXPECT_GT(colourful, 5000) << "beads (coloured by layer) visible in the viewport";
+  // the four live plots (tau/sigma, tau, sigma and its target, dilation) in
+  // the window's height, each tall enough to read, each with its curve
+  EXPECT_EQ(a["live_plots"], "4");
+  EXPECT_GE(std::stod(a["live_plot_height_px"]), 150);
+  const int curve_x0 = 1400 - 300;  // the column is at least 300 px wide
+  for (int q = 0; q < 4; ++q) {
+    int curve = 0;
+    for (int y = q * img.height / 4; y < (q + 1) * img.height / 4; ++y)
+      for (int x = curve_x0; x < img.width; ++x) {
+        const auto p = simsols::plot::pixel(img, x, y);
+        curve += std::abs(p.r - 90) < 30 && std::abs(p.g - 170) < 30 && p.b > 220;
+      }
+    EXPECT_GT(curve, 30) << "no curve in the plot column's quarter " << q;
+  }
 }
 
 // Issue 9 in the lab: the panel's slot choices (scripted with `effect`, the
