@@ -268,7 +268,7 @@ void Renderer::set_common(ShaderProgram& p, const ViewSettings& s, bool force_ma
   p.set("u_viewport", float(width_), float(height_));
   p.set("u_depth_range", depth_range_.x, depth_range_.y);
   p.set("u_range", s.value_min, s.value_max);
-  bind_colormap(p, force_map ? plot::ColorMap::Force : s.bead_map);
+  bind_colormap(p, force_map ? plot::ColorMap::Glow : s.bead_map);
 }
 
 void Renderer::draw(const Camera& camera, const FrameGeometry& g, const ViewSettings& s) {

@@ -19,7 +19,7 @@
 //   bead:  exact ray-sphere hit, Lambert + ambient + Blinn highlight
 //   chain: a tube (shaded screen-space capsule) of radius
 //          r = R_mean max(chain_min_radius, chain_radius F/F_max), drawn where
-//          F/F_mean >= chain_threshold; bead pairs coloured by the Force map
+//          F/F_mean >= chain_threshold; bead pairs coloured by the Glow map
 //          at t = (F - F_thr)/(F_max - F_thr), F_thr = chain_threshold F_mean;
 //          wall contacts in wall_chain_color
 //   OIT:   C = (sum C_i a_i w_i / sum a_i w_i)(1 - prod(1 - a_i)) + C_0 prod(1 - a_i),
@@ -81,7 +81,7 @@ struct ViewSettings {
   float chain_threshold = 1.0f;   // F/F_mean below which a contact is not drawn
   float chain_radius = 0.45f;     // tube radius at F_max, in mean bead radii
   float chain_min_radius = 0.1f;  // the thinnest tube, in mean bead radii
-  glm::vec3 wall_chain_color{0.58f, 0.62f, 0.70f};  // bead-wall contacts
+  glm::vec3 wall_chain_color{0.45f, 0.48f, 0.54f};  // bead-wall contacts
   plot::ColorMap bead_map = plot::ColorMap::Sequential;
   float value_min = 0, value_max = 1;
   plot::Color background{22, 24, 28};

@@ -607,6 +607,8 @@ Color colormap_color(ColorMap map, double t) {
       return from_lab(cool_warm(t));
     case ColorMap::Force:
       return from_lab(ramp(kForce, t));
+    case ColorMap::Glow:
+      return from_lab(ramp(kForce, 1 - t));
     case ColorMap::Sequential:
     default:
       return from_lab(viridis(t));
@@ -638,7 +640,7 @@ std::optional<ColorMap> parse_colormap(std::string_view s) {
   for (char& c : lower) c = static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
   for (ColorMap m :
        {ColorMap::Sequential, ColorMap::Diverging, ColorMap::Categorical, ColorMap::Force,
-        ColorMap::Qualitative})
+        ColorMap::Glow, ColorMap::Qualitative})
     if (lower == to_string(m)) return m;
   return std::nullopt;
 }
@@ -649,6 +651,7 @@ const char* to_string(ColorMap map) {
     case ColorMap::Diverging: return "diverging";
     case ColorMap::Categorical: return "categorical";
     case ColorMap::Force: return "force";
+    case ColorMap::Glow: return "glow";
     case ColorMap::Qualitative: return "qualitative";
   }
   return "?";

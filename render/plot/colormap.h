@@ -36,6 +36,10 @@
 //                colours: a red ramp keeps them apart (cividis, the other
 //                published sequential map of its kind, runs blue to yellow
 //                like viridis).
+//   Glow         the Force map reversed (L* 27 -> 86): the force chains on
+//                the renderer's dark background, where the weak end of the
+//                network recedes into the background and the strong chains
+//                stand out light and thick.
 //   Qualitative  identities (one colour per grain): 20 of the 22 "colours of
 //                maximum contrast" of K. L. Kelly, Color Engineering 3(6),
 //                1965 (in their ISCC-NBS centroid sRGB values), without his
@@ -71,6 +75,7 @@ enum class ColorMap {
   Diverging,    // Moreland's cool-warm: blue - light grey - red, for signed values
   Categorical,  // 8 distinct colours; category k -> colour k mod 8
   Force,        // light grey-orange -> dark red, darker and more saturated
+  Glow,         // Force reversed: dark red -> light grey-orange, for chains on a dark background
   Qualitative,  // 20 distinct colours for identities; k -> colour qualitative_index(k)
 };
 
@@ -91,7 +96,7 @@ Color colormap_color(ColorMap map, double t);
 // colours, in entry order, likewise.
 std::vector<std::uint8_t> colormap_table(ColorMap map, int entries = 256);
 
-// "sequential", "diverging", "categorical", "force", "qualitative" (any case).
+// "sequential", "diverging", "categorical", "force", "glow", "qualitative" (any case).
 std::optional<ColorMap> parse_colormap(std::string_view s);
 const char* to_string(ColorMap map);
 

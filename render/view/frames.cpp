@@ -224,7 +224,7 @@ namespace {
 plot::Legend chain_legend(const render::ViewSettings& s, const render::FrameGeometry& g) {
   plot::Legend legend;
   legend.title = "normal force (N)";
-  legend.map = plot::ColorMap::Force;
+  legend.map = plot::ColorMap::Glow;
   legend.min = double(s.chain_threshold) * g.mean_force;
   legend.max = std::max(double(g.max_force), legend.min);
   char line[160];

@@ -339,11 +339,11 @@ TEST(Renderer, ForceChainTubeWhereProjectedWithDocumentedWidth) {
   EXPECT_NEAR(w.r, 255 * s.wall_chain_color.r, 3);
   EXPECT_NEAR(w.g, 255 * s.wall_chain_color.g, 3);
   EXPECT_NEAR(w.b, 255 * s.wall_chain_color.b, 3);
-  // stronger is darker (the Force map): the 6 N chain against the 3 N one
+  // stronger is lighter (the Glow map): the 6 N chain against the 3 N one
   const auto p1 = cam.project({0, 0, 0.02}, W, H).pixel, p2 = cam.project({0, 0, -0.02}, W, H).pixel;
   const auto c1 = plot::pixel(img, int(p1.x), int(p1.y)), c2 = plot::pixel(img, int(p2.x), int(p2.y));
-  EXPECT_LT(c1.r + c1.g + c1.b, c2.r + c2.g + c2.b);
-  const plot::Color top = plot::colormap_color(plot::ColorMap::Force, 1.0);
+  EXPECT_GT(c1.r + c1.g + c1.b, c2.r + c2.g + c2.b);
+  const plot::Color top = plot::colormap_color(plot::ColorMap::Glow, 1.0);
   EXPECT_NEAR(c1.r, top.r, 3);
   EXPECT_NEAR(c1.g, top.g, 3);
   EXPECT_NEAR(c1.b, top.b, 3);

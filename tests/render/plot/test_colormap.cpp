@@ -18,7 +18,7 @@ namespace simsols::plot {
 namespace {
 
 constexpr ColorMap kAllMaps[] = {ColorMap::Sequential, ColorMap::Diverging, ColorMap::Categorical,
-                                 ColorMap::Force, ColorMap::Qualitative};
+                                 ColorMap::Force, ColorMap::Glow, ColorMap::Qualitative};
 
 struct Lab {
   double L, a, b;
@@ -121,6 +121,18 @@ TEST(Colormap, ForceGetsDarkerAndMoreSaturated) {
   const Color red = colormap_color(ColorMap::Force, 1);
   EXPECT_GT(red.r, 2 * red.g);
   EXPECT_GT(red.r, 2 * red.b);
+}
+
+// Glow is the Force map backwards: lighter with the force, entry for entry.
+TEST(Colormap, GlowIsTheForceMapReversed) {
+  double prev = -1;
+  for (int i = 0; i < 256; ++i) {
+    const double L = lightness(ColorMap::Glow, i / 255.0);
+    EXPECT_GT(L, prev) << "at entry " << i;
+    prev = L;
+    EXPECT_EQ(colormap_color(ColorMap::Glow, i / 255.0), colormap_color(ColorMap::Force, 1 - i / 255.0));
+  }
+  EXPECT_EQ(parse_colormap("Glow"), ColorMap::Glow);
 }
 
 // Moreland's cool-warm is a grey of L* 88 at its centre and has the same
