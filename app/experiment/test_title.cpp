@@ -21,6 +21,11 @@ std::string specimen_words(const Scene& s, const Specimen& sp) {
     return s.grains[size_t(sp.grain)].name + " grains" + (sp.diameter > 0 ? " (D50 " + size + ")" : "");
   const std::string material =
       sp.material >= 0 && sp.material < int(s.materials.size()) ? s.materials[size_t(sp.material)].name + " " : "";
+  if (!s.clumps.empty()) {  // built of clumps (a checkpoint's scene): the grains tell
+    const int g = s.clumps.front().grain;
+    return (g >= 0 && g < int(s.grains.size()) ? s.grains[size_t(g)].name + " " : std::string()) +
+           "grains";
+  }
   if (sp.method == Specimen::Method::Given || sp.diameter <= 0) {  // built: the beads tell
     double lo = 1e300, hi = 0;
     for (const Particle& p : s.particles) {

@@ -18,6 +18,13 @@ TEST(TestTitle, SaysTheApparatusTheSpecimenAndTheStress) {
             "Direct shear, 6.35 mm glass beads, σ = 160 kPa");
   EXPECT_EQ(test_title(load_scene(asset("triaxial_sand.toml"))),
             "Triaxial, sand grains (D50 4.76 mm), σ₃ = 100 kPa");
+  // a built specimen of clumps (as a checkpoint holds it): the grains' name
+  Scene built = load_scene(asset("triaxial_sand.toml"));
+  built.triaxial->specimen.method = Specimen::Method::Given;
+  built.triaxial->specimen.grain = -1;
+  built.clumps.push_back(Clump{});
+  built.clumps.back().grain = 0;
+  EXPECT_EQ(test_title(built), "Triaxial, " + built.grains[0].name + " grains, σ₃ = 100 kPa");
   Scene s = load_scene(asset("shear_box.toml"));
   s.shear_box->normal_stress = 280e3;
   s.shear_box->specimen.diameter = 2.38125e-3;
