@@ -46,13 +46,19 @@ void check_output_path(const std::string& out, const char* flag) {
 }
 
 // The caption of a checkpoint's test: its programme restored from the
-// checkpoint's driver state (empty for a run without an apparatus).
-std::string test_caption(Simulation& sim, const std::string& state, const std::string& path) {
+// checkpoint's driver state. Empty for a run without an apparatus, and for
+// a state this reader does not know (a lab session's): the picture is then
+// drawn without the test's quantities, never refused for them.
+std::string test_caption(Simulation& sim, const std::string& state) {
   const Scene& s = sim.scene();
   if (!s.shear_box && !s.triaxial && !s.oedometer) return "";
-  const std::unique_ptr<LoadingProgramme> test = make_test(sim);
-  restore_programme(*test, state, std::filesystem::path(path).parent_path().string());
-  return test->caption();
+  try {
+    const std::unique_ptr<LoadingProgramme> test = make_test(sim);
+    restore_programme(*test, state, "");
+    return test->caption();
+  } catch (const std::exception&) {
+    return "";
+  }
 }
 
 int snapshot(const SnapshotOptions& opt) {
@@ -79,7 +85,7 @@ int snapshot(const SnapshotOptions& opt) {
                  : std::make_unique<Simulation>(exporter.device(), scene);
   if (opt.steps > 0) sim->advance(opt.steps);
   exporter.attach(*sim, flags);
-  exporter.set_caption(test_title(sim->scene()), checkpoint ? test_caption(*sim, programme, opt.input) : "");
+  exporter.set_caption(test_title(sim->scene()), checkpoint ? test_caption(*sim, programme) : "");
   frame = FrameOptions::resolve(flags, &sim->scene());  // as attach() applied it
   exporter.write(opt.out);
   std::fprintf(stderr, "[snapshot] %s\n", exporter.describe().c_str());
