@@ -2,7 +2,7 @@
 // shaded as a tube lit from the viewer's side (on its axis the colour itself); the
 // force colour map at v_t for a bead pair, u_wall_color for a wall contact,
 // or the flat u_fixed_color of wall edges.
-in vec2 v_local;
+noperspective in vec2 v_local;
 flat in float v_length;
 flat in float v_radius;
 flat in float v_t;

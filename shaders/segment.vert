@@ -18,7 +18,7 @@ uniform vec2 u_force_range;  // F_thr, F_max (N)
 uniform vec2 u_tube_radius;  // r_max, r_min (m)
 uniform float u_fixed_width_px;
 
-out vec2 v_local;       // pixels: along the segment from a, across from its axis
+noperspective out vec2 v_local;  // pixels: along the segment from a, across from its axis (screen-linear)
 flat out float v_length;  // pixels from a to b
 flat out float v_radius;  // pixels
 flat out float v_t;       // colour coordinate

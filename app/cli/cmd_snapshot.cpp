@@ -85,7 +85,7 @@ int snapshot(const SnapshotOptions& opt) {
                  : std::make_unique<Simulation>(exporter.device(), scene);
   if (opt.steps > 0) sim->advance(opt.steps);
   exporter.attach(*sim, flags);
-  exporter.set_caption(test_title(sim->scene()), checkpoint ? test_caption(*sim, programme) : "");
+  exporter.set_caption(test_title(sim->scene()), checkpoint && opt.steps == 0 ? test_caption(*sim, programme) : "");
   frame = FrameOptions::resolve(flags, &sim->scene());  // as attach() applied it
   exporter.write(opt.out);
   std::fprintf(stderr, "[snapshot] %s\n", exporter.describe().c_str());

@@ -278,7 +278,10 @@ int LabApp::run() {
     const int panel = view == LabView::Alioscopy ? 0 : int(kPanelWidth);
     // the live plots in a column at the right, the 3D view between
     const bool plots = view != LabView::Alioscopy && exp_->apparatus() != nullptr;
-    plots_width_ = plots ? int(std::clamp(0.28f * float(fw - panel), 300.f, 520.f)) : 0;
+    // at least 300 px, but never more than half of what the panel leaves
+    plots_width_ = plots ? int(std::min(std::clamp(0.28f * float(fw - panel), 300.f, 520.f),
+                                        0.5f * float(std::max(0, fw - panel))))
+                         : 0;
     view_x_ = panel;
     view_y_ = 0;
     view_w_ = std::max(1, fw - panel - plots_width_);

@@ -309,6 +309,11 @@ void LabApp::draw_plots() {
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoScrollbar);
   const std::vector<LabPlot> plots = a->live_plots();
+  if (plots.empty()) {
+    plots_shown_ = 0;
+    ImGui::End();
+    return;
+  }
   const float w = ImGui::GetContentRegionAvail().x, spacing = ImGui::GetStyle().ItemSpacing.y;
   const float h = (ImGui::GetContentRegionAvail().y - spacing * float(plots.size() - 1)) /
                   float(std::max<std::size_t>(1, plots.size()));

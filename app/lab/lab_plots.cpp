@@ -9,6 +9,65 @@
 
 namespace simsols {
 
+namespace {
+
+// What a plot shows: its points as plotted (x as log10 on a log axis, x <= 0
+// left out there) with their indices into the plot's data, the axes' ranges
+// (zero included on linear axes, the target, 8 % headroom, widened to the
+// outer ticks) and the ticks.
+struct Layout {
+  std::vector<double> px, py, xt, yt;
+  std::vector<std::size_t> index;
+  double x0 = 0, x1 = 1, y0 = 0, y1 = 1;
+};
+
+Layout lay_out(const LabPlot& p) {
+  Layout l;
+  std::vector<double>& px = l.px;
+  std::vector<double>& py = l.py;
+  std::vector<std::size_t>& index = l.index;
+  for (std::size_t i = 0; i < p.x.size() && i < p.y.size(); ++i) {
+    if (p.x_log && !(p.x[i] > 0)) continue;
+    px.push_back(p.x_log ? std::log10(p.x[i]) : p.x[i]);
+    py.push_back(p.y[i]);
+    index.push_back(i);
+  }
+  double& x0 = l.x0;
+  double& x1 = l.x1;
+  double& y0 = l.y0;
+  double& y1 = l.y1;
+  if (!px.empty()) {
+    x0 = *std::min_element(px.begin(), px.end());
+    x1 = *std::max_element(px.begin(), px.end());
+    y0 = *std::min_element(py.begin(), py.end());
+    y1 = *std::max_element(py.begin(), py.end());
+    if (!p.x_log) {  // linear axes start at zero; a void ratio or log axis need not
+      x0 = std::min(0.0, x0);
+      y0 = std::min(0.0, y0);
+      y1 = std::max(0.0, y1);
+    }
+  }
+  if (p.target) {
+    y0 = px.empty() ? std::min(0.0, *p.target) : std::min(y0, *p.target);
+    y1 = px.empty() ? *p.target : std::max(y1, *p.target);
+  }
+  if (y1 > y0) y1 += 0.08 * (y1 - y0);  // headroom: the top of the curve and the peak marker
+  if (p.x_log) x0 = std::floor(x0), x1 = std::max(x0 + 1, std::ceil(x1));  // whole decades
+  if (x1 <= x0) x1 = x0 + 1;
+  if (y1 <= y0) y1 = y0 + (y0 != 0 ? 0.01 * std::fabs(y0) : 1);
+  l.xt = plot::nice_ticks(x0, x1, 5);
+  if (p.x_log) {
+    l.xt.clear();
+    for (double d = x0; d <= x1 + 1e-9; d += 1) l.xt.push_back(d);
+  }
+  l.yt = plot::nice_ticks(y0, y1, 4);
+  if (l.xt.size() >= 2) x0 = std::min(x0, l.xt.front()), x1 = std::max(x1, l.xt.back());
+  if (l.yt.size() >= 2) y0 = std::min(y0, l.yt.front()), y1 = std::max(y1, l.yt.back());
+  return l;
+}
+
+}  // namespace
+
 void draw_lab_plot(const char* id, const LabPlot& p, float width, float height) {
   ImGui::BeginChild(id, {width, height}, true, ImGuiWindowFlags_NoScrollbar);
   ImDrawList* dl = ImGui::GetWindowDrawList();
@@ -33,43 +92,13 @@ void draw_lab_plot(const char* id, const LabPlot& p, float width, float height) 
   }
   const ImU32 grid = IM_COL32(60, 64, 72, 255), line = IM_COL32(90, 170, 255, 255),
               peak = IM_COL32(255, 120, 60, 255), goal = IM_COL32(120, 210, 140, 255);
-  // the points drawn: x as plotted (log10 on a log axis), x <= 0 left out there
-  std::vector<double> px, py;
-  std::vector<std::size_t> index;  // into p.x
-  for (std::size_t i = 0; i < p.x.size() && i < p.y.size(); ++i) {
-    if (p.x_log && !(p.x[i] > 0)) continue;
-    px.push_back(p.x_log ? std::log10(p.x[i]) : p.x[i]);
-    py.push_back(p.y[i]);
-    index.push_back(i);
-  }
-  double x0 = 0, x1 = 1, y0 = 0, y1 = 1;
-  if (!px.empty()) {
-    x0 = *std::min_element(px.begin(), px.end());
-    x1 = *std::max_element(px.begin(), px.end());
-    y0 = *std::min_element(py.begin(), py.end());
-    y1 = *std::max_element(py.begin(), py.end());
-    if (!p.x_log) {  // linear axes start at zero; a void ratio or log axis need not
-      x0 = std::min(0.0, x0);
-      y0 = std::min(0.0, y0);
-      y1 = std::max(0.0, y1);
-    }
-  }
-  if (p.target) {
-    y0 = px.empty() ? std::min(0.0, *p.target) : std::min(y0, *p.target);
-    y1 = px.empty() ? *p.target : std::max(y1, *p.target);
-  }
-  if (y1 > y0) y1 += 0.08 * (y1 - y0);  // headroom: the top of the curve and the peak marker
-  if (p.x_log) x0 = std::floor(x0), x1 = std::max(x0 + 1, std::ceil(x1));  // whole decades
-  if (x1 <= x0) x1 = x0 + 1;
-  if (y1 <= y0) y1 = y0 + (y0 != 0 ? 0.01 * std::fabs(y0) : 1);
-  std::vector<double> xt = plot::nice_ticks(x0, x1, 5);
-  if (p.x_log) {
-    xt.clear();
-    for (double d = x0; d <= x1 + 1e-9; d += 1) xt.push_back(d);
-  }
-  const std::vector<double> yt = plot::nice_ticks(y0, y1, 4);
-  if (xt.size() >= 2) x0 = std::min(x0, xt.front()), x1 = std::max(x1, xt.back());
-  if (yt.size() >= 2) y0 = std::min(y0, yt.front()), y1 = std::max(y1, yt.back());
+  const Layout l = lay_out(p);
+  const std::vector<double>& px = l.px;
+  const std::vector<double>& py = l.py;
+  const std::vector<double>& xt = l.xt;
+  const std::vector<double>& yt = l.yt;
+  const std::vector<std::size_t>& index = l.index;
+  const double x0 = l.x0, x1 = l.x1, y0 = l.y0, y1 = l.y1;
   auto X = [&](double v) { return float(a.x + (v - x0) / (x1 - x0) * (b.x - a.x)); };
   auto Y = [&](double v) { return float(b.y - (v - y0) / (y1 - y0) * (b.y - a.y)); };
   const double xs = xt.size() >= 2 ? xt[1] - xt[0] : 1, ys = yt.size() >= 2 ? yt[1] - yt[0] : 1;

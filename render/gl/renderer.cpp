@@ -93,6 +93,11 @@ void GeometryBuffers::upload_segments(const std::vector<float>& segments, float 
   geom_.max_force = max_force;
 }
 
+ForceRange chain_force_range(const ViewSettings& s, const FrameGeometry& g) {
+  const float lo = s.chain_threshold * g.mean_force;
+  return {lo, std::max(g.max_force, lo)};
+}
+
 // -------------------------------------------------------------- Renderer
 
 namespace {
@@ -268,7 +273,7 @@ void Renderer::set_common(ShaderProgram& p, const ViewSettings& s, bool force_ma
   p.set("u_viewport", float(width_), float(height_));
   p.set("u_depth_range", depth_range_.x, depth_range_.y);
   p.set("u_range", s.value_min, s.value_max);
-  bind_colormap(p, force_map ? plot::ColorMap::Glow : s.bead_map);
+  bind_colormap(p, force_map ? kChainMap : s.bead_map);
 }
 
 void Renderer::draw(const Camera& camera, const FrameGeometry& g, const ViewSettings& s) {
@@ -352,8 +357,8 @@ void Renderer::draw_opaque(const FrameGeometry& g, const ViewSettings& s) {
 
   if (s.chains_visible() && g.segment_count > 0) {
     set_common(*segment_, s, true);
-    const float f_min = s.chain_threshold * g.mean_force;
-    segment_->set("u_force_range", f_min, std::max(g.max_force, f_min));
+    const ForceRange range = chain_force_range(s, g);
+    segment_->set("u_force_range", range.min, range.max);
     segment_->set("u_tube_radius", g.bead_radius * s.chain_radius,
                   g.bead_radius * s.chain_min_radius);
     segment_->set("u_wall_color", s.wall_chain_color.r, s.wall_chain_color.g, s.wall_chain_color.b,

@@ -91,6 +91,15 @@ struct ViewSettings {
   bool chains_visible() const { return show_chains || mode == ViewMode::Chains; }
 };
 
+// The force chains' colour map and colour range (N): from the threshold,
+// chain_threshold x F_mean, to the largest force (never below the
+// threshold). The renderer and the legends use these two.
+inline constexpr plot::ColorMap kChainMap = plot::ColorMap::Glow;
+struct ForceRange {
+  float min = 0, max = 0;
+};
+ForceRange chain_force_range(const ViewSettings& s, const FrameGeometry& g);
+
 // Owns GL buffers for FrameGeometry and fills them from host arrays (tests,
 // the host-copy path). Sizes grow, never shrink.
 class GeometryBuffers {

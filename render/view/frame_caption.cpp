@@ -41,7 +41,7 @@ plot::Rect draw_caption(plot::Image& img, const FrameCaption& c) {
   double y = margin + pad;
   if (!c.title.empty()) {
     y += title_px * 0.95;
-    plot::draw_text(img, margin + pad, y, c.title, title_px, kInk, {}, false, 1.25);
+    plot::draw_text(img, margin + pad, y, c.title, title_px, kInk, {}, false, 1.15);
     y += title_px * 0.3;
   }
   if (!c.state.empty()) plot::draw_text(img, margin + pad, y + state_px * 1.05, c.state, state_px, kInk);

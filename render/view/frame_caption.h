@@ -22,7 +22,7 @@ namespace simsols::render {
 
 struct FrameCaption {
   std::string title;  // "Direct shear, 6.35 mm glass beads, σ = 160 kPa"
-  std::string state;  // "δ = 2.62 mm, τ/σ = 0.157, σ = 160.0 kPa · step 190 517 · t = 0.1526 s"
+  std::string state;  // "δ = 2.62 mm, τ/σ = 0.157, σ = 160.0 kPa · step 190517 · t = 0.1526 s"
 };
 
 // Draws the caption's non-empty lines; returns the rectangle covered.

@@ -224,11 +224,12 @@ namespace {
 plot::Legend chain_legend(const render::ViewSettings& s, const render::FrameGeometry& g) {
   plot::Legend legend;
   legend.title = "normal force (N)";
-  legend.map = plot::ColorMap::Glow;
-  legend.min = double(s.chain_threshold) * g.mean_force;
-  legend.max = std::max(double(g.max_force), legend.min);
+  legend.map = render::kChainMap;
+  const render::ForceRange range = render::chain_force_range(s, g);
+  legend.min = range.min;
+  legend.max = range.max;
   char line[160];
-  std::snprintf(line, sizeof line, "drawn: F \u2265 %.3g \u00d7 mean (%.3g N)\nwidth \u221d force; grey: wall contacts",
+  std::snprintf(line, sizeof line, "drawn: F \u2265 %.3g \u00d7 mean (%.3g N)\nwidth grows with force; grey: wall contacts",
                 double(s.chain_threshold), legend.min);
   legend.note = line;
   legend.dark = true;

@@ -175,6 +175,14 @@ TEST(Alioscopy, GridLayoutShowsTheViewsLargest) {
     }
     EXPECT_NEAR(area / (double(w) * h), 8.0 / 9.0, 0.02);  // a 4 x 2 grid showed 8/16
   }
+  // square views on a 16:9 output: 4 x 2 cells of 480 x 540 hold 480 px
+  // squares, 3 x 3 cells of 640 x 360 only 360 px ones
+  const GridLayout square = grid_layout(1920, 1080, 1.0);
+  EXPECT_EQ(square.columns, 4);
+  EXPECT_EQ(square.rows, 2);
+  const plot::Rect c = square.cell(5, 1920, 1080, 1.0);
+  EXPECT_EQ(c.x1 - c.x0, 480);
+  EXPECT_EQ(c.y0, 540 + 30);  // second row, centred in its 540 px
 }
 
 TEST(Alioscopy, ProfileErrorsNameFileFieldAndRange) {
