@@ -45,13 +45,21 @@ double chroma(const Lab& c) { return std::hypot(c.a, c.b); }
 double delta_e(const Lab& p, const Lab& q) { return std::hypot(p.L - q.L, p.a - q.a, p.b - q.b); }
 double lightness(ColorMap m, double t) { return to_lab(colormap_color(m, t)).L; }
 
-TEST(Colormap, SequentialLightnessStrictlyIncreasingOverWideRange) {
-  double prev = -1;
+// L* of the 256 entries of map m rises (rising) or falls strictly.
+void expect_lightness_strictly_monotonic(ColorMap m, bool rising) {
+  double prev = rising ? -1 : 101;
   for (int i = 0; i < 256; ++i) {
-    const double L = lightness(ColorMap::Sequential, i / 255.0);
-    EXPECT_GT(L, prev) << "at entry " << i;
+    const double L = lightness(m, i / 255.0);
+    if (rising)
+      EXPECT_GT(L, prev) << to_string(m) << " at entry " << i;
+    else
+      EXPECT_LT(L, prev) << to_string(m) << " at entry " << i;
     prev = L;
   }
+}
+
+TEST(Colormap, SequentialLightnessStrictlyIncreasingOverWideRange) {
+  expect_lightness_strictly_monotonic(ColorMap::Sequential, true);
   EXPECT_LT(lightness(ColorMap::Sequential, 0), 20);
   EXPECT_GT(lightness(ColorMap::Sequential, 1), 85);
 }
@@ -105,12 +113,7 @@ TEST(Colormap, SequentialIsViridis) {
 }
 
 TEST(Colormap, ForceGetsDarkerAndMoreSaturated) {
-  double prev = 101;
-  for (int i = 0; i < 256; ++i) {
-    const double L = lightness(ColorMap::Force, i / 255.0);
-    EXPECT_LT(L, prev) << "at entry " << i;
-    prev = L;
-  }
+  expect_lightness_strictly_monotonic(ColorMap::Force, false);
   const Lab lo = to_lab(colormap_color(ColorMap::Force, 0));
   const Lab hi = to_lab(colormap_color(ColorMap::Force, 1));
   EXPECT_GT(lo.L, 80);
@@ -125,13 +128,9 @@ TEST(Colormap, ForceGetsDarkerAndMoreSaturated) {
 
 // Glow is the Force map backwards: lighter with the force, entry for entry.
 TEST(Colormap, GlowIsTheForceMapReversed) {
-  double prev = -1;
-  for (int i = 0; i < 256; ++i) {
-    const double L = lightness(ColorMap::Glow, i / 255.0);
-    EXPECT_GT(L, prev) << "at entry " << i;
-    prev = L;
+  expect_lightness_strictly_monotonic(ColorMap::Glow, true);
+  for (int i = 0; i < 256; ++i)
     EXPECT_EQ(colormap_color(ColorMap::Glow, i / 255.0), colormap_color(ColorMap::Force, 1 - i / 255.0));
-  }
   EXPECT_EQ(parse_colormap("Glow"), ColorMap::Glow);
 }
 
