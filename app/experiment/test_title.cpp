@@ -1,18 +1,14 @@
 #include "app/experiment/test_title.h"
 
 #include <algorithm>
-#include <cstdio>
 
+#include "solver/io/output.h"
 #include "solver/scene/scene.h"
 
 namespace simsols {
 namespace {
 
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
+std::string number(double v) { return format_number("%.3g", v); }
 
 // "6.35 mm glass beads", "graded glass beads (D50 2 mm)", "sand grains (D50 4.76 mm)"
 std::string specimen_words(const Scene& s, const Specimen& sp) {
