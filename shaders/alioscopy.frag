@@ -1,6 +1,6 @@
 // alioscopy.frag — composes the eight views (a 2D texture array) into the
 // output, 1:1 (see render/gl/alioscopy.h):
-//   u_mode 0  interleaved for the lenticular screen:
+//   u_mode 0  interleaved for the lenticular screen (nearest texel):
 //             v = (Y - (3X + c) + phase) mod 8, or with flip_slant
 //             (-Y - (3X + c) + phase) mod 8; view = v or 7 - v (reversed);
 //             X, Y physical screen pixels, Y from the top
@@ -10,6 +10,8 @@
 //   u_mode 2  view u_single, full size
 uniform sampler2DArray u_views;
 uniform ivec2 u_output;         // output size, pixels
+uniform ivec2 u_view_size;      // the views' size, pixels
+uniform ivec2 u_origin;         // the output's bottom-left corner in the target
 uniform ivec2 u_window;         // the output's top-left pixel on the screen
 uniform int u_phase;
 uniform int u_reversed;
@@ -25,13 +27,16 @@ int view_of(int X, int Y, int c) {
 }
 
 void main() {
-  ivec2 f = ivec2(gl_FragCoord.xy);            // GL: row 0 at the bottom
+  ivec2 f = ivec2(gl_FragCoord.xy) - u_origin;  // GL: row 0 at the bottom
   int row_from_top = u_output.y - 1 - f.y;
   vec2 uv = (vec2(f) + 0.5) / vec2(u_output);  // the same point in every view
   if (u_mode == 0) {
     int X = u_window.x + f.x, Y = u_window.y + row_from_top;
     vec3 rgb;
-    for (int c = 0; c < 3; ++c) rgb[c] = texture(u_views, vec3(uv, float(view_of(X, Y, c))))[c];
+    // nearest texel: a row samples each view at 3 subpixels in 8, which the
+    // default views (3/8 of the output) match one texel per sample
+    ivec2 t = min(ivec2(uv * vec2(u_view_size)), u_view_size - 1);
+    for (int c = 0; c < 3; ++c) rgb[c] = texelFetch(u_views, ivec3(t, view_of(X, Y, c)), 0)[c];
     emit(rgb, 1.0, 0.0);
   } else if (u_mode == 1) {
     vec2 cell = vec2(u_output) / vec2(u_grid);

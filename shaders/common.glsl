@@ -65,5 +65,5 @@ void emit(vec3 color, float alpha, float view_depth) {
 }
 #else
 layout(location = 0) out vec4 o_color;
-void emit(vec3 color, float alpha, float view_depth) { o_color = vec4(color, 1.0); }
+void emit(vec3 color, float alpha, float view_depth) { o_color = vec4(color, alpha); }
 #endif

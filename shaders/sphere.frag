@@ -27,8 +27,11 @@ void main() {
   if (h2 < 0.0) discard;
   float t = b - sqrt(h2);
   vec3 hit = ro + t * rd;
-  vec4 clip = u_proj * vec4(hit, 1.0);
-  gl_FragDepth = 0.5 * (clip.z / clip.w) + 0.5;
+  // clip z and w: the projections used (perspective, off-axis, orthographic)
+  // take them from the view depth alone
+  float clip_z = u_proj[2][2] * hit.z + u_proj[3][2];
+  float clip_w = u_proj[2][3] * hit.z + u_proj[3][3];
+  gl_FragDepth = 0.5 * (clip_z / clip_w) + 0.5;
 
   vec3 base = u_flat_color.a > 0.0 ? u_flat_color.rgb : map_value(v_value);
   vec3 color = base;
@@ -37,7 +40,9 @@ void main() {
     vec3 l = normalize(vec3(0.35, 0.55, 1.0));
     float diffuse = max(dot(n, l), 0.0);
     vec3 hv = normalize(l - rd);
-    float spec = pow(max(dot(n, hv), 0.0), 40.0);
+    float c = max(dot(n, hv), 0.0);  // c^40 by squaring (pow costs an exp and a log)
+    float c2 = c * c, c4 = c2 * c2, c8 = c4 * c4, c32 = c8 * c8 * c8 * c8;
+    float spec = c32 * c8;
     color = base * (0.30 + 0.70 * diffuse) + vec3(0.22 * spec);
   }
   emit(color, u_alpha, -hit.z);

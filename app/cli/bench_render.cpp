@@ -5,8 +5,9 @@
 //             buffers (kernels + the shared or host-copy path)
 //   contacts  the same for the force-chain segments
 //   opaque / transparent / chains   one frame at W x H, draw + glFinish
-// With --stereo: the eight views of the Alioscopy rig (each at half the
-// 1920 x 1080 panel, opaque and transparent) plus the interleaving pass.
+// With --stereo: the eight views of the Alioscopy rig (each at the profile's
+// view_scale of the output: the 1920 x 1080 panel, or --frame-size, such as
+// a lab window), opaque and transparent, plus the interleaving pass.
 // Medians over `frames` repetitions, in milliseconds. llvmpipe renders on
 // the CPU with all cores; a GPU driver reports its own figures.
 #include "app/cli/bench_render.h"
@@ -72,7 +73,6 @@ void time_stereo(const RenderBenchOptions& opt, const render::Gl& gl,
   std::printf("%10d %16.2f %14.2f %18.2f %14.2f\n", n, views[0], inter, views[1],
               views[0] + inter);
   std::fflush(stdout);
-  renderer.resize(opt.width, opt.height);
 }
 
 // One size in the flat views: opaque, transparent and chains frames, in ms.
@@ -92,10 +92,11 @@ void time_flat(const RenderBenchOptions& opt, const render::Gl& gl, render::Rend
   }
 }
 
-void print_header(const RenderBenchOptions& opt, const render::DisplayProfile& profile) {
-  if (opt.stereo) {
-    std::printf("Alioscopy: %d views of %dx%d, interleaved at %dx%d\n", profile.views,
-                profile.view_width(), profile.view_height(), profile.width, profile.height);
+void print_header(const RenderBenchOptions& opt, const render::AlioscopyOutput* alioscopy) {
+  if (alioscopy) {
+    std::printf("Alioscopy: %d views of %dx%d, interleaved at %dx%d\n", alioscopy->profile().views,
+                alioscopy->view_width(), alioscopy->view_height(), alioscopy->output_width(),
+                alioscopy->output_height());
     std::printf("%10s %16s %14s %18s %14s\n", "beads", "8 views opaque", "interleave",
                 "8 views transp.", "total opaque");
   } else {
@@ -113,21 +114,26 @@ int bench_render(const RenderBenchOptions& opt) {
   auto device = Device::open(engine_options_from_environment(),
                              render::cl_share_properties(ctx->share_handles()));
   const render::Gl& gl = ctx->gl();
-  render::Renderer renderer(gl);
-  renderer.resize(opt.width, opt.height);
-  std::printf("GL: %s\nOpenCL: %s\nframe %dx%d, median of %d\n", ctx->description().c_str(),
-              device->description().c_str(), opt.width, opt.height, opt.frames);
   render::DisplayProfile profile;
+  const int width = opt.width > 0 ? opt.width : profile.width;
+  const int height = opt.height > 0 ? opt.height : profile.height;
+  render::Renderer renderer(gl);
+  renderer.resize(width, height);
+  std::printf("GL: %s\nOpenCL: %s\nframe %dx%d, median of %d\n", ctx->description().c_str(),
+              device->description().c_str(), width, height, opt.frames);
   std::unique_ptr<render::AlioscopyOutput> alioscopy;
-  if (opt.stereo) alioscopy = std::make_unique<render::AlioscopyOutput>(gl, profile);
-  print_header(opt, profile);
+  if (opt.stereo) {
+    alioscopy = std::make_unique<render::AlioscopyOutput>(gl, profile);
+    alioscopy->resize_output(width, height);
+  }
+  print_header(opt, alioscopy.get());
   for (int n : opt.sizes) {
     Simulation sim(device, bench_scene(n, Precision::Float, false));
     sim.advance(2);
     render::SimulationView view(gl, sim);
     render::Camera cam;
     cam.set_preset(render::ViewPreset::ThreeQuarter);
-    cam.fit(view.lo(), view.hi(), double(opt.width) / opt.height);
+    cam.fit(view.lo(), view.hi(), double(width) / height);
     ViewPacker::Range range;
     ViewPacker::ContactStats stats;
     const double pack = time_median(opt.frames, [&] {

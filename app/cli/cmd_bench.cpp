@@ -213,9 +213,11 @@ CommandRunner add_bench_command(CLI::App& app) {
   cmd->add_flag("--render", opt->render,
                 "Renderer frame times (opaque, transparent, chains) and data path instead; "
                 "default sizes 5000 100000 1000000");
-  cmd->add_option("--frame-size", opt->frame_size, "--render: frame size WxH (default 1280x720)");
+  cmd->add_option("--frame-size", opt->frame_size,
+                  "--render: frame size WxH (default 1280x720; with --stereo the output, default "
+                  "the 1920x1080 panel)");
   cmd->add_flag("--stereo", opt->render_opt.stereo,
-                "--render: the eight Alioscopy views and the interleaving (1920x1080 panel)");
+                "--render: the eight Alioscopy views and the interleaving");
   CLI::Option* gl =
       cmd->add_option("--gl", opt->render_opt.gl, "--render: headless OpenGL auto, egl or osmesa")
       ->check(CLI::IsMember({"auto", "egl", "osmesa"}));
@@ -227,7 +229,8 @@ CommandRunner add_bench_command(CLI::App& app) {
   CLI::Option* sizes = cmd->get_option("--sizes");
   CLI::Option* repeat = cmd->get_option("--repeat");
   CLI::Option* precision = cmd->get_option("--precision");
-  return [opt, sizes, repeat, precision, gl] {
+  CLI::Option* frame_size = cmd->get_option("--frame-size");
+  return [opt, sizes, repeat, precision, gl, frame_size] {
     if (opt->effects) {
       EffectsBenchOptions e;
       if (sizes->count() > 0) e.sizes = opt->sizes;
@@ -241,7 +244,10 @@ CommandRunner add_bench_command(CLI::App& app) {
     RenderBenchOptions r = opt->render_opt;
     if (sizes->count() > 0) r.sizes = opt->sizes;
     if (repeat->count() > 0) r.frames = opt->repeat;
-    std::tie(r.width, r.height) = parse_frame_size(opt->frame_size, "--frame-size");
+    if (!r.stereo || frame_size->count() > 0)
+      std::tie(r.width, r.height) = parse_frame_size(opt->frame_size, "--frame-size");
+    else
+      r.width = r.height = 0;  // the display profile's panel
     gl_from_environment(r.gl, gl->count() > 0);
     return bench_render(r);
   };

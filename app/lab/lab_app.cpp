@@ -153,45 +153,36 @@ void LabApp::poll_input() {
 void LabApp::draw_view(int x, int y, int w, int h) {
   const render::Gl& gl = window_->gl();
   if (!sim_view_ || w < 1 || h < 1) return;
-  const bool chains = view == LabView::Chains || chains_overlay;
+  const bool chains = look_ == LabView::Chains || view == LabView::Chains || chains_overlay;
   // contacts are packed every frame (0.5 ms for 5 000 beads): the status
   // line counts them, the chains draw them when asked
   const auto update = sim_view_->update(field, true);
   contacts_ = update.contacts.total;
+  // the stereo views show the look of the last flat view chosen
+  if (view == LabView::Opaque || view == LabView::Transparent || view == LabView::Chains) look_ = view;
   render::ViewSettings s;
-  s.mode = view == LabView::Opaque   ? render::ViewMode::Opaque
-           : view == LabView::Chains ? render::ViewMode::Chains
-                                     : render::ViewMode::Transparent;
+  s.mode = look_ == LabView::Opaque   ? render::ViewMode::Opaque
+           : look_ == LabView::Chains ? render::ViewMode::Chains
+                                      : render::ViewMode::Transparent;
   s.show_chains = chains;
   s.chain_threshold = threshold;
   s.bead_map = render::colormap_for(field);
   s.value_min = update.range.min;
   s.value_max = update.range.max;
-  const bool stereo = view == LabView::Alioscopy || view == LabView::Grid || view == LabView::Single;
-  if (!stereo) {
-    // Adaptive resolution: llvmpipe is fill-bound, so the flat view renders
-    // at a scale that keeps the drawing near 20 ms (>= 30 frames per second
-    // with the solver's share), and is scaled up into the viewport.
-    const double target_ms = 20;
-    if (render_ms_ > 0)
-      render_scale_ = std::clamp(render_scale_ * std::sqrt(target_ms / render_ms_), 0.35, 1.0);
-    const int rw = std::max(1, int(w * render_scale_)), rh = std::max(1, int(h * render_scale_));
-    const auto r0 = Clock::now();
-    renderer_->resize(rw, rh);
-    renderer_->draw(camera_, sim_view_->geometry(), s);
-    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, renderer_->framebuffer());
-    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    gl.BlitFramebuffer(0, 0, rw, rh, x, y, x + w, y + h, GL_COLOR_BUFFER_BIT,
-                       rw == w ? GL_NEAREST : GL_LINEAR);
-    gl.Finish();
-    render_ms_ = 0.7 * render_ms_ + 0.3 * ms_since(r0);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (view != LabView::Alioscopy && view != LabView::Grid) {
+    // a flat view, or one camera of the rig (the single view)
+    if (view != LabView::Single) {
+      draw_flat(render::ViewProjection::of(camera_, double(w) / h), s, x, y, w, h);
+      return;
+    }
+    if (!alioscopy_) alioscopy_ = std::make_unique<render::AlioscopyOutput>(gl, render::DisplayProfile{});
+    const render::StereoRig rig = alioscopy_->rig(render::StereoRig{});
+    draw_flat(rig.view(camera_, std::clamp(single_view, 0, rig.views - 1), double(w) / h), s, x, y,
+              w, h);
     return;
   }
   // Alioscopy: the interleaved image covers the whole window, pixel for
-  // pixel, with the window's screen position; grid and single view the
-  // viewport.
-  s.mode = view == LabView::Alioscopy ? s.mode : render::ViewMode::Transparent;
+  // pixel, with the window's screen position; the grid the viewport.
   if (!alioscopy_) alioscopy_ = std::make_unique<render::AlioscopyOutput>(gl, render::DisplayProfile{});
   int fw = 0, fh = 0;
   glfwGetFramebufferSize(window_->handle(), &fw, &fh);
@@ -200,16 +191,36 @@ void LabApp::draw_view(int x, int y, int w, int h) {
   alioscopy_->render_views(*renderer_, render::StereoRig{}, camera_, sim_view_->geometry(), s);
   int wx = 0, wy = 0;
   window_->position(&wx, &wy);
-  alioscopy_->compose(view == LabView::Alioscopy ? render::AlioscopyOutput::Mode::Interleaved
-                      : view == LabView::Grid    ? render::AlioscopyOutput::Mode::Grid
-                                                 : render::AlioscopyOutput::Mode::Single,
-                      single_view, {wx, wy});
-  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, alioscopy_->framebuffer());
-  gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  alioscopy_mode_ = view == LabView::Alioscopy ? render::AlioscopyOutput::Mode::Interleaved
+                    : view == LabView::Grid    ? render::AlioscopyOutput::Mode::Grid
+                                               : render::AlioscopyOutput::Mode::Single;
+  alioscopy_window_ = {wx, wy};
   const int dx = view == LabView::Alioscopy ? 0 : x, dy = view == LabView::Alioscopy ? 0 : y;
-  gl.BlitFramebuffer(0, 0, ow, oh, dx, dy, dx + ow, dy + oh, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  alioscopy_->compose_into(0, {dx, dy}, alioscopy_mode_, single_view, alioscopy_window_);
   if (view == LabView::Grid) label_grid(x, fh - (y + h), w, h);
+}
+
+// Draws a flat view into the viewport at x, y (w x h, GL pixels).
+// Adaptive resolution: llvmpipe is fill-bound, so the view renders at a
+// scale that keeps the drawing near 20 ms (>= 30 frames per second with the
+// solver's share), and is scaled up into the viewport.
+void LabApp::draw_flat(const render::ViewProjection& vp, const render::ViewSettings& s, int x,
+                       int y, int w, int h) {
+  const render::Gl& gl = window_->gl();
+  const double target_ms = 20;
+  if (render_ms_ > 0)
+    render_scale_ = std::clamp(render_scale_ * std::sqrt(target_ms / render_ms_), 0.35, 1.0);
+  const int rw = std::max(1, int(w * render_scale_)), rh = std::max(1, int(h * render_scale_));
+  const auto r0 = Clock::now();
+  renderer_->resize(rw, rh);
+  renderer_->draw(vp, sim_view_->geometry(), s);
+  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, renderer_->framebuffer());
+  gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  gl.BlitFramebuffer(0, 0, rw, rh, x, y, x + w, y + h, GL_COLOR_BUFFER_BIT,
+                     rw == w ? GL_NEAREST : GL_LINEAR);
+  gl.Finish();
+  render_ms_ = 0.7 * render_ms_ + 0.3 * ms_since(r0);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 // "view k" over each view of the grid (x, top: the grid's top-left corner
@@ -235,6 +246,9 @@ void LabApp::save_screenshot(const std::string& path) {
 
 void LabApp::save_frame(const std::string& path) {
   if (view == LabView::Alioscopy && alioscopy_) {
+    // the window got the interleaved image straight; compose it once more
+    // into the output's own framebuffer to read it
+    alioscopy_->compose(alioscopy_mode_, single_view, alioscopy_window_);
     plot::write_png(alioscopy_->read_pixels(), path);
     return;
   }

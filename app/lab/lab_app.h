@@ -69,6 +69,8 @@ class LabApp {
   void take_script_screenshot();
   void attach_view();
   void draw_view(int x, int y, int w, int h);
+  void draw_flat(const render::ViewProjection& vp, const render::ViewSettings& s, int x, int y,
+                 int w, int h);
   void label_grid(int x, int top, int w, int h);
   void draw_panel(int panel_width);
   void draw_controls();  // the panel's sections, one function each (lab_panel.cpp):
@@ -94,6 +96,9 @@ class LabApp {
   std::unique_ptr<LabExperiment> exp_;
   std::unique_ptr<render::Renderer> renderer_;
   std::unique_ptr<render::AlioscopyOutput> alioscopy_;
+  render::AlioscopyOutput::Mode alioscopy_mode_ = render::AlioscopyOutput::Mode::Interleaved;
+  glm::ivec2 alioscopy_window_{0, 0};  // the window's screen position when last composed
+  LabView look_ = LabView::Transparent;  // the last flat view: the stereo views' look
   std::unique_ptr<render::SimulationView> sim_view_;
   render::Camera camera_;
   render::ViewPreset preset_ = render::ViewPreset::ThreeQuarter;

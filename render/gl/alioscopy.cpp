@@ -7,8 +7,10 @@
 
 namespace simsols::render {
 
-int DisplayProfile::view_width() const { return std::max(1, int(std::ceil(width * view_scale))); }
-int DisplayProfile::view_height() const { return std::max(1, int(std::ceil(height * view_scale))); }
+glm::ivec2 DisplayProfile::view_size(int output_width, int output_height) const {
+  return {std::max(1, int(std::ceil(output_width * view_scale))),
+          std::max(1, int(std::ceil(output_height * view_scale)))};
+}
 
 int alioscopy_view(int x, int y, int c, const DisplayProfile& p) {
   const int s = (p.flip_slant ? -y : y) - (3 * x + c) + p.phase;
@@ -46,8 +48,6 @@ AlioscopyOutput::AlioscopyOutput(const Gl& gl, const DisplayProfile& profile)
   gl.GetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &prev_tex);
   gl.GenTextures(1, &views_tex_);
   gl.BindTexture(GL_TEXTURE_2D_ARRAY, views_tex_);
-  gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, profile.view_width(), profile.view_height(),
-                profile.views, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
   const GLint filter = profile.nearest_views ? GL_NEAREST : GL_LINEAR;
   gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, filter);
   gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, filter);
@@ -74,9 +74,15 @@ void AlioscopyOutput::resize_output(int width, int height) {
                       " is out of range: each side must be in [1, " +
                       std::to_string(Renderer::kMaxSize) + "]");
   if (width == out_w_ && height == out_h_) return;
-  GLint prev_fbo = 0, prev_tex = 0;
+  GLint prev_fbo = 0, prev_tex = 0, prev_array = 0;
   gl_.GetIntegerv(GL_FRAMEBUFFER_BINDING, &prev_fbo);
   gl_.GetIntegerv(GL_TEXTURE_BINDING_2D, &prev_tex);
+  gl_.GetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &prev_array);
+  view_ = profile_.view_size(width, height);
+  gl_.BindTexture(GL_TEXTURE_2D_ARRAY, views_tex_);
+  gl_.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, view_.x, view_.y, profile_.views, 0, GL_RGBA,
+                 GL_UNSIGNED_BYTE, nullptr);
+  gl_.BindTexture(GL_TEXTURE_2D_ARRAY, GLuint(prev_array));
   if (out_tex_) gl_.DeleteTextures(1, &out_tex_);
   if (out_fbo_) gl_.DeleteFramebuffers(1, &out_fbo_);
   gl_.GenTextures(1, &out_tex_);
@@ -103,8 +109,9 @@ void AlioscopyOutput::copy_view(int k, const Renderer& renderer) {
   gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, renderer.framebuffer());
   gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, layer_fbo_);
   gl_.FramebufferTextureLayer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, views_tex_, 0, k);
-  gl_.BlitFramebuffer(0, 0, renderer.width(), renderer.height(), 0, 0, profile_.view_width(),
-                      profile_.view_height(), GL_COLOR_BUFFER_BIT, GL_LINEAR);
+  const bool same = renderer.width() == view_.x && renderer.height() == view_.y;
+  gl_.BlitFramebuffer(0, 0, renderer.width(), renderer.height(), 0, 0, view_.x, view_.y,
+                      GL_COLOR_BUFFER_BIT, same ? GL_NEAREST : GL_LINEAR);
   gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(read));
   gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw));
   gl_.check("AlioscopyOutput::copy_view");
@@ -122,11 +129,10 @@ void AlioscopyOutput::fill_view(int k, glm::vec4 rgba) {
 
 void AlioscopyOutput::upload_view(int k, const plot::Image& img) {
   if (k < 0 || k >= profile_.views) throw RenderError("view " + std::to_string(k) + " out of range");
-  if (img.width != profile_.view_width() || img.height != profile_.view_height())
+  if (img.width != view_.x || img.height != view_.y)
     throw RenderError("upload_view: image " + std::to_string(img.width) + "x" +
                       std::to_string(img.height) + ", views are " +
-                      std::to_string(profile_.view_width()) + "x" +
-                      std::to_string(profile_.view_height()));
+                      std::to_string(view_.x) + "x" + std::to_string(view_.y));
   std::vector<std::uint8_t> rows(img.rgba.size());
   const std::size_t stride = std::size_t(img.width) * 4;
   for (int y = 0; y < img.height; ++y)  // GL rows start at the bottom
@@ -143,18 +149,23 @@ void AlioscopyOutput::upload_view(int k, const plot::Image& img) {
   gl_.check("AlioscopyOutput::upload_view");
 }
 
-void AlioscopyOutput::render_views(Renderer& renderer, const StereoRig& rig_in,
-                                   const Camera& camera, const FrameGeometry& geometry,
-                                   const ViewSettings& settings) {
+StereoRig AlioscopyOutput::rig(const StereoRig& rig_in) const {
   StereoRig rig = rig_in;
   rig.views = profile_.views;
   if (rig.interaxial <= 0) rig.interaxial = profile_.interaxial;
   if (rig.focus <= 0) rig.focus = profile_.focus;
   if (rig.interaxial <= 0) rig.ratio = profile_.interaxial_ratio;
-  renderer.resize(profile_.view_width(), profile_.view_height());
+  return rig;
+}
+
+void AlioscopyOutput::render_views(Renderer& renderer, const StereoRig& rig_in,
+                                   const Camera& camera, const FrameGeometry& geometry,
+                                   const ViewSettings& settings) {
+  const StereoRig views = rig(rig_in);
+  renderer.resize(view_.x, view_.y);
   const double aspect = double(out_w_) / out_h_;  // the views fill the screen
   for (int k = 0; k < profile_.views; ++k) {
-    renderer.draw(rig.view(camera, k, aspect), geometry, settings);
+    renderer.draw(views.view(camera, k, aspect), geometry, settings);
     copy_view(k, renderer);
   }
 }
@@ -192,6 +203,11 @@ GridLayout AlioscopyOutput::grid() const {
 }
 
 void AlioscopyOutput::compose(Mode mode, int single_view, glm::ivec2 window) {
+  compose_into(out_fbo_, {0, 0}, mode, single_view, window);
+}
+
+void AlioscopyOutput::compose_into(GLuint fbo_target, glm::ivec2 at, Mode mode, int single_view,
+                                   glm::ivec2 window) {
   GLint fbo = 0, vp[4] = {}, program = 0, vao = 0, active = 0, tex = 0;
   gl_.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
   gl_.GetIntegerv(GL_VIEWPORT, vp);
@@ -202,14 +218,16 @@ void AlioscopyOutput::compose(Mode mode, int single_view, glm::ivec2 window) {
   gl_.ActiveTexture(GL_TEXTURE0);
   gl_.GetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &tex);
 
-  gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, out_fbo_);
-  gl_.Viewport(0, 0, out_w_, out_h_);
+  gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_target);
+  gl_.Viewport(at.x, at.y, out_w_, out_h_);
   gl_.Disable(GL_BLEND);  // written 1:1: nothing blends, filters or scales
   gl_.Disable(GL_DEPTH_TEST);
   program_->use();
   gl_.BindTexture(GL_TEXTURE_2D_ARRAY, views_tex_);
   program_->set("u_views", 0);
   gl_.Uniform2i(program_->uniform("u_output"), out_w_, out_h_);
+  gl_.Uniform2i(program_->uniform("u_origin"), at.x, at.y);
+  gl_.Uniform2i(program_->uniform("u_view_size"), view_.x, view_.y);
   gl_.Uniform2i(program_->uniform("u_window"), window.x, window.y);
   program_->set("u_phase", profile_.phase);
   program_->set("u_reversed", profile_.reversed ? 1 : 0);
@@ -240,7 +258,7 @@ plot::Image AlioscopyOutput::read_view(int k) const {
   gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, layer_fbo_);
   gl_.FramebufferTextureLayer(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, views_tex_, 0, k);
   gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(read));
-  return read_framebuffer(gl_, layer_fbo_, profile_.view_width(), profile_.view_height());
+  return read_framebuffer(gl_, layer_fbo_, view_.x, view_.y);
 }
 
 }  // namespace simsols::render

@@ -56,14 +56,16 @@ struct DisplayProfile {
   int phase = 0;                    // [0, 7]
   bool reversed = false;
   bool flip_slant = false;
-  double view_scale = 0.5;          // per-view resolution / panel, (0, 1]
+  double view_scale = 0.375;        // per-view resolution / output, (0, 1]
   double interaxial_ratio = 6.5 / 400;  // camera spacing / focus when interaxial = 0
   double interaxial = 0;            // m between neighbouring cameras; 0 = ratio x focus
   double focus = 0;                 // m to the focus plane; 0 = the camera's distance to its target
   bool nearest_views = false;       // sample the views without filtering (tests)
 
-  int view_width() const;   // ceil(width * view_scale)
-  int view_height() const;
+  // The views' size for an output of that size: ceil(side x view_scale).
+  glm::ivec2 view_size(int output_width, int output_height) const;
+  int view_width() const { return view_size(width, height).x; }  // at the panel's size
+  int view_height() const { return view_size(width, height).y; }
 };
 
 // A display profile that cannot be used: every problem found in one pass
@@ -116,12 +118,18 @@ class AlioscopyOutput {
   AlioscopyOutput& operator=(const AlioscopyOutput&) = delete;
 
   const DisplayProfile& profile() const { return profile_; }
-  // Output size (defaults to the panel) and the views' size.
+  // Output size (defaults to the panel); the views follow it
+  // (DisplayProfile::view_size).
   void resize_output(int width, int height);
   int output_width() const { return out_w_; }
   int output_height() const { return out_h_; }
+  int view_width() const { return view_.x; }
+  int view_height() const { return view_.y; }
 
-  // Renders the eight views of `camera` (views sized by the profile).
+  // `rig` with the profile's settings where it leaves them to the display
+  // (interaxial, focus, ratio at 0).
+  StereoRig rig(const StereoRig& rig) const;
+  // Renders the eight views of `camera`.
   void render_views(Renderer& renderer, const StereoRig& rig, const Camera& camera,
                     const FrameGeometry& geometry, const ViewSettings& settings);
   // Copies the current frame of `renderer` into view k (tests fill views
@@ -135,6 +143,10 @@ class AlioscopyOutput {
   // Composes into the output framebuffer. `window` is the output's
   // top-left pixel on the physical screen (Interleaved only).
   void compose(Mode mode, int single_view = 0, glm::ivec2 window = {0, 0});
+  // The same straight into another framebuffer (a window's: no copy), the
+  // output's size with its bottom-left corner at `at` (GL pixels).
+  void compose_into(GLuint framebuffer, glm::ivec2 at, Mode mode, int single_view = 0,
+                    glm::ivec2 window = {0, 0});
   // The Grid mode's layout for the current output (views of its aspect).
   GridLayout grid() const;
   plot::Image read_pixels() const;
@@ -148,6 +160,7 @@ class AlioscopyOutput {
   std::unique_ptr<ShaderProgram> program_;
   GLuint views_tex_ = 0, layer_fbo_ = 0, out_tex_ = 0, out_fbo_ = 0, vao_ = 0;
   int out_w_ = 0, out_h_ = 0;
+  glm::ivec2 view_{1, 1};
 };
 
 }  // namespace simsols::render

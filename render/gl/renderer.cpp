@@ -189,6 +189,7 @@ Renderer::Renderer(const Gl& gl) : gl_(gl) {
   segment_ = std::make_unique<ShaderProgram>(gl, "segment.vert", "segment.frag");
   wall_oit_ = std::make_unique<ShaderProgram>(gl, "wall.vert", "wall.frag",
                                               std::vector<std::string>{"OIT"});
+  wall_ = std::make_unique<ShaderProgram>(gl, "wall.vert", "wall.frag");
   composite_ = std::make_unique<ShaderProgram>(gl, "fullscreen.vert", "oit_composite.frag");
   gl.GenVertexArrays(1, &vao_);
   gl.GenVertexArrays(1, &empty_vao_);
@@ -228,8 +229,8 @@ void Renderer::resize(int width, int height) {
   height_ = height;
   color_tex_ = make_texture(gl_, GL_RGBA8, width, height, GL_RGBA, GL_UNSIGNED_BYTE);
   depth_rb_ = make_texture(gl_, GL_DEPTH_COMPONENT24, width, height, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT);
-  accum_tex_ = make_texture(gl_, GL_RGBA32F, width, height, GL_RGBA, GL_FLOAT);
-  weight_tex_ = make_texture(gl_, GL_RGBA32F, width, height, GL_RGBA, GL_FLOAT);
+  accum_tex_ = make_texture(gl_, GL_RGBA16F, width, height, GL_RGBA, GL_FLOAT);
+  weight_tex_ = make_texture(gl_, GL_R16F, width, height, GL_RED, GL_FLOAT);
   gl_.GenFramebuffers(1, &scene_fbo_);
   gl_.BindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
   gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_tex_, 0);
@@ -310,7 +311,9 @@ void Renderer::draw(const ViewProjection& vp, const FrameGeometry& g, const View
   draw_opaque(g, s);
   const bool transparent_beads = s.show_beads && s.mode != ViewMode::Opaque && g.bead_count > 0;
   const bool walls = s.show_walls && !g.walls.empty();
-  if (transparent_beads || walls) {
+  if (!transparent_beads && walls) {
+    draw_walls_blended(g, s);
+  } else if (transparent_beads) {
     draw_transparent(g, s);
     composite();
   }
@@ -402,17 +405,39 @@ void Renderer::draw_transparent(const FrameGeometry& g, const ViewSettings& s) {
 
   if (s.show_beads && s.mode != ViewMode::Opaque && g.bead_count > 0)
     draw_beads(*sphere_oit_, g, s, s.mode == ViewMode::Chains ? s.chains_bead_alpha : s.bead_alpha);
-  if (s.show_walls) {
-    set_common(*wall_oit_, s, false);
-    wall_oit_->set("u_color", s.wall_color.r, s.wall_color.g, s.wall_color.b, s.wall_color.a);
-    gl_.BindVertexArray(empty_vao_);
-    for (const WallQuad& w : g.walls) {
-      wall_oit_->set("u_centre", w.centre.x, w.centre.y, w.centre.z);
-      wall_oit_->set("u_axis_u", w.axis_u.x, w.axis_u.y, w.axis_u.z);
-      wall_oit_->set("u_axis_v", w.axis_v.x, w.axis_v.y, w.axis_v.z);
-      gl_.DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    }
+  if (s.show_walls) draw_walls(*wall_oit_, g.walls, s);
+  gl_.DepthMask(GL_TRUE);
+}
+
+void Renderer::draw_walls(ShaderProgram& p, const std::vector<WallQuad>& walls, const ViewSettings& s) {
+  set_common(p, s, false);
+  p.set("u_color", s.wall_color.r, s.wall_color.g, s.wall_color.b, s.wall_color.a);
+  gl_.BindVertexArray(empty_vao_);
+  for (const WallQuad& w : walls) {
+    p.set("u_centre", w.centre.x, w.centre.y, w.centre.z);
+    p.set("u_axis_u", w.axis_u.x, w.axis_u.y, w.axis_u.z);
+    p.set("u_axis_v", w.axis_v.x, w.axis_v.y, w.axis_v.z);
+    gl_.DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
   }
+}
+
+// Walls over opaque beads: plates of one colour and opacity, blended far to
+// near straight into the frame. Where k plates overlap this gives
+// C (1 - (1 - a)^k) + C_0 (1 - a)^k, the OIT formula's value for equal
+// colours, without the float targets and the resolve pass (on llvmpipe
+// those cost more than the beads). Plates sorted by their centres' view
+// depth: exact for the faces of a convex box, which never interleave.
+void Renderer::draw_walls_blended(const FrameGeometry& g, const ViewSettings& s) {
+  std::vector<WallQuad> walls = g.walls;
+  const auto depth = [&](const WallQuad& w) { return (view_ * glm::vec4(w.centre, 1.f)).z; };
+  std::stable_sort(walls.begin(), walls.end(),
+                   [&](const WallQuad& a, const WallQuad& b) { return depth(a) < depth(b); });
+  gl_.Enable(GL_DEPTH_TEST);
+  gl_.DepthFunc(GL_LESS);
+  gl_.DepthMask(GL_FALSE);
+  gl_.Enable(GL_BLEND);
+  gl_.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+  draw_walls(*wall_, walls, s);
   gl_.DepthMask(GL_TRUE);
 }
 

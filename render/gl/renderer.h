@@ -7,6 +7,8 @@
 //                     into weighted blended OIT targets, depth-tested
 //                     against the opaque stage, nothing sorted
 //   composite         resolves the transparent layer over the opaque image
+//   (opaque mode: the walls alone are translucent; draw_walls_blended puts
+//   them straight over the frame, far to near, instead of the two stages)
 //
 // Inputs are GL buffers (FrameGeometry) that the data path fills either
 // through OpenCL-OpenGL sharing or one host copy; the renderer does not know
@@ -160,6 +162,8 @@ class Renderer {
  private:
   void draw_opaque(const FrameGeometry& g, const ViewSettings& s);
   void draw_transparent(const FrameGeometry& g, const ViewSettings& s);
+  void draw_walls(ShaderProgram& p, const std::vector<WallQuad>& walls, const ViewSettings& s);
+  void draw_walls_blended(const FrameGeometry& g, const ViewSettings& s);
   void composite();
   void draw_segments(GLuint buffer, std::size_t count);
   void draw_beads(ShaderProgram& p, const FrameGeometry& g, const ViewSettings& s, float alpha);
@@ -168,7 +172,7 @@ class Renderer {
   void release_targets();
 
   const Gl& gl_;
-  std::unique_ptr<ShaderProgram> sphere_, sphere_oit_, segment_, wall_oit_, composite_;
+  std::unique_ptr<ShaderProgram> sphere_, sphere_oit_, segment_, wall_, wall_oit_, composite_;
   GLuint vao_ = 0, empty_vao_ = 0, edge_buffer_ = 0;
   struct MapTexture {
     GLuint tex = 0;

@@ -429,10 +429,10 @@ TEST(Cli, SnapshotAlioscopyWritesTheInterleavedImageAndTheViews) {
   const simsols::plot::Image inter = simsols::plot::read_png(png.string());
   EXPECT_EQ(inter.width, 320);
   EXPECT_EQ(inter.height, 180);
-  for (int k = 0; k < 8; ++k) {
+  for (int k = 0; k < 8; ++k) {  // views at 3/8 of the output (view_scale), rounded up
     const auto v = simsols::plot::read_png((dir / ("a_view" + std::to_string(k) + ".png")).string());
-    EXPECT_EQ(v.width, 160);
-    EXPECT_EQ(v.height, 90);
+    EXPECT_EQ(v.width, 120);
+    EXPECT_EQ(v.height, 68);
   }
   EXPECT_TRUE(fs::exists(dir / "a_grid.png"));
   std::ofstream(profile) << "[display]\nphase = 12\n";

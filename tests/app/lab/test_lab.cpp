@@ -59,7 +59,9 @@ TEST(Lab, ScriptedSessionShearsChangesStressAndCheckpoints) {
                                << (d / "b.state").string() << "\n";
   std::ofstream(d / "two.txt") << "load_checkpoint " << (d / "c.bin").string() << "\nframes 2\n"
                                << "state " << (d / "a2.state").string() << "\nrows 9\nstate "
-                               << (d / "b2.state").string() << "\n";
+                               << (d / "b2.state").string() << "\n"
+                               << "view opaque\nframes 1\nview alioscopy\nframes 3\nframe "
+                               << (d / "alio.png").string() << "\n";
   ASSERT_EQ(run(lab(d / "one.txt")), 0);
   ASSERT_EQ(run(lab(d / "two.txt")), 0);
 
@@ -86,6 +88,18 @@ TEST(Lab, ScriptedSessionShearsChangesStressAndCheckpoints) {
   EXPECT_EQ(a2["steps"], a["steps"]);
   EXPECT_EQ(b2["hash"], b["hash"]);
   EXPECT_EQ(b2["steps"], b["steps"]);
+  // the Alioscopy view: the interleaved image over the whole window, the
+  // beads in the look of the last flat view (opaque: coloured by layer)
+  const simsols::plot::Image alio = simsols::plot::read_png((d / "alio.png").string());
+  EXPECT_EQ(alio.width, 1400);
+  EXPECT_EQ(alio.height, 860);
+  long coloured = 0;
+  for (int y = 0; y < alio.height; ++y)
+    for (int x = 0; x < alio.width; ++x) {
+      const auto p = simsols::plot::pixel(alio, x, y);
+      coloured += std::max({p.r, p.g, p.b}) - std::min({p.r, p.g, p.b}) > 40;
+    }
+  EXPECT_GT(coloured, 5000) << "beads in the interleaved image";
 
   const simsols::plot::Image img = simsols::plot::read_png((d / "shot.png").string());
   ASSERT_EQ(img.width, 1400);

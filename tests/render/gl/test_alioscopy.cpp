@@ -198,6 +198,7 @@ TEST(Alioscopy, ProfileErrorsNameFileFieldAndRange) {
                        "[rig]\nview_scale = 0.25\n"));
   EXPECT_EQ(ok.width, 3840);
   EXPECT_EQ(ok.view_width(), 960);
+  EXPECT_EQ(ok.view_size(1000, 500), glm::ivec2(250, 125));  // views follow the output
   EXPECT_TRUE(ok.reversed);
   const std::pair<const char*, const char*> bad[] = {
       {"[display]\nphase = 8\n", "display.phase"},
