@@ -123,6 +123,44 @@ TEST(Alioscopy, DeinterleavingGivesEachViewBack) {
   }
 }
 
+// compose_into (the lab's window, no copy) writes at its offset exactly what
+// compose writes into the output's own target, with the views at their
+// default size (3/8 of the output) sampled at the nearest texel.
+TEST(Alioscopy, ComposedIntoAnotherFramebufferAsIntoItsOwn) {
+  DisplayProfile p;
+  p.width = 200;
+  p.height = 120;
+  p.phase = 3;
+  AlioscopyOutput out(context().gl(), p);
+  EXPECT_EQ(out.view_width(), 75);
+  EXPECT_EQ(out.view_height(), 45);
+  std::uint32_t seed = 777;
+  for (int v = 0; v < 8; ++v) {
+    plot::Image img = plot::make_image(out.view_width(), out.view_height());
+    for (auto& b : img.rgba) {
+      seed = seed * 1664525u + 1013904223u;
+      b = std::uint8_t(seed >> 24);
+    }
+    out.upload_view(v, img);
+  }
+  const glm::ivec2 window{5, 9};
+  out.compose(AlioscopyOutput::Mode::Interleaved, 0, window);
+  const plot::Image own = out.read_pixels();
+  AlioscopyOutput big(context().gl(), p);
+  big.resize_output(260, 170);
+  const glm::ivec2 at{40, 30};  // GL: from the bottom left
+  out.compose_into(big.framebuffer(), at, AlioscopyOutput::Mode::Interleaved, 0, window);
+  const plot::Image there = big.read_pixels();
+  const int top = 170 - at.y - p.height;  // the same rectangle, rows from the top
+  long differ = 0;
+  for (int y = 0; y < p.height; ++y)
+    for (int x = 0; x < p.width; ++x)
+      for (int c = 0; c < 3; ++c)
+        differ += own.rgba[(std::size_t(y) * p.width + x) * 4 + c] !=
+                  there.rgba[(std::size_t(y + top) * 260 + x + at.x) * 4 + c];
+  EXPECT_EQ(differ, 0);
+}
+
 TEST(Alioscopy, GridAndSingleViewShowTheViews) {
   DisplayProfile p;
   p.width = 400;
