@@ -11,10 +11,10 @@
 // summary.md (tables, chaos, the recommendation), error_vs_time_<knob>.png
 // per knob and pareto.png.
 //
-//   simsols study table --from DIR/ensemble.csv [--specimen layered|poured]
+//   simsols study table --from DIR/ensemble.csv [--specimen layered|poured] [--out DIR2]
 //
 // prints that study's settings table of each specimen (markdown), as
-// docs/accuracy.md holds them.
+// docs/accuracy.md holds them; with --out, also draws its charts there again.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -148,6 +148,7 @@ int print_table(const StudyOptions& opt) {
       std::fputs(ensemble_table_md(settings, s).c_str(), stdout);
       first = false;
     }
+    if (!opt.out.empty()) write_study_charts(opt.out, settings);
   } catch (const std::runtime_error& e) {
     throw SceneError("bad_file", opt.from, 0, "--from", e.what());
   }
@@ -377,7 +378,7 @@ CommandRunner add_study_command(CLI::App& app) {
                   "accuracy (run the study), shape (angle of repose and strength against the "
                   "grains' shape), table (print a study's table)")
       ->required();
-  cmd->add_option("--out,-o", opt->out, "Output folder (accuracy)");
+  cmd->add_option("--out,-o", opt->out, "Output folder (accuracy; table: its charts drawn again there)");
   cmd->add_option("--from", opt->from, "A finished study's ensemble.csv (table)");
   cmd->add_option("--preset", opt->preset,
                   "quick (3 mm of shear, default), full (6 mm), ci (reduced); shape: quick, ci")

@@ -608,6 +608,11 @@ void write_study_outputs(const std::string& dir, const StudyPreset& preset,
   write_file_atomic((fs::path(dir) / "ensemble.csv").string(), ensemble_csv(settings));
   write_file_atomic((fs::path(dir) / "summary.md").string(),
                     ensemble_summary_md(preset, settings, cases));
+  write_study_charts(dir, settings);
+}
+
+void write_study_charts(const std::string& dir, const std::vector<SettingSummary>& settings) {
+  std::filesystem::create_directories(dir);
   for (StudySpecimen specimen : kStudySpecimens) {
     const std::vector<SettingSummary> of = settings_of(settings, specimen);
     write_knob_charts(dir, of, specimen);

@@ -82,6 +82,11 @@ std::vector<SettingSummary> parse_ensemble_csv(const std::string& text);
 // generated from the shipped ensemble.csv by `simsols study table`); the
 // "x ref" column is the cost against that specimen's reference.
 std::string ensemble_table_md(const std::vector<SettingSummary>& settings, StudySpecimen specimen);
+
+// The charts alone (study.cpp; error_vs_time_<knob>.png per knob, pareto.png; the
+// poured specimen's with the prefix poured_), from the settings' summaries:
+// a finished study's ensemble.csv draws them again.
+void write_study_charts(const std::string& dir, const std::vector<SettingSummary>& settings);
 // "the paper's layered specimen (...) in ...": what the study built.
 std::string specimen_description(const StudyPreset& preset, StudySpecimen specimen);
 // summary.md: per specimen, the settings' table (means, intervals, errors

@@ -540,8 +540,18 @@ TEST(Cli, AccuracyStudyReducedForm) {
   const Result bad_specimen = run("study accuracy --preset ci --specimen sand --out " + out.string());
   EXPECT_EQ(bad_specimen.status, 2) << bad_specimen.out;
   EXPECT_NE(bad_specimen.out.find("layered, poured"), std::string::npos) << bad_specimen.out;
-  // the tables of a finished study, one per specimen
-  const Result table = run("study table --from " + (out / "ensemble.csv").string());
+  // the tables of a finished study, one per specimen; with --out its charts
+  // drawn again from ensemble.csv alone, the same files the study drew
+  const fs::path again = out / "charts_again";
+  const Result table =
+      run("study table --from " + (out / "ensemble.csv").string() + " --out " + again.string());
   EXPECT_EQ(table.status, 0) << table.out;
   EXPECT_NE(table.out.find("poured specimen:"), std::string::npos) << table.out;
+  int charts = 0;
+  for (const auto& e : fs::directory_iterator(out))
+    if (e.path().extension() == ".png") {
+      ++charts;
+      EXPECT_TRUE(fs::exists(again / e.path().filename())) << e.path().filename();
+    }
+  EXPECT_GT(charts, 0);
 }
