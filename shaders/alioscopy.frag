@@ -48,7 +48,7 @@ void main() {
                                           : vec2(cell.y * aspect, cell.y);
     vec2 origin = vec2(float(col), float(u_grid.y - 1 - row)) * cell + 0.5 * (cell - shown);
     vec2 local = (vec2(f) + 0.5 - origin) / shown;
-    if (view >= 8 || any(lessThan(local, vec2(0.0))) || any(greaterThan(local, vec2(1.0))))
+    if (view >= textureSize(u_views, 0).z || any(lessThan(local, vec2(0.0))) || any(greaterThan(local, vec2(1.0))))
       emit(vec3(0.0), 1.0, 0.0);
     else
       emit(texture(u_views, vec3(local, float(view))).rgb, 1.0, 0.0);

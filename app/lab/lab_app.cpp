@@ -229,7 +229,7 @@ void LabApp::label_grid(int x, int top, int w, int h) {
   const render::GridLayout g = alioscopy_->grid();
   const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
   ImDrawList* list = ImGui::GetBackgroundDrawList();  // over the 3D view, under the panels
-  for (int k = 0; k < 8; ++k) {
+  for (int k = 0; k < render::kAlioscopyViews; ++k) {
     const plot::Rect c = g.cell(k, w, h, double(w) / std::max(1, h));
     const ImVec2 at((x + c.x0) / scale.x + 6, (top + c.y0) / scale.y + 4);
     list->AddText(at, IM_COL32(236, 238, 242, 255), ("view " + std::to_string(k)).c_str());

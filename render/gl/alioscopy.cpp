@@ -180,8 +180,8 @@ std::pair<double, double> fitted(double cw, double ch, double aspect) {
 GridLayout grid_layout(int width, int height, double aspect) {
   GridLayout best;
   double most = -1;
-  for (int columns = 1; columns <= 8; ++columns) {
-    const int rows = (8 + columns - 1) / columns;
+  for (int columns = 1; columns <= kAlioscopyViews; ++columns) {
+    const int rows = (kAlioscopyViews + columns - 1) / columns;
     const auto [w, h] = fitted(double(width) / columns, double(height) / rows, aspect);
     if (w * h > most * (1 + 1e-9)) {
       most = w * h;

@@ -49,10 +49,14 @@ namespace simsols::render {
 
 class ShaderProgram;
 
+// The number of views: fixed by the interleaving formula (period 8
+// subpixels); everything that loops over the views counts to this.
+inline constexpr int kAlioscopyViews = 8;
+
 struct DisplayProfile {
   std::string name = "Alioscopy HD (1920x1080, 8 views)";
   int width = 1920, height = 1080;  // physical pixels of the panel
-  int views = 8;                    // fixed by the interleaving formula
+  int views = kAlioscopyViews;      // fixed by the interleaving formula
   int phase = 0;                    // [0, 7]
   bool reversed = false;
   bool flip_slant = false;

@@ -296,7 +296,6 @@ struct Texts {
   std::vector<double> tick_t;  // continuous: where each tick sits on the bar
   std::vector<std::string> tick_labels;
   std::vector<std::string> categories;  // Categorical
-  std::vector<std::string> widths;      // width-key labels
 };
 
 constexpr int kMaxSwatches = 16;
@@ -334,7 +333,6 @@ Texts legend_texts(const Legend& lg) {
     }
     t.tick_labels = tick_labels(ticks, step);
   }
-  for (const auto& [ratio, width] : lg.width_key) t.widths.push_back(ratio_label(ratio));
   return t;
 }
 
@@ -360,8 +358,6 @@ struct Placed {
   double title_y = 0, label_x = 0;
   std::vector<double> note_y;  // one baseline per line of the note
   std::vector<double> tick_y;
-  double key_title_y = 0, key_x0 = 0, key_x1 = 0, key_label_x = 0;
-  std::vector<double> key_y;
 };
 
 // The colour scale (bar, swatches or strip) from height y of the panel,
@@ -429,25 +425,6 @@ Placed place(const Legend& lg, const Texts& tx, double u) {
     p.note_y.push_back(y + (k == 0 ? gap : 0.3 * gap) + text_cap_height(p.font));
     y = p.note_y.back() + text_descent(p.font);
     right = std::max(right, pad + text_width(lines[k], p.font) + slack);
-  }
-  if (!lg.width_key.empty()) {
-    y += 1.5 * gap;
-    if (!lg.width_title.empty()) {
-      p.key_title_y = y + text_cap_height(p.font);
-      y = p.key_title_y + text_descent(p.font) + 0.5 * gap;
-      right = std::max(right, pad + text_width(lg.width_title, p.font) + slack);
-    }
-    p.key_x0 = pad + 2;
-    p.key_x1 = p.key_x0 + 44 * u;
-    p.key_label_x = p.key_x1 + gap;
-    for (std::size_t k = 0; k < lg.width_key.size(); ++k) {
-      const double lw = std::clamp(lg.width_key[k].second, 0.0, 64.0);
-      const double row = std::max(1.5 * p.font, lw + 4 * u);
-      p.key_y.push_back(y + row / 2);
-      y += row;
-      right = std::max(right, p.key_label_x + text_width(tx.widths[k], p.font) + slack);
-      right = std::max(right, p.key_x1 + lw / 2);  // round caps
-    }
   }
   p.w = static_cast<int>(std::ceil(right + pad));
   p.h = static_cast<int>(std::ceil(y + pad));
@@ -525,18 +502,6 @@ void render(Image& img, const Legend& lg, const Texts& tx, const Placed& p) {
   const std::vector<std::string> lines = note_lines(lg.note);
   for (std::size_t k = 0; k < lines.size(); ++k)
     draw_text(img, p.bar.x0 - 1, p.note_y[k], lines[k], p.font, th.ink);
-
-  if (!lg.width_key.empty()) {
-    if (!lg.width_title.empty())
-      draw_text(img, p.key_x0 - 2, p.key_title_y, lg.width_title, p.font, th.ink);
-    for (std::size_t k = 0; k < lg.width_key.size(); ++k) {
-      const double lw = std::clamp(lg.width_key[k].second, 0.0, 64.0), y = p.key_y[k];
-      const double cap = lw / 2;  // round caps: keep the drawn length at key_x1 - key_x0
-      if (lw > 0)
-        draw_line(img, {p.key_x0 + cap, y}, {p.key_x1 - cap, y}, lw, th.ink);
-      draw_text(img, p.key_label_x, y, tx.widths[k], p.font, th.ink, {HAlign::left, VAlign::middle});
-    }
-  }
 }
 
 struct Fitted {
@@ -557,7 +522,7 @@ std::optional<Fitted> fit_legend(int W, int H, const Legend& lg) {
     f.placed = place(lg, f.texts, u);
     const double aw = W - 2.0 * f.placed.margin, ah = H - 2.0 * f.placed.margin;
     if ((f.placed.w <= aw && f.placed.h <= ah) || iter == 4) break;
-    // Everything but the width key's lines scales with u: one step nearly fits.
+    // Everything scales with u: one step nearly fits.
     u *= 0.98 * std::min(aw / f.placed.w, ah / f.placed.h);
   }
   const Placed& p = f.placed;

@@ -54,8 +54,7 @@
 // The legend is a semi-opaque rounded panel in a corner: the title, a
 // vertical colour bar (t = 0 at the bottom) with 1-2-5 ticks from chart.h,
 // or one swatch per category, or (Qualitative) a strip of its colours and a
-// note in place of values, and optionally a key of line widths for force
-// chains. It is drawn into a copy of its own rectangle that is then written
+// note in place of values. It is drawn into a copy of its own rectangle that is then written
 // back, so no pixel outside the returned rectangle changes, text included.
 #pragma once
 
@@ -115,11 +114,6 @@ struct Legend {
   std::string note;
   enum class Corner { TopLeft, TopRight, BottomLeft, BottomRight } corner = Corner::TopRight;
   double scale = 1;  // 1 = sized for a ~1000 px tall image; scaled with the image
-  // For force chains: sample lines labelled with force ratios F / F_mean and
-  // drawn with the caller's widths in pixels (unscaled: the widths the
-  // renderer draws), e.g. {{1, 1.5}, {2, 3}, {4, 6}}.
-  std::vector<std::pair<double, double>> width_key;  // (F / F_mean, line width px)
-  std::string width_title;                           // e.g. "normal force / mean"
   bool dark = false;  // light text on a dark panel, for dark backgrounds
 };
 

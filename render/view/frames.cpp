@@ -279,7 +279,8 @@ std::vector<std::string> FrameExporter::outputs(const std::string& path) const {
   if (!opt_.alioscopy) return files;
   const std::filesystem::path p(path);
   const std::string stem = (p.parent_path() / p.stem()).string();
-  for (int k = 0; k < 8; ++k) files.push_back(stem + "_view" + std::to_string(k) + ".png");
+  for (int k = 0; k < render::kAlioscopyViews; ++k)
+    files.push_back(stem + "_view" + std::to_string(k) + ".png");
   files.push_back(stem + "_grid.png");
   return files;
 }
@@ -289,7 +290,7 @@ namespace {
 // "view k" in the top left corner of each view of a grid image.
 void label_views(plot::Image& img, const render::GridLayout& grid) {
   const double aspect = double(img.width) / img.height;
-  for (int k = 0; k < 8; ++k) {
+  for (int k = 0; k < render::kAlioscopyViews; ++k) {
     const plot::Rect c = grid.cell(k, img.width, img.height, aspect);
     const double size = std::max(11.0, 0.06 * (c.y1 - c.y0));
     plot::draw_text(img, c.x0 + 0.5 * size, c.y0 + 1.4 * size, "view " + std::to_string(k), size,
@@ -309,7 +310,8 @@ void FrameExporter::write_alioscopy(const std::string& path) {
   try {
     alioscopy_->compose(render::AlioscopyOutput::Mode::Interleaved);
     plot::write_png(alioscopy_->read_pixels(), files[0]);
-    for (int k = 0; k < 8; ++k) plot::write_png(alioscopy_->read_view(k), files[1 + k]);
+    for (int k = 0; k < render::kAlioscopyViews; ++k)
+      plot::write_png(alioscopy_->read_view(k), files[1 + k]);
     alioscopy_->compose(render::AlioscopyOutput::Mode::Grid);
     plot::Image grid = alioscopy_->read_pixels();
     label_views(grid, alioscopy_->grid());

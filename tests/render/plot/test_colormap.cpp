@@ -321,8 +321,6 @@ Legend force_legend() {
   lg.map = ColorMap::Force;
   lg.min = 0;
   lg.max = 37.5;
-  lg.width_key = {{1, 1.5}, {2, 3}, {4, 6}};
-  lg.width_title = "force / mean";
   return lg;
 }
 
@@ -477,37 +475,6 @@ TEST(Legend, ScalesWithTheImageAndTheScaleFactor) {
   half.scale = 0.5;
   const LegendLayout h = legend_layout(1200, 1000, half);
   EXPECT_NEAR(double(h.bar.y1 - h.bar.y0) / (small.bar.y1 - small.bar.y0), 0.5, 0.05);
-}
-
-TEST(Legend, WidthKeyDrawsThreeLinesOfTheGivenWidths) {
-  Legend plain = force_legend();
-  plain.width_key.clear();
-  const Legend keyed = force_legend();
-  const LegendLayout a = legend_layout(1000, 1000, plain), b = legend_layout(1000, 1000, keyed);
-  EXPECT_GT(b.panel.y1 - b.panel.y0, a.panel.y1 - a.panel.y0 + 60);
-
-  Legend untitled = keyed;  // no key title: the column below the bar crosses only the lines
-  untitled.width_title.clear();
-  Image img = make_image(1000, 1000);
-  const Rect r = draw_legend(img, untitled);
-  // Below the bar, the dark runs down a column through the key's lines are
-  // about as thick as the widths asked for, in order.
-  std::vector<int> runs;
-  const int x = b.bar.x0 + 10;
-  int run = 0;
-  for (int y = b.bar.y1 + 2; y < r.y1; ++y) {
-    const Color c = pixel(img, x, y);
-    if (c.r < 128 && c.g < 128 && c.b < 128) {
-      ++run;
-    } else if (run > 0) {
-      runs.push_back(run);
-      run = 0;
-    }
-  }
-  ASSERT_EQ(runs.size(), 3u);
-  EXPECT_NEAR(runs[0], 1.5, 1.01);
-  EXPECT_NEAR(runs[1], 3, 1.01);
-  EXPECT_NEAR(runs[2], 6, 1.01);
 }
 
 TEST(Legend, DegenerateRangesStillDraw) {
