@@ -6,7 +6,9 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
+#include <atomic>
 #include <chrono>
+#include <future>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -150,10 +152,7 @@ void LabApp::poll_input() {
   last_y_ = my;
 }
 
-void LabApp::draw_view(int x, int y, int w, int h) {
-  const render::Gl& gl = window_->gl();
-  if (!sim_view_ || w < 1 || h < 1) return;
-  const bool chains = look_ == LabView::Chains || view == LabView::Chains || chains_overlay;
+render::ViewSettings LabApp::pack_view() {
   // contacts are packed every frame (0.5 ms for 5 000 beads): the status
   // line counts them, the chains draw them when asked
   const auto update = sim_view_->update(field, true);
@@ -164,11 +163,17 @@ void LabApp::draw_view(int x, int y, int w, int h) {
   s.mode = look_ == LabView::Opaque   ? render::ViewMode::Opaque
            : look_ == LabView::Chains ? render::ViewMode::Chains
                                       : render::ViewMode::Transparent;
-  s.show_chains = chains;
+  s.show_chains = look_ == LabView::Chains || view == LabView::Chains || chains_overlay;
   s.chain_threshold = threshold;
   s.bead_map = render::colormap_for(field);
   s.value_min = update.range.min;
   s.value_max = update.range.max;
+  return s;
+}
+
+void LabApp::draw_view(const render::ViewSettings& s, int x, int y, int w, int h) {
+  const render::Gl& gl = window_->gl();
+  if (!sim_view_ || w < 1 || h < 1) return;
   if (view != LabView::Alioscopy && view != LabView::Grid) {
     // a flat view, or one camera of the rig (the single view)
     if (view != LabView::Single) {
@@ -197,7 +202,6 @@ void LabApp::draw_view(int x, int y, int w, int h) {
   alioscopy_window_ = {wx, wy};
   const int dx = view == LabView::Alioscopy ? 0 : x, dy = view == LabView::Alioscopy ? 0 : y;
   alioscopy_->compose_into(0, {dx, dy}, alioscopy_mode_, single_view, alioscopy_window_);
-  if (view == LabView::Grid) label_grid(x, fh - (y + h), w, h);
 }
 
 // Draws a flat view into the viewport at x, y (w x h, GL pixels).
@@ -226,7 +230,7 @@ void LabApp::draw_flat(const render::ViewProjection& vp, const render::ViewSetti
 // "view k" over each view of the grid (x, top: the grid's top-left corner
 // in framebuffer pixels from the window's top left).
 void LabApp::label_grid(int x, int top, int w, int h) {
-  const render::GridLayout g = alioscopy_->grid();
+  const render::GridLayout g = render::grid_layout(w, h, double(w) / std::max(1, h));
   const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
   ImDrawList* list = ImGui::GetBackgroundDrawList();  // over the 3D view, under the panels
   for (int k = 0; k < render::kAlioscopyViews; ++k) {
@@ -255,65 +259,93 @@ void LabApp::save_frame(const std::string& path) {
   plot::write_png(renderer_->read_pixels(), path);
 }
 
+void LabApp::handle_close() {
+  GLFWwindow* w = window_->handle();
+  if (!glfwWindowShouldClose(w)) return;
+  glfwSetWindowShouldClose(w, GLFW_FALSE);
+  const LabStage st = exp_->stage();
+  if (script_ || st == LabStage::Empty || st == LabStage::Prepared || st == LabStage::Done)
+    quit_ = true;
+  else
+    close_asked_ = true;  // ask whether to save a checkpoint first
+}
+
+// Where the panel, the 3D view and the plots column go; the panel's width.
+int LabApp::lay_out_window(int fw, int fh) {
+  const int panel = view == LabView::Alioscopy ? 0 : int(kPanelWidth);
+  // the live plots in a column at the right, the 3D view between
+  const bool plots = view != LabView::Alioscopy && exp_->apparatus() != nullptr;
+  // at least 300 px, but never more than half of what the panel leaves
+  plots_width_ = plots ? int(std::min(std::clamp(0.28f * float(fw - panel), 300.f, 520.f),
+                                      0.5f * float(std::max(0, fw - panel))))
+                       : 0;
+  view_x_ = panel;
+  view_y_ = 0;
+  view_w_ = std::max(1, fw - panel - plots_width_);
+  view_h_ = std::max(1, fh);
+  return panel;
+}
+
+void LabApp::record_frame(long long steps) {
+  if (!record_ || !sim_view_ || (frame_no_++ % std::max(1, record_every_)) != 0) return;
+  char name[64];
+  std::snprintf(name, sizeof name, "/frames/frame_%09lld.png", steps);
+  std::filesystem::create_directories(std::string(out_path_) + "/frames");
+  save_frame(out_path_ + std::string(name));
+}
+
 int LabApp::run() {
   GLFWwindow* w = window_->handle();
   auto last = Clock::now();
   while (!quit_) {
+    // What reads or changes the experiment, with the solver idle: input,
+    // background builds, the script, the panel's widgets, the beads packed
+    // for the view (OpenCL).
+    const auto f0 = Clock::now();
     glfwPollEvents();
-    if (glfwWindowShouldClose(w)) {
-      glfwSetWindowShouldClose(w, GLFW_FALSE);
-      const LabStage st = exp_->stage();
-      if (script_ || st == LabStage::Empty || st == LabStage::Prepared || st == LabStage::Done)
-        quit_ = true;
-      else
-        close_asked_ = true;  // ask whether to save a checkpoint first
-    }
+    handle_close();
     act(exp_->poll());
     attach_view();
     if (script_) run_script();
-    // the solver gets what the frame budget leaves after drawing
-    const double budget = std::max(0.004, 1.0 / 30 - draw_ms_ * 1e-3 - 0.004);
-    exp_->advance(budget);
-    if (std::string f = exp_->take_fault(); !f.empty())
-      message_ = "stopped: " + f + " (paused at the step before; save a checkpoint to study it)";
-
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
     poll_input();
-    const auto d0 = Clock::now();
     int fw = 0, fh = 0;
     glfwGetFramebufferSize(w, &fw, &fh);
+    const int panel = lay_out_window(fw, fh);
+    const render::ViewSettings settings = sim_view_ ? pack_view() : render::ViewSettings{};
+    const long long steps = exp_->simulation() ? exp_->simulation()->steps() : 0;
+    draw_panel(panel);
+    if (view == LabView::Grid) label_grid(view_x_, fh - (view_y_ + view_h_), view_w_, view_h_);
+    ImGui::Render();
+
+    // Then the solver steps on a worker thread while this one draws, for
+    // what the 1/30 s frame leaves after the last drawing; and on while the
+    // drawing lasts, unless both run on the same CPU cores (llvmpipe and a
+    // CPU OpenCL device), where the extra steps would only slow the frame.
+    std::atomic<bool> drawing{true};
+    const double budget = std::max(0.004, 1.0 / 30 - (ms_since(f0) + draw_ms_) * 1e-3);
+    const bool step_while_drawing = !window_->software_rasterizer() || device_->is_gpu();
+    auto stepping = std::async(std::launch::async, [&] {
+      exp_->advance(budget, step_while_drawing ? &drawing : nullptr);
+    });
+    const auto d0 = Clock::now();
     const render::Gl& gl = window_->gl();
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl.Viewport(0, 0, fw, fh);
     gl.ClearColor(0.086f, 0.094f, 0.11f, 1);
     gl.Clear(GL_COLOR_BUFFER_BIT);
-    const int panel = view == LabView::Alioscopy ? 0 : int(kPanelWidth);
-    // the live plots in a column at the right, the 3D view between
-    const bool plots = view != LabView::Alioscopy && exp_->apparatus() != nullptr;
-    // at least 300 px, but never more than half of what the panel leaves
-    plots_width_ = plots ? int(std::min(std::clamp(0.28f * float(fw - panel), 300.f, 520.f),
-                                        0.5f * float(std::max(0, fw - panel))))
-                         : 0;
-    view_x_ = panel;
-    view_y_ = 0;
-    view_w_ = std::max(1, fw - panel - plots_width_);
-    view_h_ = std::max(1, fh);
-    draw_view(view_x_, view_y_, view_w_, view_h_);
-    if (record_ && sim_view_ && (frame_no_++ % std::max(1, record_every_)) == 0) {
-      char name[64];
-      std::snprintf(name, sizeof name, "/frames/frame_%09lld.png",
-                    static_cast<long long>(exp_->simulation()->steps()));
-      std::filesystem::create_directories(std::string(out_path_) + "/frames");
-      save_frame(out_path_ + std::string(name));
-    }
-    draw_panel(panel);
-    ImGui::Render();
+    draw_view(settings, view_x_, view_y_, view_w_, view_h_);
+    record_frame(steps);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     if (script_ && script_pending_screenshot()) take_script_screenshot();
     glfwSwapBuffers(w);
     draw_ms_ = ms_since(d0);
+    drawing = false;
+    stepping.get();
+    if (std::string f = exp_->take_fault(); !f.empty())
+      message_ = "stopped: " + f + " (paused at the step before; save a checkpoint to study it)";
     const double since = std::chrono::duration<double>(Clock::now() - last).count();
     last = Clock::now();
     fps_ = fps_ == 0 ? 1 / since : 0.9 * fps_ + 0.1 / since;

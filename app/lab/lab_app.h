@@ -5,13 +5,20 @@
 //
 // Each frame, in order:
 //   poll          input, background builds, the script's next command
-//   advance       the solver runs for what is left of the frame budget
-//                 (1/30 s minus the last frame's drawing), so the window
-//                 stays responsive however slow a step is
-//   draw_view     the specimen: flat (opaque, transparent, chains) into the
-//                 viewport, or the Alioscopy output (interleaved full
-//                 screen, 8-view grid, one view) written 1:1
-//   draw_panel    controls, live plots, status line, help overlay
+//   pack_view     the beads and contacts into the GL buffers (OpenCL)
+//   draw_panel    controls, live plots, status line, help overlay: built
+//                 (ImGui::Render), drawn below
+// everything so far with the solver idle, as it reads or changes the
+// experiment; then, overlapped:
+//   advance       on a worker thread: the solver steps for what is left of
+//                 the 1/30 s frame, and on while the drawing lasts, in
+//                 chunks of a quarter of that, so the window stays
+//                 responsive however slow a step is
+//   draw_view     on this thread, GL only: the specimen flat (opaque,
+//                 transparent, chains) into the viewport, or the Alioscopy
+//                 output (interleaved full screen, 8-view grid, one view)
+//                 written 1:1; then the panel's draw data, the swap
+// and the frame ends when both have.
 // Closing the window during a test asks whether to save a checkpoint.
 #pragma once
 
@@ -68,7 +75,11 @@ class LabApp {
   bool script_pending_screenshot() const;
   void take_script_screenshot();
   void attach_view();
-  void draw_view(int x, int y, int w, int h);
+  void handle_close();
+  int lay_out_window(int framebuffer_width, int framebuffer_height);
+  render::ViewSettings pack_view();
+  void draw_view(const render::ViewSettings& s, int x, int y, int w, int h);
+  void record_frame(long long steps);
   void draw_flat(const render::ViewProjection& vp, const render::ViewSettings& s, int x, int y,
                  int w, int h);
   void label_grid(int x, int top, int w, int h);

@@ -197,7 +197,7 @@ bool LabExperiment::should_pause() const {
          (pause_stage_ && stage() == *pause_stage_);
 }
 
-std::int64_t LabExperiment::advance(double budget) {
+std::int64_t LabExperiment::advance(double budget, const std::atomic<bool>* keep_going) {
   if (!running_ || !sim_) return 0;
   const LabStage s = stage();
   if (s != LabStage::Loading && s != LabStage::Running) {
@@ -209,7 +209,8 @@ std::int64_t LabExperiment::advance(double budget) {
   const std::int64_t first = sim_->steps();
   LoadingProgramme& test = app_->programme();
   double elapsed = 0;
-  while (elapsed < budget && !test.done() && !(app_->holding() && stage() == LabStage::Loaded)) {
+  const auto more = [&] { return elapsed < budget || (keep_going && keep_going->load()); };
+  while (more() && !test.done() && !(app_->holding() && stage() == LabStage::Loaded)) {
     if (should_pause()) {
       running_ = false;
       pause_at(0, 0);

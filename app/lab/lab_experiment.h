@@ -73,8 +73,10 @@ class LabExperiment {
   // Finishes a background build when it is ready; call once per frame.
   // Returns a build error, if any.
   std::string poll();
-  // Advances while running, for about `budget_seconds` of wall time.
-  std::int64_t advance(double budget_seconds);
+  // Advances while running, for about `budget_seconds` of wall time, and
+  // on while *keep_going holds (the lab's drawing, on another thread; the
+  // last chunk may overrun it by a quarter of the budget).
+  std::int64_t advance(double budget_seconds, const std::atomic<bool>* keep_going = nullptr);
   // Pause exactly when the test has this many rows / the simulation this
   // many steps / the test reaches this stage (0, nullopt = no such stop):
   // scripted sessions stop at the same state whatever the frame timing.

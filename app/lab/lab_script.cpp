@@ -91,7 +91,8 @@ std::string LabApp::state_text() {
       << "\nhistory_bytes = " << sim->model().config().history_bytes_per_contact() << "\n";
   }
   if (a) o << a->state_lines();
-  o << "fps = " << fps_ << "\nrender_scale = " << render_scale_ << "\ndraw_ms = " << draw_ms_ << "\n";
+  o << "fps = " << fps_ << "\nrender_scale = " << render_scale_ << "\ndraw_ms = " << draw_ms_
+    << "\nsolver_steps_per_s = " << exp_->steps_per_second() << "\n";
   o << "live_plots = " << plots_shown_ << "\nlive_plot_height_px = " << plot_height_ << "\n";
   return o.str();
 }

@@ -45,6 +45,14 @@ std::string GlContext::gl_strings() const {
   return str(GL_RENDERER) + ", OpenGL " + str(GL_VERSION);
 }
 
+bool GlContext::software_rasterizer() const {
+  const GLubyte* r = gl_.GetString(GL_RENDERER);
+  const std::string name = r ? reinterpret_cast<const char*>(r) : "";
+  for (const char* cpu : {"llvmpipe", "softpipe", "swrast", "SwiftShader", "lavapipe"})
+    if (name.find(cpu) != std::string::npos) return true;
+  return false;
+}
+
 namespace {
 
 // ---------------------------------------------------------------- EGL

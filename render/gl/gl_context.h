@@ -61,6 +61,10 @@ class GlContext {
   virtual std::string description() const = 0;
   virtual GlShareHandles share_handles() const = 0;
   virtual void make_current() = 0;
+  // Whether the renderer rasterises on the CPU (llvmpipe, softpipe,
+  // SwiftShader...): its drawing then takes the same cores as a CPU
+  // OpenCL device's kernels.
+  bool software_rasterizer() const;
 
  protected:
   // Loads the table and reads the version strings (the context is current).
