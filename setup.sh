@@ -50,6 +50,12 @@ PACKAGES=(
   libboost-math-dev
   # Assimp: grain surface meshes, STL/OBJ (solver/scene/mesh_body.cpp)
   libassimp-dev
+  # `import simsols` (app/python): pybind11 and Python's headers to build it,
+  # NumPy for its arrays, pytest for its tests (tests/app/python)
+  pybind11-dev
+  python3-dev
+  python3-numpy
+  python3-pytest
 )
 
 PRESET=release
@@ -123,9 +129,27 @@ build() {
   cmake --build --preset "$PRESET" -j "$JOBS"
 }
 
+# `import simsols` from anywhere: a .pth file puts the build's python folder
+# on the path of Debian's python3 (its site folder as root, else the user's).
+link_python_module() {
+  local dir="$PWD/build/$PRESET/python" site
+  [[ -d $dir ]] || return 0
+  if ((EUID == 0)); then
+    site=$(/usr/bin/python3 -c 'import site; print(site.getsitepackages()[0])')
+  else
+    site=$(/usr/bin/python3 -m site --user-site)
+  fi
+  if mkdir -p "$site" && printf '%s\n' "$dir" >"$site/simsols.pth"; then
+    say "Python: import simsols works (python3 finds $dir through $site/simsols.pth)"
+  else
+    say "warning: could not write $site/simsols.pth; use PYTHONPATH=$dir"
+  fi
+}
+
 cmd_run() {
   install_packages
   build
+  link_python_module
   if [[ -n "${DISPLAY:-}" || -n "${WAYLAND_DISPLAY:-}" ]] && [[ -z "${SIMSOLS_HEADLESS:-}" ]]; then
     say "Display found: opening the lab ($BIN lab); set SIMSOLS_HEADLESS=1 to run the default experiment headless"
     exec "$BIN" lab "$@"
@@ -149,6 +173,7 @@ cmd_run() {
 cmd_test() {
   install_packages
   build
+  link_python_module
   say "Running the test suite (ctest --preset $PRESET)"
   # Serial on purpose: each test drives PoCL, which already uses every core.
   local rc=0

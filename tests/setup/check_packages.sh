@@ -52,6 +52,8 @@ RUNTIME=(
   "/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf|render/plot/font.cpp draws bold text with it"
   "exe:/usr/bin/python3|tests/app/cli/test_paraview_vtk.py runs under Debian's Python"
   "/usr/lib/python3/dist-packages/vtkmodules/__init__.py|tests/app/cli/test_paraview_vtk.py reads the ParaView series with VTK"
+  "/usr/lib/python3/dist-packages/numpy/__init__.py|the Python module's arrays (app/python) and its tests"
+  "/usr/lib/python3/dist-packages/pytest/__init__.py|ctest runs tests/app/python under pytest"
 )
 
 cache() { sed -n "s/^$1:[A-Z]*=//p" "$BUILD/CMakeCache.txt"; }

@@ -1,0 +1,236 @@
+// `import simsols`: the solver from Python (pybind11), the same library the
+// simsols executable uses.
+//
+//   scene = simsols.load_scene("assets/scenes/shear_box.toml")
+//   d = scene.to_dict(); d["time_step"]["fraction"] = 0.2
+//   scene = simsols.scene_from_dict(d, name="edited")   # validated as a TOML file
+//   sim = simsols.Simulation(scene)
+//   sim.advance(1000)                                   # the GIL is released
+//   x = sim.positions()                                 # (N, 3) float64, m
+//   sim.save_checkpoint("c.bin"); sim = simsols.load_checkpoint("c.bin")
+//
+// Design:
+// - Scenes travel as TOML. A dict becomes TOML text (toml++) and goes
+//   through the loader, so a scene built in Python is checked by the same
+//   code, with the same messages (file, field, allowed range), as a file;
+//   to_dict() is the loader's own output (to_toml) read back.
+// - Arrays come from one download of the device state (Simulation::snapshot)
+//   and own their buffer: no copy per element, no copy after the download.
+// - Errors: SceneError (a ValueError) carries file, line, field, code and
+//   every problem; RunawayError (a RuntimeError) a step that went wrong;
+//   DeviceError the OpenCL runtime's.
+// - No module state: a Device is opened per Simulation unless one is passed.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <sstream>
+#include <string>
+#include <toml++/toml.h>
+#include <vector>
+
+#include "solver/common/errors.h"
+#include "solver/core/engine_options.h"
+#include "solver/core/guard.h"
+#include "solver/core/simulation.h"
+#include "solver/io/checkpoint.h"
+#include "solver/io/scene_toml.h"
+
+namespace py = pybind11;
+
+namespace simsols::python {
+namespace {
+
+// ----------------------------------------------------------- TOML <-> Python
+
+py::object to_python(const toml::node& n);
+
+py::object to_python(const toml::table& t) {
+  py::dict d;
+  for (const auto& [key, value] : t) d[py::str(std::string(key.str()))] = to_python(value);
+  return d;
+}
+
+py::object to_python(const toml::node& n) {
+  if (const auto* t = n.as_table()) return to_python(*t);
+  if (const auto* a = n.as_array()) {
+    py::list l;
+    for (const toml::node& e : *a) l.append(to_python(e));
+    return l;
+  }
+  if (const auto* s = n.as_string()) return py::str(s->get());
+  if (const auto* i = n.as_integer()) return py::int_(i->get());
+  if (const auto* f = n.as_floating_point()) return py::float_(f->get());
+  if (const auto* b = n.as_boolean()) return py::bool_(b->get());
+  throw std::invalid_argument("a TOML date or time has no place in a scene");
+}
+
+// A Python value as a TOML node; `where` names it in messages ("scene.x").
+std::unique_ptr<toml::node> to_toml_node(py::handle v, const std::string& where);
+
+toml::table to_toml_table(const py::dict& d, const std::string& where) {
+  toml::table t;
+  for (auto [k, v] : d) {
+    if (!py::isinstance<py::str>(k))
+      throw py::type_error(where + ": keys must be strings, not " + std::string(py::str(k.get_type())));
+    const std::string key = k.cast<std::string>();
+    t.insert(key, std::move(*to_toml_node(v, where.empty() ? key : where + "." + key)));
+  }
+  return t;
+}
+
+std::unique_ptr<toml::node> to_toml_node(py::handle v, const std::string& where) {
+  if (py::isinstance<py::bool_>(v)) return std::make_unique<toml::value<bool>>(v.cast<bool>());
+  if (py::isinstance<py::int_>(v)) return std::make_unique<toml::value<std::int64_t>>(v.cast<std::int64_t>());
+  if (py::isinstance<py::float_>(v)) return std::make_unique<toml::value<double>>(v.cast<double>());
+  if (py::isinstance<py::str>(v)) return std::make_unique<toml::value<std::string>>(v.cast<std::string>());
+  if (py::isinstance<py::dict>(v)) return std::make_unique<toml::table>(to_toml_table(v.cast<py::dict>(), where));
+  if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v)) {
+    auto a = std::make_unique<toml::array>();
+    int k = 0;
+    for (py::handle e : v) a->push_back(std::move(*to_toml_node(e, where + "[" + std::to_string(k++) + "]")));
+    return a;
+  }
+  throw py::type_error(where + ": " + std::string(py::str(v.get_type())) +
+                       " is not a TOML value (bool, int, float, str, list, dict)");
+}
+
+Scene scene_from_dict(const py::dict& d, const std::string& name) {
+  std::ostringstream text;
+  text << to_toml_table(d, "");
+  return parse_scene(text.str(), name);
+}
+
+py::dict scene_to_dict(const Scene& scene) {
+  return to_python(toml::parse(to_toml(scene))).cast<py::dict>();
+}
+
+// ------------------------------------------------------------------- arrays
+
+// An (n, 3) float64 array that owns `v` (moved in): no copy.
+py::array_t<double> vec3_array(std::vector<Vec3>&& v) {
+  auto* owned = new std::vector<Vec3>(std::move(v));
+  py::capsule free(owned, [](void* p) { delete static_cast<std::vector<Vec3>*>(p); });
+  return py::array_t<double>({py::ssize_t(owned->size()), py::ssize_t(3)},
+                             {py::ssize_t(sizeof(Vec3)), py::ssize_t(sizeof(double))},
+                             owned->data()->data(), free);
+}
+
+template <typename T>
+py::array_t<T> vector_array(std::vector<T>&& v) {
+  auto* owned = new std::vector<T>(std::move(v));
+  py::capsule free(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>({py::ssize_t(owned->size())}, {py::ssize_t(sizeof(T))}, owned->data(), free);
+}
+
+// Every touching contact: (pairs (m, 2) int32: a, b with b = -1 - wall for
+// a wall), forces (m, 3) float64 in N, what b exerts on a.
+py::tuple contacts_arrays(Simulation& sim) {
+  std::vector<ContactForce> c = sim.contacts();
+  std::vector<int> pairs;
+  std::vector<Vec3> forces;
+  pairs.reserve(2 * c.size());
+  forces.reserve(c.size());
+  for (const ContactForce& f : c) {
+    pairs.push_back(f.a);
+    pairs.push_back(f.b);
+    forces.push_back(f.force);
+  }
+  py::array_t<int> p = vector_array(std::move(pairs));
+  p.resize({py::ssize_t(c.size()), py::ssize_t(2)});
+  return py::make_tuple(p, vec3_array(std::move(forces)));
+}
+
+std::shared_ptr<Device> device_or_open(std::shared_ptr<Device> device) {
+  return device ? device : Device::open(engine_options_from_environment());
+}
+
+// -------------------------------------------------------------- exceptions
+
+void register_exceptions(py::module_& m) {
+  static py::exception<SceneError> scene_error(m, "SceneError", PyExc_ValueError);
+  static py::exception<RunawayError> runaway_error(m, "RunawayError", PyExc_RuntimeError);
+  static py::exception<DeviceError> device_error(m, "DeviceError", PyExc_RuntimeError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      // SceneError and the other input errors: the message names the file,
+      // the field and the allowed range; the parts are attributes too
+      py::list problems;
+      for (const SceneProblem& q : e.problems)
+        problems.append(py::dict(py::arg("code") = q.code, py::arg("line") = q.line,
+                                 py::arg("field") = q.field, py::arg("message") = q.message));
+      py::object instance = py::handle(scene_error.ptr())(e.what());
+      instance.attr("file") = e.file;
+      instance.attr("line") = e.line;
+      instance.attr("field") = e.field;
+      instance.attr("code") = e.code;
+      instance.attr("problems") = problems;
+      PyErr_SetObject(scene_error.ptr(), instance.ptr());
+    } catch (const RunawayError& e) {
+      runaway_error(e.what());
+    } catch (const DeviceError& e) {
+      device_error(e.what());
+    }
+  });
+}
+
+void define_scene(py::module_& m) {
+  py::class_<Scene>(m, "Scene", "A scene: particles, walls, materials, settings (docs/scene-format.md)")
+      .def_property_readonly("particles", [](const Scene& s) { return s.particles.size(); })
+      .def("to_toml", [](const Scene& s) { return to_toml(s); }, "The scene as TOML text (what the loader reads)")
+      .def("to_dict", &scene_to_dict, "The scene as nested dicts and lists (to_toml read back)");
+  m.def("load_scene", &load_scene, py::arg("path"), "Reads and checks a scene file; SceneError names the problem");
+  m.def("parse_scene", &parse_scene, py::arg("text"), py::arg("name") = "<string>",
+        "A scene from TOML text; `name` stands for the file in messages");
+  m.def("scene_from_dict", &scene_from_dict, py::arg("scene"), py::arg("name") = "<dict>",
+        "A scene from nested dicts as a scene file holds them, checked as a file is");
+}
+
+void define_simulation(py::module_& m) {
+  py::class_<Device, std::shared_ptr<Device>>(m, "Device", "An OpenCL device (SIMSOLS_CL_DEVICE picks it)")
+      .def(py::init([] { return Device::open(engine_options_from_environment()); }))
+      .def_property_readonly("description", &Device::description)
+      .def_property_readonly("is_gpu", &Device::is_gpu);
+  py::class_<Simulation>(m, "Simulation", "A scene's model and state on one device")
+      .def(py::init([](const Scene& scene, std::shared_ptr<Device> device) {
+             return std::make_unique<Simulation>(device_or_open(std::move(device)), scene);
+           }),
+           py::arg("scene"), py::arg("device") = nullptr)
+      .def("advance", &Simulation::advance, py::arg("steps") = 1, py::call_guard<py::gil_scoped_release>(),
+           "Steps; RunawayError leaves the state at the step before the fault")
+      .def_property_readonly("time", &Simulation::time, "s")
+      .def_property_readonly("steps", &Simulation::steps)
+      .def_property_readonly("dt", &Simulation::dt, "s")
+      .def_property_readonly("particles", [](const Simulation& s) { return s.model().particles(); })
+      .def_property_readonly("scene", &Simulation::scene, py::return_value_policy::copy)
+      .def("positions", [](Simulation& s) { return vec3_array(s.snapshot().position); }, "(n, 3) m")
+      .def("velocities", [](Simulation& s) { return vec3_array(s.snapshot().velocity); }, "(n, 3) m/s")
+      .def("angular_velocities", [](Simulation& s) { return vec3_array(s.snapshot().angular_velocity); },
+           "(n, 3) rad/s")
+      .def("forces", [](Simulation& s) { return vec3_array(s.snapshot().force); }, "(n, 3) N")
+      .def("radii", [](Simulation& s) { return vector_array(s.snapshot().radius); }, "(n,) m")
+      .def("contact_counts", [](Simulation& s) { return vector_array(s.snapshot().contacts); },
+           "(n,) touching neighbours and walls")
+      .def("contacts", &contacts_arrays,
+           "(pairs (m, 2) int32, forces (m, 3) N): b = -1 - wall for a wall; the force b exerts on a")
+      .def("save_checkpoint", [](Simulation& s, const std::string& path) { save_checkpoint(s, path); },
+           py::arg("path"));
+  m.def("load_checkpoint",
+        [](const std::string& path, std::shared_ptr<Device> device) {
+          return load_checkpoint(device_or_open(std::move(device)), path);
+        },
+        py::arg("path"), py::arg("device") = nullptr, "A simulation from a checkpoint file");
+}
+
+}  // namespace
+}  // namespace simsols::python
+
+PYBIND11_MODULE(simsols, m) {
+  m.doc() = "SimSols: DEM on OpenCL for geotechnical laboratory tests (docs/python.md)";
+  simsols::python::register_exceptions(m);
+  simsols::python::define_scene(m);
+  simsols::python::define_simulation(m);
+}
