@@ -320,16 +320,18 @@ int LabApp::run() {
     if (view == LabView::Grid) label_grid(view_x_, fh - (view_y_ + view_h_), view_w_, view_h_);
     ImGui::Render();
 
-    // Then the solver steps on a worker thread while this one draws, for
-    // what the 1/30 s frame leaves after the last drawing; and on while the
-    // drawing lasts, unless both run on the same CPU cores (llvmpipe and a
-    // CPU OpenCL device), where the extra steps would only slow the frame.
+    // Then the solver steps on a worker thread, for what the 1/30 s frame
+    // leaves after the last drawing, while this one draws, and on while the
+    // drawing lasts. Where both would run on the same CPU cores (llvmpipe
+    // and a CPU OpenCL device) they take turns instead: overlapped there,
+    // each only slowed the other.
     std::atomic<bool> drawing{true};
     const double budget = std::max(0.004, 1.0 / 30 - (ms_since(f0) + draw_ms_) * 1e-3);
-    const bool step_while_drawing = !window_->software_rasterizer() || device_->is_gpu();
+    const bool overlap = !window_->software_rasterizer() || device_->is_gpu();
     auto stepping = std::async(std::launch::async, [&] {
-      exp_->advance(budget, step_while_drawing ? &drawing : nullptr);
+      exp_->advance(budget, overlap ? &drawing : nullptr);
     });
+    if (!overlap) stepping.wait();
     const auto d0 = Clock::now();
     const render::Gl& gl = window_->gl();
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -10,15 +10,16 @@
 //                 (ImGui::Render), drawn below
 // everything so far with the solver idle, as it reads or changes the
 // experiment; then, overlapped:
-//   advance       on a worker thread: the solver steps for what is left of
-//                 the 1/30 s frame, and on while the drawing lasts, in
-//                 chunks of a quarter of that, so the window stays
-//                 responsive however slow a step is
+//   advance       on a worker thread: the solver steps for what the 1/30 s
+//                 frame leaves after the last drawing, and on while the
+//                 drawing lasts, in chunks of a quarter of that, so the
+//                 window stays responsive however slow a step is
 //   draw_view     on this thread, GL only: the specimen flat (opaque,
 //                 transparent, chains) into the viewport, or the Alioscopy
 //                 output (interleaved full screen, 8-view grid, one view)
 //                 written 1:1; then the panel's draw data, the swap
-// and the frame ends when both have.
+// and the frame ends when both have. Where the drawing and the solver share
+// the CPU cores (llvmpipe with a CPU OpenCL device) the two take turns.
 // Closing the window during a test asks whether to save a checkpoint.
 #pragma once
 
