@@ -8,6 +8,7 @@
 //   sim.advance(1000)                                   # the GIL is released
 //   x = sim.positions()                                 # (N, 3) float64, m
 //   sim.save_checkpoint("c.bin"); sim = simsols.load_checkpoint("c.bin")
+//   r = simsols.run_test(scene, "out")   # as `simsols run`: r["summary"], r["rows"]
 //
 // Design:
 // - Scenes travel as TOML. A dict becomes TOML text (toml++) and goes
@@ -24,12 +25,20 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cstdio>
 #include <memory>
 #include <sstream>
 #include <string>
 #include <toml++/toml.h>
 #include <vector>
 
+#include "app/experiment/oedometer_run.h"
+#include "app/experiment/preparation.h"
+#include "app/experiment/shear_run.h"
+#include "app/experiment/triaxial_run.h"
+#include "solver/apparatus/oedometer_analysis.h"
+#include "solver/apparatus/shear_analysis.h"
+#include "solver/apparatus/triaxial_analysis.h"
 #include "solver/common/errors.h"
 #include "solver/core/engine_options.h"
 #include "solver/core/guard.h"
@@ -146,6 +155,102 @@ std::shared_ptr<Device> device_or_open(std::shared_ptr<Device> device) {
   return device ? device : Device::open(engine_options_from_environment());
 }
 
+// ------------------------------------------------------------ the apparatus
+
+// A CSV with a header line (the rows files: shear.csv, ...) as one float64
+// array per column, named as in the file (units in the names).
+py::dict csv_columns(const std::string& text) {
+  std::istringstream in(text);
+  std::string line;
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> columns;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::istringstream cs(line);
+    for (std::string c; std::getline(cs, c, ',');) cells.push_back(c);
+    if (names.empty()) {
+      names = cells;
+      columns.resize(names.size());
+      continue;
+    }
+    for (std::size_t k = 0; k < names.size(); ++k)
+      columns[k].push_back(k < cells.size() && !cells[k].empty() ? std::stod(cells[k]) : NAN);
+  }
+  py::dict d;
+  for (std::size_t k = 0; k < names.size(); ++k) d[py::str(names[k])] = vector_array(std::move(columns[k]));
+  return d;
+}
+
+// The "key = value" lines of a summary (summary.txt): numbers as floats,
+// the rest as text.
+py::dict summary_dict(const std::string& text) {
+  py::dict d;
+  for (const auto& [key, value] : summary_keys(text)) {
+    char* end = nullptr;
+    const double v = std::strtod(value.c_str(), &end);
+    if (end != value.c_str() && *end == '\0') d[py::str(key)] = v;
+    else d[py::str(key)] = value;
+  }
+  return d;
+}
+
+struct TestOutcome {
+  std::string apparatus, rows_csv, summary;
+  bool finished = false;
+  long long steps = 0;
+};
+
+template <class Result>
+TestOutcome outcome(const char* apparatus, const Result& r, std::string rows, std::string summary) {
+  return {apparatus, std::move(rows), std::move(summary), r.state.finished, r.state.steps};
+}
+
+// The scene's test, as `simsols run SCENE --out DIR` runs it (the
+// preparation to a density first, the same outputs in `out`).
+TestOutcome run_scene_test(Scene scene, const std::string& out, bool quiet,
+                           const std::shared_ptr<Device>& device) {
+  prepare_to_relative_density(scene, device, out, [&](const std::string& line) {
+    if (!quiet) std::fprintf(stderr, "[prepare] %s\n", line.c_str());
+  });
+  ProgrammeRunOptions opt;
+  opt.device = device;
+  opt.out_dir = out;
+  opt.quiet = quiet;
+  if (scene.shear_box) {
+    opt.label = "shear";
+    const ShearRunResult r = run_shear(scene, opt);
+    return {"shear_box", shear_rows_csv(r.rows), shear_summary_text(r.summary), r.finished, r.steps};
+  }
+  if (scene.oedometer) {
+    opt.label = "oedometer";
+    const OedometerRunResult r = run_oedometer(scene, opt);
+    return outcome("oedometer", r, oedometer_rows_csv(r.rows), oedometer_summary_text(r.summary));
+  }
+  if (scene.triaxial) {
+    opt.label = "triaxial";
+    const TriaxialRunResult r = run_triaxial(scene, opt);
+    return outcome("triaxial", r, triaxial_rows_csv(r.rows), triaxial_summary_text(r.summary));
+  }
+  throw SceneError("no_apparatus", scene.name, 0, "shear_box",
+                   "the scene has no [shear_box], [triaxial] or [oedometer] table: no test to run "
+                   "(Simulation steps it)");
+}
+
+py::dict run_test(const Scene& scene, const std::string& out, bool quiet, std::shared_ptr<Device> device) {
+  TestOutcome o;
+  {
+    py::gil_scoped_release release;
+    o = run_scene_test(scene, out, quiet, device_or_open(std::move(device)));
+  }
+  py::dict r;
+  r["apparatus"] = o.apparatus;
+  r["finished"] = o.finished;
+  r["steps"] = o.steps;
+  r["summary"] = o.finished ? summary_dict(o.summary) : py::dict();
+  r["rows"] = csv_columns(o.rows_csv);
+  return r;
+}
+
 // -------------------------------------------------------------- exceptions
 
 void register_exceptions(py::module_& m) {
@@ -218,6 +323,11 @@ void define_simulation(py::module_& m) {
            "(pairs (m, 2) int32, forces (m, 3) N): b = -1 - wall for a wall; the force b exerts on a")
       .def("save_checkpoint", [](Simulation& s, const std::string& path) { save_checkpoint(s, path); },
            py::arg("path"));
+  m.def("run_test", &run_test, py::arg("scene"), py::arg("out"), py::arg("quiet") = true,
+        py::arg("device") = nullptr,
+        "The scene's test (shear box, triaxial or oedometer) as `simsols run SCENE --out OUT`: "
+        "its outputs in `out`; returns apparatus, finished, steps, summary (summary.txt's keys) "
+        "and rows (the rows CSV's columns as arrays)");
   m.def("load_checkpoint",
         [](const std::string& path, std::shared_ptr<Device> device) {
           return load_checkpoint(device_or_open(std::move(device)), path);

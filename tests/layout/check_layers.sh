@@ -18,7 +18,7 @@ declare -A allowed=(
   [app/experiment]="render/plot solver/common solver/scene solver/core solver/apparatus solver/io"
   [app/lab]="app/experiment render/plot render/gl render/view solver/common solver/scene solver/core solver/apparatus solver/io"
   [app/cli]="app/experiment app/lab render/plot render/gl render/view solver/common solver/scene solver/core solver/apparatus solver/io"
-  [app/python]="solver/common solver/scene solver/core solver/apparatus solver/io"
+  [app/python]="app/experiment solver/common solver/scene solver/core solver/apparatus solver/io"
 )
 bad=0 checked=0
 for dir in "${!allowed[@]}"; do

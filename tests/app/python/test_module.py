@@ -129,3 +129,29 @@ def test_arrays_and_a_checkpoint_round_trip(tmp_path):
     sim.advance(50)
     back.advance(50)
     assert np.array_equal(back.positions(), sim.positions())  # continues identically
+
+
+def test_a_shear_test_from_python_equals_simsols_run(tmp_path):
+    """run_test gives the summary and rows `simsols run` writes for the same scene."""
+    path = os.path.join(ASSETS, "tests", "shear_small.toml")
+    r = simsols.run_test(simsols.load_scene(path), str(tmp_path / "py"))
+    assert r["apparatus"] == "shear_box" and r["finished"]
+    exe = os.environ["SIMSOLS_EXE"]
+    cli = tmp_path / "cli"
+    assert os.system(f"'{exe}' run '{path}' --out '{cli}' -q > /dev/null") == 0
+    with open(cli / "summary.txt", encoding="utf-8") as f:
+        keys = dict(line.split(" = ", 1) for line in f.read().splitlines() if " = " in line)
+    assert set(keys) == set(r["summary"])
+    for key, text in keys.items():
+        if key == "wall_seconds":
+            continue
+        value = r["summary"][key]
+        assert (float(text) == value) if isinstance(value, float) else (text == value), key
+    table = np.genfromtxt(cli / "shear.csv", delimiter=",", names=True)
+    assert len(r["rows"]["displacement_mm"]) == len(table) > 10
+    for name in table.dtype.names:
+        assert np.array_equal(r["rows"][name], table[name]), name
+    # the Python run wrote the same outputs as the command
+    assert (tmp_path / "py" / "summary.txt").exists() and (tmp_path / "py" / "shear.csv").exists()
+    with pytest.raises(simsols.SceneError, match="no \\[shear_box\\]"):
+        simsols.run_test(simsols.load_scene(os.path.join(ASSETS, "scenes", "settling_bead.toml")), str(tmp_path / "x"))
