@@ -168,6 +168,9 @@ render::ViewSettings LabApp::pack_view() {
   s.bead_map = render::colormap_for(field);
   s.value_min = update.range.min;
   s.value_max = update.range.max;
+  // the walls where they are now: read here, with the solver idle, so the
+  // drawing itself touches nothing of the solver's
+  geometry_ = sim_view_->geometry();
   return s;
 }
 
@@ -193,7 +196,7 @@ void LabApp::draw_view(const render::ViewSettings& s, int x, int y, int w, int h
   glfwGetFramebufferSize(window_->handle(), &fw, &fh);
   const int ow = view == LabView::Alioscopy ? fw : w, oh = view == LabView::Alioscopy ? fh : h;
   alioscopy_->resize_output(ow, oh);
-  alioscopy_->render_views(*renderer_, render::StereoRig{}, camera_, sim_view_->geometry(), s);
+  alioscopy_->render_views(*renderer_, render::StereoRig{}, camera_, geometry_, s);
   int wx = 0, wy = 0;
   window_->position(&wx, &wy);
   alioscopy_mode_ = view == LabView::Alioscopy ? render::AlioscopyOutput::Mode::Interleaved
@@ -217,7 +220,7 @@ void LabApp::draw_flat(const render::ViewProjection& vp, const render::ViewSetti
   const int rw = std::max(1, int(w * render_scale_)), rh = std::max(1, int(h * render_scale_));
   const auto r0 = Clock::now();
   renderer_->resize(rw, rh);
-  renderer_->draw(vp, sim_view_->geometry(), s);
+  renderer_->draw(vp, geometry_, s);
   gl.BindFramebuffer(GL_READ_FRAMEBUFFER, renderer_->framebuffer());
   gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
   gl.BlitFramebuffer(0, 0, rw, rh, x, y, x + w, y + h, GL_COLOR_BUFFER_BIT,
@@ -258,6 +261,18 @@ void LabApp::save_frame(const std::string& path) {
   }
   plot::write_png(renderer_->read_pixels(), path);
 }
+
+// Ends the drawing's part of a frame however it is left: the worker stops
+// stepping on and is waited for (its exception, if any, is dropped: the
+// one leaving is the drawing's).
+struct LabApp::StopWhenLeaving {
+  std::atomic<bool>& drawing;
+  std::future<void>& stepping;
+  ~StopWhenLeaving() {
+    drawing = false;
+    if (stepping.valid()) stepping.wait();
+  }
+};
 
 void LabApp::handle_close() {
   GLFWwindow* w = window_->handle();
@@ -305,8 +320,8 @@ int LabApp::run() {
     glfwPollEvents();
     handle_close();
     act(exp_->poll());
-    attach_view();
     if (script_) run_script();
+    attach_view();  // after anything that may have replaced the simulation
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
@@ -314,10 +329,15 @@ int LabApp::run() {
     int fw = 0, fh = 0;
     glfwGetFramebufferSize(w, &fw, &fh);
     const int panel = lay_out_window(fw, fh);
-    const render::ViewSettings settings = sim_view_ ? pack_view() : render::ViewSettings{};
-    const long long steps = exp_->simulation() ? exp_->simulation()->steps() : 0;
+    render::ViewSettings settings = sim_view_ ? pack_view() : render::ViewSettings{};
     draw_panel(panel);
-    if (view == LabView::Grid) label_grid(view_x_, fh - (view_y_ + view_h_), view_w_, view_h_);
+    if (exp_->generation() != generation_) {  // the panel loaded or rebuilt a simulation
+      attach_view();
+      if (sim_view_) settings = pack_view();
+    }
+    const long long steps = exp_->simulation() ? exp_->simulation()->steps() : 0;
+    if (view == LabView::Grid && sim_view_)
+      label_grid(view_x_, fh - (view_y_ + view_h_), view_w_, view_h_);
     ImGui::Render();
 
     // Then the solver steps on a worker thread, for what the 1/30 s frame
@@ -331,6 +351,8 @@ int LabApp::run() {
     auto stepping = std::async(std::launch::async, [&] {
       exp_->advance(budget, overlap ? &drawing : nullptr);
     });
+    // should the drawing throw, the worker stops at its next chunk
+    const StopWhenLeaving stop{drawing, stepping};
     if (!overlap) stepping.wait();
     const auto d0 = Clock::now();
     const render::Gl& gl = window_->gl();

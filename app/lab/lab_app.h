@@ -5,7 +5,8 @@
 //
 // Each frame, in order:
 //   poll          input, background builds, the script's next command
-//   pack_view     the beads and contacts into the GL buffers (OpenCL)
+//   pack_view     the beads and contacts into the GL buffers (OpenCL), the
+//                 walls where they are
 //   draw_panel    controls, live plots, status line, help overlay: built
 //                 (ImGui::Render), drawn below
 // everything so far with the solver idle, as it reads or changes the
@@ -71,6 +72,7 @@ class LabApp {
 
  private:
   struct Script;
+  struct StopWhenLeaving;
   void poll_input();
   void run_script();
   bool script_pending_screenshot() const;
@@ -112,6 +114,7 @@ class LabApp {
   glm::ivec2 alioscopy_window_{0, 0};  // the window's screen position when last composed
   LabView look_ = LabView::Transparent;  // the last flat view: the stereo views' look
   std::unique_ptr<render::SimulationView> sim_view_;
+  render::FrameGeometry geometry_;  // packed for this frame (pack_view)
   render::Camera camera_;
   render::ViewPreset preset_ = render::ViewPreset::ThreeQuarter;
   int generation_ = -1;

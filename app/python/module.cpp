@@ -91,9 +91,19 @@ toml::table to_toml_table(const py::dict& d, const std::string& where) {
 
 std::unique_ptr<toml::node> to_toml_node(py::handle v, const std::string& where) {
   if (py::isinstance<py::bool_>(v)) return std::make_unique<toml::value<bool>>(v.cast<bool>());
-  if (py::isinstance<py::int_>(v)) return std::make_unique<toml::value<std::int64_t>>(v.cast<std::int64_t>());
+  if (py::isinstance<py::int_>(v)) {
+    const long long i = PyLong_AsLongLong(v.ptr());
+    if (i == -1 && PyErr_Occurred()) {
+      PyErr_Clear();
+      throw py::value_error(where + ": " + std::string(py::str(v)) + " does not fit a 64-bit integer");
+    }
+    return std::make_unique<toml::value<std::int64_t>>(std::int64_t(i));
+  }
   if (py::isinstance<py::float_>(v)) return std::make_unique<toml::value<double>>(v.cast<double>());
   if (py::isinstance<py::str>(v)) return std::make_unique<toml::value<std::string>>(v.cast<std::string>());
+  // other numbers (NumPy's int64, float32, ...): integers by __index__, the rest by __float__
+  if (PyIndex_Check(v.ptr())) return to_toml_node(py::int_(py::reinterpret_borrow<py::object>(v)), where);
+  if (py::hasattr(v, "__float__")) return std::make_unique<toml::value<double>>(py::float_(py::reinterpret_borrow<py::object>(v)).cast<double>());
   if (py::isinstance<py::dict>(v)) return std::make_unique<toml::table>(to_toml_table(v.cast<py::dict>(), where));
   if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v)) {
     auto a = std::make_unique<toml::array>();
@@ -123,7 +133,7 @@ py::array_t<double> vec3_array(std::vector<Vec3>&& v) {
   py::capsule free(owned, [](void* p) { delete static_cast<std::vector<Vec3>*>(p); });
   return py::array_t<double>({py::ssize_t(owned->size()), py::ssize_t(3)},
                              {py::ssize_t(sizeof(Vec3)), py::ssize_t(sizeof(double))},
-                             owned->data()->data(), free);
+                             reinterpret_cast<double*>(owned->data()), free);
 }
 
 template <typename T>
@@ -146,8 +156,10 @@ py::tuple contacts_arrays(Simulation& sim) {
     pairs.push_back(f.b);
     forces.push_back(f.force);
   }
-  py::array_t<int> p = vector_array(std::move(pairs));
-  p.resize({py::ssize_t(c.size()), py::ssize_t(2)});
+  auto* owned = new std::vector<int>(std::move(pairs));
+  py::capsule free(owned, [](void* p) { delete static_cast<std::vector<int>*>(p); });
+  py::array_t<int> p({py::ssize_t(c.size()), py::ssize_t(2)},
+                     {py::ssize_t(2 * sizeof(int)), py::ssize_t(sizeof(int))}, owned->data(), free);
   return py::make_tuple(p, vec3_array(std::move(forces)));
 }
 
@@ -173,8 +185,9 @@ py::dict csv_columns(const std::string& text) {
       columns.resize(names.size());
       continue;
     }
-    for (std::size_t k = 0; k < names.size(); ++k)
-      columns[k].push_back(k < cells.size() && !cells[k].empty() ? std::stod(cells[k]) : NAN);
+    for (std::size_t k = 0; k < names.size(); ++k)  // strtod: subnormals (1e-320 J) read, no throw
+      columns[k].push_back(k < cells.size() && !cells[k].empty() ? std::strtod(cells[k].c_str(), nullptr)
+                                                                   : NAN);
   }
   py::dict d;
   for (std::size_t k = 0; k < names.size(); ++k) d[py::str(names[k])] = vector_array(std::move(columns[k]));
@@ -254,9 +267,11 @@ py::dict run_test(const Scene& scene, const std::string& out, bool quiet, std::s
 // -------------------------------------------------------------- exceptions
 
 void register_exceptions(py::module_& m) {
-  static py::exception<SceneError> scene_error(m, "SceneError", PyExc_ValueError);
-  static py::exception<RunawayError> runaway_error(m, "RunawayError", PyExc_RuntimeError);
-  static py::exception<DeviceError> device_error(m, "DeviceError", PyExc_RuntimeError);
+  // Static (the translator is a plain function) and never destroyed: they
+  // must outlive the interpreter's own shutdown.
+  static auto* scene_error = new py::exception<SceneError>(m, "SceneError", PyExc_ValueError);
+  static auto* runaway_error = new py::exception<RunawayError>(m, "RunawayError", PyExc_RuntimeError);
+  static auto* device_error = new py::exception<DeviceError>(m, "DeviceError", PyExc_RuntimeError);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
@@ -267,17 +282,17 @@ void register_exceptions(py::module_& m) {
       for (const SceneProblem& q : e.problems)
         problems.append(py::dict(py::arg("code") = q.code, py::arg("line") = q.line,
                                  py::arg("field") = q.field, py::arg("message") = q.message));
-      py::object instance = py::handle(scene_error.ptr())(e.what());
+      py::object instance = py::handle(scene_error->ptr())(e.what());
       instance.attr("file") = e.file;
       instance.attr("line") = e.line;
       instance.attr("field") = e.field;
       instance.attr("code") = e.code;
       instance.attr("problems") = problems;
-      PyErr_SetObject(scene_error.ptr(), instance.ptr());
+      PyErr_SetObject(scene_error->ptr(), instance.ptr());
     } catch (const RunawayError& e) {
-      runaway_error(e.what());
+      (*runaway_error)(e.what());
     } catch (const DeviceError& e) {
-      device_error(e.what());
+      (*device_error)(e.what());
     }
   });
 }

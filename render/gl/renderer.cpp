@@ -421,23 +421,18 @@ void Renderer::draw_walls(ShaderProgram& p, const std::vector<WallQuad>& walls, 
   }
 }
 
-// Walls over opaque beads: plates of one colour and opacity, blended far to
-// near straight into the frame. Where k plates overlap this gives
-// C (1 - (1 - a)^k) + C_0 (1 - a)^k, the OIT formula's value for equal
-// colours, without the float targets and the resolve pass (on llvmpipe
-// those cost more than the beads). Plates sorted by their centres' view
-// depth: exact for the faces of a convex box, which never interleave.
+// Walls over opaque beads: plates of one colour and opacity, blended
+// straight into the frame. Where k plates overlap this gives
+// C (1 - (1 - a)^k) + C_0 (1 - a)^k in any order, the OIT formula's value
+// for equal colours, without the float targets and the resolve pass (on
+// llvmpipe those cost more than the beads).
 void Renderer::draw_walls_blended(const FrameGeometry& g, const ViewSettings& s) {
-  std::vector<WallQuad> walls = g.walls;
-  const auto depth = [&](const WallQuad& w) { return (view_ * glm::vec4(w.centre, 1.f)).z; };
-  std::stable_sort(walls.begin(), walls.end(),
-                   [&](const WallQuad& a, const WallQuad& b) { return depth(a) < depth(b); });
   gl_.Enable(GL_DEPTH_TEST);
   gl_.DepthFunc(GL_LESS);
   gl_.DepthMask(GL_FALSE);
   gl_.Enable(GL_BLEND);
   gl_.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
-  draw_walls(*wall_, walls, s);
+  draw_walls(*wall_, g.walls, s);
   gl_.DepthMask(GL_TRUE);
 }
 

@@ -8,7 +8,7 @@
 //                     against the opaque stage, nothing sorted
 //   composite         resolves the transparent layer over the opaque image
 //   (opaque mode: the walls alone are translucent; draw_walls_blended puts
-//   them straight over the frame, far to near, instead of the two stages)
+//   them straight over the frame instead of the two stages)
 //
 // Inputs are GL buffers (FrameGeometry) that the data path fills either
 // through OpenCL-OpenGL sharing or one host copy; the renderer does not know

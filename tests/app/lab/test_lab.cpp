@@ -61,7 +61,11 @@ TEST(Lab, ScriptedSessionShearsChangesStressAndCheckpoints) {
                                << "state " << (d / "a2.state").string() << "\nrows 9\nstate "
                                << (d / "b2.state").string() << "\n"
                                << "view opaque\nframes 1\nview alioscopy\nframes 3\nframe "
-                               << (d / "alio.png").string() << "\n";
+                               << (d / "alio.png").string() << "\n"
+                               // a checkpoint loaded over a running simulation: the view
+                               // follows the new one at once
+                               << "view transparent\nload_checkpoint " << (d / "c.bin").string()
+                               << "\nframes 2\nstate " << (d / "a3.state").string() << "\n";
   ASSERT_EQ(run(lab(d / "one.txt")), 0);
   ASSERT_EQ(run(lab(d / "two.txt")), 0);
 
@@ -88,6 +92,9 @@ TEST(Lab, ScriptedSessionShearsChangesStressAndCheckpoints) {
   EXPECT_EQ(a2["steps"], a["steps"]);
   EXPECT_EQ(b2["hash"], b["hash"]);
   EXPECT_EQ(b2["steps"], b["steps"]);
+  auto a3 = read_state(d / "a3.state");
+  EXPECT_EQ(a3["hash"], a["hash"]);
+  EXPECT_EQ(a3["steps"], a["steps"]);
   // the Alioscopy view: the interleaved image over the whole window, the
   // beads in the look of the last flat view (opaque: coloured by layer)
   const simsols::plot::Image alio = simsols::plot::read_png((d / "alio.png").string());

@@ -101,6 +101,8 @@ def test_bad_values_are_refused_as_in_a_file():
     assert "poisson_ratio" in e.value.field
     message = str(e.value)
     assert "bad_bead" in message and "poisson_ratio" in message and "0.5" in message, message
+    d["materials"][0]["poisson_ratio"] = np.float32(0.25)  # NumPy numbers are numbers
+    assert "0.25" in simsols.scene_from_dict(d).to_toml()
     d["materials"][0]["poisson_ratio"] = 0.2
     d["numerics"]["precison"] = "double"  # a misspelt key
     with pytest.raises(simsols.SceneError, match="precision"):
