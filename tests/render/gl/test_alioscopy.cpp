@@ -35,6 +35,17 @@ int expected_view(int X, int Y, int c, int phase, bool reversed, bool flip) {
   return reversed ? 7 - v : v;
 }
 
+// An image of random bytes (alpha too), from a linear congruential
+// sequence that `seed` carries on between calls.
+plot::Image random_image(int width, int height, std::uint32_t& seed) {
+  plot::Image img = plot::make_image(width, height);
+  for (auto& b : img.rgba) {
+    seed = seed * 1664525u + 1013904223u;
+    b = std::uint8_t(seed >> 24);
+  }
+  return img;
+}
+
 }  // namespace
 
 TEST(Alioscopy, InterleavingMatchesTheFormulaAtEverySubpixel) {
@@ -82,11 +93,7 @@ TEST(Alioscopy, DeinterleavingGivesEachViewBack) {
   std::vector<plot::Image> views;
   std::uint32_t seed = 12345;
   for (int v = 0; v < 8; ++v) {
-    plot::Image img = plot::make_image(p.view_width(), p.view_height());
-    for (auto& b : img.rgba) {
-      seed = seed * 1664525u + 1013904223u;
-      b = std::uint8_t(seed >> 24);
-    }
+    plot::Image img = random_image(p.view_width(), p.view_height(), seed);
     for (std::size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 255;
     out.upload_view(v, img);
     views.push_back(img);
@@ -136,12 +143,7 @@ TEST(Alioscopy, ComposedIntoAnotherFramebufferAsIntoItsOwn) {
   EXPECT_EQ(out.view_height(), 45);
   std::uint32_t seed = 777;
   for (int v = 0; v < 8; ++v) {
-    plot::Image img = plot::make_image(out.view_width(), out.view_height());
-    for (auto& b : img.rgba) {
-      seed = seed * 1664525u + 1013904223u;
-      b = std::uint8_t(seed >> 24);
-    }
-    out.upload_view(v, img);
+    out.upload_view(v, random_image(out.view_width(), out.view_height(), seed));
   }
   const glm::ivec2 window{5, 9};
   out.compose(AlioscopyOutput::Mode::Interleaved, 0, window);
