@@ -127,20 +127,26 @@ py::dict scene_to_dict(const Scene& scene) {
 
 // ------------------------------------------------------------------- arrays
 
-// An (n, 3) float64 array that owns `v` (moved in): no copy.
-py::array_t<double> vec3_array(std::vector<Vec3>&& v) {
-  auto* owned = new std::vector<Vec3>(std::move(v));
-  py::capsule free(owned, [](void* p) { delete static_cast<std::vector<Vec3>*>(p); });
-  return py::array_t<double>({py::ssize_t(owned->size()), py::ssize_t(3)},
-                             {py::ssize_t(sizeof(Vec3)), py::ssize_t(sizeof(double))},
-                             reinterpret_cast<double*>(owned->data()), free);
+// An array of T that owns `v` (moved in, no copy): its elements E read as
+// `columns` values of T each, so n x columns (one column: a vector).
+template <typename T, typename E>
+py::array_t<T> owning_array(std::vector<E>&& v, py::ssize_t columns) {
+  static_assert(sizeof(E) % sizeof(T) == 0);
+  auto* owned = new std::vector<E>(std::move(v));
+  py::capsule free(owned, [](void* p) { delete static_cast<std::vector<E>*>(p); });
+  T* data = reinterpret_cast<T*>(owned->data());
+  const auto rows = py::ssize_t(owned->size() * sizeof(E) / sizeof(T)) / columns;
+  if (columns == 1) return py::array_t<T>({rows}, {py::ssize_t(sizeof(T))}, data, free);
+  return py::array_t<T>({rows, columns}, {py::ssize_t(columns * sizeof(T)), py::ssize_t(sizeof(T))},
+                        data, free);
 }
+
+// (n, 3) float64
+py::array_t<double> vec3_array(std::vector<Vec3>&& v) { return owning_array<double>(std::move(v), 3); }
 
 template <typename T>
 py::array_t<T> vector_array(std::vector<T>&& v) {
-  auto* owned = new std::vector<T>(std::move(v));
-  py::capsule free(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
-  return py::array_t<T>({py::ssize_t(owned->size())}, {py::ssize_t(sizeof(T))}, owned->data(), free);
+  return owning_array<T>(std::move(v), 1);
 }
 
 // Every touching contact: (pairs (m, 2) int32: a, b with b = -1 - wall for
@@ -156,11 +162,7 @@ py::tuple contacts_arrays(Simulation& sim) {
     pairs.push_back(f.b);
     forces.push_back(f.force);
   }
-  auto* owned = new std::vector<int>(std::move(pairs));
-  py::capsule free(owned, [](void* p) { delete static_cast<std::vector<int>*>(p); });
-  py::array_t<int> p({py::ssize_t(c.size()), py::ssize_t(2)},
-                     {py::ssize_t(2 * sizeof(int)), py::ssize_t(sizeof(int))}, owned->data(), free);
-  return py::make_tuple(p, vec3_array(std::move(forces)));
+  return py::make_tuple(owning_array<int>(std::move(pairs), 2), vec3_array(std::move(forces)));
 }
 
 std::shared_ptr<Device> device_or_open(std::shared_ptr<Device> device) {
