@@ -183,8 +183,7 @@ void LabApp::draw_view(const render::ViewSettings& s, int x, int y, int w, int h
       draw_flat(render::ViewProjection::of(camera_, double(w) / h), s, x, y, w, h);
       return;
     }
-    if (!alioscopy_) alioscopy_ = std::make_unique<render::AlioscopyOutput>(gl, render::DisplayProfile{});
-    const render::StereoRig rig = alioscopy_->rig(render::StereoRig{});
+    const render::StereoRig rig = render::DisplayProfile{}.rig(render::StereoRig{});
     draw_flat(rig.view(camera_, std::clamp(single_view, 0, rig.views - 1), double(w) / h), s, x, y,
               w, h);
     return;

@@ -149,19 +149,19 @@ void AlioscopyOutput::upload_view(int k, const plot::Image& img) {
   gl_.check("AlioscopyOutput::upload_view");
 }
 
-StereoRig AlioscopyOutput::rig(const StereoRig& rig_in) const {
+StereoRig DisplayProfile::rig(const StereoRig& rig_in) const {
   StereoRig rig = rig_in;
-  rig.views = profile_.views;
-  if (rig.interaxial <= 0) rig.interaxial = profile_.interaxial;
-  if (rig.focus <= 0) rig.focus = profile_.focus;
-  if (rig.interaxial <= 0) rig.ratio = profile_.interaxial_ratio;
+  rig.views = views;
+  if (rig.interaxial <= 0) rig.interaxial = interaxial;
+  if (rig.focus <= 0) rig.focus = focus;
+  if (rig.interaxial <= 0) rig.ratio = interaxial_ratio;
   return rig;
 }
 
 void AlioscopyOutput::render_views(Renderer& renderer, const StereoRig& rig_in,
                                    const Camera& camera, const FrameGeometry& geometry,
                                    const ViewSettings& settings) {
-  const StereoRig views = rig(rig_in);
+  const StereoRig views = profile_.rig(rig_in);
   renderer.resize(view_.x, view_.y);
   const double aspect = double(out_w_) / out_h_;  // the views fill the screen
   for (int k = 0; k < profile_.views; ++k) {

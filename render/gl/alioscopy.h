@@ -68,6 +68,9 @@ struct DisplayProfile {
 
   // The views' size for an output of that size: ceil(side x view_scale).
   glm::ivec2 view_size(int output_width, int output_height) const;
+  // `rig` with this display's settings where it leaves them to the display
+  // (interaxial, focus, ratio at 0), and the display's view count.
+  StereoRig rig(const StereoRig& rig) const;
   int view_width() const { return view_size(width, height).x; }  // at the panel's size
   int view_height() const { return view_size(width, height).y; }
 };
@@ -130,9 +133,6 @@ class AlioscopyOutput {
   int view_width() const { return view_.x; }
   int view_height() const { return view_.y; }
 
-  // `rig` with the profile's settings where it leaves them to the display
-  // (interaxial, focus, ratio at 0).
-  StereoRig rig(const StereoRig& rig) const;
   // Renders the eight views of `camera`.
   void render_views(Renderer& renderer, const StereoRig& rig, const Camera& camera,
                     const FrameGeometry& geometry, const ViewSettings& settings);
