@@ -56,6 +56,10 @@ PACKAGES=(
   python3-dev
   python3-numpy
   python3-pytest
+  # a private one-node Slurm for the cluster test (tests/cluster): slurm-wlm
+  # is the controller, node daemon and clients; munge authenticates them
+  slurm-wlm
+  munge
 )
 
 PRESET=release

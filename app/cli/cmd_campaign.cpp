@@ -3,11 +3,13 @@
 // or any subset, any sizes and stresses (app/experiment/campaign.h); on a
 // triaxial base scene, its test at several confining stresses
 // (app/experiment/triaxial_campaign.h).
+#include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "app/cli/cluster_flags.h"
 #include "app/cli/commands.h"
 #include "app/cli/interrupt.h"
 #include "app/experiment/campaign.h"
@@ -32,7 +34,44 @@ struct CampaignOptions {
   // shear box's and has its own default stresses).
   bool sizes_given = false, stresses_given = false, layers_given = false,
        displacement_given = false;
+  ClusterFlags cluster;
 };
+
+std::string number_list(const std::vector<double>& v) {
+  std::string s;
+  for (double x : v) {
+    char b[32];
+    const auto end = std::to_chars(b, b + sizeof b, x).ptr;  // shortest round trip
+    s += (s.empty() ? "" : ",") + std::string(b, end);
+  }
+  return s;
+}
+
+// The command line that plans the same tests (cluster.h), paths absolute.
+std::vector<std::string> campaign_args(const CampaignOptions& o) {
+  std::vector<std::string> a{"campaign"};
+  if (!o.base.empty()) a.push_back(absolute_arg(o.base));
+  a.insert(a.end(), {"--out", absolute_arg(o.out_dir)});
+  if (o.sizes_given) a.insert(a.end(), {"--sizes", number_list(o.sizes_mm)});
+  if (o.stresses_given) a.insert(a.end(), {"--stresses", number_list(o.stresses_kpa)});
+  if (o.layers_given) a.insert(a.end(), {"--layers", std::to_string(o.layers)});
+  if (!o.precision.empty()) a.insert(a.end(), {"--precision", o.precision});
+  if (o.displacement_given) a.insert(a.end(), {"--displacement", number_list({o.displacement_mm})});
+  if (o.quiet) a.push_back("-q");
+  return a;
+}
+
+// What a campaign run with the cluster flags says at its end; 0.
+int report_done(const CampaignOptions& opt, const CampaignRun& run, size_t count,
+                const std::string& name_of_only, const char* what) {
+  if (run.only)
+    std::printf("campaign task %zu of %zu done: %s in %s\n", *run.only, count,
+                name_of_only.c_str(), opt.out_dir.c_str());
+  else
+    std::printf("campaign %s: %zu %s in %s (summary.md, summary.csv, *.png)\n",
+                run.collect ? "collected" : "done", count, what, opt.out_dir.c_str());
+  return 0;
+}
 
 int report_interrupted(size_t k, size_t count, const std::string& name,
                        const std::filesystem::path& dir, const InterruptScope& interrupt) {
@@ -53,22 +92,39 @@ int triaxial_campaign(const CampaignOptions& opt, Scene base, const std::string&
   if (opt.stresses_given) spec.stresses_kpa = opt.stresses_kpa;
   spec.precision = precision_flag(opt.precision);
   InterruptScope interrupt;
-  const CampaignRun run{open_command_device(), interrupt.stop_function(), opt.quiet};
+  CampaignRun run;
+  run.stop_requested = interrupt.stop_function();
+  run.quiet = opt.quiet;
+  apply_cluster_flags(opt.cluster, opt.out_dir, run);
+  const Specimen* specimen = base.specimen();
+  const bool searches = specimen && (specimen->preparation.relative_density ||
+                                     specimen->preparation.void_ratio ||
+                                     specimen->preparation.tamping_layers > 0 ||
+                                     specimen->preparation.expansion);
+  if (searches && (opt.cluster.emitting() || run.only || run.collect))
+    throw SceneError("not_applicable", base_name, 0, "triaxial.specimen.preparation",
+                     "a cluster campaign needs its specimen prepared once first: run the base "
+                     "with simsols run and campaign over its scene.resolved.toml");
+  if (!opt.cluster.emitting() && !run.collect) run.device = open_command_device();
   // every test shears the same poured specimen: one search for its density
-  prepare_to_relative_density(base, run.device, opt.out_dir, [&](const std::string& line) {
-    if (!opt.quiet) std::fprintf(stderr, "[prepare] %s\n", line.c_str());
-  });
+  if (searches)
+    prepare_to_relative_density(base, run.device, opt.out_dir, [&](const std::string& line) {
+      if (!opt.quiet) std::fprintf(stderr, "[prepare] %s\n", line.c_str());
+    });
   std::vector<TriaxialCampaignTest> tests =
       plan_triaxial_campaign(base, base_name, spec, opt.out_dir);
+  if (opt.cluster.emitting()) {
+    emit_slurm_job("campaign", campaign_args(opt), opt.out_dir, cluster_tests(tests));
+    return 0;
+  }
   const CampaignOutcome outcome = run_triaxial_campaign(tests, base_name, opt.out_dir, run);
   if (outcome.interrupted) {
     const TriaxialCampaignTest& t = tests[outcome.interrupted_test];
     return report_interrupted(outcome.interrupted_test, tests.size(), t.scene.name, t.dir,
                               interrupt);
   }
-  std::printf("campaign done: %zu triaxial tests in %s (summary.md, summary.csv, *.png)\n",
-              tests.size(), opt.out_dir.c_str());
-  return 0;
+  return report_done(opt, run, tests.size(), run.only ? tests[*run.only].scene.name : "",
+                     "triaxial tests");
 }
 
 int campaign(const CampaignOptions& opt) {
@@ -98,16 +154,22 @@ int campaign(const CampaignOptions& opt) {
   std::vector<CampaignTest> tests = plan_campaign(base, base_name, spec, opt.out_dir);
 
   InterruptScope interrupt;
-  const CampaignRun run{open_command_device(), interrupt.stop_function(), opt.quiet};
+  CampaignRun run;
+  run.stop_requested = interrupt.stop_function();
+  run.quiet = opt.quiet;
+  apply_cluster_flags(opt.cluster, opt.out_dir, run);
+  if (opt.cluster.emitting()) {
+    emit_slurm_job("campaign", campaign_args(opt), opt.out_dir, cluster_tests(tests));
+    return 0;
+  }
+  if (!run.collect) run.device = open_command_device();
   const CampaignOutcome outcome = run_campaign(tests, base_name, spec, opt.out_dir, run);
   if (outcome.interrupted) {
     const CampaignTest& t = tests[outcome.interrupted_test];
     return report_interrupted(outcome.interrupted_test, tests.size(), t.scene.name, t.dir,
                               interrupt);
   }
-  std::printf("campaign done: %zu tests in %s (summary.md, summary.csv, *.png)\n", tests.size(),
-              opt.out_dir.c_str());
-  return 0;
+  return report_done(opt, run, tests.size(), run.only ? tests[*run.only].scene.name : "", "tests");
 }
 
 }  // namespace
@@ -121,7 +183,7 @@ CommandRunner add_campaign_command(CLI::App& app) {
   cmd->add_option("base", opt->base,
                   "Base scene: a shear box (default: the built-in shear_box.toml) or a triaxial "
                   "cell");
-  cmd->add_option("--out,-o", opt->out_dir, "Output folder (rerun to resume)")->required();
+  cmd->add_option("--out,-o", opt->out_dir, "Output folder (rerun to resume)");
   CLI::Option* sizes =
       cmd->add_option("--sizes", opt->sizes_mm, "Bead diameters in mm (default: Table 1)")
           ->delimiter(',');
@@ -137,7 +199,12 @@ CommandRunner add_campaign_command(CLI::App& app) {
       cmd->add_option("--displacement", opt->displacement_mm,
                       "Horizontal displacement to shear, mm (default: the base scene's)");
   cmd->add_flag("--quiet,-q", opt->quiet, "No progress lines");
+  add_cluster_flags(cmd, opt->cluster);
   return [=] {
+    if (!opt->cluster.collect.empty())
+      return collect_from_manifest(opt->cluster.collect, add_campaign_command);
+    if (opt->out_dir.empty())
+      throw UsageError("missing_field", "--out", "give an output folder (rerun to resume)");
     opt->sizes_given = sizes->count() > 0;
     opt->stresses_given = stresses->count() > 0;
     opt->layers_given = layers->count() > 0;

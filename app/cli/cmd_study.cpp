@@ -25,11 +25,13 @@
 #include <optional>
 #include <thread>
 
+#include "app/cli/cluster_flags.h"
 #include "app/cli/commands.h"
 #include "solver/common/errors.h"
 #include "app/cli/interrupt.h"
 #include "solver/io/output.h"
 #include "app/experiment/run_cost.h"
+#include "app/experiment/sensitivity.h"
 #include "app/experiment/shape_study.h"
 #include "app/experiment/study.h"
 #include "app/experiment/study_ensemble.h"
@@ -53,6 +55,8 @@ struct StudyOptions {
   bool no_shear = false;
   bool quiet = false;
   bool resume = false;
+  bool preset_given = false;
+  ClusterFlags cluster;
 };
 
 // --specimen: nullopt for both; throws for another name.
@@ -332,15 +336,59 @@ int shape_study(const StudyOptions& opt) {
   return results.size() < preset.cases.size() ? interrupt.exit_status() : 0;
 }
 
+// `simsols study sensitivity --out DIR [--preset paper|ci]` (sensitivity.h):
+// its tests run like a campaign's (resumable; on a cluster with the
+// cluster flags), then the report.
+int sensitivity_study(const StudyOptions& opt) {
+  const SensitivityPreset preset = sensitivity_preset(opt.preset_given ? opt.preset : "paper");
+  std::vector<SensitivityTest> tests = plan_sensitivity(preset, opt.out);
+  InterruptScope interrupt;
+  CampaignRun run;
+  run.stop_requested = interrupt.stop_function();
+  run.quiet = opt.quiet;
+  apply_cluster_flags(opt.cluster, opt.out, run);
+  if (opt.cluster.emitting()) {
+    std::vector<std::string> args{"study", "sensitivity", "--out", absolute_arg(opt.out),
+                                  "--preset", preset.name};
+    if (opt.quiet) args.push_back("-q");
+    emit_slurm_job("study", args, opt.out, cluster_tests(tests));
+    return 0;
+  }
+  if (!run.collect) run.device = open_command_device();
+  const CampaignOutcome outcome = run_sensitivity(tests, preset, opt.out, run);
+  if (outcome.interrupted) {
+    std::printf("sensitivity study interrupted in test %zu/%zu (%s); resume with the same "
+                "command\n", outcome.interrupted_test + 1, tests.size(),
+                tests[outcome.interrupted_test].point.label.c_str());
+    return interrupt.exit_status();
+  }
+  if (run.only)
+    std::printf("sensitivity task %zu of %zu done: %s\n", *run.only, tests.size(),
+                tests[*run.only].point.label.c_str());
+  else
+    std::printf("sensitivity study (%s): %zu tests; results in %s (summary.md, effects.csv, "
+                "sensitivity.csv, oat_*.png, morris_*.png, scale_effect.png)\n",
+                preset.name.c_str(), tests.size(), opt.out.c_str());
+  return 0;
+}
+
 int study(const StudyOptions& opt) {
   if (opt.what == "table") return print_table(opt);
+  if (opt.what != "sensitivity" &&
+      (opt.cluster.emitting() || opt.cluster.task >= 0 || opt.cluster.collecting))
+    throw UsageError("not_applicable", opt.cluster.emitting() ? "--emit" : "--task",
+                     "the cluster flags are for the sensitivity study (and simsols campaign)");
+  if (opt.what == "sensitivity") {
+    if (opt.out.empty()) throw UsageError("missing_field", "--out", "give an output folder");
+    return sensitivity_study(opt);
+  }
   if (opt.what == "shape") {
     if (opt.out.empty()) throw UsageError("missing_field", "--out", "give an output folder");
     return shape_study(opt);
   }
   if (opt.what != "accuracy")
     throw UsageError("bad_enum", "STUDY",
-                     "'" + opt.what + "' is not one of: accuracy, shape, table");
+                     "'" + opt.what + "' is not one of: accuracy, sensitivity, shape, table");
   if (opt.out.empty()) throw UsageError("missing_field", "--out", "give an output folder");
   if (opt.ensemble < 0 || opt.ensemble > 50)
     throw UsageError("out_of_range", "--ensemble",
@@ -375,14 +423,15 @@ CommandRunner add_study_command(CLI::App& app) {
   auto opt = std::make_shared<StudyOptions>();
   CLI::App* cmd = app.add_subcommand("study", "Measured studies: what accuracy costs in time");
   cmd->add_option("study", opt->what,
-                  "accuracy (run the study), shape (angle of repose and strength against the "
-                  "grains' shape), table (print a study's table)")
-      ->required();
+                  "accuracy (run the study), sensitivity (the strength's response to the "
+                  "contact coefficients, density and box size), shape (angle of repose and "
+                  "strength against the grains' shape), table (print a study's table)");
   cmd->add_option("--out,-o", opt->out, "Output folder (accuracy; table: its charts drawn again there)");
   cmd->add_option("--from", opt->from, "A finished study's ensemble.csv (table)");
-  cmd->add_option("--preset", opt->preset,
-                  "quick (3 mm of shear, default), full (6 mm), ci (reduced); shape: quick, ci")
-      ->capture_default_str();
+  CLI::Option* preset =
+      cmd->add_option("--preset", opt->preset,
+                      "quick (3 mm of shear, default), full (6 mm), ci (reduced); shape: quick, "
+                      "ci; sensitivity: paper (default), ci");
   cmd->add_option("--knob", opt->knobs,
                   "Only these knobs (with the reference): time step, precision, stiffness, "
                   "inertial number, skin, effects, combination, baseline");
@@ -403,7 +452,14 @@ CommandRunner add_study_command(CLI::App& app) {
                 "Continue the study in --out after its finished cases (same --preset, --knob, "
                 "--specimen, --box-scale)");
   cmd->add_flag("--quiet,-q", opt->quiet, "No progress lines");
-  return [opt] { return study(*opt); };
+  add_cluster_flags(cmd, opt->cluster);
+  return [opt, preset] {
+    if (!opt->cluster.collect.empty())
+      return collect_from_manifest(opt->cluster.collect, add_study_command);
+    if (opt->what.empty()) throw UsageError("missing_field", "STUDY", "name the study to run");
+    opt->preset_given = preset->count() > 0;
+    return study(*opt);
+  };
 }
 
 }  // namespace simsols

@@ -37,9 +37,11 @@ ShearSummary reanalysed(const fs::path& dir, const std::string& name,
   return s;
 }
 
-// Particle-steps the test will take: preparation (~60 ms simulated) and the
-// shear at the speed the inertial number sets (height ~ layers x 0.8 d).
-double estimated_cost(const Scene& s) {
+}  // namespace
+
+// Settling (its longest time), ~50 ms of consolidation and the shear at the
+// speed the inertial number sets (height ~ layers x 0.8 d).
+double shear_test_cost(const Scene& s) {
   const ShearBox& b = *s.shear_box;
   const double dt = effective_time_step(s);
   const double d = 2 * s.particles[0].radius;
@@ -48,8 +50,18 @@ double estimated_cost(const Scene& s) {
   const double v = b.shear_speed > 0 ? b.shear_speed
                                      : speed_for_inertial_number(b.inertial_number, height, d, rho,
                                                                  b.normal_stress);
-  return s.particles.size() * (0.06 + b.shear_displacement / v) / dt;
+  return s.particles.size() * (b.settle_time + 0.05 + b.shear_displacement / v) / dt;
 }
+
+ShearRunResult finished_shear_test(const fs::path& dir, const std::string& title) {
+  ShearRunResult r;
+  r.rows = parse_shear_rows_csv(read_text(dir / "shear.csv"));
+  r.summary = reanalysed(dir, title, r.rows);
+  r.finished = true;
+  return r;
+}
+
+namespace {
 
 void check_spec(const Scene& base, const std::string& base_name, const CampaignSpec& spec) {
   if (base.oedometer)
@@ -75,11 +87,7 @@ void check_spec(const Scene& base, const std::string& base_name, const CampaignS
 }
 
 // A test finished earlier, read back.
-void keep_finished(CampaignTest& t) {
-  t.result.rows = parse_shear_rows_csv(read_text(t.dir / "shear.csv"));
-  t.result.summary = reanalysed(t.dir, test_title(t.scene), t.result.rows);
-  t.result.finished = true;
-}
+void keep_finished(CampaignTest& t) { t.result = finished_shear_test(t.dir, test_title(t.scene)); }
 
 void print_result(const CampaignTest& t) {
   const ShearSummary& s = t.result.summary;
@@ -124,23 +132,51 @@ std::vector<CampaignTest> plan_campaign(const Scene& base, const std::string& ba
       validate_scene(sc, base_name + " (" + sc.name + ")");
       t.scene = std::move(sc);
       t.dir = fs::path(out_dir) / t.scene.name;
-      t.cost = estimated_cost(t.scene);
+      t.cost = shear_test_cost(t.scene);
       tests.push_back(std::move(t));
     }
   }
   return tests;
 }
 
+namespace {
+
+// --task and --collect: the index must name a test; every test collected
+// must have finished.
+void check_selection(const CampaignLoop& loop, const CampaignRun& run) {
+  if (run.only && *run.only >= loop.count)
+    throw UsageError("out_of_range", "--task",
+                     std::to_string(*run.only) + " is out of range, allowed [0, " +
+                         std::to_string(loop.count - 1) + "] (one of the " +
+                         std::to_string(loop.count) + " " + loop.what + ")");
+  if (!run.collect) return;
+  std::string missing;
+  size_t n = 0;
+  for (size_t k = 0; k < loop.count; ++k)
+    if (!programme_finished(loop.dir(k).string()))
+      missing += (n++ ? ", " : "") + std::to_string(k) + " (" + loop.name(k) + ")";
+  if (n > 0)
+    throw UsageError("unfinished", "--collect",
+                     std::to_string(n) + " of " + std::to_string(loop.count) + " " + loop.what +
+                         " have not finished: " + missing +
+                         "; run them first (their array tasks, or the command without --collect)");
+}
+
+}  // namespace
+
 CampaignOutcome run_campaign_loop(const CampaignLoop& loop, const CampaignRun& run) {
+  check_selection(loop, run);
   CampaignOutcome outcome;
   double total_cost = 0, done_cost = 0;
+  const auto selected = [&](size_t k) { return !run.only || *run.only == k; };
   for (size_t k = 0; k < loop.count; ++k)
-    if (!programme_finished(loop.dir(k).string())) total_cost += loop.cost(k);
+    if (selected(k) && !programme_finished(loop.dir(k).string())) total_cost += loop.cost(k);
   if (!run.quiet)
     std::fprintf(stderr, "[campaign] %zu %s, ~%.3g particle-steps to run, ~%s at %.0e "
                  "particle-steps/s\n", loop.count, loop.what.c_str(), total_cost,
                  human_seconds(total_cost / kAssumedRate).c_str(), kAssumedRate);
   for (size_t k = 0; k < loop.count; ++k) {
+    if (!selected(k)) continue;
     const fs::path dir = loop.dir(k);
     const std::string label = "campaign " + std::to_string(k + 1) + "/" +
                               std::to_string(loop.count) + " " + loop.name(k);
@@ -186,7 +222,8 @@ CampaignOutcome run_campaign(std::vector<CampaignTest>& tests, const std::string
   };
   loop.print = [&](size_t k) { print_result(tests[k]); };
   const CampaignOutcome outcome = run_campaign_loop(loop, run);
-  if (!outcome.interrupted) write_report(tests, base_name, spec, out_dir, outcome.seconds);
+  if (!outcome.interrupted && run.writes_report())
+    write_report(tests, base_name, spec, out_dir, outcome.seconds);
   return outcome;
 }
 

@@ -52,10 +52,18 @@ struct CampaignTest {
 std::vector<CampaignTest> plan_campaign(const Scene& base, const std::string& base_name,
                                         const CampaignSpec& spec, const std::string& out_dir);
 
+// What a campaign run does with its tests: all of them (the default);
+// `only` one of them (a cluster's array task, cluster.h: the report is
+// then left to the collecting job); or, with `collect`, none: every test
+// must have finished (elsewhere) and the report is written from their
+// folders.
 struct CampaignRun {
   std::shared_ptr<Device> device;
   std::function<bool()> stop_requested;  // checked between steps
   bool quiet = false;
+  std::optional<size_t> only;
+  bool collect = false;
+  bool writes_report() const { return !only; }
 };
 
 struct CampaignOutcome {
@@ -95,7 +103,18 @@ CampaignLoop campaign_loop(std::vector<Test>& tests, std::string what, std::stri
   loop.name = [&tests](size_t k) { return tests[k].scene.name; };
   return loop;
 }
+// Throws UsageError naming --task when `run.only` is not a test's index,
+// and naming --collect when collecting tests that have not finished.
 CampaignOutcome run_campaign_loop(const CampaignLoop& loop, const CampaignRun& run);
+
+// A shear test finished earlier in `dir`, read back (its rows analysed
+// again with today's analysis; summary.txt and plots rewritten when that
+// differs). `title` heads its plots.
+ShearRunResult finished_shear_test(const std::filesystem::path& dir, const std::string& title);
+
+// Particle-steps a shear test of `scene` will take: settling, consolidation
+// and the shear at the speed its inertial number sets.
+double shear_test_cost(const Scene& scene);
 
 // Runs the tests not finished yet (keeping the results of those that are),
 // printing one line per test; then writes the report into `out_dir`

@@ -113,7 +113,7 @@ CampaignOutcome run_triaxial_campaign(std::vector<TriaxialCampaignTest>& tests,
   };
   loop.print = [&](size_t k) { print_result(tests[k]); };
   const CampaignOutcome outcome = run_campaign_loop(loop, run);
-  if (outcome.interrupted) return outcome;
+  if (outcome.interrupted || !run.writes_report()) return outcome;
   std::vector<TriaxialCampaignEntry> entries;
   for (const TriaxialCampaignTest& t : tests)
     entries.push_back({t.s_kpa, static_cast<int>(t.scene.particles.size()), t.result.rows,

@@ -9,6 +9,7 @@
 //   x = sim.positions()                                 # (N, 3) float64, m
 //   sim.save_checkpoint("c.bin"); sim = simsols.load_checkpoint("c.bin")
 //   r = simsols.run_test(scene, "out")   # as `simsols run`: r["summary"], r["rows"]
+//   s = simsols.study_sensitivity("out", preset="ci")   # as `simsols study sensitivity`
 //
 // Design:
 // - Scenes travel as TOML. A dict becomes TOML text (toml++) and goes
@@ -34,6 +35,7 @@
 
 #include "app/experiment/oedometer_run.h"
 #include "app/experiment/preparation.h"
+#include "app/experiment/sensitivity.h"
 #include "app/experiment/shear_run.h"
 #include "app/experiment/triaxial_run.h"
 #include "solver/apparatus/oedometer_analysis.h"
@@ -266,6 +268,71 @@ py::dict run_test(const Scene& scene, const std::string& out, bool quiet, std::s
   return r;
 }
 
+// The sensitivity study (app/experiment/sensitivity.h), as `simsols study
+// sensitivity --out OUT --preset PRESET` runs it (resumable the same way):
+// its tests, the effects, and the seeds' noise.
+py::dict factor_effects(const SensitivityAnalysis& a, int i) {
+  py::dict by_response;
+  for (int r = 0; r < kSensitivityResponses; ++r) {
+    const FactorEffect& e = a.effects[i][r];
+    by_response[sensitivity_responses()[r].key] =
+        py::dict(py::arg("oat_low") = e.oat_low, py::arg("oat_high") = e.oat_high,
+                 py::arg("mu") = e.mu, py::arg("mu_star") = e.mu_star, py::arg("sigma") = e.sigma,
+                 py::arg("effects") = e.effects);
+  }
+  return by_response;
+}
+
+py::dict per_response(const std::array<double, kSensitivityResponses>& v) {
+  py::dict d;
+  for (int r = 0; r < kSensitivityResponses; ++r) d[sensitivity_responses()[r].key] = v[r];
+  return d;
+}
+
+py::dict study_sensitivity(const std::string& out, const std::string& preset_name, bool quiet,
+                           std::shared_ptr<Device> device) {
+  const SensitivityPreset preset = sensitivity_preset(preset_name);
+  std::vector<SensitivityTest> tests = plan_sensitivity(preset, out);
+  {
+    py::gil_scoped_release release;
+    CampaignRun run;
+    run.device = device_or_open(std::move(device));
+    run.quiet = quiet;
+    run_sensitivity(tests, preset, out, run);
+  }
+  std::vector<SensitivityPoint> points;
+  std::vector<std::array<double, kSensitivityResponses>> ys;
+  py::list rows;
+  for (const SensitivityTest& t : tests) {
+    points.push_back(t.point);
+    ys.push_back(responses_of(t.result.summary));
+    py::dict levels;
+    for (int i = 0; i < kSensitivityFactors; ++i)
+      levels[sensitivity_factors()[i].key.c_str()] = sensitivity_factors()[i].value(t.point.levels[i]);
+    py::dict row = per_response(ys.back());
+    row["test"] = t.point.label;
+    row["design"] = t.point.design;
+    row["seed"] = t.point.seed;
+    row["factors"] = levels;
+    row["void_ratio"] = t.void_ratio;
+    row["shear_void_ratio"] = t.shear_void_ratio;
+    row["particles"] = t.scene.particles.size();
+    rows.append(row);
+  }
+  const SensitivityAnalysis a = analyse_sensitivity(points, ys, preset.grid_levels);
+  py::dict effects;
+  for (int i = 0; i < kSensitivityFactors; ++i)
+    effects[sensitivity_factors()[i].key.c_str()] = factor_effects(a, i);
+  py::dict r;
+  r["tests"] = rows;
+  r["effects"] = effects;
+  r["base"] = per_response(a.base);
+  r["noise_sd"] = per_response(a.noise_sd);
+  r["noise_mu_star"] = per_response(a.noise_mu_star);
+  r["trajectories"] = preset.trajectories;
+  return r;
+}
+
 // -------------------------------------------------------------- exceptions
 
 void register_exceptions(py::module_& m) {
@@ -345,6 +412,11 @@ void define_simulation(py::module_& m) {
         "The scene's test (shear box, triaxial or oedometer) as `simsols run SCENE --out OUT`: "
         "its outputs in `out`; returns apparatus, finished, steps, summary (summary.txt's keys) "
         "and rows (the rows CSV's columns as arrays)");
+  m.def("study_sensitivity", &study_sensitivity, py::arg("out"), py::arg("preset") = "paper",
+        py::arg("quiet") = true, py::arg("device") = nullptr,
+        "The sensitivity study as `simsols study sensitivity --out OUT --preset PRESET` (its "
+        "files in `out`, resumable): returns tests (one dict each), effects[factor][response] "
+        "(oat_low, oat_high, mu, mu_star, sigma, effects), base, noise_sd, noise_mu_star");
   m.def("load_checkpoint",
         [](const std::string& path, std::shared_ptr<Device> device) {
           return load_checkpoint(device_or_open(std::move(device)), path);

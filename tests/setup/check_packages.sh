@@ -54,6 +54,11 @@ RUNTIME=(
   "/usr/lib/python3/dist-packages/vtkmodules/__init__.py|tests/app/cli/test_paraview_vtk.py reads the ParaView series with VTK"
   "/usr/lib/python3/dist-packages/numpy/__init__.py|the Python module's arrays (app/python) and its tests"
   "/usr/lib/python3/dist-packages/pytest/__init__.py|ctest runs tests/app/python under pytest"
+  "exe:slurmctld|tests/cluster/local_slurm.sh starts the controller"
+  "exe:slurmd|tests/cluster/local_slurm.sh starts the node"
+  "exe:sbatch|tests/cluster/test_slurm.sh submits the campaign's array"
+  "exe:munged|tests/cluster/local_slurm.sh authenticates Slurm with it"
+  "exe:mungekey|tests/cluster/local_slurm.sh creates the key"
 )
 
 cache() { sed -n "s/^$1:[A-Z]*=//p" "$BUILD/CMakeCache.txt"; }

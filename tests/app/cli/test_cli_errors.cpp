@@ -138,6 +138,37 @@ TEST(CliErrors, CampaignChecksItsFlagsAfterLoadingTheBuiltInScene) {
   EXPECT_FALSE(fs::exists(d / "c"));
 }
 
+// The cluster flags (app/cli/cluster_flags.h): each bad value or
+// combination names its flag, and nothing runs or is written.
+TEST(CliErrors, ClusterFlagsNameTheProblem) {
+  const fs::path d = fresh_dir("cluster_flags");
+  const std::string campaign = "campaign --sizes 6.35 --stresses 80,160 --out c ";
+  struct Case {
+    std::string args, flag, words;
+  } cases[] = {
+      {campaign + "--task 2", "--task", "allowed [0, 1]"},
+      {campaign + "--emit pbs", "--emit", "not one of: slurm"},
+      {campaign + "--emit slurm --task 0", "--task", "give one"},
+      {"campaign --collect nowhere", "--collect", "no manifest here"},
+      {"study shape --out s --task 0", "--task", "sensitivity study"},
+      {"study sensitivity --out s --preset quick", "--preset", "paper, ci"},
+  };
+  for (const Case& c : cases) {
+    const Result r = run_in(d, c.args);
+    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.out;
+    EXPECT_NE(r.out.find(c.flag), std::string::npos) << c.args << "\n" << r.out;
+    EXPECT_NE(r.out.find(c.words), std::string::npos) << c.args << "\n" << r.out;
+  }
+  EXPECT_FALSE(fs::exists(d / "c" / "d6.35mm_80kPa" / "summary.txt"));
+  // collecting tests that never ran names them
+  ASSERT_EQ(run_in(d, campaign + "--emit slurm").status, 0);
+  const Result r = run_in(d, "campaign --collect c");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("2 of 2 tests have not finished: 0 (d6.35mm_80kPa), 1 (d6.35mm_160kPa)"),
+            std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(d / "c" / "summary.csv"));
+}
+
 // ------------------------------------------------------------ scene files
 
 TEST(CliErrors, ThreeUnknownKeysAreReportedTogether) {

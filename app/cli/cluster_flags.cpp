@@ -1,0 +1,76 @@
+// The cluster flags (cluster_flags.h).
+#include "app/cli/cluster_flags.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "solver/common/errors.h"
+
+namespace simsols {
+
+namespace fs = std::filesystem;
+
+void add_cluster_flags(CLI::App* cmd, ClusterFlags& f) {
+  cmd->add_option("--emit", f.emit,
+                  "slurm: write OUT/slurm/ (a job array, one task per test, and a job that "
+                  "collects them; docs/cluster.md) and run nothing");
+  cmd->add_option("--task", f.task,
+                  "Run only test K (0-based, the array task's index) and no report");
+  cmd->add_option("--collect", f.collect,
+                  "Write the report of the finished tests in DIR (a folder written with --emit "
+                  "slurm)");
+  cmd->add_flag("--collect-mode", f.collecting)->group("");  // set by --collect's re-parse
+}
+
+void apply_cluster_flags(const ClusterFlags& f, const std::string& out_dir, CampaignRun& run) {
+  if (f.emitting() && f.emit != "slurm")
+    throw UsageError("bad_enum", "--emit", "'" + f.emit + "' is not one of: slurm");
+  if (f.task < -1)
+    throw UsageError("out_of_range", "--task", std::to_string(f.task) + " is below 0");
+  const int given = int(f.emitting()) + int(f.task >= 0) + int(f.collecting);
+  if (given > 1)
+    throw UsageError("conflict", "--task",
+                     "--emit, --task and --collect each make a different run: give one");
+  if ((f.emitting() || f.task >= 0) && out_dir.empty())
+    throw UsageError("missing_field", "--out", "give the folder the tests run in");
+  if (f.task >= 0) run.only = static_cast<size_t>(f.task);
+  run.collect = f.collecting;
+}
+
+int collect_from_manifest(const std::string& dir, CommandRunner (*add)(CLI::App&)) {
+  std::vector<std::string> args = manifest_args(dir);
+  args.push_back("--collect-mode");
+  CLI::App app;
+  const CommandRunner runner = add(app);
+  std::reverse(args.begin(), args.end());  // CLI11 takes them last first
+  try {
+    app.parse(args);
+  } catch (const CLI::ParseError& e) {
+    throw SceneError("bad_args", (fs::path(dir) / "slurm" / "manifest.toml").string(), 0, "args",
+                     std::string("does not parse as the command's arguments: ") + e.what());
+  }
+  return runner();
+}
+
+void emit_slurm_job(const std::string& command, const std::vector<std::string>& args,
+                    const std::string& out_dir, const std::vector<ClusterTest>& tests) {
+  ClusterJob job;
+  job.command = command;
+  job.args = args;
+  job.out_dir = fs::absolute(out_dir).lexically_normal();
+  job.executable = fs::read_symlink("/proc/self/exe");
+  job.tests = tests;
+  write_slurm_job(job);
+  const fs::path slurm = job.out_dir / "slurm";
+  std::printf("wrote %s: manifest.toml (%zu tests), array.sbatch, collect.sbatch, submit.sh\n"
+              "submit with: %s [sbatch options, e.g. --partition=P]\n"
+              "collect by hand: simsols %s --collect %s\n",
+              slurm.string().c_str(), tests.size(), (slurm / "submit.sh").string().c_str(),
+              command.c_str(), job.out_dir.string().c_str());
+}
+
+std::string absolute_arg(const std::string& path) {
+  return path.empty() ? path : fs::absolute(path).lexically_normal().string();
+}
+
+}  // namespace simsols

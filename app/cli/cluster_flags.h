@@ -1,0 +1,58 @@
+// The cluster flags every multi-test command shares (campaign, study
+// sensitivity; app/experiment/cluster.h):
+//   --emit slurm   write DIR/slurm/ (the job array and its collector), run nothing
+//   --task K       run test K of the plan only (an array task), no report
+//   --collect DIR  write the report of DIR's finished tests, with the
+//                  arguments its manifest recorded
+// Read at the edge, passed down as CampaignRun::only / ::collect.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "app/cli/commands.h"
+#include "app/experiment/campaign.h"
+#include "app/experiment/cluster.h"
+
+namespace simsols {
+
+struct ClusterFlags {
+  std::string emit;        // "" or "slurm"
+  long long task = -1;     // -1: every test
+  std::string collect;     // --collect DIR
+  bool collecting = false;  // set when the manifest's command is parsed again
+  bool emitting() const { return !emit.empty(); }
+};
+
+void add_cluster_flags(CLI::App* cmd, ClusterFlags& flags);
+
+// Checks the flags' values and combinations (UsageError naming the flag)
+// and sets `run.only` / `run.collect`.
+void apply_cluster_flags(const ClusterFlags& flags, const std::string& out_dir, CampaignRun& run);
+
+// --collect DIR: the command of DIR's manifest parsed again (registered by
+// `add`) with `collecting` set, and run; its exit status.
+int collect_from_manifest(const std::string& dir, CommandRunner (*add)(CLI::App&));
+
+// --emit slurm: the job of `tests` with the command's `args` (the words
+// after `simsols`, paths absolute, no cluster flags) into `out_dir`/slurm;
+// prints what it wrote and how to submit it.
+void emit_slurm_job(const std::string& command, const std::vector<std::string>& args,
+                    const std::string& out_dir, const std::vector<ClusterTest>& tests);
+
+// The tests of a plan as the cluster files list them.
+template <class Test>
+std::vector<ClusterTest> cluster_tests(const std::vector<Test>& tests) {
+  std::vector<ClusterTest> out;
+  for (const Test& t : tests)
+    out.push_back({t.scene.name, std::filesystem::absolute(t.dir),
+                   static_cast<int>(t.scene.particles.size()), t.cost});
+  return out;
+}
+
+// An absolute path for a stored command line ("" stays "").
+std::string absolute_arg(const std::string& path);
+
+}  // namespace simsols

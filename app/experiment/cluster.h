@@ -1,0 +1,68 @@
+// Campaigns and studies on a Slurm cluster (docs/cluster.md).
+//
+// A campaign or a study is a list of independent tests, each in its own
+// folder, each resumable from its checkpoint. On a cluster each test is
+// one task of a job array, running the same command with `--task K`
+// (CampaignRun::only): it plans the same tests, runs test K only (resuming
+// its checkpoint when the scheduler requeued it) and writes no report. A
+// job that depends on the array runs the command with `--collect DIR`:
+// every test must have finished, and the report (tables, plots, envelopes)
+// is written from their folders exactly as a local run writes it.
+//
+// `--emit slurm` writes, in DIR/slurm/:
+//   manifest.toml   the command (its arguments, absolute paths), the
+//                   executable, and per test its index, name, folder,
+//                   beads, estimated particle-steps, time and memory
+//   array.sbatch    the job array: one task per test, requeueable, with the
+//                   largest test's time and memory
+//   collect.sbatch  the collecting job
+//   submit.sh       submits both, the second after the array
+//                   (--dependency=afterany); extra arguments go to the
+//                   array's sbatch (a partition, --gres=gpu:1, ...)
+// Each file is written whole (write_file_atomic) and the scripts are
+// executable. The manifest is what `--collect DIR` reads back.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace simsols {
+
+struct ClusterTest {
+  std::string name;
+  std::filesystem::path dir;
+  int particles = 0;
+  double particle_steps = 0;
+};
+
+// A test's needs on a cluster node, estimated from its scene: time at a
+// conservative rate (a 2-core CPU's, half kAssumedRate; a GPU is faster),
+// doubled and at least 10 minutes; memory: the process and OpenCL
+// runtime (400 MB) plus ~12 kB per bead (host and device copies, rows,
+// checkpoints).
+struct ClusterNeeds {
+  int minutes = 10;
+  int memory_mb = 512;
+};
+ClusterNeeds cluster_needs(const ClusterTest& t);
+
+struct ClusterJob {
+  std::string command;             // "campaign", "study sensitivity"
+  std::vector<std::string> args;   // the command's words and flags, paths absolute (no --task)
+  std::filesystem::path out_dir;   // absolute
+  std::filesystem::path executable;
+  std::vector<ClusterTest> tests;
+};
+
+// Writes DIR/slurm/{manifest.toml, array.sbatch, collect.sbatch, submit.sh}.
+void write_slurm_job(const ClusterJob& job);
+
+// The arguments the manifest in `dir` recorded (throws SceneError naming
+// the manifest's file and field when it is missing or malformed).
+std::vector<std::string> manifest_args(const std::filesystem::path& dir);
+
+// A word for a POSIX shell: quoted unless it is plainly safe.
+std::string shell_word(const std::string& word);
+
+}  // namespace simsols

@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# test_slurm.sh SIMSOLS - a campaign on a real Slurm cluster against
+# the same campaign run locally (app/experiment/cluster.h, docs/cluster.md).
+#
+# Starts a private one-node Slurm in a temporary folder (local_slurm.sh:
+# munged, slurmctld, slurmd on localhost), emits a 2-test campaign with
+# `--emit slurm`, submits it with the emitted submit.sh (the array and the
+# collecting job after it), waits for both, then runs the same campaign
+# locally and compares: every test's rows (shear.csv) byte for byte, every
+# summary and the campaign's summary.csv except the wall times. Every
+# daemon is stopped on the way out, whatever happens.
+set -euo pipefail
+export PATH=$PATH:/usr/sbin:/sbin  # the daemons, for a user whose PATH lacks them
+
+SIMSOLS=$(realpath "$1")
+HERE=$(cd "$(dirname "$0")" && pwd)
+WORK=$(mktemp -d /tmp/simsols_slurm.XXXXXX)
+CLUSTER=$WORK/cluster
+
+fail() { echo "FAIL: $*" >&2; exit 1; }
+cleanup() {
+  bash "$HERE/local_slurm.sh" stop "$CLUSTER" >&2 || true
+  rm -rf "$WORK"
+}
+trap cleanup EXIT
+
+for tool in slurmctld slurmd sbatch munged; do
+  command -v "$tool" > /dev/null || fail "$tool not found: setup.sh installs slurm-wlm and munge"
+done
+
+eval "$(bash "$HERE/local_slurm.sh" start "$CLUSTER")"
+echo "cluster up: $SLURM_CONF"
+
+# the paper's 6.35 mm test (the built-in base) at two stresses, sheared 1 mm
+ARGS=(campaign --sizes 6.35 --stresses 80,160 --displacement 1)
+"$SIMSOLS" "${ARGS[@]}" --out "$WORK/slurm_run" --emit slurm
+[[ -x $WORK/slurm_run/slurm/submit.sh ]] || fail "no submit.sh"
+grep -q '^#SBATCH --array=0-1$' "$WORK/slurm_run/slurm/array.sbatch" || fail "not a 2-task array"
+
+"$WORK/slurm_run/slurm/submit.sh"
+deadline=$((SECONDS + 900))
+while [[ -n $(squeue -h -o %i) ]]; do
+  ((SECONDS < deadline)) || { squeue; fail "the jobs did not finish within 15 minutes"; }
+  sleep 2
+done
+for f in "$WORK"/slurm_run/slurm/logs/*.out; do echo "--- $f"; tail -n 5 "$f"; done
+sacct_state=$(scontrol show job 2>/dev/null | grep -o 'JobState=[A-Z]*' | sort | uniq -c || true)
+echo "job states: ${sacct_state:-(purged)}"
+[[ -f $WORK/slurm_run/summary.csv ]] || fail "the collecting job wrote no summary.csv"
+grep -q "campaign collected: 2 tests" "$WORK/slurm_run/slurm/logs/collect.out" ||
+  fail "collect.out does not say the campaign was collected"
+
+"$SIMSOLS" "${ARGS[@]}" --out "$WORK/local_run" -q > /dev/null
+
+# The same tests, the same numbers: only the wall times differ.
+drop_wall() { grep -v '^wall_seconds' "$1"; }
+drop_last_column() { sed 's/,[^,]*$//' "$1"; }
+for t in d6.35mm_80kPa d6.35mm_160kPa; do
+  cmp "$WORK/slurm_run/$t/shear.csv" "$WORK/local_run/$t/shear.csv" || fail "$t: rows differ"
+  diff <(drop_wall "$WORK/slurm_run/$t/summary.txt") <(drop_wall "$WORK/local_run/$t/summary.txt") ||
+    fail "$t: summaries differ"
+done
+head -1 "$WORK/local_run/summary.csv" | grep -q ',wall_seconds$' || fail "summary.csv's last column moved"
+diff <(drop_last_column "$WORK/slurm_run/summary.csv") <(drop_last_column "$WORK/local_run/summary.csv") ||
+  fail "summary.csv differs"
+for png in d6.35mm_stress.png mohr_coulomb.png; do
+  [[ -s $WORK/slurm_run/$png ]] || fail "the collecting job drew no $png"
+done
+echo "PASS: the Slurm array and its collecting job give the local campaign's results"
