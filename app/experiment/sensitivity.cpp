@@ -168,16 +168,16 @@ std::vector<SensitivityTest> plan_sensitivity(const SensitivityPreset& preset,
   const Scene base = base_scene(preset);
   std::vector<SensitivityTest> tests;
   for (const SensitivityPoint& pt : study_points(preset)) {
+    // a box of another L/d is the paper's scaled: its height too (the layers)
+    const double d = preset.diameter_mm * 1e-3;
+    const double scale = pt.box_ratio > 0 ? pt.box_ratio * d / preset.box_length : 1;
+    const int layers = std::max(2, static_cast<int>(std::lround(preset.layers * scale)));
     Scene sc = paper_test_scene(base, kDefaultSceneName, preset.diameter_mm, preset.stress_kpa,
-                                preset.layers, [&](Scene& x) {
+                                layers, [&](Scene& x) {
                                   apply_levels(x, pt.levels);
                                   x.shear_box->specimen.seed = pt.seed;
-                                  if (pt.box_ratio > 0) {
-                                    const double d = preset.diameter_mm * 1e-3;
-                                    x.shear_box->length = pt.box_ratio * d;
-                                    x.shear_box->width = pt.box_ratio * d * preset.box_width /
-                                                         preset.box_length;
-                                  }
+                                  x.shear_box->length = scale * preset.box_length;
+                                  x.shear_box->width = scale * preset.box_width;
                                 });
     sc.name = pt.label;
     validate_scene(sc, "sensitivity study (" + pt.label + ")");
@@ -240,7 +240,7 @@ CampaignOutcome run_sensitivity(std::vector<SensitivityTest>& tests,
   loop.print = [&](size_t k) { print_test(tests[k]); };
   const CampaignOutcome outcome = run_campaign_loop(loop, run);
   if (!outcome.interrupted && run.writes_report())
-    write_sensitivity_report(out_dir, preset, tests, outcome.seconds);
+    write_sensitivity_report(out_dir, preset, tests);
   return outcome;
 }
 

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "app/experiment/sensitivity.h"
+#include "app/experiment/study_stats.h"
 #include "render/plot/chart.h"
 #include "solver/io/output.h"
 
@@ -90,7 +91,11 @@ SensitivityAnalysis analyse_sensitivity(const std::vector<SensitivityPoint>& pts
   }
   a.noise_runs = int(seeds[0].size());
   for (int r = 0; r < kSensitivityResponses; ++r) {
+    a.noise_mean[r] = mean_of(seeds[r]);
     a.noise_sd[r] = sd_of(seeds[r]);
+    const double n = a.noise_runs;
+    a.noise_band[r] = n >= 2 ? student_t_quantile(0.975, n - 1) * a.noise_sd[r] * std::sqrt(1 + 1 / n)
+                             : NAN;
     a.noise_mu_star[r] = std::sqrt(2 / M_PI) * std::sqrt(2.0) * a.noise_sd[r] / a.morris_delta;
   }
   FactorLevels base{};
@@ -107,6 +112,21 @@ SensitivityAnalysis analyse_sensitivity(const std::vector<SensitivityPoint>& pts
   }
   morris_effects(pts, ys, a);
   return a;
+}
+
+bool SensitivityAnalysis::oat_beyond_chaos(int i, int r, bool high) const {
+  const double d = high ? effects[i][r].oat_high : effects[i][r].oat_low;
+  return std::abs(base[r] + d - noise_mean[r]) > noise_band[r];  // false for NaN
+}
+
+double SensitivityAnalysis::chaos_mu_star_limit(int r, int n) const {
+  const double s = std::sqrt(2.0) * noise_sd[r] / morris_delta;
+  return n > 0 ? s * (std::sqrt(2 / M_PI) + 2 * std::sqrt(1 - 2 / M_PI) / std::sqrt(double(n))) : NAN;
+}
+
+bool SensitivityAnalysis::morris_beyond_chaos(int i, int r) const {
+  const FactorEffect& e = effects[i][r];
+  return e.mu_star > chaos_mu_star_limit(r, e.effects);
 }
 
 namespace {
@@ -145,14 +165,15 @@ std::string csv_num(double v) { return std::isfinite(v) ? format_number("%.4f", 
 std::string effects_csv(const SensitivityAnalysis& a) {
   std::ostringstream o;
   o << "factor,response,oat_low_deg,oat_high_deg,morris_mu_deg,morris_mu_star_deg,"
-       "morris_sigma_deg,effects,noise_sd_deg,noise_mu_star_deg\n";
+       "morris_sigma_deg,effects,noise_sd_deg,noise_mu_star_deg,chaos_mu_star_limit_deg\n";
   for (int i = 0; i < kSensitivityFactors; ++i)
     for (int r = 0; r < kSensitivityResponses; ++r) {
       const FactorEffect& f = a.effects[i][r];
       o << sensitivity_factors()[i].key << ',' << sensitivity_responses()[r].key << ','
         << csv_num(f.oat_low) << ',' << csv_num(f.oat_high) << ',' << csv_num(f.mu) << ','
         << csv_num(f.mu_star) << ',' << csv_num(f.sigma) << ',' << f.effects << ','
-        << csv_num(a.noise_sd[r]) << ',' << csv_num(a.noise_mu_star[r]) << '\n';
+        << csv_num(a.noise_sd[r]) << ',' << csv_num(a.noise_mu_star[r]) << ','
+        << csv_num(a.chaos_mu_star_limit(r, f.effects)) << '\n';
     }
   return o.str();
 }
@@ -181,14 +202,17 @@ void oat_chart(const SensitivityAnalysis& a, int r, const fs::path& path) {
     add(1, a.base[r] + e.oat_high);
     c.series.push_back(s);
   }
-  for (double sign : {-2.0, 2.0}) {
+  for (double sign : {-1.0, 1.0}) {
     plot::Series band;
-    band.label = sign < 0 ? "base ± 2 sd of the seeds (chaos)" : "";
+    band.label = sign < 0 ? "95 % of tests at the paper's values (" +
+                                std::to_string(a.noise_runs) + " seeds)"
+                          : "";
+    const double y = a.noise_mean[r] + sign * a.noise_band[r];
     band.x = {0, 1};
-    band.y = {a.base[r] + sign * a.noise_sd[r], a.base[r] + sign * a.noise_sd[r]};
+    band.y = {y, y};
     band.dashed = true;
     band.color = plot::Color{120, 120, 120};
-    if (std::isfinite(a.noise_sd[r])) c.series.push_back(band);
+    if (std::isfinite(y)) c.series.push_back(band);
   }
   plot::write_chart_png(c, path.string());
 }
@@ -217,11 +241,12 @@ void morris_chart(const SensitivityAnalysis& a, int r, int trajectories, const f
     c.markers.push_back({s.x[0], s.y[0], sensitivity_factors()[i].symbol});
     c.series.push_back(s);
   }
-  if (std::isfinite(a.noise_mu_star[r])) {
+  const double limit = a.chaos_mu_star_limit(r, trajectories);
+  if (std::isfinite(limit)) {
     plot::Series n;
-    n.label = "μ* from chaos alone";
-    n.x = {a.noise_mu_star[r], a.noise_mu_star[r]};
-    n.y = {0, std::max(top, a.noise_mu_star[r])};
+    n.label = "chaos alone stays left of this (97.5 %)";
+    n.x = {limit, limit};
+    n.y = {0, std::max(top, limit)};
     n.dashed = true;
     n.color = plot::Color{120, 120, 120};
     c.series.push_back(n);
@@ -229,9 +254,12 @@ void morris_chart(const SensitivityAnalysis& a, int r, int trajectories, const f
   plot::write_chart_png(c, path.string());
 }
 
-void scale_chart(const std::vector<SensitivityTest>& tests, const fs::path& path) {
+// The angles against L/d: single tests (seed 1), and at the paper's box
+// the seeds' mean with the band where 95 % of single tests fall.
+void scale_chart(const SensitivityAnalysis& a, const std::vector<SensitivityTest>& tests,
+                 const fs::path& path) {
   plot::Chart c;
-  c.title = "Scale effect: the paper's glass beads, 160 kPa";
+  c.title = "Scale effect: the paper's glass beads, 160 kPa, box scaled whole";
   c.x_label = "Box length / bead diameter L/d";
   c.y_label = "Angle (°)";
   c.y_min = 0;
@@ -239,32 +267,49 @@ void scale_chart(const std::vector<SensitivityTest>& tests, const fs::path& path
     plot::Series s;
     s.label = sensitivity_responses()[r].symbol;
     s.markers = true;
-    std::map<double, double> by_ratio;
-    for (const SensitivityTest& t : tests)
-      if (t.point.design == "scale" || t.point.design == "base")
-        by_ratio[t.scene.shear_box->length / (2 * t.scene.particles[0].radius)] =
-            responses_of(t.result.summary)[r];
-    for (const auto& [x, y] : by_ratio) s.x.push_back(x), s.y.push_back(y);
+    std::map<double, std::pair<double, double>> by_ratio;  // L/d -> value, bar
+    for (const SensitivityTest& t : tests) {
+      const double ratio = t.scene.shear_box->length / (2 * t.scene.particles[0].radius);
+      if (t.point.design == "scale") by_ratio[ratio] = {responses_of(t.result.summary)[r], NAN};
+      if (t.point.design == "base") by_ratio[ratio] = {a.noise_mean[r], a.noise_band[r]};
+    }
+    for (const auto& [x, v] : by_ratio) {
+      s.x.push_back(x);
+      s.y.push_back(v.first);
+      s.y_err.push_back(v.second);
+    }
     c.series.push_back(s);
   }
   plot::write_chart_png(c, path.string());
 }
 
+double total_wall(const std::vector<SensitivityTest>& tests) {
+  double s = 0;
+  for (const SensitivityTest& t : tests) s += t.result.summary.wall_seconds;
+  return s;
+}
+
 std::string summary_md(const SensitivityPreset& p, const SensitivityAnalysis& a,
-                       const std::vector<SensitivityTest>& tests, double seconds) {
+                       const std::vector<SensitivityTest>& tests) {
   std::ostringstream o;
   o << "# Sensitivity study (" << p.name << ")\n\n" << tests.size() << " shear tests, "
     << format_number("%g", p.diameter_mm) << " mm beads poured, " << format_number("%g", p.stress_kpa)
     << " kPa, sheared " << format_number("%g", p.displacement_mm) << " mm; " << a.noise_runs
     << " seeds of the base, Morris r = " << p.trajectories << ", p = " << p.grid_levels
-    << " (Δ = " << num(a.morris_delta, "%.3f") << "); " << num(seconds, "%.0f") << " s of runs now.\n\n";
+    << " (Δ = " << num(a.morris_delta, "%.3f") << "); " << num(total_wall(tests) / 60, "%.0f")
+    << " min of tests in all (their summaries' wall times).\n\n";
   o << "| | " << sensitivity_responses()[0].symbol << " | " << sensitivity_responses()[1].symbol
     << " | " << sensitivity_responses()[2].symbol << " |\n|---|---|---|---|\n| base (°) ";
   for (double v : a.base) o << "| " << num(v) << " ";
+  o << "|\n| mean over seeds (°) ";
+  for (double v : a.noise_mean) o << "| " << num(v) << " ";
   o << "|\n| sd over seeds (°) ";
   for (double v : a.noise_sd) o << "| " << num(v) << " ";
-  o << "|\n\nEffects in degrees: OAT = response at the factor's low / high end minus the base; "
-       "Morris μ*, σ over the factor's whole range.\n\n| factor | range | response | OAT low | "
+  o << "|\n| 95 % of tests within ± (°) ";
+  for (double v : a.noise_band) o << "| " << num(v) << " ";
+  o << "|\n\nEffects in degrees: OAT = response at the factor's low / high end minus the base "
+       "(seed 1), * where the test falls outside the seeds' 95 % band; Morris μ*, σ, μ over the "
+       "factor's whole range, * where μ* exceeds what chaos alone gives in 97.5 % of studies.\n\n| factor | range | response | OAT low | "
        "OAT high | μ* | σ | μ |\n|---|---|---|---|---|---|---|---|\n";
   for (int i = 0; i < kSensitivityFactors; ++i) {
     const SensitivityFactor& f = sensitivity_factors()[i];
@@ -272,14 +317,18 @@ std::string summary_md(const SensitivityPreset& p, const SensitivityAnalysis& a,
       const FactorEffect& e = a.effects[i][r];
       o << "| " << (r == 0 ? f.symbol : "") << " | "
         << (r == 0 ? format_number("%g", f.low) + " – " + format_number("%g", f.high) + " " + f.unit : "")
-        << " | " << sensitivity_responses()[r].symbol << " | " << num(e.oat_low) << " | "
-        << num(e.oat_high) << " | " << num(e.mu_star) << " | " << num(e.sigma) << " | " << num(e.mu)
-        << " |\n";
+        << " | " << sensitivity_responses()[r].symbol << " | " << num(e.oat_low)
+        << (a.oat_beyond_chaos(i, r, false) ? " *" : "") << " | " << num(e.oat_high)
+        << (a.oat_beyond_chaos(i, r, true) ? " *" : "") << " | " << num(e.mu_star)
+        << (a.morris_beyond_chaos(i, r) ? " *" : "") << " | " << num(e.sigma) << " | "
+        << num(e.mu) << " |\n";
     }
   }
-  o << "\nμ* that chaos alone gives (√(2/π)·√2·sd/Δ): ";
+  o << "\nμ* that chaos alone gives on average (√(2/π)·√2·sd/Δ), and stays below in 97.5 % "
+       "of studies with r = " << p.trajectories << ": ";
   for (int r = 0; r < kSensitivityResponses; ++r)
-    o << (r ? ", " : "") << sensitivity_responses()[r].symbol << " " << num(a.noise_mu_star[r]) << "°";
+    o << (r ? ", " : "") << sensitivity_responses()[r].symbol << " " << num(a.noise_mu_star[r])
+      << "° and " << num(a.chaos_mu_star_limit(r, p.trajectories)) << "°";
   o << ".\n\ne poured: the void ratio of the settled pour (packing.txt); e sheared: as "
        "shearing starts, consolidated (box × the platen's height).\n\n| test | L/d | beads | "
        "e poured | e sheared | φ peak | φ residual | ψ max |\n|---|---|---|---|---|---|---|---|\n";
@@ -298,7 +347,7 @@ std::string summary_md(const SensitivityPreset& p, const SensitivityAnalysis& a,
 }  // namespace
 
 void write_sensitivity_report(const fs::path& dir, const SensitivityPreset& preset,
-                              const std::vector<SensitivityTest>& tests, double seconds) {
+                              const std::vector<SensitivityTest>& tests) {
   std::vector<SensitivityPoint> pts;
   std::vector<Responses> ys;
   for (const SensitivityTest& t : tests) {
@@ -308,13 +357,13 @@ void write_sensitivity_report(const fs::path& dir, const SensitivityPreset& pres
   const SensitivityAnalysis a = analyse_sensitivity(pts, ys, preset.grid_levels);
   write_file_atomic((dir / "sensitivity.csv").string(), tests_csv(tests));
   write_file_atomic((dir / "effects.csv").string(), effects_csv(a));
-  write_file_atomic((dir / "summary.md").string(), summary_md(preset, a, tests, seconds));
+  write_file_atomic((dir / "summary.md").string(), summary_md(preset, a, tests));
   for (int r = 0; r < kSensitivityResponses; ++r) {
     const std::string stem = sensitivity_responses()[r].key;
     oat_chart(a, r, dir / ("oat_" + stem + ".png"));
     morris_chart(a, r, preset.trajectories, dir / ("morris_" + stem + ".png"));
   }
-  scale_chart(tests, dir / "scale_effect.png");
+  scale_chart(a, tests, dir / "scale_effect.png");
 }
 
 }  // namespace simsols

@@ -5,8 +5,9 @@
 # Starts a private one-node Slurm in a temporary folder (local_slurm.sh:
 # munged, slurmctld, slurmd on localhost), emits a 2-test campaign with
 # `--emit slurm`, submits it with the emitted submit.sh (the array and the
-# collecting job after it), waits for both, then runs the same campaign
-# locally and compares: every test's rows (shear.csv) byte for byte, every
+# collecting job after it), requeues the first task while it runs (Slurm
+# stops it, it checkpoints, it runs again and resumes), waits for all,
+# then runs the same campaign locally and compares: every test's rows (shear.csv) byte for byte, every
 # summary and the campaign's summary.csv except the wall times. Every
 # daemon is stopped on the way out, whatever happens.
 set -euo pipefail
@@ -31,13 +32,24 @@ done
 eval "$(bash "$HERE/local_slurm.sh" start "$CLUSTER")"
 echo "cluster up: $SLURM_CONF"
 
-# the paper's 6.35 mm test (the built-in base) at two stresses, sheared 1 mm
-ARGS=(campaign --sizes 6.35 --stresses 80,160 --displacement 1)
+# the paper's 6.35 mm test (the built-in base) at two stresses, sheared 2 mm
+ARGS=(campaign --sizes 6.35 --stresses 80,160 --displacement 2)
 "$SIMSOLS" "${ARGS[@]}" --out "$WORK/slurm_run" --emit slurm
 [[ -x $WORK/slurm_run/slurm/submit.sh ]] || fail "no submit.sh"
 grep -q '^#SBATCH --array=0-1$' "$WORK/slurm_run/slurm/array.sbatch" || fail "not a 2-task array"
 
-"$WORK/slurm_run/slurm/submit.sh"
+submitted=$("$WORK/slurm_run/slurm/submit.sh")
+echo "$submitted"
+[[ $submitted =~ ^array\ job\ ([0-9]+),\ collect\ job\ [0-9]+$ ]] || fail "submit.sh said: $submitted"
+ARRAY=${BASH_REMATCH[1]}
+LOG0=$WORK/slurm_run/slurm/logs/task_0.out
+deadline=$((SECONDS + 300))
+until grep -q 'shearing at' "$LOG0" 2>/dev/null; do
+  ((SECONDS < deadline)) || fail "task 0 did not start shearing within 5 minutes"
+  sleep 0.2
+done
+scontrol requeue "${ARRAY}_0"
+echo "requeued task 0 while it was shearing"
 deadline=$((SECONDS + 900))
 while [[ -n $(squeue -h -o %i) ]]; do
   ((SECONDS < deadline)) || { squeue; fail "the jobs did not finish within 15 minutes"; }
@@ -47,6 +59,8 @@ for f in "$WORK"/slurm_run/slurm/logs/*.out; do echo "--- $f"; tail -n 5 "$f"; d
 sacct_state=$(scontrol show job 2>/dev/null | grep -o 'JobState=[A-Z]*' | sort | uniq -c || true)
 echo "job states: ${sacct_state:-(purged)}"
 [[ -f $WORK/slurm_run/summary.csv ]] || fail "the collecting job wrote no summary.csv"
+grep -q 'interrupted' "$LOG0" || fail "task 0 was not stopped by the requeue"
+grep -q '] resumed at step' "$LOG0" || fail "the requeued task 0 did not resume from its checkpoint"
 grep -q "campaign collected: 2 tests" "$WORK/slurm_run/slurm/logs/collect.out" ||
   fail "collect.out does not say the campaign was collected"
 
