@@ -13,6 +13,11 @@ std::atomic<int> g_signal = 0;
 static_assert(std::atomic<int>::is_always_lock_free);
 
 void on_signal(int sig) {
+  // A second Ctrl-C (someone at the keyboard) leaves now. A repeated
+  // SIGTERM does not: a scheduler may send it to every process of a job
+  // and the job script pass it on again (cluster.h), and the checkpoint
+  // must still be written.
+  if (g_signal != 0 && sig == SIGTERM) return;
   if (g_signal != 0) {  // the second one: leave now
     static const char msg[] = "\nsecond interrupt: exiting at once\n";
     [[maybe_unused]] const ssize_t n = write(STDERR_FILENO, msg, sizeof msg - 1);

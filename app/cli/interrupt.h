@@ -4,9 +4,11 @@
 // they set a flag that the command's loop reads between steps. The command
 // then finishes the step it is in, writes its checkpoint and the rows it
 // measured, prints how to resume, and exits with 128 + the signal (130 for
-// Ctrl-C, 143 for kill). A second signal while it does that ends the
+// Ctrl-C, 143 for kill). A second Ctrl-C while it does that ends the
 // process at once with the same status (the previous checkpoint stays
-// loadable: every file is written to a temporary name and renamed).
+// loadable: every file is written to a temporary name and renamed); a
+// repeated SIGTERM is ignored (a batch scheduler may send it twice: to the
+// job's processes and through its script).
 //
 // The flag is the one piece of process-wide state in the program: a signal
 // handler can reach nothing else. Code below the command sees it only as

@@ -139,6 +139,16 @@ std::vector<CampaignTest> plan_campaign(const Scene& base, const std::string& ba
   return tests;
 }
 
+ShearRunResult run_shear_test(const Scene& scene, const ProgrammeRunOptions& options,
+                              const std::string& title) {
+  ShearRunResult r = run_shear(scene, options);
+  if (!r.finished) return r;
+  ShearRunResult back = finished_shear_test(options.out_dir, title);
+  r.rows = std::move(back.rows);
+  r.summary = std::move(back.summary);
+  return r;
+}
+
 namespace {
 
 // --task and --collect: the index must name a test; every test collected
@@ -217,7 +227,7 @@ CampaignOutcome run_campaign(std::vector<CampaignTest>& tests, const std::string
   CampaignLoop loop = campaign_loop(tests, "tests", "shear.csv");
   loop.keep = [&](size_t k) { keep_finished(tests[k]); };
   loop.run = [&](size_t k, ProgrammeRunOptions& o) {
-    tests[k].result = run_shear(tests[k].scene, o);
+    tests[k].result = run_shear_test(tests[k].scene, o, test_title(tests[k].scene));
     return tests[k].result.interrupted;
   };
   loop.print = [&](size_t k) { print_result(tests[k]); };

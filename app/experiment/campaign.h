@@ -111,6 +111,11 @@ CampaignOutcome run_campaign_loop(const CampaignLoop& loop, const CampaignRun& r
 // again with today's analysis; summary.txt and plots rewritten when that
 // differs). `title` heads its plots.
 ShearRunResult finished_shear_test(const std::filesystem::path& dir, const std::string& title);
+// A test just run by `run_shear`, its rows and summary replaced by what
+// finished_shear_test reads back from its folder (the CSV's digits): a
+// report is then the same whether its tests ran here or were collected.
+ShearRunResult run_shear_test(const Scene& scene, const ProgrammeRunOptions& options,
+                              const std::string& title);
 
 // Particle-steps a shear test of `scene` will take: settling, consolidation
 // and the shear at the speed its inertial number sets.

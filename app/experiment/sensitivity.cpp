@@ -233,7 +233,7 @@ CampaignOutcome run_sensitivity(std::vector<SensitivityTest>& tests,
     measured(tests[k]);
   };
   loop.run = [&](size_t k, ProgrammeRunOptions& o) {
-    tests[k].result = run_shear(tests[k].scene, o);
+    tests[k].result = run_shear_test(tests[k].scene, o, test_title(tests[k].scene));
     measured(tests[k]);
     return tests[k].result.interrupted;
   };

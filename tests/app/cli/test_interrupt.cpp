@@ -3,8 +3,9 @@
 //   - a shear test interrupted with SIGINT while shearing exits with 130,
 //     says how to resume, and resumed ends with the same rows as the
 //     uninterrupted test;
-//   - a plain run stopped with SIGTERM (143) and resumed ends with the same
-//     state hash and series.csv;
+//   - a plain run stopped with SIGTERM (143; sent twice, as a batch
+//     scheduler may) and resumed ends with the same state hash and
+//     series.csv;
 //   - a second SIGINT exits at once;
 //   - kill -9 at random moments of a run that writes a checkpoint every
 //     step always leaves a checkpoint that verifies and loads.
@@ -303,6 +304,8 @@ TEST(Interrupt, PlainRunKillThenResumeGivesTheSameState) {
   ASSERT_TRUE(c.wait_for("cost:")) << c.output();
   std::this_thread::sleep_for(1s);
   kill(c.pid, SIGTERM);
+  ASSERT_TRUE(c.wait_for("interrupted: finishing")) << c.output();
+  kill(c.pid, SIGTERM);  // again, as Slurm and the job script both send it: still checkpointed
   ASSERT_EQ(c.wait(), 143) << c.output();
   EXPECT_NE(c.output().find("interrupted at step "), std::string::npos) << c.output();
   EXPECT_NE(c.output().find("resume with"), std::string::npos) << c.output();

@@ -7,7 +7,8 @@ paper's figures (docs/sensitivity.md has those).
   are the differences and elementary effects of the tests it returns;
 - the command line, pointed at the same folder, finds every test finished
   (it plans the same tests) and writes the same effects.csv;
-- a rougher pour settles looser.
+- μ_s and μ_r leave the pour alone (the packing is the density factor's),
+  and every consolidated specimen has a sphere packing's void ratio.
 """
 import csv
 import math
@@ -58,10 +59,15 @@ def test_sensitivity_study_from_python_and_the_command_line(tmp_path):
     seeds = [base["peak_angle_deg"], tests["noise_seed2"]["peak_angle_deg"]]
     sd = abs(seeds[0] - seeds[1]) / math.sqrt(2)
     assert abs(r["noise_sd"]["peak_angle_deg"] - sd) < 1e-9
-    # physics: friction while the beads settle leaves a looser packing
-    assert tests["oat_preparation_friction_high"]["void_ratio"] > tests["oat_preparation_friction_low"]["void_ratio"]
+    # the pour settles with the preparation friction and the paper's mu_r
+    # whatever the test's mu_s and mu_r: the same packing as the base's
+    for name in ("oat_mu_s_low", "oat_mu_s_high", "oat_mu_r_low", "oat_mu_r_high"):
+        assert tests[name]["void_ratio"] == base["void_ratio"], name
+    # every consolidated specimen is a packing of spheres (e from the
+    # platen's height and the beads' volume)
     for t in r["tests"]:
         assert t["particles"] > 0 and math.isfinite(t["peak_angle_deg"])
+        assert 0.5 < t["shear_void_ratio"] < 1.5, t
 
     with open(os.path.join(out, "effects.csv")) as f:
         written = f.read()
