@@ -22,7 +22,11 @@ void add_cluster_flags(CLI::App* cmd, ClusterFlags& f) {
   cmd->add_flag("--collect-mode", f.collecting)->group("");  // set by --collect's re-parse
 }
 
-void apply_cluster_flags(const ClusterFlags& f, const std::string& out_dir, CampaignRun& run) {
+CampaignRun campaign_run(const ClusterFlags& f, const std::string& out_dir,
+                         std::function<bool()> stop, bool quiet) {
+  CampaignRun run;
+  run.stop_requested = std::move(stop);
+  run.quiet = quiet;
   if (f.emitting() && f.emit != "slurm")
     throw UsageError("bad_enum", "--emit", "'" + f.emit + "' is not one of: slurm");
   if (f.task < -1)
@@ -35,6 +39,7 @@ void apply_cluster_flags(const ClusterFlags& f, const std::string& out_dir, Camp
     throw UsageError("missing_field", "--out", "give the folder the tests run in");
   if (f.task >= 0) run.only = static_cast<size_t>(f.task);
   run.collect = f.collecting;
+  return run;
 }
 
 int collect_from_manifest(const std::string& dir, CommandRunner (*add)(CLI::App&)) {

@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,9 +29,11 @@ struct ClusterFlags {
 
 void add_cluster_flags(CLI::App* cmd, ClusterFlags& flags);
 
-// Checks the flags' values and combinations (UsageError naming the flag)
-// and sets `run.only` / `run.collect`.
-void apply_cluster_flags(const ClusterFlags& flags, const std::string& out_dir, CampaignRun& run);
+// The run of a multi-test command: stopped by `stop` (Ctrl-C), `quiet`,
+// and the tests the flags select (`only` / `collect`), no device yet.
+// Checks the flags' values and combinations (UsageError naming the flag).
+CampaignRun campaign_run(const ClusterFlags& flags, const std::string& out_dir,
+                         std::function<bool()> stop, bool quiet);
 
 // --collect DIR: the command of DIR's manifest parsed again (registered by
 // `add`) with `collecting` set, and run; its exit status.

@@ -92,10 +92,7 @@ int triaxial_campaign(const CampaignOptions& opt, Scene base, const std::string&
   if (opt.stresses_given) spec.stresses_kpa = opt.stresses_kpa;
   spec.precision = precision_flag(opt.precision);
   InterruptScope interrupt;
-  CampaignRun run;
-  run.stop_requested = interrupt.stop_function();
-  run.quiet = opt.quiet;
-  apply_cluster_flags(opt.cluster, opt.out_dir, run);
+  CampaignRun run = campaign_run(opt.cluster, opt.out_dir, interrupt.stop_function(), opt.quiet);
   const Specimen* specimen = base.specimen();
   const bool searches = specimen && (specimen->preparation.relative_density ||
                                      specimen->preparation.void_ratio ||
@@ -154,10 +151,7 @@ int campaign(const CampaignOptions& opt) {
   std::vector<CampaignTest> tests = plan_campaign(base, base_name, spec, opt.out_dir);
 
   InterruptScope interrupt;
-  CampaignRun run;
-  run.stop_requested = interrupt.stop_function();
-  run.quiet = opt.quiet;
-  apply_cluster_flags(opt.cluster, opt.out_dir, run);
+  CampaignRun run = campaign_run(opt.cluster, opt.out_dir, interrupt.stop_function(), opt.quiet);
   if (opt.cluster.emitting()) {
     emit_slurm_job("campaign", campaign_args(opt), opt.out_dir, cluster_tests(tests));
     return 0;

@@ -343,10 +343,7 @@ int sensitivity_study(const StudyOptions& opt) {
   const SensitivityPreset preset = sensitivity_preset(opt.preset_given ? opt.preset : "paper");
   std::vector<SensitivityTest> tests = plan_sensitivity(preset, opt.out);
   InterruptScope interrupt;
-  CampaignRun run;
-  run.stop_requested = interrupt.stop_function();
-  run.quiet = opt.quiet;
-  apply_cluster_flags(opt.cluster, opt.out, run);
+  CampaignRun run = campaign_run(opt.cluster, opt.out, interrupt.stop_function(), opt.quiet);
   if (opt.cluster.emitting()) {
     std::vector<std::string> args{"study", "sensitivity", "--out", absolute_arg(opt.out),
                                   "--preset", preset.name};
