@@ -42,23 +42,48 @@ CampaignRun campaign_run(const ClusterFlags& f, const std::string& out_dir,
   return run;
 }
 
-int collect_from_manifest(const std::string& dir, CommandRunner (*add)(CLI::App&)) {
-  std::vector<std::string> args = manifest_args(dir);
-  args.push_back("--collect-mode");
+int collect_from_manifest(const ClusterFlags& f, const std::string& command,
+                          CommandRunner (*add)(CLI::App&)) {
+  if (f.task >= 0 || f.emitting())
+    throw UsageError("conflict", "--collect",
+                     "--emit, --task and --collect each make a different run: give one");
+  const fs::path dir = fs::absolute(f.collect).lexically_normal();
+  const fs::path file = dir / "slurm" / "manifest.toml";
+  Manifest m = read_manifest(dir);
+  if (m.command != command)
+    throw SceneError("not_applicable", file.string(), 0, "command",
+                     "this folder holds a `" + m.command + "` job: collect it with simsols " +
+                         m.command + " --collect " + dir.string());
+  for (size_t k = 0; k + 1 < m.args.size(); ++k)
+    if (m.args[k] == "--out") m.args[k + 1] = dir.string();  // the folder may have moved
+  m.args.push_back("--collect-mode");
   CLI::App app;
   const CommandRunner runner = add(app);
-  std::reverse(args.begin(), args.end());  // CLI11 takes them last first
+  std::reverse(m.args.begin(), m.args.end());  // CLI11 takes them last first
   try {
-    app.parse(args);
+    app.parse(m.args);
   } catch (const CLI::ParseError& e) {
-    throw SceneError("bad_args", (fs::path(dir) / "slurm" / "manifest.toml").string(), 0, "args",
+    throw SceneError("bad_args", file.string(), 0, "args",
                      std::string("does not parse as the command's arguments: ") + e.what());
   }
   return runner();
 }
 
-void emit_slurm_job(const std::string& command, const std::vector<std::string>& args,
-                    const std::string& out_dir, const std::vector<ClusterTest>& tests) {
+bool emit_or_check_plan(const ClusterFlags& f, const std::string& command,
+                        const std::vector<std::string>& args, const std::string& out_dir,
+                        const std::vector<ClusterTest>& tests) {
+  if (f.task >= 0 && fs::exists(fs::path(out_dir) / "slurm" / "manifest.toml")) {
+    const Manifest m = read_manifest(out_dir);
+    std::vector<std::string> names;
+    for (const ClusterTest& t : tests) names.push_back(t.name);
+    if (names != m.tests)
+      throw UsageError("conflict", "--task",
+                       "these arguments plan other tests than " + out_dir +
+                           "/slurm/manifest.toml lists (" + std::to_string(names.size()) +
+                           " against " + std::to_string(m.tests.size()) +
+                           "): run the array's own command, or emit the job again");
+  }
+  if (!f.emitting()) return false;
   ClusterJob job;
   job.command = command;
   job.args = args;
@@ -72,6 +97,7 @@ void emit_slurm_job(const std::string& command, const std::vector<std::string>& 
               "collect by hand: simsols %s --collect %s\n",
               slurm.string().c_str(), tests.size(), (slurm / "submit.sh").string().c_str(),
               command.c_str(), job.out_dir.string().c_str());
+  return true;
 }
 
 std::string absolute_arg(const std::string& path) {

@@ -35,15 +35,22 @@ void add_cluster_flags(CLI::App* cmd, ClusterFlags& flags);
 CampaignRun campaign_run(const ClusterFlags& flags, const std::string& out_dir,
                          std::function<bool()> stop, bool quiet);
 
-// --collect DIR: the command of DIR's manifest parsed again (registered by
-// `add`) with `collecting` set, and run; its exit status.
-int collect_from_manifest(const std::string& dir, CommandRunner (*add)(CLI::App&));
+// --collect DIR: the `command` of DIR's manifest parsed again (registered
+// by `add`, its --out replaced by DIR wherever the folder now is) with
+// `collecting` set, and run; its exit status. Refuses --task and --emit
+// beside it, and another command's folder.
+int collect_from_manifest(const ClusterFlags& flags, const std::string& command,
+                          CommandRunner (*add)(CLI::App&));
 
-// --emit slurm: the job of `tests` with the command's `args` (the words
-// after `simsols`, paths absolute, no cluster flags) into `out_dir`/slurm;
-// prints what it wrote and how to submit it.
-void emit_slurm_job(const std::string& command, const std::vector<std::string>& args,
-                    const std::string& out_dir, const std::vector<ClusterTest>& tests);
+// After planning: with --emit slurm, writes the job of `tests` with the
+// command's `args` (the words after `simsols`, paths absolute, no cluster
+// flags) into `out_dir`/slurm, prints how to submit it and returns true
+// (the command ends there). With --task, checks that the plan is the one
+// the manifest in `out_dir` lists (the same tests in the same order), so an
+// array task never runs another test than its index names.
+bool emit_or_check_plan(const ClusterFlags& flags, const std::string& command,
+                        const std::vector<std::string>& args, const std::string& out_dir,
+                        const std::vector<ClusterTest>& tests);
 
 // The tests of a plan as the cluster files list them.
 template <class Test>

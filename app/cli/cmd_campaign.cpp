@@ -110,10 +110,9 @@ int triaxial_campaign(const CampaignOptions& opt, Scene base, const std::string&
     });
   std::vector<TriaxialCampaignTest> tests =
       plan_triaxial_campaign(base, base_name, spec, opt.out_dir);
-  if (opt.cluster.emitting()) {
-    emit_slurm_job("campaign", campaign_args(opt), opt.out_dir, cluster_tests(tests));
+  if (emit_or_check_plan(opt.cluster, "campaign", campaign_args(opt), opt.out_dir,
+                         cluster_tests(tests)))
     return 0;
-  }
   const CampaignOutcome outcome = run_triaxial_campaign(tests, base_name, opt.out_dir, run);
   if (outcome.interrupted) {
     const TriaxialCampaignTest& t = tests[outcome.interrupted_test];
@@ -152,10 +151,9 @@ int campaign(const CampaignOptions& opt) {
 
   InterruptScope interrupt;
   CampaignRun run = campaign_run(opt.cluster, opt.out_dir, interrupt.stop_function(), opt.quiet);
-  if (opt.cluster.emitting()) {
-    emit_slurm_job("campaign", campaign_args(opt), opt.out_dir, cluster_tests(tests));
+  if (emit_or_check_plan(opt.cluster, "campaign", campaign_args(opt), opt.out_dir,
+                         cluster_tests(tests)))
     return 0;
-  }
   if (!run.collect) run.device = open_command_device();
   const CampaignOutcome outcome = run_campaign(tests, base_name, spec, opt.out_dir, run);
   if (outcome.interrupted) {
@@ -196,7 +194,7 @@ CommandRunner add_campaign_command(CLI::App& app) {
   add_cluster_flags(cmd, opt->cluster);
   return [=] {
     if (!opt->cluster.collect.empty())
-      return collect_from_manifest(opt->cluster.collect, add_campaign_command);
+      return collect_from_manifest(opt->cluster, "campaign", add_campaign_command);
     if (opt->out_dir.empty())
       throw UsageError("missing_field", "--out", "give an output folder (rerun to resume)");
     opt->sizes_given = sizes->count() > 0;

@@ -344,13 +344,10 @@ int sensitivity_study(const StudyOptions& opt) {
   std::vector<SensitivityTest> tests = plan_sensitivity(preset, opt.out);
   InterruptScope interrupt;
   CampaignRun run = campaign_run(opt.cluster, opt.out, interrupt.stop_function(), opt.quiet);
-  if (opt.cluster.emitting()) {
-    std::vector<std::string> args{"study", "sensitivity", "--out", absolute_arg(opt.out),
-                                  "--preset", preset.name};
-    if (opt.quiet) args.push_back("-q");
-    emit_slurm_job("study", args, opt.out, cluster_tests(tests));
-    return 0;
-  }
+  std::vector<std::string> args{"study", "sensitivity", "--out", absolute_arg(opt.out),
+                                "--preset", preset.name};
+  if (opt.quiet) args.push_back("-q");
+  if (emit_or_check_plan(opt.cluster, "study", args, opt.out, cluster_tests(tests))) return 0;
   if (!run.collect) run.device = open_command_device();
   const CampaignOutcome outcome = run_sensitivity(tests, preset, opt.out, run);
   if (outcome.interrupted) {
@@ -452,7 +449,7 @@ CommandRunner add_study_command(CLI::App& app) {
   add_cluster_flags(cmd, opt->cluster);
   return [opt, preset] {
     if (!opt->cluster.collect.empty())
-      return collect_from_manifest(opt->cluster.collect, add_study_command);
+      return collect_from_manifest(opt->cluster, "study", add_study_command);
     if (opt->what.empty()) throw UsageError("missing_field", "STUDY", "name the study to run");
     opt->preset_given = preset->count() > 0;
     return study(*opt);

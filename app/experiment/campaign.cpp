@@ -232,8 +232,12 @@ CampaignOutcome run_campaign(std::vector<CampaignTest>& tests, const std::string
   };
   loop.print = [&](size_t k) { print_result(tests[k]); };
   const CampaignOutcome outcome = run_campaign_loop(loop, run);
-  if (!outcome.interrupted && run.writes_report())
-    write_report(tests, base_name, spec, out_dir, outcome.seconds);
+  if (!outcome.interrupted && run.writes_report()) {
+    double seconds = outcome.seconds;  // collected: the tests' own wall times
+    if (run.collect)
+      for (const CampaignTest& t : tests) seconds += t.result.summary.wall_seconds;
+    write_report(tests, base_name, spec, out_dir, seconds);
+  }
   return outcome;
 }
 

@@ -70,10 +70,11 @@ std::string array_script(const ClusterJob& job, const fs::path& slurm) {
     << "# SIGTERM two minutes before the limit: the test writes its checkpoint.\n"
     << "#SBATCH --signal=B:TERM@120\n"
     << "set -uo pipefail\n"
+    << "# the batch shell gets the signal: pass it on, wait for the checkpoint\n"
+    << "pid=\ntrap '[ -n \"$pid\" ] && kill -TERM \"$pid\"' TERM\n"
     << command_line(job, " --task \"$SLURM_ARRAY_TASK_ID\" &\n")
-    << "pid=$!\n# the batch shell gets the signal: pass it on, wait for the checkpoint\n"
-    << "trap 'kill -TERM \"$pid\"' TERM\nwait \"$pid\"; status=$?\n"
-    << "if kill -0 \"$pid\" 2>/dev/null; then wait \"$pid\"; status=$?; fi\nexit \"$status\"\n";
+    << "pid=$!\nstatus=0\n"
+    << "while kill -0 \"$pid\" 2>/dev/null; do wait \"$pid\"; status=$?; done\nexit \"$status\"\n";
   return o.str();
 }
 
@@ -94,11 +95,11 @@ std::string submit_script(const ClusterJob& job) {
   o << "#!/bin/sh\n"
     << "# Submits the array (" << job.tests.size()
     << " tests), then the collecting job after it.\n"
-    << "# Arguments go to the array's sbatch: ./submit.sh --partition=gpu --gres=gpu:1\n"
+    << "# Arguments go to both sbatch calls: ./submit.sh --partition=cpu --account=A\n"
     << "set -eu\ncd \"$(dirname \"$0\")\"\n"
     << "array=$(sbatch --parsable \"$@\" array.sbatch)\n"
     << "array=${array%%;*}\n"
-    << "collect=$(sbatch --parsable --dependency=afterany:\"$array\" collect.sbatch)\n"
+    << "collect=$(sbatch --parsable \"$@\" --dependency=afterany:\"$array\" collect.sbatch)\n"
     << "echo \"array job $array, collect job ${collect%%;*}\"\n";
   return o.str();
 }
@@ -125,6 +126,12 @@ std::string shell_word(const std::string& w) {
 }
 
 void write_slurm_job(const ClusterJob& job) {
+  const std::string out = job.out_dir.string();
+  if (out.find_first_of(" %\t\n'\"") != std::string::npos)
+    throw UsageError("bad_path", "--out",
+                     "'" + out + "' holds a space, a quote or a '%': sbatch's #SBATCH lines "
+                     "cannot carry it; choose another folder");
+  if (job.tests.empty()) throw UsageError("missing_field", "--out", "no tests to run");
   const fs::path slurm = job.out_dir / "slurm";
   fs::create_directories(slurm / "logs");
   write_file_atomic((slurm / "manifest.toml").string(), manifest_text(job));
@@ -139,7 +146,7 @@ void write_slurm_job(const ClusterJob& job) {
   }
 }
 
-std::vector<std::string> manifest_args(const fs::path& dir) {
+Manifest read_manifest(const fs::path& dir) {
   const fs::path file = dir / "slurm" / "manifest.toml";
   if (!fs::exists(file))
     throw SceneError("io", file.string(), 0, "--collect",
@@ -152,15 +159,19 @@ std::vector<std::string> manifest_args(const fs::path& dir) {
     throw SceneError("syntax", file.string(), int(e.source().begin.line), "",
                      std::string(e.description()));
   }
+  Manifest m;
+  m.command = t["command"].value_or(std::string());
   const toml::array* args = t["args"].as_array();
-  std::vector<std::string> out;
   if (args)
     for (const toml::node& a : *args)
-      if (const auto s = a.value<std::string>()) out.push_back(*s);
-  if (!args || out.size() != args->size() || out.empty())
+      if (const auto s = a.value<std::string>()) m.args.push_back(*s);
+  if (!args || m.args.size() != args->size() || m.args.empty() || m.command.empty())
     throw SceneError("missing_field", file.string(), 0, "args",
-                     "must be the command's arguments, an array of strings");
-  return out;
+                     "must be the command's arguments, an array of strings, with its command");
+  if (const toml::array* tests = t["test"].as_array())
+    for (const toml::node& n : *tests)
+      if (const toml::table* test = n.as_table()) m.tests.push_back((*test)["name"].value_or(std::string()));
+  return m;
 }
 
 }  // namespace simsols

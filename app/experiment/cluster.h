@@ -17,8 +17,8 @@
 //                   largest test's time and memory
 //   collect.sbatch  the collecting job
 //   submit.sh       submits both, the second after the array
-//                   (--dependency=afterany); extra arguments go to the
-//                   array's sbatch (a partition, --gres=gpu:1, ...)
+//                   (--dependency=afterany); extra arguments go to both
+//                   sbatch calls (a partition, an account, ...)
 // Each file is written whole (write_file_atomic) and the scripts are
 // executable. The manifest is what `--collect DIR` reads back.
 #pragma once
@@ -56,11 +56,19 @@ struct ClusterJob {
 };
 
 // Writes DIR/slurm/{manifest.toml, array.sbatch, collect.sbatch, submit.sh}.
+// Throws UsageError naming --out when DIR holds a space or a '%' (sbatch's
+// #SBATCH lines and its file patterns cannot carry them) or the job has no
+// tests.
 void write_slurm_job(const ClusterJob& job);
 
-// The arguments the manifest in `dir` recorded (throws SceneError naming
-// the manifest's file and field when it is missing or malformed).
-std::vector<std::string> manifest_args(const std::filesystem::path& dir);
+// What the manifest in `dir` recorded (throws SceneError naming the
+// manifest's file and field when it is missing or malformed).
+struct Manifest {
+  std::string command;
+  std::vector<std::string> args;
+  std::vector<std::string> tests;  // the tests' names, in array order
+};
+Manifest read_manifest(const std::filesystem::path& dir);
 
 // A word for a POSIX shell: quoted unless it is plainly safe.
 std::string shell_word(const std::string& word);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <stdexcept>
 
 #include "app/experiment/paper_tests.h"
 #include "app/experiment/test_title.h"
@@ -142,6 +143,10 @@ SensitivityPreset sensitivity_preset(const std::string& name) {
 }
 
 std::vector<std::vector<FactorLevels>> morris_design(int k, int r, int p, std::uint32_t seed) {
+  // an even p: every level is a start equally often (an odd one draws the
+  // middle level twice as often)
+  if (p < 2 || p % 2 != 0 || k < 1 || k > kSensitivityFactors)
+    throw std::invalid_argument("morris_design: p must be even and >= 2, k in [1, 5]");
   std::mt19937 g(seed);
   const double step = 1.0 / (p - 1);
   const int jump = p / 2;  // Δ = p / (2 (p - 1)) = jump steps

@@ -179,7 +179,8 @@ std::string effects_csv(const SensitivityAnalysis& a) {
 }
 
 // One line per factor: its response at the low end, the base and the high
-// end against its unit level (a spider plot), and the base ± 2 sd of noise.
+// end against its unit level (a spider plot), and the band where 95 % of
+// tests at the base's values fall (the seeds' mean ± noise_band).
 void oat_chart(const SensitivityAnalysis& a, int r, const fs::path& path) {
   const SensitivityResponse& resp = sensitivity_responses()[r];
   plot::Chart c;

@@ -109,6 +109,8 @@ CampaignOutcome run_triaxial_campaign(std::vector<TriaxialCampaignTest>& tests,
   loop.keep = [&](size_t k) { keep_finished(tests[k]); };
   loop.run = [&](size_t k, ProgrammeRunOptions& o) {
     tests[k].result = run_triaxial(tests[k].scene, o);
+    // read back from its folder, as a collecting run reads it (the CSV's digits)
+    if (tests[k].result.state.finished) keep_finished(tests[k]);
     return tests[k].result.state.interrupted;
   };
   loop.print = [&](size_t k) { print_result(tests[k]); };

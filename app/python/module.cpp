@@ -329,6 +329,11 @@ py::dict study_sensitivity(const std::string& out, const std::string& preset_nam
   r["base"] = per_response(a.base);
   r["noise_sd"] = per_response(a.noise_sd);
   r["noise_mu_star"] = per_response(a.noise_mu_star);
+  r["noise_mean"] = per_response(a.noise_mean);
+  r["noise_band"] = per_response(a.noise_band);
+  std::array<double, kSensitivityResponses> limit{};
+  for (int k = 0; k < kSensitivityResponses; ++k) limit[k] = a.chaos_mu_star_limit(k, preset.trajectories);
+  r["chaos_mu_star_limit"] = per_response(limit);
   r["trajectories"] = preset.trajectories;
   return r;
 }
@@ -416,7 +421,8 @@ void define_simulation(py::module_& m) {
         py::arg("quiet") = true, py::arg("device") = nullptr,
         "The sensitivity study as `simsols study sensitivity --out OUT --preset PRESET` (its "
         "files in `out`, resumable): returns tests (one dict each), effects[factor][response] "
-        "(oat_low, oat_high, mu, mu_star, sigma, effects), base, noise_sd, noise_mu_star");
+        "(oat_low, oat_high, mu, mu_star, sigma, effects), base, noise_mean, noise_sd, noise_band, "
+        "noise_mu_star, chaos_mu_star_limit");
   m.def("load_checkpoint",
         [](const std::string& path, std::shared_ptr<Device> device) {
           return load_checkpoint(device_or_open(std::move(device)), path);

@@ -25,6 +25,10 @@ cleanup() {
 }
 trap cleanup EXIT
 
+if [[ $(id -u) != 0 ]]; then
+  echo "SKIP: slurmd runs jobs as their users and must start as root"
+  exit 77
+fi
 for tool in slurmctld slurmd sbatch munged; do
   command -v "$tool" > /dev/null || fail "$tool not found: setup.sh installs slurm-wlm and munge"
 done

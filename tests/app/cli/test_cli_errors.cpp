@@ -167,6 +167,18 @@ TEST(CliErrors, ClusterFlagsNameTheProblem) {
   EXPECT_NE(r.out.find("2 of 2 tests have not finished: 0 (d6.35mm_80kPa), 1 (d6.35mm_160kPa)"),
             std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(d / "c" / "summary.csv"));
+  const Result both = run_in(d, "campaign --collect c --task 0");
+  EXPECT_EQ(both.status, 2) << both.out;
+  EXPECT_NE(both.out.find("give one"), std::string::npos) << both.out;
+  // a task whose arguments plan other tests than the manifest's
+  const Result other = run_in(d, "campaign --sizes 6.35 --stresses 80 --out c --task 0");
+  EXPECT_EQ(other.status, 2) << other.out;
+  EXPECT_NE(other.out.find("plan other tests than"), std::string::npos) << other.out;
+  // a study's folder collected as a campaign names the right command
+  ASSERT_EQ(run_in(d, "study sensitivity --preset ci --out s --emit slurm").status, 0);
+  const Result wrong = run_in(d, "campaign --collect s");
+  EXPECT_EQ(wrong.status, 2) << wrong.out;
+  EXPECT_NE(wrong.out.find("simsols study --collect"), std::string::npos) << wrong.out;
 }
 
 // ------------------------------------------------------------ scene files

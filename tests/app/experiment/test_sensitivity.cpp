@@ -60,6 +60,7 @@ TEST(Sensitivity, MorrisTrajectoriesMoveOneFactorByDeltaOnTheGrid) {
   }
   EXPECT_EQ(morris_design(k, r, p, 7), design);  // deterministic
   EXPECT_NE(morris_design(k, r, p, 8), design);
+  EXPECT_THROW(morris_design(k, r, 5, 7), std::invalid_argument);  // an odd grid is biased
 }
 
 // y = 3 u0 - 2 u2 + u1 u3 (+ the seed's noise at the base): Morris gives
@@ -149,7 +150,10 @@ TEST(Cluster, TheJobListsEveryTestAndItsArgumentsComeBack) {
   job.tests = {{"d6.35mm_160kPa", dir / "d6.35mm_160kPa", 324, 4e9},
                {"d4.7625mm_160kPa", dir / "d4.7625mm_160kPa", 1000, 6e10}};
   write_slurm_job(job);
-  EXPECT_EQ(manifest_args(dir), job.args);
+  const Manifest m = read_manifest(dir);
+  EXPECT_EQ(m.args, job.args);
+  EXPECT_EQ(m.command, "campaign");
+  EXPECT_EQ(m.tests, (std::vector<std::string>{"d6.35mm_160kPa", "d4.7625mm_160kPa"}));
   const std::string array = read_text((dir / "slurm" / "array.sbatch").string());
   EXPECT_NE(array.find("#SBATCH --array=0-1\n"), std::string::npos) << array;
   EXPECT_NE(array.find("'/a b/base.toml'"), std::string::npos);
@@ -161,9 +165,21 @@ TEST(Cluster, TheJobListsEveryTestAndItsArgumentsComeBack) {
   EXPECT_GT(big.minutes, cluster_needs(job.tests[0]).minutes);
   EXPECT_NE(read_text((dir / "slurm" / "collect.sbatch").string()).find("campaign --collect " + dir.string()),
             std::string::npos);
+  // submit.sh passes its arguments (a partition, an account) to both jobs
+  const std::string submit = read_text((dir / "slurm" / "submit.sh").string());
+  EXPECT_NE(submit.find("sbatch --parsable \"$@\" array.sbatch"), std::string::npos) << submit;
+  EXPECT_NE(submit.find("sbatch --parsable \"$@\" --dependency=afterany"), std::string::npos) << submit;
   EXPECT_TRUE((fs::status(dir / "slurm" / "submit.sh").permissions() & fs::perms::owner_exec) !=
               fs::perms::none);
-  EXPECT_THROW(manifest_args(dir / "nothing"), SceneError);
+  EXPECT_THROW(read_manifest(dir / "nothing"), SceneError);
+  // sbatch's #SBATCH lines cannot carry a space or a '%'
+  ClusterJob spaced = job;
+  spaced.out_dir = dir / "a b";
+  EXPECT_THROW(write_slurm_job(spaced), UsageError);
+  EXPECT_FALSE(fs::exists(dir / "a b"));
+  ClusterJob none = job;
+  none.tests.clear();
+  EXPECT_THROW(write_slurm_job(none), UsageError);
   EXPECT_EQ(shell_word("it's"), "'it'\\''s'");
   fs::remove_all(dir);
 }
