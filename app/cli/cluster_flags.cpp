@@ -10,6 +10,9 @@ namespace simsols {
 
 namespace fs = std::filesystem;
 
+constexpr const char* kOneKindOfRun =
+    "--emit, --task and --collect each make a different run: give one";
+
 void add_cluster_flags(CLI::App* cmd, ClusterFlags& f) {
   cmd->add_option("--emit", f.emit,
                   "slurm: write OUT/slurm/ (a job array, one task per test, and a job that "
@@ -34,7 +37,7 @@ CampaignRun campaign_run(const ClusterFlags& f, const std::string& out_dir,
   const int given = int(f.emitting()) + int(f.task >= 0) + int(f.collecting);
   if (given > 1)
     throw UsageError("conflict", "--task",
-                     "--emit, --task and --collect each make a different run: give one");
+                     kOneKindOfRun);
   if ((f.emitting() || f.task >= 0) && out_dir.empty())
     throw UsageError("missing_field", "--out", "give the folder the tests run in");
   if (f.task >= 0) run.only = static_cast<size_t>(f.task);
@@ -46,7 +49,7 @@ int collect_from_manifest(const ClusterFlags& f, const std::string& command,
                           CommandRunner (*add)(CLI::App&)) {
   if (f.task >= 0 || f.emitting())
     throw UsageError("conflict", "--collect",
-                     "--emit, --task and --collect each make a different run: give one");
+                     kOneKindOfRun);
   const fs::path dir = fs::absolute(f.collect).lexically_normal();
   const fs::path file = dir / "slurm" / "manifest.toml";
   Manifest m = read_manifest(dir);
