@@ -103,8 +103,46 @@ bool emit_or_check_plan(const ClusterFlags& f, const std::string& command,
   return true;
 }
 
+namespace {
+
+// An absolute path for a stored command line ("" stays "").
 std::string absolute_arg(const std::string& path) {
   return path.empty() ? path : fs::absolute(path).lexically_normal().string();
+}
+
+bool is_cluster_flag(const std::string& name) {
+  return name == "--emit" || name == "--task" || name == "--collect" ||
+         name == "--collect-mode" || name == "--help";
+}
+
+// One option's words: a positional's values, a set flag's name, or the
+// name before each value.
+void add_option_words(const CLI::Option& o, bool path, std::vector<std::string>& out) {
+  if (o.get_expected_max() == 0) {  // a flag
+    if (o.as<bool>()) out.push_back(o.get_name());
+    return;
+  }
+  for (const std::string& value : o.results()) {
+    if (!o.get_positional()) out.push_back(o.get_name());
+    out.push_back(path ? absolute_arg(value) : value);
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> given_args(const CLI::App* cmd, const std::vector<std::string>& paths) {
+  std::vector<std::string> words;
+  for (const CLI::App* a = cmd; a && a->get_parent(); a = a->get_parent())
+    words.insert(words.begin(), a->get_name());
+  const auto options = cmd->get_options();
+  for (bool positional : {true, false})
+    for (const CLI::Option* o : options) {
+      if (o->get_positional() != positional || o->count() == 0 || is_cluster_flag(o->get_name()))
+        continue;
+      const bool path = std::find(paths.begin(), paths.end(), o->get_name()) != paths.end();
+      add_option_words(*o, path, words);
+    }
+  return words;
 }
 
 }  // namespace simsols

@@ -3,7 +3,6 @@
 // or any subset, any sizes and stresses (app/experiment/campaign.h); on a
 // triaxial base scene, its test at several confining stresses
 // (app/experiment/triaxial_campaign.h).
-#include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -35,31 +34,8 @@ struct CampaignOptions {
   bool sizes_given = false, stresses_given = false, layers_given = false,
        displacement_given = false;
   ClusterFlags cluster;
+  std::vector<std::string> command_line;  // plans the same tests again (given_args)
 };
-
-std::string number_list(const std::vector<double>& v) {
-  std::string s;
-  for (double x : v) {
-    char b[32];
-    const auto end = std::to_chars(b, b + sizeof b, x).ptr;  // shortest round trip
-    s += (s.empty() ? "" : ",") + std::string(b, end);
-  }
-  return s;
-}
-
-// The command line that plans the same tests (cluster.h), paths absolute.
-std::vector<std::string> campaign_args(const CampaignOptions& o) {
-  std::vector<std::string> a{"campaign"};
-  if (!o.base.empty()) a.push_back(absolute_arg(o.base));
-  a.insert(a.end(), {"--out", absolute_arg(o.out_dir)});
-  if (o.sizes_given) a.insert(a.end(), {"--sizes", number_list(o.sizes_mm)});
-  if (o.stresses_given) a.insert(a.end(), {"--stresses", number_list(o.stresses_kpa)});
-  if (o.layers_given) a.insert(a.end(), {"--layers", std::to_string(o.layers)});
-  if (!o.precision.empty()) a.insert(a.end(), {"--precision", o.precision});
-  if (o.displacement_given) a.insert(a.end(), {"--displacement", number_list({o.displacement_mm})});
-  if (o.quiet) a.push_back("-q");
-  return a;
-}
 
 // What a campaign run with the cluster flags says at its end; 0.
 int report_done(const CampaignOptions& opt, const CampaignRun& run, size_t count,
@@ -110,7 +86,7 @@ int triaxial_campaign(const CampaignOptions& opt, Scene base, const std::string&
     });
   std::vector<TriaxialCampaignTest> tests =
       plan_triaxial_campaign(base, base_name, spec, opt.out_dir);
-  if (emit_or_check_plan(opt.cluster, "campaign", campaign_args(opt), opt.out_dir,
+  if (emit_or_check_plan(opt.cluster, "campaign", opt.command_line, opt.out_dir,
                          cluster_tests(tests)))
     return 0;
   const CampaignOutcome outcome = run_triaxial_campaign(tests, base_name, opt.out_dir, run);
@@ -151,7 +127,7 @@ int campaign(const CampaignOptions& opt) {
 
   InterruptScope interrupt;
   CampaignRun run = campaign_run(opt.cluster, opt.out_dir, interrupt.stop_function(), opt.quiet);
-  if (emit_or_check_plan(opt.cluster, "campaign", campaign_args(opt), opt.out_dir,
+  if (emit_or_check_plan(opt.cluster, "campaign", opt.command_line, opt.out_dir,
                          cluster_tests(tests)))
     return 0;
   if (!run.collect) run.device = open_command_device();
@@ -201,6 +177,7 @@ CommandRunner add_campaign_command(CLI::App& app) {
     opt->stresses_given = stresses->count() > 0;
     opt->layers_given = layers->count() > 0;
     opt->displacement_given = displacement->count() > 0;
+    opt->command_line = given_args(cmd, {"base", "--out"});
     return campaign(*opt);
   };
 }

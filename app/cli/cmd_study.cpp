@@ -57,6 +57,7 @@ struct StudyOptions {
   bool resume = false;
   bool preset_given = false;
   ClusterFlags cluster;
+  std::vector<std::string> command_line;  // plans the same tests again (given_args)
 };
 
 // --specimen: nullopt for both; throws for another name.
@@ -344,10 +345,8 @@ int sensitivity_study(const StudyOptions& opt) {
   std::vector<SensitivityTest> tests = plan_sensitivity(preset, opt.out);
   InterruptScope interrupt;
   CampaignRun run = campaign_run(opt.cluster, opt.out, interrupt.stop_function(), opt.quiet);
-  std::vector<std::string> args{"study", "sensitivity", "--out", absolute_arg(opt.out),
-                                "--preset", preset.name};
-  if (opt.quiet) args.push_back("-q");
-  if (emit_or_check_plan(opt.cluster, "study", args, opt.out, cluster_tests(tests))) return 0;
+  if (emit_or_check_plan(opt.cluster, "study", opt.command_line, opt.out, cluster_tests(tests)))
+    return 0;
   if (!run.collect) run.device = open_command_device();
   const CampaignOutcome outcome = run_sensitivity(tests, preset, opt.out, run);
   if (outcome.interrupted) {
@@ -447,11 +446,12 @@ CommandRunner add_study_command(CLI::App& app) {
                 "--specimen, --box-scale)");
   cmd->add_flag("--quiet,-q", opt->quiet, "No progress lines");
   add_cluster_flags(cmd, opt->cluster);
-  return [opt, preset] {
+  return [opt, preset, cmd] {
     if (!opt->cluster.collect.empty())
       return collect_from_manifest(opt->cluster, "study", add_study_command);
     if (opt->what.empty()) throw UsageError("missing_field", "STUDY", "name the study to run");
     opt->preset_given = preset->count() > 0;
+    opt->command_line = given_args(cmd, {"--out", "--from"});
     return study(*opt);
   };
 }

@@ -74,24 +74,24 @@ std::string level_name(double u) { return u == 0 ? "low" : u == 1 ? "high" : for
 std::vector<SensitivityPoint> study_points(const SensitivityPreset& p) {
   std::vector<SensitivityPoint> pts;
   const FactorLevels base = base_levels();
-  pts.push_back({"base", base, 1, -1, -1, 0, "base"});
+  pts.push_back({Design::base, base, 1, -1, -1, 0, "base"});
   for (int s = 2; s <= p.seeds; ++s)
-    pts.push_back({"noise", base, s, -1, -1, 0, "noise_seed" + std::to_string(s)});
+    pts.push_back({Design::noise, base, s, -1, -1, 0, "noise_seed" + std::to_string(s)});
   for (int i = 0; i < kSensitivityFactors; ++i)
     for (double u : {0.0, 1.0}) {
       if (u == base[i]) continue;  // the base already is this end (E)
       FactorLevels l = base;
       l[i] = u;
-      pts.push_back({"oat", l, 1, -1, -1, 0, "oat_" + kFactors[i].key + "_" + level_name(u)});
+      pts.push_back({Design::oat, l, 1, -1, -1, 0, "oat_" + kFactors[i].key + "_" + level_name(u)});
     }
   const auto design =
       morris_design(kSensitivityFactors, p.trajectories, p.grid_levels, p.design_seed);
   for (size_t t = 0; t < design.size(); ++t)
     for (size_t j = 0; j < design[t].size(); ++j)
-      pts.push_back({"morris", design[t][j], 1, int(t), int(j), 0,
+      pts.push_back({Design::morris, design[t][j], 1, int(t), int(j), 0,
                      "morris_" + std::to_string(t + 1) + "_" + std::to_string(j)});
   for (double ratio : p.box_ratios)
-    pts.push_back({"scale", base, 1, -1, -1, ratio, "scale_" + format_number("%g", ratio)});
+    pts.push_back({Design::scale, base, 1, -1, -1, ratio, "scale_" + format_number("%g", ratio)});
   return pts;
 }
 
@@ -121,6 +121,17 @@ double SensitivityFactor::level(double v) const {
 const std::array<SensitivityFactor, kSensitivityFactors>& sensitivity_factors() { return kFactors; }
 const std::array<SensitivityResponse, kSensitivityResponses>& sensitivity_responses() {
   return kResponses;
+}
+
+const char* design_name(Design d) {
+  switch (d) {
+    case Design::base: return "base";
+    case Design::noise: return "noise";
+    case Design::oat: return "oat";
+    case Design::morris: return "morris";
+    case Design::scale: return "scale";
+  }
+  return "?";
 }
 
 SensitivityPreset sensitivity_preset(const std::string& name) {

@@ -84,9 +84,16 @@ struct SensitivityPreset {
 // it runs, not figures); UsageError naming --preset otherwise.
 SensitivityPreset sensitivity_preset(const std::string& name);
 
+// The designs a test belongs to: the base point, its other seeds, one
+// factor at a time, a Morris trajectory, the box scaled whole.
+enum class Design { base, noise, oat, morris, scale };
+
+// As sensitivity.csv and Python write it: "base", "noise", "oat", "morris", "scale".
+const char* design_name(Design d);
+
 // One test of the study: where it sits in which design.
 struct SensitivityPoint {
-  std::string design;  // "base", "noise", "oat", "morris", "scale"
+  Design design = Design::base;
   FactorLevels levels{};
   int seed = 1;
   int trajectory = -1, step = -1;  // morris: which trajectory, which of its k + 1 points

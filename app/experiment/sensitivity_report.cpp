@@ -48,7 +48,7 @@ void morris_effects(const std::vector<SensitivityPoint>& pts, const std::vector<
   // each trajectory's points in order
   std::map<int, std::map<int, size_t>> traj;
   for (size_t n = 0; n < pts.size(); ++n)
-    if (pts[n].design == "morris") traj[pts[n].trajectory][pts[n].step] = n;
+    if (pts[n].design == Design::morris) traj[pts[n].trajectory][pts[n].step] = n;
   std::array<std::array<std::vector<double>, kSensitivityResponses>, kSensitivityFactors> ee;
   for (const auto& [t, steps] : traj)
     for (auto it = steps.begin(); std::next(it) != steps.end(); ++it) {
@@ -85,8 +85,8 @@ SensitivityAnalysis analyse_sensitivity(const std::vector<SensitivityPoint>& pts
   std::array<std::vector<double>, kSensitivityResponses> seeds;
   a.base.fill(NAN);
   for (size_t n = 0; n < pts.size(); ++n) {
-    if (pts[n].design != "base" && pts[n].design != "noise") continue;
-    if (pts[n].design == "base") a.base = ys[n];
+    if (pts[n].design != Design::base && pts[n].design != Design::noise) continue;
+    if (pts[n].design == Design::base) a.base = ys[n];
     for (int r = 0; r < kSensitivityResponses; ++r) seeds[r].push_back(ys[n][r]);
   }
   a.noise_runs = int(seeds[0].size());
@@ -100,9 +100,9 @@ SensitivityAnalysis analyse_sensitivity(const std::vector<SensitivityPoint>& pts
   }
   FactorLevels base{};
   for (const SensitivityPoint& p : pts)
-    if (p.design == "base") base = p.levels;
+    if (p.design == Design::base) base = p.levels;
   for (size_t n = 0; n < pts.size(); ++n) {
-    if (pts[n].design != "oat") continue;
+    if (pts[n].design != Design::oat) continue;
     double by = 0;
     const int i = moved_factor(base, pts[n].levels, by);
     if (i < 0) continue;
@@ -145,7 +145,7 @@ std::string tests_csv(const std::vector<SensitivityTest>& tests) {
   for (const SensitivityTest& t : tests) {
     const SensitivityPoint& p = t.point;
     const ShearSummary& s = t.result.summary;
-    o << p.label << ',' << p.design << ',' << p.trajectory << ',' << p.step << ',' << p.seed << ','
+    o << p.label << ',' << design_name(p.design) << ',' << p.trajectory << ',' << p.step << ',' << p.seed << ','
       << t.scene.shear_box->length / (2 * t.scene.particles[0].radius) << ',';
     for (int i = 0; i < kSensitivityFactors; ++i)
       o << format_number("%.6g", sensitivity_factors()[i].value(p.levels[i])) << ',';
@@ -271,8 +271,8 @@ void scale_chart(const SensitivityAnalysis& a, const std::vector<SensitivityTest
     std::map<double, std::pair<double, double>> by_ratio;  // L/d -> value, bar
     for (const SensitivityTest& t : tests) {
       const double ratio = t.scene.shear_box->length / (2 * t.scene.particles[0].radius);
-      if (t.point.design == "scale") by_ratio[ratio] = {responses_of(t.result.summary)[r], NAN};
-      if (t.point.design == "base") by_ratio[ratio] = {a.noise_mean[r], a.noise_band[r]};
+      if (t.point.design == Design::scale) by_ratio[ratio] = {responses_of(t.result.summary)[r], NAN};
+      if (t.point.design == Design::base) by_ratio[ratio] = {a.noise_mean[r], a.noise_band[r]};
     }
     for (const auto& [x, v] : by_ratio) {
       s.x.push_back(x);
@@ -334,7 +334,7 @@ std::string summary_md(const SensitivityPreset& p, const SensitivityAnalysis& a,
        "shearing starts, consolidated (box × the platen's height).\n\n| test | L/d | beads | "
        "e poured | e sheared | φ peak | φ residual | ψ max |\n|---|---|---|---|---|---|---|---|\n";
   for (const SensitivityTest& t : tests) {
-    if (t.point.design != "scale" && t.point.design != "base" && t.point.design != "oat") continue;
+    if (t.point.design == Design::noise || t.point.design == Design::morris) continue;
     const Responses y = responses_of(t.result.summary);
     o << "| " << t.point.label << " | "
       << num(t.scene.shear_box->length / (2 * t.scene.particles[0].radius), "%.1f") << " | "

@@ -311,7 +311,7 @@ py::dict study_sensitivity(const std::string& out, const std::string& preset_nam
       levels[sensitivity_factors()[i].key.c_str()] = sensitivity_factors()[i].value(t.point.levels[i]);
     py::dict row = per_response(ys.back());
     row["test"] = t.point.label;
-    row["design"] = t.point.design;
+    row["design"] = design_name(t.point.design);
     row["seed"] = t.point.seed;
     row["factors"] = levels;
     row["void_ratio"] = t.void_ratio;

@@ -161,7 +161,15 @@ TEST(CliErrors, ClusterFlagsNameTheProblem) {
   }
   EXPECT_FALSE(fs::exists(d / "c" / "d6.35mm_80kPa" / "summary.txt"));
   // collecting tests that never ran names them
-  ASSERT_EQ(run_in(d, campaign + "--emit slurm").status, 0);
+  ASSERT_EQ(run_in(d, campaign + "-q --emit slurm").status, 0);
+  // the array reruns the command as given (given_args): the options in
+  // their parsed form, the folder absolute, no cluster flag
+  const std::string args = "args = ['campaign', '--out', '" +
+                           fs::absolute(d / "c").lexically_normal().string() +
+                           "', '--sizes', '6.35', '--stresses', '80', '--stresses', '160', "
+                           "'--quiet']";
+  EXPECT_NE(read(d / "c" / "slurm" / "manifest.toml").find(args), std::string::npos)
+      << read(d / "c" / "slurm" / "manifest.toml");
   const Result r = run_in(d, "campaign --collect c");
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find("2 of 2 tests have not finished: 0 (d6.35mm_80kPa), 1 (d6.35mm_160kPa)"),
@@ -172,6 +180,9 @@ TEST(CliErrors, ClusterFlagsNameTheProblem) {
   EXPECT_NE(both.out.find("give one"), std::string::npos) << both.out;
   // a task whose arguments plan other tests than the manifest's
   const Result other = run_in(d, "campaign --sizes 6.35 --stresses 80 --out c --task 0");
+  // ... and the same plan given in other words is the same plan
+  const Result same = run_in(d, "campaign -o c --stresses 80 --stresses 160 --sizes 6.35 -q --task 7");
+  EXPECT_NE(same.out.find("allowed [0, 1]"), std::string::npos) << same.out;
   EXPECT_EQ(other.status, 2) << other.out;
   EXPECT_NE(other.out.find("plan other tests than"), std::string::npos) << other.out;
   // a study's folder collected as a campaign names the right command

@@ -76,19 +76,19 @@ TEST(Sensitivity, AnalysisRecoversKnownEffects) {
     ys.push_back({y, 2 * y, -y});
   };
   const FactorLevels base{0.5, 0.5, 0.5, 0.5, 0.5};
-  add({"base", base, 1, -1, -1, 0, "base"});
-  add({"noise", base, 2, -1, -1, 0, "n2"}, 1.0);
-  add({"noise", base, 3, -1, -1, 0, "n3"}, -1.0);
+  add({Design::base, base, 1, -1, -1, 0, "base"});
+  add({Design::noise, base, 2, -1, -1, 0, "n2"}, 1.0);
+  add({Design::noise, base, 3, -1, -1, 0, "n3"}, -1.0);
   for (int i = 0; i < kSensitivityFactors; ++i)
     for (double u : {0.0, 1.0}) {
       FactorLevels l = base;
       l[i] = u;
-      add({"oat", l, 1, -1, -1, 0, "oat"});
+      add({Design::oat, l, 1, -1, -1, 0, "oat"});
     }
   const auto design = morris_design(kSensitivityFactors, 10, 4, 3);
   for (size_t t = 0; t < design.size(); ++t)
     for (size_t j = 0; j < design[t].size(); ++j)
-      add({"morris", design[t][j], 1, int(t), int(j), 0, "m"});
+      add({Design::morris, design[t][j], 1, int(t), int(j), 0, "m"});
   const SensitivityAnalysis a = analyse_sensitivity(pts, ys, 4);
   EXPECT_DOUBLE_EQ(a.morris_delta, 2.0 / 3.0);
   EXPECT_EQ(a.noise_runs, 3);
