@@ -1,4 +1,4 @@
-// Tests of the TOML scene loader, the generators, the writer and
+// Tests of the TOML scene loader, the writer and
 // validate_scene(). Malformed scenes live in assets/tests/bad_scenes/, one
 // case per file, each starting with "# expect: <code> [<field>]".
 #include <gtest/gtest.h>
@@ -18,37 +18,18 @@
 #include "solver/scene/contact_model.h"
 #include "solver/common/errors.h"
 #include "solver/io/scene_toml.h"
+#include "tests/solver/io/scene_fixtures.h"
 
 namespace simsols {
 namespace {
 
 namespace fs = std::filesystem;
+using namespace simsols::test;
 
 fs::path assets_dir() {
   if (const char* env = std::getenv("SIMSOLS_ASSETS"); env && *env) return env;
   return fs::path(SIMSOLS_SOURCE_DIR) / "assets";
 }
-
-const char* kGlass = R"(
-[[materials]]
-name = "glass"
-young_modulus = 6.3e10
-poisson_ratio = 0.23
-density = 2500
-restitution = 0.9
-)";
-
-const char* kOneParticle = R"(
-[[particles]]
-material = "glass"
-radius = 0.001
-position = [0, 0, 0.005]
-)";
-
-const char* kDuration = R"(
-[numerics]
-duration = 0.01
-)";
 
 // Runs `f`, expecting a SceneError; returns it.
 template <class F>
@@ -60,103 +41,6 @@ SceneError expect_error(F&& f) {
   }
   ADD_FAILURE() << "no SceneError thrown";
   return SceneError("none", "", 0, "", "");
-}
-
-bool same_bits(double a, double b) {
-  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
-}
-
-void expect_same(const Vec3& a, const Vec3& b, const std::string& what) {
-  for (int k = 0; k < 3; ++k)
-    EXPECT_TRUE(same_bits(a[k], b[k])) << what << "[" << k << "]: " << a[k] << " vs " << b[k];
-}
-
-void expect_same(double a, double b, const std::string& what) {
-  EXPECT_TRUE(same_bits(a, b)) << what << ": " << a << " vs " << b;
-}
-
-void expect_same(const std::optional<double>& a, const std::optional<double>& b,
-                 const std::string& what) {
-  ASSERT_EQ(a.has_value(), b.has_value()) << what;
-  if (a) expect_same(*a, *b, what);
-}
-
-// Bit-exact comparison of everything but source_path / source_text.
-void expect_same_scene(const Scene& a, const Scene& b) {
-  EXPECT_EQ(a.name, b.name);
-  EXPECT_EQ(a.description, b.description);
-  ASSERT_EQ(a.materials.size(), b.materials.size());
-  for (size_t i = 0; i < a.materials.size(); ++i) {
-    const Material &x = a.materials[i], &y = b.materials[i];
-    EXPECT_EQ(x.name, y.name);
-    expect_same(x.young_modulus, y.young_modulus, "young_modulus");
-    expect_same(x.poisson_ratio, y.poisson_ratio, "poisson_ratio");
-    expect_same(x.density, y.density, "density");
-    expect_same(x.restitution, y.restitution, "restitution");
-    expect_same(x.sliding_friction, y.sliding_friction, "sliding_friction");
-    expect_same(x.rolling_friction, y.rolling_friction, "rolling_friction");
-  }
-  ASSERT_EQ(a.pair_overrides.size(), b.pair_overrides.size());
-  for (size_t i = 0; i < a.pair_overrides.size(); ++i) {
-    const PairOverride &x = a.pair_overrides[i], &y = b.pair_overrides[i];
-    EXPECT_EQ(x.material_a, y.material_a);
-    EXPECT_EQ(x.material_b, y.material_b);
-    expect_same(x.restitution, y.restitution, "pair restitution");
-    expect_same(x.sliding_friction, y.sliding_friction, "pair sliding_friction");
-    expect_same(x.rolling_friction, y.rolling_friction, "pair rolling_friction");
-    expect_same(x.liquid_volume, y.liquid_volume, "pair liquid_volume");
-    expect_same(x.contact_angle, y.contact_angle, "pair contact_angle");
-  }
-  ASSERT_EQ(a.particles.size(), b.particles.size());
-  for (size_t i = 0; i < a.particles.size(); ++i) {
-    const Particle &x = a.particles[i], &y = b.particles[i];
-    EXPECT_EQ(x.material, y.material);
-    expect_same(x.radius, y.radius, "radius");
-    expect_same(x.position, y.position, "position");
-    expect_same(x.velocity, y.velocity, "velocity");
-    expect_same(x.angular_velocity, y.angular_velocity, "angular_velocity");
-  }
-  ASSERT_EQ(a.walls.size(), b.walls.size());
-  for (size_t i = 0; i < a.walls.size(); ++i) {
-    const Wall &x = a.walls[i], &y = b.walls[i];
-    EXPECT_EQ(x.name, y.name);
-    EXPECT_EQ(x.shape, y.shape);
-    EXPECT_EQ(x.material, y.material);
-    expect_same(x.point, y.point, "point");
-    expect_same(x.normal, y.normal, "normal");
-    expect_same(x.velocity, y.velocity, "wall velocity");
-    if (x.shape == WallShape::Rectangle) {
-      expect_same(x.axis_u, y.axis_u, "axis_u");
-      expect_same(x.half_u, y.half_u, "half_u");
-      expect_same(x.half_v, y.half_v, "half_v");
-    }
-  }
-  expect_same(a.effects.gravity, b.effects.gravity, "gravity");
-  EXPECT_EQ(a.effects.damping, b.effects.damping);
-  EXPECT_EQ(a.effects.tangential, b.effects.tangential);
-  EXPECT_EQ(a.effects.rolling, b.effects.rolling);
-  expect_same(a.effects.rolling_damping, b.effects.rolling_damping, "rolling_damping");
-  EXPECT_EQ(a.effects.cohesion, b.effects.cohesion);
-  expect_same(a.effects.capillary.liquid_volume, b.effects.capillary.liquid_volume, "liquid_volume");
-  expect_same(a.effects.capillary.contact_angle, b.effects.capillary.contact_angle, "contact_angle");
-  expect_same(a.effects.capillary.surface_tension, b.effects.capillary.surface_tension,
-              "surface_tension");
-  EXPECT_EQ(a.effects.fluid, b.effects.fluid);
-  expect_same(a.effects.fluid_params.density, b.effects.fluid_params.density, "fluid density");
-  expect_same(a.effects.fluid_params.viscosity, b.effects.fluid_params.viscosity, "viscosity");
-  expect_same(a.effects.fluid_params.velocity, b.effects.fluid_params.velocity, "fluid velocity");
-  EXPECT_EQ(a.numerics.precision, b.numerics.precision);
-  expect_same(a.numerics.dt, b.numerics.dt, "dt");
-  expect_same(a.numerics.dt_fraction, b.numerics.dt_fraction, "dt_fraction");
-  EXPECT_EQ(a.numerics.force_dt, b.numerics.force_dt);
-  expect_same(a.numerics.duration, b.numerics.duration, "duration");
-  expect_same(a.numerics.skin, b.numerics.skin, "skin");
-  EXPECT_EQ(a.numerics.neighbor_capacity, b.numerics.neighbor_capacity);
-  expect_same(a.outputs.series_interval, b.outputs.series_interval, "series_interval");
-  expect_same(a.outputs.dump_interval, b.outputs.dump_interval, "dump_interval");
-  expect_same(a.outputs.checkpoint_interval, b.outputs.checkpoint_interval, "checkpoint_interval");
-  EXPECT_EQ(a.outputs.dump_csv, b.outputs.dump_csv);
-  EXPECT_EQ(a.outputs.dump_vtk, b.outputs.dump_vtk);
 }
 
 // ---------------------------------------------------------------------------
@@ -535,113 +419,6 @@ TEST(SceneToml, EveryShippedSceneLoads) {
     ++scenes;
   }
   EXPECT_GE(scenes, 11);
-}
-
-// ---------------------------------------------------------------------------
-// Generators.
-
-std::string lattice(const std::string& extra) {
-  return std::string(kGlass) + R"(
-[[generators]]
-type = "lattice"
-material = "glass"
-radius = 0.001
-min = [0, 0, 0]
-max = [0.006, 0.006, 0.006]
-)" + extra +
-         kDuration;
-}
-
-double min_distance(const Scene& s) {
-  double d = std::numeric_limits<double>::infinity();
-  for (size_t i = 0; i < s.particles.size(); ++i)
-    for (size_t j = 0; j < i; ++j) {
-      const Vec3 &a = s.particles[i].position, &b = s.particles[j].position;
-      d = std::min(d, std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]));
-    }
-  return d;
-}
-
-TEST(SceneGenerators, CubicLatticeFillsTheBox) {
-  const Scene s = parse_scene(lattice("velocity = [0, 0, -1]\n"), "l.toml");
-  ASSERT_EQ(s.particles.size(), 27u);  // centres at 1, 3, 5 mm on each axis
-  EXPECT_EQ(s.particles[0].position, (Vec3{0.001, 0.001, 0.001}));
-  EXPECT_NEAR(s.particles[26].position[0], 0.005, 1e-15);
-  EXPECT_EQ(s.particles[5].velocity, (Vec3{0, 0, -1}));
-  EXPECT_NEAR(min_distance(s), 0.002, 1e-12);
-}
-
-TEST(SceneGenerators, CountLimitsTheLattice) {
-  EXPECT_EQ(parse_scene(lattice("count = 10\n"), "l.toml").particles.size(), 10u);
-}
-
-TEST(SceneGenerators, HexagonalLatticeIsCloserPackedThanCubic) {
-  const std::string box = R"(
-[[generators]]
-type = "lattice"
-material = "glass"
-radius = 0.001
-min = [0, 0, 0]
-max = [0.02, 0.02, 0.02]
-)";
-  const Scene cubic = parse_scene(std::string(kGlass) + box + kDuration, "c.toml");
-  const Scene hex = parse_scene(
-      std::string(kGlass) + box + "arrangement = \"hexagonal\"\n" + kDuration, "h.toml");
-  EXPECT_EQ(cubic.particles.size(), 1000u);
-  EXPECT_GT(hex.particles.size(), cubic.particles.size() * 11 / 10);  // 1.41 in an infinite box
-  EXPECT_NEAR(min_distance(hex), 0.002, 1e-12);
-  for (const Particle& p : hex.particles)
-    for (int k = 0; k < 3; ++k) {
-      EXPECT_GE(p.position[k], 0.001 - 1e-12);
-      EXPECT_LE(p.position[k], 0.019 + 1e-12);
-    }
-}
-
-TEST(SceneGenerators, JitterIsDeterministicAndBounded) {
-  const std::string text = lattice("spacing = 0.0025\njitter = 0.0002\nseed = 7\n");
-  const Scene a = parse_scene(text, "j.toml"), b = parse_scene(text, "j.toml");
-  expect_same_scene(a, b);
-  const Scene other =
-      parse_scene(lattice("spacing = 0.0025\njitter = 0.0002\nseed = 8\n"), "j.toml");
-  EXPECT_NE(a.particles[0].position, other.particles[0].position);
-  EXPECT_GE(min_distance(a), 0.0025 - 2 * std::sqrt(3.0) * 0.0002);
-}
-
-std::string random_generator(const std::string& radius, int count, int seed) {
-  return std::string(kGlass) + kOneParticle + R"(
-[[generators]]
-type = "random"
-material = "glass"
-)" + radius +
-         "\nmin = [-0.01, -0.01, 0]\nmax = [0.01, 0.01, 0.02]\ncount = " + std::to_string(count) +
-         "\nseed = " + std::to_string(seed) + "\n" + kDuration;
-}
-
-TEST(SceneGenerators, RandomInsertionPlacesNonOverlappingSpheres) {
-  const Scene s =
-      parse_scene(random_generator("radius_min = 0.0005\nradius_max = 0.001", 500, 3), "r.toml");
-  ASSERT_EQ(s.particles.size(), 501u);
-  for (size_t i = 1; i < s.particles.size(); ++i) {
-    const Particle& p = s.particles[i];
-    EXPECT_GE(p.radius, 0.0005);
-    EXPECT_LE(p.radius, 0.001);
-    EXPECT_GE(p.position[0] - p.radius, -0.01);
-    EXPECT_LE(p.position[2] + p.radius, 0.02);
-  }
-  for (size_t i = 0; i < s.particles.size(); ++i)
-    for (size_t j = 0; j < i; ++j) {
-      const Particle &a = s.particles[i], &b = s.particles[j];
-      const double d = std::hypot(a.position[0] - b.position[0], a.position[1] - b.position[1],
-                                  a.position[2] - b.position[2]);
-      ASSERT_GE(d, a.radius + b.radius) << i << " " << j;
-    }
-}
-
-TEST(SceneGenerators, RandomInsertionIsDeterministic) {
-  const std::string text = random_generator("radius = 0.0007", 200, 42);
-  expect_same_scene(parse_scene(text, "r.toml"), parse_scene(text, "r.toml"));
-  const Scene other = parse_scene(random_generator("radius = 0.0007", 200, 43), "r.toml");
-  EXPECT_NE(parse_scene(text, "r.toml").particles[1].position, other.particles[1].position);
 }
 
 // ---------------------------------------------------------------------------
