@@ -13,15 +13,22 @@ namespace fs = std::filesystem;
 constexpr const char* kOneKindOfRun =
     "--emit, --task and --collect each make a different run: give one";
 
+// The group the cluster flags are listed under in --help; given_args
+// leaves them out by it (and the hidden --collect-mode, group "").
+constexpr const char* kClusterGroup = "Cluster";
+
 void add_cluster_flags(CLI::App* cmd, ClusterFlags& f) {
   cmd->add_option("--emit", f.emit,
                   "slurm: write OUT/slurm/ (a job array, one task per test, and a job that "
-                  "collects them; docs/cluster.md) and run nothing");
+                  "collects them; docs/cluster.md) and run nothing")
+      ->group(kClusterGroup);
   cmd->add_option("--task", f.task,
-                  "Run only test K (0-based, the array task's index) and no report");
+                  "Run only test K (0-based, the array task's index) and no report")
+      ->group(kClusterGroup);
   cmd->add_option("--collect", f.collect,
                   "Write the report of the finished tests in DIR (a folder written with --emit "
-                  "slurm)");
+                  "slurm)")
+      ->group(kClusterGroup);
   cmd->add_flag("--collect-mode", f.collecting)->group("");  // set by --collect's re-parse
 }
 
@@ -36,8 +43,7 @@ CampaignRun campaign_run(const ClusterFlags& f, const std::string& out_dir,
     throw UsageError("out_of_range", "--task", std::to_string(f.task) + " is below 0");
   const int given = int(f.emitting()) + int(f.task >= 0) + int(f.collecting);
   if (given > 1)
-    throw UsageError("conflict", "--task",
-                     kOneKindOfRun);
+    throw UsageError("conflict", "--task", kOneKindOfRun);
   if ((f.emitting() || f.task >= 0) && out_dir.empty())
     throw UsageError("missing_field", "--out", "give the folder the tests run in");
   if (f.task >= 0) run.only = static_cast<size_t>(f.task);
@@ -48,8 +54,7 @@ CampaignRun campaign_run(const ClusterFlags& f, const std::string& out_dir,
 int collect_from_manifest(const ClusterFlags& f, const std::string& command,
                           CommandRunner (*add)(CLI::App&)) {
   if (f.task >= 0 || f.emitting())
-    throw UsageError("conflict", "--collect",
-                     kOneKindOfRun);
+    throw UsageError("conflict", "--collect", kOneKindOfRun);
   const fs::path dir = fs::absolute(f.collect).lexically_normal();
   const fs::path file = dir / "slurm" / "manifest.toml";
   Manifest m = read_manifest(dir);
@@ -110,11 +115,6 @@ std::string absolute_arg(const std::string& path) {
   return path.empty() ? path : fs::absolute(path).lexically_normal().string();
 }
 
-bool is_cluster_flag(const std::string& name) {
-  return name == "--emit" || name == "--task" || name == "--collect" ||
-         name == "--collect-mode" || name == "--help";
-}
-
 // One option's words: a positional's values, a set flag's name, or the
 // name before each value.
 void add_option_words(const CLI::Option& o, bool path, std::vector<std::string>& out) {
@@ -137,8 +137,8 @@ std::vector<std::string> given_args(const CLI::App* cmd, const std::vector<std::
   const auto options = cmd->get_options();
   for (bool positional : {true, false})
     for (const CLI::Option* o : options) {
-      if (o->get_positional() != positional || o->count() == 0 || is_cluster_flag(o->get_name()))
-        continue;
+      const bool cluster = o->get_group() == kClusterGroup || o->get_group().empty();
+      if (o->get_positional() != positional || o->count() == 0 || cluster) continue;
       const bool path = std::find(paths.begin(), paths.end(), o->get_name()) != paths.end();
       add_option_words(*o, path, words);
     }

@@ -102,9 +102,10 @@ struct SensitivityPoint {
 };
 
 // The Morris design: `r` trajectories of k + 1 points each on a p-level
-// grid (p even; std::invalid_argument otherwise) (levels 0, 1/(p-1), ..., 1), each next point differing from the one
-// before in one factor by ±Δ. Deterministic for a given seed (a
-// mersenne twister's raw output, so on every platform alike).
+// grid (levels 0, 1/(p-1), ..., 1; p even, else std::invalid_argument),
+// each next point differing from the one before in one factor by ±Δ.
+// Deterministic for a given seed (a mersenne twister's raw output, so on
+// every platform alike).
 std::vector<std::vector<FactorLevels>> morris_design(int k, int r, int p, std::uint32_t seed);
 
 struct SensitivityTest {
