@@ -43,15 +43,16 @@ void check_spec(const Scene& base, const std::string& base_name, const TriaxialC
                        fmt("%g", s) + " kPa is out of range, allowed (0, 1e6] kPa");
 }
 
-// A test finished earlier: its rows read back and analysed again (its
-// summary and plots rewritten when today's analysis differs).
-void keep_finished(TriaxialCampaignTest& t) {
-  t.result.rows = parse_triaxial_rows_csv(read_text(t.dir / "triaxial.csv"));
-  const std::string text = read_text(t.dir / "summary.txt");
+}  // namespace
+
+TriaxialRunResult finished_triaxial_test(const fs::path& dir, const std::string& title,
+                                         double confining_stress) {
+  TriaxialRunResult r;
+  r.rows = parse_triaxial_rows_csv(read_text(dir / "triaxial.csv"));
+  const std::string text = read_text(dir / "summary.txt");
   const auto keys = summary_keys(text);
-  TriaxialSummary& s = t.result.summary;
-  s = TriaxialSummary{};
-  s.confining_stress = t.s_kpa * 1e3;
+  TriaxialSummary& s = r.summary;
+  s.confining_stress = confining_stress;
   for (const auto& [key, field] : {std::pair{"strain_rate_per_s", &s.strain_rate},
                                    {"bead_diameter_mm", &s.bead_diameter},
                                    {"settle_time_s", &s.settle_time},
@@ -59,13 +60,32 @@ void keep_finished(TriaxialCampaignTest& t) {
                                    {"wall_seconds", &s.wall_seconds}})
     if (const auto it = keys.find(key); it != keys.end()) *field = std::stod(it->second);
   s.bead_diameter *= 1e-3;
-  analyse_triaxial_rows(t.result.rows, s);
+  analyse_triaxial_rows(r.rows, s);
   // Today's analysis of the rows, written back when it reads them otherwise.
   if (const std::string now = triaxial_summary_text(s); now != text) {
-    write_triaxial_plots(t.dir.string(), test_title(t.scene), t.result.rows, s);
-    write_file_atomic((t.dir / "summary.txt").string(), now);
+    write_triaxial_plots(dir.string(), title, r.rows, s);
+    write_file_atomic((dir / "summary.txt").string(), now);
   }
-  t.result.state.finished = true;
+  r.state.finished = true;
+  return r;
+}
+
+TriaxialRunResult run_triaxial_test(const Scene& scene, const ProgrammeRunOptions& options,
+                                    const std::string& title) {
+  TriaxialRunResult r = run_triaxial(scene, options);
+  if (!r.state.finished) return r;
+  TriaxialRunResult back =
+      finished_triaxial_test(options.out_dir, title, scene.triaxial->confining_stress);
+  r.rows = std::move(back.rows);
+  r.summary = std::move(back.summary);
+  return r;
+}
+
+namespace {
+
+// A test finished earlier, read back.
+void keep_finished(TriaxialCampaignTest& t) {
+  t.result = finished_triaxial_test(t.dir, test_title(t.scene), t.s_kpa * 1e3);
 }
 
 void print_result(const TriaxialCampaignTest& t) {
@@ -108,9 +128,7 @@ CampaignOutcome run_triaxial_campaign(std::vector<TriaxialCampaignTest>& tests,
   CampaignLoop loop = campaign_loop(tests, "triaxial tests", "triaxial.csv");
   loop.keep = [&](size_t k) { keep_finished(tests[k]); };
   loop.run = [&](size_t k, ProgrammeRunOptions& o) {
-    tests[k].result = run_triaxial(tests[k].scene, o);
-    // read back from its folder, as a collecting run reads it (the CSV's digits)
-    if (tests[k].result.state.finished) keep_finished(tests[k]);
+    tests[k].result = run_triaxial_test(tests[k].scene, o, test_title(tests[k].scene));
     return tests[k].result.state.interrupted;
   };
   loop.print = [&](size_t k) { print_result(tests[k]); };

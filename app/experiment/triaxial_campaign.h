@@ -42,6 +42,18 @@ std::vector<TriaxialCampaignTest> plan_triaxial_campaign(const Scene& base,
                                                          const TriaxialCampaignSpec& spec,
                                                          const std::string& out_dir);
 
+// A triaxial test finished earlier in `dir`, read back (its rows analysed
+// again with today's analysis; summary.txt and plots rewritten when that
+// differs), as finished_shear_test (campaign.h) reads a shear test.
+// `title` heads its plots; the confining stress is in Pa.
+TriaxialRunResult finished_triaxial_test(const std::filesystem::path& dir,
+                                         const std::string& title, double confining_stress);
+// A test just run by run_triaxial, its rows and summary replaced by what
+// finished_triaxial_test reads back from its folder (the CSV's digits): a
+// report is then the same whether its tests ran here or were collected.
+TriaxialRunResult run_triaxial_test(const Scene& scene, const ProgrammeRunOptions& options,
+                                    const std::string& title);
+
 // Runs the tests not finished yet, one line per test, then writes the
 // report into `out_dir` unless interrupted.
 CampaignOutcome run_triaxial_campaign(std::vector<TriaxialCampaignTest>& tests,
