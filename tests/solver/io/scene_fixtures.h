@@ -1,6 +1,6 @@
 // Scene fixtures shared by the scene-file tests (test_scene_toml,
-// test_scene_tables_generators): minimal TOML pieces and a bit-exact
-// comparison of two scenes.
+// test_scene_tables_generators, and test_stability's refused inputs):
+// minimal TOML pieces and a bit-exact comparison of two scenes.
 #pragma once
 
 #include <gtest/gtest.h>

@@ -13,6 +13,7 @@
 #include "solver/io/checkpoint.h"
 #include "solver/scene/contact_model.h"
 #include "solver/io/scene_toml.h"
+#include "tests/solver/io/scene_fixtures.h"
 #include "tests/support/test_support.h"
 
 namespace simsols::testing {
@@ -191,14 +192,7 @@ TEST(DegenerateInputs, RunOrRefuseNeverNaN) {
 // generator given the same box creates the beads that fit and says how
 // many in the scene (its count is a limit).
 TEST(DegenerateInputs, MillionBeadsInATooSmallBoxAreRefusedAtOnce) {
-  const std::string text = R"(
-[[materials]]
-name = "glass"
-young_modulus = 6.3e10
-poisson_ratio = 0.23
-density = 2500
-restitution = 0.9
-
+  const std::string text = std::string(test::kGlass) + R"(
 [[generators]]
 type = "random"
 material = "glass"
@@ -206,10 +200,7 @@ radius = 0.001
 min = [0, 0, 0]
 max = [0.05, 0.05, 0.05]
 count = 1000000
-
-[numerics]
-duration = 0.01
-)";
+)" + test::kDuration;
   const auto t0 = std::chrono::steady_clock::now();
   try {
     parse_scene(text, "million.toml");
