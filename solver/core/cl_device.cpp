@@ -244,6 +244,21 @@ ClMem Device::alloc(size_t bytes, const void* init) {
   return mem;
 }
 
+ClMem Device::view(cl_mem parent, size_t offset, size_t bytes) {
+  cl_int err = CL_SUCCESS;
+  const cl_buffer_region region{offset, bytes};
+  cl_mem m = clCreateSubBuffer(parent, CL_MEM_READ_WRITE, CL_BUFFER_CREATE_TYPE_REGION, &region, &err);
+  check(err, "clCreateSubBuffer");
+  return ClMem(m);
+}
+
+size_t Device::base_align() const {
+  cl_uint bits = 0;
+  check(clGetDeviceInfo(device_, CL_DEVICE_MEM_BASE_ADDR_ALIGN, sizeof bits, &bits, nullptr),
+        "clGetDeviceInfo(CL_DEVICE_MEM_BASE_ADDR_ALIGN)");
+  return std::max<size_t>(bits / 8, 16);
+}
+
 void Device::write(cl_mem mem, size_t bytes, const void* src, size_t offset) {
   if (bytes == 0) return;
   check(clEnqueueWriteBuffer(queue_.get(), mem, CL_TRUE, offset, bytes, src, 0, nullptr, nullptr),

@@ -88,6 +88,11 @@ class Device {
   std::string description() const;  // "name (platform, OpenCL version)"
 
   ClMem alloc(size_t bytes, const void* init = nullptr);
+  // A view of bytes [offset, offset + bytes) of `parent` (clCreateSubBuffer);
+  // offset a multiple of base_align().
+  ClMem view(cl_mem parent, size_t offset, size_t bytes);
+  // The alignment, in bytes, of a view's offset (CL_DEVICE_MEM_BASE_ADDR_ALIGN).
+  size_t base_align() const;
   void write(cl_mem mem, size_t bytes, const void* src, size_t offset = 0);
   void read(cl_mem mem, size_t bytes, void* dst, size_t offset = 0);
   void fill_zero(cl_mem mem, size_t bytes);

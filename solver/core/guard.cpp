@@ -99,7 +99,7 @@ void Guard::restore_copy() {
 void Guard::apply_logged(size_t* next) {
   while (*next < log_.size() && log_[*next].step == state_.step) {
     const Logged& l = log_[(*next)++];
-    if (!l.buffer) detect_contacts(model_, state_, true);
+    if (!l.buffer) request_rebuild(model_, state_);
     else model_.device().write((state_.*l.buffer).get(), l.data.size(), l.data.data(), l.offset);
   }
 }
@@ -149,7 +149,7 @@ void Guard::write(Buffer State::*buffer, size_t offset, const void* data, size_t
 
 void Guard::rebuild_lists() {
   before_reading();
-  detect_contacts(model_, state_, true);
+  request_rebuild(model_, state_);
   log_.push_back(Logged{state_.step, nullptr, 0, {}});
 }
 

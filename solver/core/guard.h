@@ -84,8 +84,9 @@ class Guard {
   void before_reading();
   // A host write into a state buffer, logged so that a replay repeats it.
   void write(Buffer State::*buffer, size_t offset, const void* data, size_t bytes);
-  // Rebuilds the neighbour lists and wall slots now (after a host write
-  // they no longer cover), logged so that a replay rebuilds at this step too.
+  // Has the neighbour lists and wall slots rebuilt at the next step (after
+  // a host write they no longer cover: request_rebuild, pipeline.h), logged
+  // so that a replay asks at this step too.
   void rebuild_lists();
   // After the state was replaced wholesale (a checkpoint loaded): a fresh copy.
   void reset();
@@ -95,7 +96,7 @@ class Guard {
  private:
   struct Logged {
     std::int64_t step;
-    Buffer State::*buffer;  // nullptr: a list rebuild (rebuild_lists)
+    Buffer State::*buffer;  // nullptr: a list rebuild asked for (rebuild_lists)
     size_t offset;
     std::vector<unsigned char> data;
   };

@@ -86,14 +86,15 @@ std::array<std::uint32_t, 2> size_lists(const Model& m, State& s) {
   return {prefix_sum(m, s, s.up_off, s.slices + 1), prefix_sum(m, s, s.lo_off, s.slices + 1)};
 }
 
-// The lists (neighbors.cl), after the ones in use became the old ones. The
-// old history waits in `share`, at the old capacity's stride.
+// The lists (neighbors.cl), laid out anew. The previous lists wait in
+// `share` (list_scratch), at the old capacity's stride.
 void build_lists(const Model& m, State& s) {
   const Kernels& k = m.kernels();
-  // the previous history into share (dead between steps), at its stride
-  if (m.config().history_planes() > 0)
-    m.device().copy(s.spring.get(), s.share.get(), s.spring.bytes);
   const int old_stride = s.up_slots;
+  State::ListScratch old = s.list_scratch(m);
+  if (m.config().history_planes() > 0) m.device().copy(s.spring.get(), old.hist.get(), s.spring.bytes);
+  m.device().copy(s.nbr.get(), old.nbr.get(), s.nbr.bytes);
+  m.device().copy(s.nbr_upper.get(), old.upper.get(), s.nbr_upper.bytes);
   const std::array<std::uint32_t, 2> need = size_lists(m, s);
   const bool grow_up = need[0] > std::uint32_t(s.up_slots);
   if (grow_up) s.grow_upper(m, with_spare(need[0]));
@@ -104,14 +105,15 @@ void build_lists(const Model& m, State& s) {
   for (const Buffer* b : {&s.nbr, &s.spring, &s.mirror}) m.device().fill_zero(b->get(), b->bytes);
   set_args(m, k.build_neighbors, arg("pos", s.pos), arg("pos_lo", s.pos_lo),
            arg("count", s.cell_count), arg("start", s.cell_start), arg("sorted", s.sorted),
-           arg("old_up_off", s.old_up_off), arg("old_upper", s.old_upper),
-           arg("old_nbr", s.old_nbr), arg("old_hist", s.share), arg("old_stride", old_stride),
+           arg("old_up_off", s.old_up_off), arg("old_upper", old.upper),
+           arg("old_nbr", old.nbr), arg("old_hist", old.hist), arg("old_stride", old_stride),
            arg("up_off", s.up_off), arg("lo_off", s.lo_off), arg("nbr_upper", s.nbr_upper),
            arg("nbr", s.nbr), arg("mirror", s.mirror), arg("spring", s.spring),
            arg("stride", s.up_slots), arg("pos_build", s.pos_build), arg("body", m.body_buffer()),
            arg("inv_cell", Real{1.0 / m.cell_size()}), arg("skin", Real{m.skin()}),
            arg("table", s.table), arg("n", s.n));
   launch(m, k.build_neighbors, s.n);
+  old = {};  // the views go before share may be replaced
   if (grow_up) s.upper_scratch(m);
   set_args(m, k.build_mirrors, arg("nbr_count", s.nbr_count), arg("nbr_upper", s.nbr_upper),
            arg("up_off", s.up_off), arg("nbr", s.nbr), arg("lo_off", s.lo_off),
@@ -125,10 +127,11 @@ void build_lists(const Model& m, State& s) {
 void build_wall_slots(const Model& m, State& s) {
   if (!m.config().walls) return;
   const Kernels& k = m.kernels();
-  s.wall_near.mem.swap(s.old_wall_near.mem);
+  const State::WallScratch old = s.wall_scratch(m);
+  m.device().copy(s.wall_near.get(), old.near.get(), s.wall_near.bytes);
+  m.device().copy(s.wall_spring.get(), old.spring.get(), s.wall_spring.bytes);
+  m.device().copy(s.wall_force.get(), old.force.get(), s.wall_force.bytes);
   s.wall_off.mem.swap(s.old_wall_off.mem);
-  s.wall_spring.mem.swap(s.old_wall_spring.mem);
-  s.wall_force.mem.swap(s.old_wall_force.mem);
   set_args(m, k.build_wall_near, arg("pos", s.pos), arg("walls", m.wall_buffer()),
            arg("wall_point", s.wall_point), arg("wall_near", s.wall_near),
            arg("skin", Real{m.skin()}), arg("n", s.n), arg("nwalls", m.walls()));
@@ -142,14 +145,13 @@ void build_wall_slots(const Model& m, State& s) {
   if (grow) s.grow_walls(m, with_spare(need));
   for (const Buffer* b : {&s.wall_spring, &s.wall_force})  // as in build_lists
     m.device().fill_zero(b->get(), b->bytes);
-  set_args(m, k.carry_wall_slots, arg("old_near", s.old_wall_near), arg("old_off", s.old_wall_off),
-           arg("old_spring", s.old_wall_spring), arg("old_force", s.old_wall_force),
+  set_args(m, k.carry_wall_slots, arg("old_near", old.near), arg("old_off", s.old_wall_off),
+           arg("old_spring", old.spring), arg("old_force", old.force),
            arg("old_stride", old_stride), arg("wall_near", s.wall_near),
            arg("wall_off", s.wall_off), arg("wall_spring", s.wall_spring),
            arg("wall_force", s.wall_force), arg("stride", s.wall_slots), arg("n", s.n),
            arg("nwalls", m.walls()));
   launch(m, k.carry_wall_slots, s.n);
-  if (grow) s.wall_scratch(m);
   set_args(m, k.reset_wall_travel, arg("wall_point", s.wall_point), arg("nwalls", m.walls()));
   launch_exact(m, k.reset_wall_travel, m.walls());
 }
@@ -167,8 +169,14 @@ std::int64_t check_interval(const Model& m, double vmax) {
 
 }  // namespace
 
-void detect_contacts(const Model& m, State& s, bool force_rebuild) {
-  if (s.step < s.next_check && !force_rebuild) return;
+void request_rebuild(const Model& m, State& s) {
+  const int rebuild = 1;
+  m.device().write(s.flags.get(), sizeof rebuild, &rebuild);
+  s.next_check = s.step;
+}
+
+void detect_contacts(const Model& m, State& s) {
+  if (s.step < s.next_check) return;
   int flags[5] = {0, 0, 0, 0, 0};
   m.device().read(s.flags.get(), sizeof flags, flags);
   if (flags[4] != State::kNoRunaway) s.fault_seen = true;  // the runaway mark (guard.h)
@@ -177,15 +185,13 @@ void detect_contacts(const Model& m, State& s, bool force_rebuild) {
   if (flags[3]) ++s.late_builds;
   s.next_check = s.step + check_interval(m, std::sqrt(double(v2)));
   const int zero[4] = {0, 0, 0, 0};
-  if (flags[0] || flags[2] || flags[3] || force_rebuild)
-    m.device().write(s.flags.get(), sizeof zero, zero);
-  if (!flags[0] && !force_rebuild) return;
+  if (flags[0] || flags[2] || flags[3]) m.device().write(s.flags.get(), sizeof zero, zero);
+  if (!flags[0]) return;
 
   build_grid(m, s);
-  // The lists in use become the "old" ones the springs are carried from.
-  s.nbr.mem.swap(s.old_nbr.mem);
+  // The offsets in use become the "old" ones the springs are carried from
+  // (the rest of the previous lists: build_lists).
   s.up_off.mem.swap(s.old_up_off.mem);
-  s.nbr_upper.mem.swap(s.old_upper.mem);
   build_lists(m, s);
   build_wall_slots(m, s);
   ++s.list_builds;

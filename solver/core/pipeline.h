@@ -32,7 +32,13 @@
 
 namespace simsols {
 
-void detect_contacts(const Model& model, State& state, bool force_rebuild = false);
+void detect_contacts(const Model& model, State& state);
+// The lists and wall slots rebuilt at the start of the next step (after a
+// host write they no longer cover: a wall moved by a jump, radii scaled),
+// through the device's rebuild flag, which checkpoints keep. Not at once:
+// until that step the last step's contact forces (share, wall_force) stay
+// readable, with the lists they were computed on.
+void request_rebuild(const Model& model, State& state);
 void contact_forces(const Model& model, State& state);
 void finish_particles(const Model& model, State& state);
 void move_clumps(const Model& model, State& state);

@@ -138,7 +138,8 @@ void Simulation::set_wall_point(int wall, const Vec3& p) {
     guard_->write(&State::wall_point_lo, wall * sizeof lo, lo, sizeof lo);
   }
   // a jump is no travel the broad phase can bound: the wall masks and slots
-  // are built anew at once (walls.cl); logged, so a replay does it too
+  // are built anew before the next step's forces (walls.cl); logged, so a
+  // replay does it too
   guard_->rebuild_lists();
 }
 

@@ -124,7 +124,6 @@ void State::make_lists(const Model& model) {
   Device& d = model.device();
   nbr_count = make(d, n * sizeof(int));
   nbr_upper = make(d, n * sizeof(int));
-  old_upper = make(d, n * sizeof(int));
   up_off = make(d, (slices + 1) * sizeof(std::uint32_t));
   lo_off = make(d, (slices + 1) * sizeof(std::uint32_t));
   old_up_off = make(d, (slices + 1) * sizeof(std::uint32_t));
@@ -162,7 +161,6 @@ void State::make_walls(const Model& model) {
   // no wall near any particle and no slot until the first list build (the
   // first step's: flags[0], make_flags)
   wall_near = make(d, nw ? n * sizeof(int) : 16);
-  old_wall_near = make(d, nw ? n * sizeof(int) : 16);
   wall_off = make(d, (slices + 1) * sizeof(std::uint32_t));
   old_wall_off = make(d, (slices + 1) * sizeof(std::uint32_t));
   resize_walls(model, 0);
@@ -222,9 +220,7 @@ std::vector<std::pair<std::string, const Buffer*>> State::all_buffers() const {
           {"spring", &spring},
           {"share", &share},
           {"mirror", &mirror},
-          {"old_upper", &old_upper},
           {"old_up_off", &old_up_off},
-          {"old_nbr", &old_nbr},
           {"bucket", &bucket},
           {"slot", &slot},
           {"cell_count", &cell_count},
@@ -239,10 +235,7 @@ std::vector<std::pair<std::string, const Buffer*>> State::all_buffers() const {
           {"wall_off", &wall_off},
           {"wall_spring", &wall_spring},
           {"wall_force", &wall_force},
-          {"old_wall_near", &old_wall_near},
           {"old_wall_off", &old_wall_off},
-          {"old_wall_spring", &old_wall_spring},
-          {"old_wall_force", &old_wall_force},
           {"wall_reaction", &wall_reaction},
           {"wall_mean", &wall_mean},
           {"servo", &servo},
@@ -290,10 +283,32 @@ void State::grow_walls(const Model& model, int slots) {
   wall_force = make(d, std::max<size_t>(16, size_t(slots) * 4 * model.real_size()));
 }
 
-void State::wall_scratch(const Model& model) {
+std::vector<Buffer> State::share_views(const Model& model,
+                                       std::initializer_list<size_t> sizes) {
   Device& d = model.device();
-  old_wall_spring = make(d, wall_spring.bytes);
-  old_wall_force = make(d, wall_force.bytes);
+  const size_t align = d.base_align();
+  const auto next = [align](size_t at) { return (at + align - 1) / align * align; };
+  size_t total = 0;
+  for (size_t b : sizes) total = next(total) + std::max<size_t>(b, 16);
+  if (total > share.bytes) share = make(d, total + total / 16);
+  std::vector<Buffer> views;
+  size_t at = 0;
+  for (size_t b : sizes) {
+    at = next(at);
+    views.push_back(Buffer{d.view(share.get(), at, std::max<size_t>(b, 16)), b});
+    at += std::max<size_t>(b, 16);
+  }
+  return views;
+}
+
+State::ListScratch State::list_scratch(const Model& model) {
+  std::vector<Buffer> v = share_views(model, {spring.bytes, nbr.bytes, nbr_upper.bytes});
+  return {std::move(v[0]), std::move(v[1]), std::move(v[2])};
+}
+
+State::WallScratch State::wall_scratch(const Model& model) {
+  std::vector<Buffer> v = share_views(model, {wall_near.bytes, wall_spring.bytes, wall_force.bytes});
+  return {std::move(v[0]), std::move(v[1]), std::move(v[2])};
 }
 
 void State::grow_upper(const Model& model, int slots) {
@@ -305,8 +320,7 @@ void State::grow_upper(const Model& model, int slots) {
 
 void State::upper_scratch(const Model& model) {
   Device& d = model.device();
-  old_nbr = make(d, std::max<size_t>(16, size_t(up_slots) * sizeof(int)));
-  share = make(d, std::max<size_t>(16, size_t(up_slots) * 2 * 4 * model.real_size()));
+  share = make(d, share_bytes(model));
 }
 
 void State::grow_lower(const Model& model, int slots) {

@@ -14,8 +14,10 @@
 // N to 2N buckets.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -49,10 +51,11 @@ class State {
   // torque record side by side; it holds the previous history during a
   // rebuild). Per lower slot (lo_slots): the upper slot where the partner's
   // share waits (mirror; the rebuild puts the partner's id there first).
-  // old_*: the previous upper lists, which a rebuild carries the history
-  // over from.
+  // old_up_off: the previous upper lists' offsets, which a rebuild carries
+  // the history over from (the rest of the previous lists waits in `share`:
+  // list_scratch()).
   Buffer pos_build, nbr_count, nbr_upper, up_off, lo_off, nbr, spring, share, mirror;
-  Buffer old_upper, old_up_off, old_nbr;
+  Buffer old_up_off;
   // grid
   Buffer bucket, slot, cell_count, cell_start, sorted, chunk_sum;
   // walls: current reference point (+ float compensation; point.w: travel
@@ -61,11 +64,12 @@ class State {
   // the last list build (bit w of wall_near: the broad phase, walls.cl); a
   // slot per (particle, near wall), sliced as the lists are (wall_off, per
   // slice and the total): its history (wall_spring, HIST planes of
-  // wall_slots records) and the force on the wall (wall_force). old_wall_*:
-  // the previous layout, which a rebuild carries the slots over from.
+  // wall_slots records) and the force on the wall (wall_force).
+  // old_wall_off: the previous layout's offsets, which a rebuild carries the
+  // slots over from (the rest waits in `share`: wall_scratch()).
   Buffer wall_point, wall_point_lo, wall_vel, wall_touch, wall_near, wall_off, wall_spring,
       wall_force;
-  Buffer old_wall_near, old_wall_off, old_wall_spring, old_wall_force;
+  Buffer old_wall_off;
   // servo walls: per wall servo_record() (below), set by the scene and changed at run time (set_servo); and what the servo saw:
   // (F last step, sum of F since the last read, integral velocity, steps)
   // wall_mean: per wall the force summed over steps (xyz) and the steps (w),
@@ -110,27 +114,41 @@ class State {
   std::vector<std::pair<std::string, Buffer*>> dynamic_buffers();
 
   // Reallocates the current upper lists (nbr, spring) with `slots` slots;
-  // the previous lists and the history held in `share` are kept for the
-  // rebuild, which then calls upper_scratch().
+  // the previous lists, held in `share`, are kept for the rebuild, which
+  // then calls upper_scratch().
   void grow_upper(const Model& model, int slots);
-  // share and old_nbr sized for up_slots.
+  // share sized for up_slots.
   void upper_scratch(const Model& model);
+  // The part of `share` that holds the last step's shares (two records per
+  // upper slot; the buffer may be larger, for list_scratch()).
+  size_t share_bytes(const Model& model) const {
+    return std::max<size_t>(16, size_t(up_slots) * 2 * 4 * model.real_size());
+  }
+
+  // The previous lists and wall slots during a rebuild (pipeline.cpp), as
+  // views into `share`, whose contents are dead between steps (a step's
+  // pair kernel writes them before its finishing kernel reads them): no
+  // second copy of the lists stays allocated. Each view has its buffer's
+  // size now, at the device's base alignment; share grows, contents lost,
+  // when they do not fit. A rebuild copies into the views, then lays out
+  // the new lists and slots from them.
+  struct ListScratch {
+    Buffer hist, nbr, upper;  // spring, nbr, nbr_upper
+  };
+  struct WallScratch {
+    Buffer near, spring, force;  // wall_near, wall_spring, wall_force
+  };
+  ListScratch list_scratch(const Model& model);
+  WallScratch wall_scratch(const Model& model);
   // Reallocates the lower lists (mirror) with `slots` slots.
   void grow_lower(const Model& model, int slots);
   // Reallocates all slot buffers, zeroed, with the given capacities.
   void resize_lists(const Model& model, int up, int lo);
   size_t spring_bytes(const Model& model) const;
-  // Reallocates the current wall slots (wall_spring, wall_force) with
-  // `slots` slots, keeping the previous layout (old_wall_*) for the rebuild,
-  // which then calls wall_scratch().
+  // Reallocates the wall slots (wall_spring, wall_force), zeroed, with
+  // `slots` slots (a rebuild's previous layout waits in wall_scratch()).
   void grow_walls(const Model& model, int slots);
-  // old_wall_spring and old_wall_force sized for wall_slots.
-  void wall_scratch(const Model& model);
-  // Reallocates all wall-slot buffers, zeroed, with `slots` slots.
-  void resize_walls(const Model& model, int slots) {
-    grow_walls(model, slots);
-    wall_scratch(model);
-  }
+  void resize_walls(const Model& model, int slots) { grow_walls(model, slots); }
   // The list and wall capacities of a saved state (a checkpoint, the
   // guard's copy): reallocates, zeroed, the buffers whose capacity differs.
   void resize_slots(const Model& model, int up, int lo, int walls) {
@@ -140,6 +158,8 @@ class State {
 
  private:
   Buffer make(Device& d, size_t bytes, const void* init = nullptr);
+  // Consecutive views of `share` of these sizes (list_scratch()).
+  std::vector<Buffer> share_views(const Model& model, std::initializer_list<size_t> sizes);
   // The constructor's parts, in its order. The particle records from the
   // scene; returns the largest |v|^2 at the start (the first list check's).
   float make_particles(const Model& model);

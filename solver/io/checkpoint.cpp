@@ -125,8 +125,8 @@ void write_payload(Writer& w, Simulation& sim, const std::string& extra) {
   // The shares of the last step: not state (every step writes them before
   // reading them), but what the contact forces are read from (contact_list,
   // the force chains), so a loaded run shows the forces it was saved with.
-  data.resize(s.share.bytes);
-  sim.model().device().read(s.share.get(), s.share.bytes, data.data());
+  data.resize(s.share_bytes(sim.model()));
+  sim.model().device().read(s.share.get(), data.size(), data.data());
   w.str("share");
   w.bytes(data.data(), data.size());
   w.str(extra);
@@ -171,7 +171,7 @@ void read_buffers(Reader& r, Simulation& sim, std::uint32_t version) {
   if (version < 8) return;  // no shares saved: the pair forces are known after a step
   if (r.str() != "share") r.fail("buffer 'share' missing");
   const std::vector<char> shares = r.bytes();
-  if (shares.size() != s.share.bytes) r.fail("buffer 'share' has the wrong size");
+  if (shares.size() != s.share_bytes(sim.model())) r.fail("buffer 'share' has the wrong size");
   sim.model().device().write(s.share.get(), shares.size(), shares.data());
 }
 

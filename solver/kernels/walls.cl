@@ -25,8 +25,9 @@
 // at most their two displacements): particles are watched by integrate.cl,
 // walls by advance_walls, which raises the same flags (rebuild beyond
 // skin/4, late beyond skin/2) and reports its speed for the host's check
-// interval. A wall the host moves (a jump, not travel) rebuilds the lists
-// and the masks at once (Simulation::set_wall_point). At each build the
+// interval. A wall the host moves (a jump, not travel) has the lists and
+// the masks rebuilt at the next step's start (Simulation::set_wall_point,
+// request_rebuild in pipeline.h). At each build the
 // slots are laid out anew (wall_widths, then grid.cl's prefix sum) and
 // carry_wall_slots carries every (particle, wall) slot's history and force
 // over from the previous layout (old_*).

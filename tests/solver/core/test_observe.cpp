@@ -193,6 +193,32 @@ TEST_P(Observe, WallReactionsAndContactList) {
   }
 }
 
+// A wall moved by a jump has the lists and wall slots rebuilt at the next
+// step, not at once: until then the contact list is still the last step's
+// (what a settled specimen's packing.txt reads right after its platen is
+// lowered), and after it the moved wall's contact is gone.
+TEST_P(Observe, ContactListOutlastsAWallJumpUntilTheNextStep) {
+  Simulation sim(default_device(), observed_scene(GetParam(), kOffCentre));
+  sim.advance(3);
+  const std::vector<ContactForce> before = sim.contacts();
+  ASSERT_EQ(before.size(), 4u);
+  const Vec3 side = sim.wall_point(1);
+  sim.set_wall_point(1, {side[0] + 2e-3, side[1], side[2]});  // 2 mm away from bead 3
+  const std::vector<ContactForce> after = sim.contacts();
+  ASSERT_EQ(after.size(), before.size());
+  for (size_t k = 0; k < after.size(); ++k) {
+    EXPECT_EQ(after[k].a, before[k].a) << k;
+    EXPECT_EQ(after[k].b, before[k].b) << k;
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(after[k].force[c], before[k].force[c]) << k << " " << c;
+  }
+  const std::int64_t builds = sim.state().list_builds;
+  sim.advance(1);
+  EXPECT_EQ(sim.state().list_builds, builds + 1);
+  const std::vector<ContactForce> next = sim.contacts();
+  ASSERT_EQ(next.size(), 3u);
+  for (const ContactForce& c : next) EXPECT_NE(c.b, -2) << "bead " << c.a << " still on the side wall";
+}
+
 // Equal states hash equal; one bit flipped anywhere in the dynamic buffers
 // changes the hash, and flipping it back restores it.
 TEST_P(Observe, StateHashSeesEveryBit) {
