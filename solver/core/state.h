@@ -48,7 +48,7 @@ class State {
   // more entry: the totals). Per upper slot (up_slots of them): the partner
   // (nbr), the contact's history (spring, HIST planes of up_slots records)
   // and the partner's share of the last step (share: a force record and a
-  // torque record side by side; it holds the previous history during a
+  // torque record side by side; it holds the previous lists during a
   // rebuild). Per lower slot (lo_slots): the upper slot where the partner's
   // share waits (mirror; the rebuild puts the partner's id there first).
   // old_up_off: the previous upper lists' offsets, which a rebuild carries
