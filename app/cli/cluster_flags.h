@@ -66,8 +66,9 @@ std::vector<ClusterTest> cluster_tests(const std::vector<Test>& tests) {
 // name (and its parents'), the positionals' values, then each option given
 // with each of its values as parsed (flags by their name when set); the
 // options named in `paths` (e.g. "base", "--out") made absolute, the
-// cluster flags (their --help group) and hidden options left out. One source for the command line an
-// array task reruns: a new option travels without being listed here.
+// cluster flags (their --help group) and hidden options left out. One
+// source for the command line an array task reruns: a new option travels
+// without being listed here.
 std::vector<std::string> given_args(const CLI::App* cmd, const std::vector<std::string>& paths);
 
 }  // namespace simsols

@@ -180,6 +180,11 @@ std::shared_ptr<Device> Device::open(const EngineOptions& options,
   dev->platform_name_ = platform_string(pick->p, CL_PLATFORM_NAME);
   dev->version_ = device_string(pick->d, CL_DEVICE_VERSION);
   dev->extensions_ = device_string(pick->d, CL_DEVICE_EXTENSIONS);
+  cl_uint align_bits = 0;
+  check(clGetDeviceInfo(pick->d, CL_DEVICE_MEM_BASE_ADDR_ALIGN, sizeof align_bits, &align_bits,
+                        nullptr),
+        "clGetDeviceInfo(CL_DEVICE_MEM_BASE_ADDR_ALIGN)");
+  dev->base_align_ = std::max<size_t>(align_bits / 8, 16);
   dev->open_context(gl_properties);
   // Which way the device was chosen, where a platform could have named the
   // GL context's device (on PoCL none can, and the note stays as it was).
@@ -250,13 +255,6 @@ ClMem Device::view(cl_mem parent, size_t offset, size_t bytes) {
   cl_mem m = clCreateSubBuffer(parent, CL_MEM_READ_WRITE, CL_BUFFER_CREATE_TYPE_REGION, &region, &err);
   check(err, "clCreateSubBuffer");
   return ClMem(m);
-}
-
-size_t Device::base_align() const {
-  cl_uint bits = 0;
-  check(clGetDeviceInfo(device_, CL_DEVICE_MEM_BASE_ADDR_ALIGN, sizeof bits, &bits, nullptr),
-        "clGetDeviceInfo(CL_DEVICE_MEM_BASE_ADDR_ALIGN)");
-  return std::max<size_t>(bits / 8, 16);
 }
 
 void Device::write(cl_mem mem, size_t bytes, const void* src, size_t offset) {

@@ -92,7 +92,7 @@ class Device {
   // offset a multiple of base_align().
   ClMem view(cl_mem parent, size_t offset, size_t bytes);
   // The alignment, in bytes, of a view's offset (CL_DEVICE_MEM_BASE_ADDR_ALIGN).
-  size_t base_align() const;
+  size_t base_align() const { return base_align_; }
   void write(cl_mem mem, size_t bytes, const void* src, size_t offset = 0);
   void read(cl_mem mem, size_t bytes, void* dst, size_t offset = 0);
   void fill_zero(cl_mem mem, size_t bytes);
@@ -110,6 +110,7 @@ class Device {
   ClQueue queue_;
   std::string name_, platform_name_, version_, extensions_;
   bool gpu_ = false;
+  size_t base_align_ = 16;
   bool gl_sharing_ = false;
   std::string sharing_note_;
 };

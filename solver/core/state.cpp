@@ -287,16 +287,18 @@ std::vector<Buffer> State::share_views(const Model& model,
                                        std::initializer_list<size_t> sizes) {
   Device& d = model.device();
   const size_t align = d.base_align();
-  const auto next = [align](size_t at) { return (at + align - 1) / align * align; };
-  size_t total = 0;
-  for (size_t b : sizes) total = next(total) + std::max<size_t>(b, 16);
-  if (total > share.bytes) share = make(d, total + total / 16);
-  std::vector<Buffer> views;
-  size_t at = 0;
+  std::vector<size_t> at;  // each view's offset, then the end of the last
+  size_t end = 0;
   for (size_t b : sizes) {
-    at = next(at);
-    views.push_back(Buffer{d.view(share.get(), at, std::max<size_t>(b, 16)), b});
-    at += std::max<size_t>(b, 16);
+    at.push_back((end + align - 1) / align * align);
+    end = at.back() + std::max<size_t>(b, 16);
+  }
+  if (end > share.bytes) share = make(d, end + end / 16);
+  std::vector<Buffer> views;
+  size_t k = 0;
+  for (size_t b : sizes) {
+    views.push_back(Buffer{d.view(share.get(), at[k], std::max<size_t>(b, 16)), b});
+    ++k;
   }
   return views;
 }

@@ -9,8 +9,8 @@
 # stops it, it checkpoints, it runs again and resumes), waits for all,
 # then runs the same campaign locally and compares: every test's rows
 # (shear.csv) byte for byte, every summary and the campaign's summary.csv
-# except the wall times. Every
-# daemon is stopped on the way out, whatever happens.
+# except the wall times. Every daemon is stopped on the way out, whatever
+# happens.
 set -euo pipefail
 export PATH=$PATH:/usr/sbin:/sbin  # the daemons, for a user whose PATH lacks them
 
