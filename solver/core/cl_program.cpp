@@ -25,6 +25,7 @@ std::string KernelConfig::build_options() const {
   if (walls) o += " -DHAS_WALLS";
   if (servo) o += " -DHAS_SERVO";
   if (servo_in_finish()) o += " -DSERVO_IN_FINISH";
+  if (prefetch_shares()) o += " -DPREFETCH_SHARES";
   if (clumps) o += " -DHAS_CLUMPS";
   o += " -DSLICE=" + std::to_string(slice);
   o += " -DLANES=" + std::to_string(lanes);

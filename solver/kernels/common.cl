@@ -12,7 +12,10 @@
 //                       (HAS_DAMPING, contact_law.cl); plane HIST_ROLL the elastic rolling
 //                       torque (HAS_ROLLING_SPRING); 0 = no history at all
 //   PAIR_RECORD         reals per pair coefficient record (8, or 12 with HAS_CAPILLARY)
-//   NBR_INTERLEAVED    neighbour slot k of particle i at k*n+i (GPU) instead of i*cap+k (CPU)
+//   HAS_SERVO, HAS_CLUMPS  servo-controlled walls, clumps (clumps.cl)
+//   SLICE, LANES       list slice width and particles per work item (below)
+//   SERVO_IN_FINISH    CPUs: the walls' step at the end of finish_particles (integrate.cl)
+//   PREFETCH_SHARES    CPUs: finish_particles prefetches the partners' shares (forces.cl)
 //
 // Positions in float runs are stored as an unevaluated sum hi + lo of two
 // floats ("double-float"): hi is a normal float position relative to the scene

@@ -321,6 +321,24 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
   scatter4(torque, ii, valid, sum.t, sum.e);
 }
 
+// Particle i's shares, asked for ahead of collect_one (PREFETCH_SHARES:
+// CPUs, where finish_particles runs it for the particle two work items
+// on). Each share is read once, by its partner, a launch after it was
+// written: beyond the caches (hundreds of thousands of beads) every one is
+// a miss, and a work item's few misses at a time would leave the cores
+// waiting on memory. Only the timing changes, never a value.
+INLINE void prefetch_shares(int i, int n, __global const int* restrict nbr_count,
+                            __global const int* restrict nbr_upper,
+                            __global const uint* restrict lo_off,
+                            __global const int* restrict mirror,
+                            __global const real4* restrict share) {
+#ifdef PREFETCH_SHARES
+  if (i >= n) return;
+  const int lower = nbr_count[i] - nbr_upper[i];
+  for (int k = 0; k < lower; ++k) __builtin_prefetch(&share[2 * mirror[SLOT(lo_off, i, k)]]);
+#endif
+}
+
 INLINE void collect_one(int i, __global const int* restrict nbr_count,
                         __global const int* restrict nbr_upper,
                         __global const uint* restrict lo_off,

@@ -123,9 +123,11 @@ __kernel void finish_particles(
   const int base = get_global_id(0) * LANES;
   if (base >= n) return;
   const int count = min(LANES, n - base);
-  for (int l = 0; l < count; ++l)
+  for (int l = 0; l < count; ++l) {
+    prefetch_shares(base + l + 2 * LANES, n, nbr_count, nbr_upper, lo_off, mirror, share);
     collect_one(base + l, nbr_count, nbr_upper, lo_off, mirror, share, (__global real4*)force,
                 (__global real4*)torque);
+  }
 #ifdef HAS_WALLS
   wall_contacts(base, pos POS_LO_PASS, vel, omega, walls, wall_point WALL_LO_PASS, wall_vel,
                 wall_off, wall_spring, wall_force, wall_stride, pairs, force, torque, wall_touch,
