@@ -25,7 +25,7 @@ std::string KernelConfig::build_options() const {
   if (walls) o += " -DHAS_WALLS";
   if (servo) o += " -DHAS_SERVO";
   if (servo_in_finish()) o += " -DSERVO_IN_FINISH";
-  if (prefetch_shares()) o += " -DPREFETCH_SHARES";
+  if (prefetch_shares) o += " -DPREFETCH_SHARES";
   if (clumps) o += " -DHAS_CLUMPS";
   o += " -DSLICE=" + std::to_string(slice);
   o += " -DLANES=" + std::to_string(lanes);
@@ -78,6 +78,8 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
   // read consecutive slots; one particle per work item (GPUs) slices by 32,
   // a warp, so neighbouring threads do. SLICE must be a multiple of LANES.
   c.slice = c.lanes > 1 ? c.lanes : 32;
+  // __builtin_prefetch is Clang's (PoCL); GPUs hide latency with threads
+  c.prefetch_shares = c.lanes > 1 && !device.is_gpu() && device.options().prefetch;
   c.extra_options = device.options().cl_options;
   return c;
 }

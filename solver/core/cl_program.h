@@ -36,6 +36,9 @@ struct KernelConfig {
   bool clumps = false;  // the scene has clumps (clumps.cl)
   int lanes = 1;                   // particles per work item in the contact kernels
   int slice = 32;                  // particles per slice of the neighbour lists (neighbors.cl)
+  // finish_particles asks for the shares two work items on will collect
+  // (CPUs, lanes > 1; forces.cl, prefetch_shares)
+  bool prefetch_shares = false;
   std::string extra_options;       // appended verbatim (diagnostics, tests)
 
   std::string build_options() const;
@@ -48,9 +51,6 @@ struct KernelConfig {
   // The walls' step at the end of finish_particles (CPUs, lanes > 1),
   // instead of a servo_walls launch (integrate.cl).
   bool servo_in_finish() const { return servo && lanes > 1; }
-  // finish_particles asks for the shares two work items ahead will collect
-  // (CPUs, lanes > 1; forces.cl, prefetch_shares).
-  bool prefetch_shares() const { return lanes > 1; }
   int history_planes() const { return (contact_record() ? 1 : 0) + (rolling_spring ? 1 : 0); }
   size_t real_size() const { return double_precision ? 8 : 4; }
   size_t history_bytes_per_contact() const { return history_planes() * 4 * real_size(); }

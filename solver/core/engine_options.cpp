@@ -39,6 +39,12 @@ EngineOptions engine_options_from_environment() {
       throw UsageError("out_of_range", "environment", 0, "SIMSOLS_LANES",
                        "'" + l + "': allowed 1, 2, 4, 8 or 16");
   }
+  if (const std::string p = variable("SIMSOLS_PREFETCH"); !p.empty()) {
+    if (p != "0" && p != "1")
+      throw UsageError("out_of_range", "environment", 0, "SIMSOLS_PREFETCH",
+                       "'" + p + "': allowed 0 (off) or 1 (on, the default)");
+    o.prefetch = p == "1";
+  }
   if (const std::string s = variable("SIMSOLS_LOCAL_SIZE"); !s.empty())
     o.local_size = positive("SIMSOLS_LOCAL_SIZE", s, "a whole number >= 1");
   return o;

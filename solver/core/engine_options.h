@@ -21,6 +21,9 @@ struct EngineOptions {
   int lanes = 0;
   // Work-group size of the particle kernels (>= 1).
   int local_size = 64;
+  // CPUs (lanes > 1): finish_particles prefetches the partners' shares
+  // (forces.cl, prefetch_shares); off only to measure what it buys.
+  bool prefetch = true;
   // Extra OpenCL build options, for experiments ("-cl-fast-relaxed-math").
   std::string cl_options;
 };
@@ -31,7 +34,8 @@ inline bool allowed_lanes(int lanes) {
 }
 
 // The options the environment asks for: SIMSOLS_CL_DEVICE, SIMSOLS_LANES,
-// SIMSOLS_LOCAL_SIZE, SIMSOLS_CL_OPTIONS (docs/performance.md). For the
+// SIMSOLS_LOCAL_SIZE, SIMSOLS_PREFETCH (0 or 1), SIMSOLS_CL_OPTIONS
+// (docs/performance.md). For the
 // edges only (app/cli, tests/support). Throws UsageError naming the
 // variable and its allowed values.
 EngineOptions engine_options_from_environment();

@@ -36,6 +36,8 @@ TEST(EngineOptions, LanesAndLocalSizeSetInCodeReachTheModel) {
   const KernelConfig c = make_kernel_config(two_beads(Precision::Float), *device);
   EXPECT_EQ(c.lanes, 2);
   EXPECT_EQ(c.extra_options, "-cl-mad-enable");
+  EXPECT_EQ(c.prefetch_shares, !device->is_gpu());
+  EXPECT_NE(c.build_options().find("-DPREFETCH_SHARES"), std::string::npos);
   Simulation sim(device, two_beads(Precision::Float));
   EXPECT_EQ(sim.model().local_size(), 16u);
   EXPECT_EQ(sim.model().config().lanes, 2);
@@ -47,6 +49,20 @@ TEST(EngineOptions, DefaultLanesFollowTheDeviceAndPrecision) {
   const int d = make_kernel_config(two_beads(Precision::Double), *device).lanes;
   EXPECT_EQ(f, device->is_gpu() ? 1 : 8);
   EXPECT_EQ(d, device->is_gpu() ? 1 : 4);
+}
+
+TEST(EngineOptions, PrefetchIsBuiltOnlyWithLanesAndWhenNotTurnedOff) {
+  EngineOptions o;
+  o.lanes = 1;  // the GPU form
+  EXPECT_FALSE(make_kernel_config(two_beads(Precision::Float), *Device::open(o)).prefetch_shares);
+  o.lanes = 8;
+  o.prefetch = false;
+  const KernelConfig c = make_kernel_config(two_beads(Precision::Float), *Device::open(o));
+  EXPECT_FALSE(c.prefetch_shares);
+  EXPECT_EQ(c.build_options().find("PREFETCH"), std::string::npos);
+  Simulation sim(Device::open(o), two_beads(Precision::Float));  // it builds without
+  sim.advance(3);
+  EXPECT_EQ(sim.steps(), 3);
 }
 
 TEST(EngineOptions, LanesOutsideTheAllowedSetAreRefusedByTheConfig) {
@@ -76,7 +92,9 @@ TEST(EngineOptions, TheEnvironmentIsReadIntoOptions) {
   ScopedVariable local("SIMSOLS_LOCAL_SIZE", "32");
   ScopedVariable device("SIMSOLS_CL_DEVICE", "cpu");
   ScopedVariable extra("SIMSOLS_CL_OPTIONS", "-cl-fast-relaxed-math");
+  ScopedVariable prefetch("SIMSOLS_PREFETCH", "0");
   const EngineOptions o = engine_options_from_environment();
+  EXPECT_FALSE(o.prefetch);
   EXPECT_EQ(o.lanes, 4);
   EXPECT_EQ(o.local_size, 32);
   EXPECT_EQ(o.device, "cpu");
@@ -96,6 +114,14 @@ TEST(EngineOptions, BadVariablesAreUsageErrorsNamingThem) {
   }
   ScopedVariable local("SIMSOLS_LOCAL_SIZE", "zero");
   EXPECT_THROW(engine_options_from_environment(), UsageError);
+  ScopedVariable fine("SIMSOLS_LOCAL_SIZE", "64");
+  ScopedVariable prefetch("SIMSOLS_PREFETCH", "yes");
+  try {
+    engine_options_from_environment();
+    FAIL() << "SIMSOLS_PREFETCH=yes accepted";
+  } catch (const UsageError& e) {
+    EXPECT_EQ(e.field, "SIMSOLS_PREFETCH");
+  }
 }
 
 }  // namespace
