@@ -186,6 +186,10 @@ int bench(const BenchOptions& opt) {
                   "the stepping; its memory %.0f bytes/particle\n",
                   "", 1e3 * copies[1], interval, 100 * copies[1] / (interval * step_s),
                   double(sim.guard().backup_bytes()) / n);
+      if (device->page_rounding_bytes() > 0)
+        std::printf("%10s huge pages: the buffers' rounding to whole pages adds %.0f "
+                    "bytes/particle (state and guard)\n",
+                    "", double(device->page_rounding_bytes()) / n);
       if (opt.buffers) print_buffers(sim.state(), n);
       std::fflush(stdout);
     }

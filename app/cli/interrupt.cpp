@@ -44,7 +44,11 @@ InterruptScope::InterruptScope() {
 
 InterruptScope::~InterruptScope() {
   sigaction(SIGINT, &old_int_, nullptr);
-  sigaction(SIGTERM, &old_term_, nullptr);
+  // A command stopped by SIGTERM is on its way out: the repeated SIGTERM
+  // on_signal ignores may still arrive after this scope, and must not end
+  // the process before its last lines (stdout is buffered) are written.
+  if (g_signal == SIGTERM) std::signal(SIGTERM, SIG_IGN);
+  else sigaction(SIGTERM, &old_term_, nullptr);
 }
 
 bool InterruptScope::requested() const { return g_signal != 0; }

@@ -8,7 +8,8 @@
 // process at once with the same status (the previous checkpoint stays
 // loadable: every file is written to a temporary name and renamed); a
 // repeated SIGTERM is ignored (a batch scheduler may send it twice: to the
-// job's processes and through its script).
+// job's processes and through its script), also after the scope, while the
+// command returns and the process exits.
 //
 // The flag is the one piece of process-wide state in the program: a signal
 // handler can reach nothing else. Code below the command sees it only as

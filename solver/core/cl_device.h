@@ -15,6 +15,7 @@
 
 #include <CL/cl.h>
 
+#include <atomic>
 #include <memory>
 #include <string>
 #include <utility>
@@ -93,6 +94,9 @@ class Device {
   ClMem view(cl_mem parent, size_t offset, size_t bytes);
   // The alignment, in bytes, of a view's offset (CL_DEVICE_MEM_BASE_ADDR_ALIGN).
   size_t base_align() const { return base_align_; }
+  // Host memory the live buffers hold beyond their sizes: on CPUs, large
+  // buffers are rounded up to whole 2 MiB pages (at most 1/16 more).
+  size_t page_rounding_bytes() const { return rounding_->load(); }
   void write(cl_mem mem, size_t bytes, const void* src, size_t offset = 0);
   void read(cl_mem mem, size_t bytes, void* dst, size_t offset = 0);
   void fill_zero(cl_mem mem, size_t bytes);
@@ -103,6 +107,7 @@ class Device {
   Device() = default;
   // The context: shared with the GL context when the device can, else plain.
   void open_context(const std::vector<cl_context_properties>& gl_properties);
+  cl_mem create_buffer(size_t size);  // see cl_device.cpp
   EngineOptions options_;
   cl_platform_id platform_ = nullptr;
   cl_device_id device_ = nullptr;
@@ -111,6 +116,8 @@ class Device {
   std::string name_, platform_name_, version_, extensions_;
   bool gpu_ = false;
   size_t base_align_ = 16;
+  // host bytes the live buffers' rounding to huge pages adds (create_buffer)
+  std::shared_ptr<std::atomic<size_t>> rounding_ = std::make_shared<std::atomic<size_t>>(0);
   bool gl_sharing_ = false;
   std::string sharing_note_;
 };

@@ -27,6 +27,17 @@ int positive(const char* name, const std::string& text, const char* allowed) {
   return v;
 }
 
+// "1" (on) or "0" (off), else a UsageError naming the variable; unset,
+// `fallback`.
+bool on_off(const char* name, bool fallback) {
+  const std::string text = variable(name);
+  if (text.empty()) return fallback;
+  if (text != "0" && text != "1")
+    throw UsageError("out_of_range", "environment", 0, name,
+                     "'" + text + "': allowed 0 (off) or 1 (on, the default)");
+  return text == "1";
+}
+
 }  // namespace
 
 EngineOptions engine_options_from_environment() {
@@ -39,12 +50,8 @@ EngineOptions engine_options_from_environment() {
       throw UsageError("out_of_range", "environment", 0, "SIMSOLS_LANES",
                        "'" + l + "': allowed 1, 2, 4, 8 or 16");
   }
-  if (const std::string p = variable("SIMSOLS_PREFETCH"); !p.empty()) {
-    if (p != "0" && p != "1")
-      throw UsageError("out_of_range", "environment", 0, "SIMSOLS_PREFETCH",
-                       "'" + p + "': allowed 0 (off) or 1 (on, the default)");
-    o.prefetch = p == "1";
-  }
+  o.prefetch = on_off("SIMSOLS_PREFETCH", o.prefetch);
+  o.huge_pages = on_off("SIMSOLS_HUGE_PAGES", o.huge_pages);
   if (const std::string s = variable("SIMSOLS_LOCAL_SIZE"); !s.empty())
     o.local_size = positive("SIMSOLS_LOCAL_SIZE", s, "a whole number >= 1");
   return o;

@@ -24,6 +24,9 @@ struct EngineOptions {
   // CPUs (lanes > 1): finish_particles prefetches the partners' shares
   // (forces.cl, prefetch_shares); off only to measure what it buys.
   bool prefetch = true;
+  // CPUs: buffers of 2 MiB and more in memory marked for transparent huge
+  // pages (cl_device.cpp, Device::alloc); off only to measure what it buys.
+  bool huge_pages = true;
   // Extra OpenCL build options, for experiments ("-cl-fast-relaxed-math").
   std::string cl_options;
 };
@@ -34,8 +37,8 @@ inline bool allowed_lanes(int lanes) {
 }
 
 // The options the environment asks for: SIMSOLS_CL_DEVICE, SIMSOLS_LANES,
-// SIMSOLS_LOCAL_SIZE, SIMSOLS_PREFETCH (0 or 1), SIMSOLS_CL_OPTIONS
-// (docs/performance.md). For the
+// SIMSOLS_LOCAL_SIZE, SIMSOLS_PREFETCH and SIMSOLS_HUGE_PAGES (0 or 1),
+// SIMSOLS_CL_OPTIONS (docs/performance.md). For the
 // edges only (app/cli, tests/support). Throws UsageError naming the
 // variable and its allowed values.
 EngineOptions engine_options_from_environment();
