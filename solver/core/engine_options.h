@@ -24,8 +24,9 @@ struct EngineOptions {
   // CPUs (lanes > 1): finish_particles prefetches the partners' shares
   // (forces.cl, prefetch_shares); off only to measure what it buys.
   bool prefetch = true;
-  // CPUs: buffers of 2 MiB and more in memory marked for transparent huge
-  // pages (cl_device.cpp, Device::alloc); off only to measure what it buys.
+  // CPUs: a buffer that fills whole 2 MiB pages to within 1/16 lives in
+  // memory marked for transparent huge pages (cl_device.cpp,
+  // Device::create_buffer); off only to measure what it buys.
   bool huge_pages = true;
   // Extra OpenCL build options, for experiments ("-cl-fast-relaxed-math").
   std::string cl_options;
