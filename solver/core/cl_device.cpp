@@ -1,5 +1,7 @@
 #include "solver/core/cl_device.h"
 
+#include "solver/core/kernel_cache_lock.h"
+
 #include <CL/cl_gl.h>
 
 #include <algorithm>
@@ -182,6 +184,8 @@ std::shared_ptr<Device> Device::open(const EngineOptions& options,
   dev->platform_name_ = platform_string(pick->p, CL_PLATFORM_NAME);
   dev->version_ = device_string(pick->d, CL_DEVICE_VERSION);
   dev->extensions_ = device_string(pick->d, CL_DEVICE_EXTENSIONS);
+  if (dev->platform_name_ == "Portable Computing Language")
+    dev->compile_lock_path_ = pocl_compile_lock_path();
   cl_uint align_bits = 0;
   check(clGetDeviceInfo(pick->d, CL_DEVICE_MEM_BASE_ADDR_ALIGN, sizeof align_bits, &align_bits,
                         nullptr),

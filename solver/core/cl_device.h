@@ -87,6 +87,9 @@ class Device {
   bool has_double() const;
   bool has_extension(const std::string& ext) const;
   std::string description() const;  // "name (platform, OpenCL version)"
+  // The lock file that serialises kernel compilation between processes
+  // (kernel_cache_lock.h): in PoCL's cache directory on PoCL, else "".
+  const std::string& compile_lock_path() const { return compile_lock_path_; }
 
   ClMem alloc(size_t bytes, const void* init = nullptr);
   // A view of bytes [offset, offset + bytes) of `parent` (clCreateSubBuffer);
@@ -114,6 +117,7 @@ class Device {
   ClContext context_;
   ClQueue queue_;
   std::string name_, platform_name_, version_, extensions_;
+  std::string compile_lock_path_;
   bool gpu_ = false;
   size_t base_align_ = 16;
   // host bytes the live buffers' rounding to huge pages adds (create_buffer)

@@ -1,10 +1,12 @@
 #include "solver/core/cl_program.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <vector>
 
+#include "solver/core/kernel_cache_lock.h"
 #include "solver/kernels/kernel_source.h"
 
 namespace simsols {
@@ -118,7 +120,10 @@ Program::Program(Device& device, const KernelConfig& config, std::span<const Ker
   const std::string options = config.build_options();
   cl_device_id id = device.id();
   const auto t0 = std::chrono::steady_clock::now();
-  err = clBuildProgram(program_.get(), 1, &id, options.c_str(), nullptr, nullptr);
+  {
+    const KernelCacheLock lock(device.compile_lock_path());
+    err = clBuildProgram(program_.get(), 1, &id, options.c_str(), nullptr, nullptr);
+  }
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (err != CL_SUCCESS) {
     size_t n = 0;
@@ -152,6 +157,25 @@ Kernel Program::kernel(const char* name) const {
     out.params.push_back(std::move(param));
   }
   return out;
+}
+
+void enqueue_kernel(Device& device, const Kernel& k, size_t global, size_t local) {
+  const size_t* group = local != 0 ? &local : nullptr;
+  const std::array<size_t, 2> size{global, local};
+  const bool first = !device.compile_lock_path().empty() &&
+                     std::find(k.launched.begin(), k.launched.end(), size) == k.launched.end();
+  if (!first) {
+    check(clEnqueueNDRangeKernel(device.queue(), k.get(), 1, nullptr, &global, group, 0, nullptr,
+                                 nullptr),
+          "clEnqueueNDRangeKernel");
+    return;
+  }
+  const KernelCacheLock lock(device.compile_lock_path());
+  check(clEnqueueNDRangeKernel(device.queue(), k.get(), 1, nullptr, &global, group, 0, nullptr,
+                               nullptr),
+        "clEnqueueNDRangeKernel");
+  device.finish();
+  k.launched.push_back(size);
 }
 
 }  // namespace simsols

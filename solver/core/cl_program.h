@@ -7,6 +7,7 @@
 // the full build log; nothing fails silently.
 #pragma once
 
+#include <array>
 #include <span>
 #include <string>
 #include <string_view>
@@ -72,8 +73,18 @@ struct Kernel {
   std::string name;
   std::vector<std::string> params;
   cl_uint count = 0;  // number of parameters
+  // The (global, local) sizes it has been launched at, local 0 for the
+  // driver's choice (enqueue_kernel); a cache, hence mutable.
+  mutable std::vector<std::array<size_t, 2>> launched;
   cl_kernel get() const { return handle.get(); }
 };
+
+// Enqueues a 1-D range of `global` work items in work-groups of `local`
+// (0: the driver's choice). Where the device compiles into a cache shared
+// between processes (PoCL), the kernel's first launch at each size is when
+// it compiles: that launch runs under the compile lock and is waited for
+// (kernel_cache_lock.h). Later launches only enqueue.
+void enqueue_kernel(Device& device, const Kernel& k, size_t global, size_t local);
 
 class Program {
  public:

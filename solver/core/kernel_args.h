@@ -108,19 +108,13 @@ inline Real4 fluid_arg(const Model& m) {
 // Enqueues a 1-D range over `n` items, padded to the model's local size.
 inline void launch(const Model& m, const Kernel& k, size_t n) {
   if (n == 0) return;
-  const size_t local = m.local_size();
-  const size_t global = m.global_size(n);
-  check(clEnqueueNDRangeKernel(m.device().queue(), k.get(), 1, nullptr, &global, &local, 0,
-                               nullptr, nullptr),
-        "clEnqueueNDRangeKernel");
+  enqueue_kernel(m.device(), k, m.global_size(n), m.local_size());
 }
 
 // Enqueues exactly `n` items with no local size (serial helpers, small ranges).
 inline void launch_exact(const Model& m, const Kernel& k, size_t n) {
   if (n == 0) return;
-  check(clEnqueueNDRangeKernel(m.device().queue(), k.get(), 1, nullptr, &n, nullptr, 0, nullptr,
-                               nullptr),
-        "clEnqueueNDRangeKernel");
+  enqueue_kernel(m.device(), k, n, 0);
 }
 
 }  // namespace simsols

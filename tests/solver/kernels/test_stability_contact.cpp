@@ -493,9 +493,7 @@ TEST_P(RigidPairRotation, TangentialForceStaysInPlaneAndKeepsItsSize) {
   for (double v : {delta, rstar, mstar, istar, 1e-7}) set_real(v);
   for (int v : {steps, m}) check(clSetKernelArg(kernel.get(), arg++, sizeof v, &v), "rigid_pair arg");
   const size_t global = (m + config.lanes - 1) / config.lanes;
-  check(clEnqueueNDRangeKernel(dev.queue(), kernel.get(), 1, nullptr, &global, nullptr, 0, nullptr,
-                               nullptr),
-        "rigid_pair");
+  enqueue_kernel(dev, kernel, global, 0);
   dev.finish();
   auto read = [&](const ClMem& b) {
     std::vector<double> v(size_t(steps) * m * 4);
