@@ -214,7 +214,8 @@ void finish_particles(const Model& m, State& s) {
   const Effects& e = m.scene().effects;
   set_args(m, k.finish_particles, arg("pos", s.pos), arg("pos_lo", s.pos_lo), arg("vel", s.vel),
            arg("omega", s.omega), arg("force", s.force), arg("torque", s.torque),
-           arg("pos_build", s.pos_build), arg("flags", s.flags), arg("contacts_last", s.touching),
+           arg("pos_build", s.pos_build), arg("flags", s.flags),
+           arg("groups_done", s.groups_done), arg("contacts_last", s.touching),
            arg("nbr_count", s.nbr_count), arg("nbr_upper", s.nbr_upper), arg("lo_off", s.lo_off),
            arg("mirror", s.mirror), arg("share", s.share), arg("walls", m.wall_buffer()),
            arg("wall_point", s.wall_point), arg("wall_point_lo", s.wall_point_lo),

@@ -202,6 +202,8 @@ void State::make_step_scratch(const Model& model) {
   obs_partial = make(d, groups * 12 * model.real_size());
   const size_t wall_chunks = std::max<size_t>(1, (n + kWallChunk - 1) / kWallChunk);
   wall_partial = make(d, std::max(1, nw) * wall_chunks * r4);
+  const int zero = 0;
+  groups_done = make(d, sizeof zero, &zero);
 }
 
 std::vector<std::pair<std::string, const Buffer*>> State::all_buffers() const {
@@ -242,6 +244,7 @@ std::vector<std::pair<std::string, const Buffer*>> State::all_buffers() const {
           {"flags", &flags},
           {"obs_partial", &obs_partial},
           {"wall_partial", &wall_partial},
+          {"groups_done", &groups_done},
           {"touching", &touching},
           {"clump_pos", &clump_pos},
           {"clump_pos_lo", &clump_pos_lo},

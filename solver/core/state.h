@@ -77,8 +77,10 @@ class State {
   Buffer servo, wall_reaction, wall_mean;
   // flags[0]: list rebuild needed, flags[1]: longest list asked for,
   // flags[2]: max |v|^2 since the last check, flags[3]: late, flags[4..6]:
-  // the runaway mark (see integrate.cl and guard.h), flags[7] spare
-  Buffer flags, obs_partial, wall_partial;
+  // the runaway mark (see integrate.cl and guard.h), flags[7] spare.
+  // groups_done: finish_particles' count of its work groups done, 0 between
+  // launches (integrate.cl, SERVO_IN_FINISH), apart from flags' cache line
+  Buffer flags, groups_done, obs_partial, wall_partial;
   static constexpr int kNoRunaway = 0x7fffffff;  // flags[4] when no particle is marked
   // contacts of each particle in the last step (force.w, kept by integrate):
   // the rolling cap's divisor (forces.cl). Derived from `force`, so not

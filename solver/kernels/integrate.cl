@@ -99,17 +99,20 @@ INLINE void integrate_one(int i, __global real4* pos, __global float4* pos_lo,
 // the three parts see each other's writes in program order, and the sums
 // are those of three separate kernels, bit for bit. pos_lo and
 // wall_point_lo are unused in double runs; the wall arguments without walls.
-// With servo walls on CPUs (SERVO_IN_FINISH), the last work item to finish
+// With servo walls on CPUs (SERVO_IN_FINISH), the last work group to finish
 // runs the walls' step (walls_step, walls.cl), so a step is two launches:
-// the work items count themselves out in flags[7] (0 between launches) and
-// the one that completes the count sees every wall force written (x86
-// stores are seen in order, the count is a locked instruction). GPUs, whose
-// OpenCL 1.2 memory model promises no such thing across work groups,
-// launch servo_walls instead.
+// after a barrier, each group's first work item counts the group out in
+// `groups_done` (0 between launches), and the one that completes the count
+// sees every wall force written (x86 stores are seen in order, the count is
+// a locked instruction). The count has a buffer of its own, away from
+// `flags`, which every particle reads: the two cores would otherwise pass
+// the line between them at every count. GPUs, whose OpenCL 1.2 memory model
+// promises no such thing across work groups, launch servo_walls instead.
 __kernel void finish_particles(
     __global real* pos, __global float* pos_lo, __global real* vel, __global real* omega,
     __global real* force, __global real* torque, __global const float4* pos_build,
-    __global volatile int* flags, __global int* contacts_last, __global const int* nbr_count,
+    __global volatile int* flags, __global volatile int* groups_done,
+    __global int* contacts_last, __global const int* nbr_count,
     __global const int* nbr_upper, __global const uint* lo_off, __global const int* mirror,
     __global const real4* share,
     __global const real* walls, __global real* wall_point,
@@ -121,27 +124,30 @@ __kernel void finish_particles(
     __global const real* body_offset, real4 gravity, real4 fluid, real fluid_viscosity, real dt, real rolling_damping, real skin,
     int stride, int n, int nwalls, int nmat, int wall_chunk, int wall_groups) {
   const int base = get_global_id(0) * LANES;
-  if (base >= n) return;
-  const int count = min(LANES, n - base);
-  for (int l = 0; l < count; ++l) {
-    prefetch_shares(base + l + 2 * LANES, n, nbr_count, nbr_upper, lo_off, mirror, share);
-    collect_one(base + l, nbr_count, nbr_upper, lo_off, mirror, share, (__global real4*)force,
-                (__global real4*)torque);
-  }
+  if (base < n) {  // no early return: every work item reaches the barrier below
+    const int count = min(LANES, n - base);
+    for (int l = 0; l < count; ++l) {
+      prefetch_shares(base + l + 2 * LANES, n, nbr_count, nbr_upper, lo_off, mirror, share);
+      collect_one(base + l, nbr_count, nbr_upper, lo_off, mirror, share, (__global real4*)force,
+                  (__global real4*)torque);
+    }
 #ifdef HAS_WALLS
-  wall_contacts(base, pos POS_LO_PASS, vel, omega, walls, wall_point WALL_LO_PASS, wall_vel,
-                wall_off, wall_spring, wall_force, wall_stride, pairs, force, torque, wall_touch,
-                wall_near, body_offset, contacts_last, dt, rolling_damping, n, nwalls, nmat);
+    wall_contacts(base, pos POS_LO_PASS, vel, omega, walls, wall_point WALL_LO_PASS, wall_vel,
+                  wall_off, wall_spring, wall_force, wall_stride, pairs, force, torque, wall_touch,
+                  wall_near, body_offset, contacts_last, dt, rolling_damping, n, nwalls, nmat);
 #endif
-  for (int l = 0; l < count; ++l)
-    integrate_one(base + l, (__global real4*)pos, (__global float4*)pos_lo,
-                  (__global real4*)vel, (__global real4*)omega, (__global const real4*)force,
-                  (__global const real4*)torque, pos_build, flags, contacts_last, gravity,
-                  fluid, fluid_viscosity, dt, skin);
+    for (int l = 0; l < count; ++l)
+      integrate_one(base + l, (__global real4*)pos, (__global float4*)pos_lo,
+                    (__global real4*)vel, (__global real4*)omega, (__global const real4*)force,
+                    (__global const real4*)torque, pos_build, flags, contacts_last, gravity,
+                    fluid, fluid_viscosity, dt, skin);
+  }
 #ifdef SERVO_IN_FINISH
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  if (get_local_id(0) != 0) return;
   mem_fence(CLK_GLOBAL_MEM_FENCE);
-  if (atomic_inc(&flags[7]) != (n + LANES - 1) / LANES - 1) return;
-  flags[7] = 0;
+  if (atomic_inc(groups_done) != (int)get_num_groups(0) - 1) return;
+  *groups_done = 0;
   mem_fence(CLK_GLOBAL_MEM_FENCE);
   walls_step((__global const real4*)walls, (__global const real4*)servo, wall_near, wall_off,
              (__global const real4*)wall_force, (__global real4*)wall_partial,
