@@ -16,7 +16,7 @@
 //   move_walls        servo walls set their velocity from the summed wall
 //                     reaction, every wall advances; returns early when the
 //                     scene has no walls, and on CPUs, where the last work
-//                     item of finish_particles does it
+//                     group of finish_particles does it
 //                     (KernelConfig::servo_in_finish)       reduce.cl, walls.cl
 //
 // step() runs the five in this order: two kernel launches per step on CPUs,
