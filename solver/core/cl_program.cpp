@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <vector>
 
 #include "solver/core/kernel_cache_lock.h"
@@ -141,7 +142,7 @@ Kernel Program::kernel(const char* name) const {
   if (err != CL_SUCCESS)
     throw DeviceError(std::string("kernel '") + name + "' missing from the program (error " +
                       std::to_string(err) + ")");
-  Kernel out{ClKernel(k), name, {}, 0};
+  Kernel out{ClKernel(k), name, {}, 0, {}};
   check(clGetKernelInfo(k, CL_KERNEL_NUM_ARGS, sizeof out.count, &out.count, nullptr),
         "clGetKernelInfo(CL_KERNEL_NUM_ARGS)");
   for (cl_uint i = 0; i < out.count; ++i) {
@@ -160,21 +161,16 @@ Kernel Program::kernel(const char* name) const {
 }
 
 void enqueue_kernel(Device& device, const Kernel& k, size_t global, size_t local) {
-  const size_t* group = local != 0 ? &local : nullptr;
   const std::array<size_t, 2> size{global, local};
   const bool first = !device.compile_lock_path().empty() &&
                      std::find(k.launched.begin(), k.launched.end(), size) == k.launched.end();
-  if (!first) {
-    check(clEnqueueNDRangeKernel(device.queue(), k.get(), 1, nullptr, &global, group, 0, nullptr,
-                                 nullptr),
-          "clEnqueueNDRangeKernel");
-    return;
-  }
-  const KernelCacheLock lock(device.compile_lock_path());
-  check(clEnqueueNDRangeKernel(device.queue(), k.get(), 1, nullptr, &global, group, 0, nullptr,
-                               nullptr),
+  std::optional<KernelCacheLock> lock;
+  if (first) lock.emplace(device.compile_lock_path());
+  check(clEnqueueNDRangeKernel(device.queue(), k.get(), 1, nullptr, &global,
+                               local != 0 ? &local : nullptr, 0, nullptr, nullptr),
         "clEnqueueNDRangeKernel");
-  device.finish();
+  if (!first) return;
+  device.finish();  // compiled and run: the cache is written before the lock goes
   k.launched.push_back(size);
 }
 
