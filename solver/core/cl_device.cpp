@@ -1,7 +1,5 @@
 #include "solver/core/cl_device.h"
 
-#include "solver/core/kernel_cache_lock.h"
-
 #include <CL/cl_gl.h>
 
 #include <algorithm>
@@ -10,6 +8,8 @@
 #include <cstdlib>
 #include <sys/mman.h>
 #include <vector>
+
+#include "solver/core/kernel_cache_lock.h"
 
 namespace simsols {
 

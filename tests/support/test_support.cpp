@@ -23,6 +23,17 @@ std::shared_ptr<Device> default_device() {
 
 namespace simsols::testing {
 
+ScopedVariable::ScopedVariable(const char* name, const char* value) : name_(name) {
+  if (const char* old = std::getenv(name)) old_ = old, had_ = true;
+  if (value != nullptr) ::setenv(name, value, 1);
+  else ::unsetenv(name);
+}
+
+ScopedVariable::~ScopedVariable() {
+  if (had_) ::setenv(name_, old_.c_str(), 1);
+  else ::unsetenv(name_);
+}
+
 void report(const std::string& what, double measured, double theory) {
   const ::testing::TestInfo* t = ::testing::UnitTest::GetInstance()->current_test_info();
   std::printf("[measure] %s.%s %s: measured %.6g, theory %.6g, error %+.3f%%\n",

@@ -25,6 +25,21 @@ std::shared_ptr<Device> default_device();
 
 namespace simsols::testing {
 
+// Sets one environment variable (nullptr: unsets it) for its scope and
+// restores the old value, or its absence, after.
+class ScopedVariable {
+ public:
+  ScopedVariable(const char* name, const char* value);
+  ~ScopedVariable();
+  ScopedVariable(const ScopedVariable&) = delete;
+  ScopedVariable& operator=(const ScopedVariable&) = delete;
+
+ private:
+  const char* name_;
+  std::string old_;
+  bool had_ = false;
+};
+
 // Glass of the reference paper (its Table 2), with chosen e and friction.
 Material glass(double restitution = 0.87, double mu_s = 0.0, double mu_r = 0.0);
 // A soft polymer (E = 0.5 GPa): larger stable steps for long-duration tests.

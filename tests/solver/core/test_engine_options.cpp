@@ -21,6 +21,7 @@ namespace {
 using testing::empty_scene;
 using testing::glass;
 using testing::sphere;
+using testing::ScopedVariable;
 
 Scene two_beads(Precision p) {
   Scene s = empty_scene(p, glass(0.9, 0.3, 0.0));
@@ -107,21 +108,6 @@ TEST(EngineOptions, LanesOutsideTheAllowedSetAreRefusedByTheConfig) {
   auto device = Device::open(o);
   EXPECT_THROW(make_kernel_config(two_beads(Precision::Float), *device), DeviceError);
 }
-
-// Restores one environment variable when it goes out of scope.
-class ScopedVariable {
- public:
-  ScopedVariable(const char* name, const char* value) : name_(name) {
-    if (const char* old = std::getenv(name)) old_ = old, had_ = true;
-    ::setenv(name, value, 1);
-  }
-  ~ScopedVariable() { had_ ? ::setenv(name_, old_.c_str(), 1) : ::unsetenv(name_); }
-
- private:
-  const char* name_;
-  std::string old_;
-  bool had_ = false;
-};
 
 TEST(EngineOptions, TheEnvironmentIsReadIntoOptions) {
   ScopedVariable lanes("SIMSOLS_LANES", "4");

@@ -11,7 +11,6 @@
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,20 +39,6 @@ bool free_in_another_process(const std::string& path) {
   return WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
-// Sets an environment variable for the scope, restoring the old value.
-class EnvScope {
- public:
-  EnvScope(const char* name, const char* value) : name_(name) {
-    if (const char* old = std::getenv(name)) old_ = old;
-    if (value != nullptr) setenv(name, value, 1); else unsetenv(name);
-  }
-  ~EnvScope() { if (old_) setenv(name_, old_->c_str(), 1); else unsetenv(name_); }
-
- private:
-  const char* name_;
-  std::optional<std::string> old_;
-};
-
 TEST(KernelCacheLock, ExcludesAnotherProcessUntilLetGo) {
   const std::string path = temp_lock("simsols-lock-test-");
   {
@@ -73,15 +58,15 @@ TEST(KernelCacheLock, AnEmptyPathLocksNothing) {
 TEST(KernelCacheLock, TheFileLiesWherePoclKeepsItsCache) {
   const fs::path root = fs::temp_directory_path() / ("simsols-cache-" + std::to_string(getpid()));
   {
-    const EnvScope dir("POCL_CACHE_DIR", (root / "kc").c_str());
+    const ScopedVariable dir("POCL_CACHE_DIR", (root / "kc").c_str());
     EXPECT_EQ(pocl_compile_lock_path(), (root / "kc" / ".simsols-compile.lock").string());
   }
   {
-    const EnvScope dir("POCL_CACHE_DIR", nullptr);
-    const EnvScope xdg("XDG_CACHE_HOME", (root / "xdg").c_str());
+    const ScopedVariable dir("POCL_CACHE_DIR", nullptr);
+    const ScopedVariable xdg("XDG_CACHE_HOME", (root / "xdg").c_str());
     EXPECT_EQ(pocl_compile_lock_path(),
               (root / "xdg" / "pocl" / "kcache" / ".simsols-compile.lock").string());
-    const EnvScope off("POCL_KERNEL_CACHE", "0");
+    const ScopedVariable off("POCL_KERNEL_CACHE", "0");
     EXPECT_EQ(pocl_compile_lock_path(),
               (root / "xdg" / "pocl" / "uncached" / ".simsols-compile.lock").string());
   }
