@@ -167,6 +167,8 @@ int bench(const BenchOptions& opt) {
                   static_cast<long long>(steps), rates[rates.size() / 2], spread, bytes,
                   sim.model().program().build_seconds(),
                   static_cast<long long>(sim.state().list_builds - builds0), o.contacts / n);
+      std::printf("%10s kernels: %d lanes per work item, work groups of %zu\n", "",
+                  sim.model().config().lanes, sim.model().local_size());
       // The runaway guard (solver/core/guard.h): one device-side copy of the
       // dynamic state per interval, and that copy's memory (not in the
       // bytes/particle column).

@@ -1,5 +1,6 @@
 #include "solver/core/engine_options.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <string>
 
@@ -52,9 +53,22 @@ EngineOptions engine_options_from_environment() {
   }
   o.prefetch = on_off("SIMSOLS_PREFETCH", o.prefetch);
   o.huge_pages = on_off("SIMSOLS_HUGE_PAGES", o.huge_pages);
-  if (const std::string s = variable("SIMSOLS_LOCAL_SIZE"); !s.empty())
-    o.local_size = positive("SIMSOLS_LOCAL_SIZE", s, "a whole number >= 1");
+  if (const std::string s = variable("SIMSOLS_LOCAL_SIZE"); !s.empty()) {
+    o.local_size = positive("SIMSOLS_LOCAL_SIZE", s, "a power of two from 1 to 1024");
+    if (!allowed_local_size(o.local_size))
+      throw UsageError("out_of_range", "environment", 0, "SIMSOLS_LOCAL_SIZE",
+                       "'" + s + "': allowed a power of two from 1 to 1024");
+  }
   return o;
+}
+
+int particle_local_size(int asked, size_t items, int compute_units, bool gpu) {
+  if (asked > 0) return asked;
+  int size = 64;
+  if (gpu) return size;
+  const size_t wanted = 16 * static_cast<size_t>(std::max(compute_units, 1));
+  while (size > 16 && (items + size - 1) / size < wanted) size /= 2;
+  return size;
 }
 
 }  // namespace simsols
