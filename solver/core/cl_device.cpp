@@ -191,10 +191,6 @@ std::shared_ptr<Device> Device::open(const EngineOptions& options,
                         nullptr),
         "clGetDeviceInfo(CL_DEVICE_MEM_BASE_ADDR_ALIGN)");
   dev->base_align_ = std::max<size_t>(align_bits / 8, 16);
-  cl_uint units = 1;
-  check(clGetDeviceInfo(pick->d, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof units, &units, nullptr),
-        "clGetDeviceInfo(CL_DEVICE_MAX_COMPUTE_UNITS)");
-  dev->compute_units_ = std::max<cl_uint>(units, 1);
   dev->open_context(gl_properties);
   // Which way the device was chosen, where a platform could have named the
   // GL context's device (on PoCL none can, and the note stays as it was).

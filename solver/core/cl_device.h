@@ -84,8 +84,6 @@ class Device {
   const std::string& name() const { return name_; }
   const std::string& extensions() const { return extensions_; }
   bool is_gpu() const { return gpu_; }
-  // CL_DEVICE_MAX_COMPUTE_UNITS: on PoCL's CPU device, its worker threads (cores).
-  int compute_units() const { return compute_units_; }
   bool has_double() const;
   bool has_extension(const std::string& ext) const;
   std::string description() const;  // "name (platform, OpenCL version)"
@@ -122,7 +120,6 @@ class Device {
   std::string compile_lock_path_;
   bool gpu_ = false;
   size_t base_align_ = 16;
-  int compute_units_ = 1;
   // host bytes the live buffers' rounding to huge pages adds (create_buffer)
   std::shared_ptr<std::atomic<size_t>> rounding_ = std::make_shared<std::atomic<size_t>>(0);
   bool gl_sharing_ = false;

@@ -1,6 +1,5 @@
 #include "solver/core/engine_options.h"
 
-#include <algorithm>
 #include <cstdlib>
 #include <string>
 
@@ -60,15 +59,6 @@ EngineOptions engine_options_from_environment() {
                        "'" + s + "': allowed a power of two from 1 to 1024");
   }
   return o;
-}
-
-int particle_local_size(int asked, size_t items, int compute_units, bool gpu) {
-  if (asked > 0) return asked;
-  int size = 64;
-  if (gpu) return size;
-  const size_t wanted = 16 * static_cast<size_t>(std::max(compute_units, 1));
-  while (size > 16 && (items + size - 1) / size < wanted) size /= 2;
-  return size;
 }
 
 }  // namespace simsols

@@ -19,9 +19,8 @@ struct EngineOptions {
   // Particles per work item (SIMD lanes): 1, 2, 4, 8 or 16; 0 = 8 in float
   // and 4 in double on CPUs, 1 on GPUs.
   int lanes = 0;
-  // Work-group size of the particle kernels: a power of two from 1 to 1024;
-  // 0 = chosen for the scene and device (particle_local_size).
-  int local_size = 0;
+  // Work-group size of the particle kernels: a power of two from 1 to 1024.
+  int local_size = 64;
   // CPUs (lanes > 1): finish_particles prefetches the partners' shares
   // (forces.cl, prefetch_shares); off only to measure what it buys.
   bool prefetch = true;
@@ -43,16 +42,6 @@ inline bool allowed_lanes(int lanes) {
 inline bool allowed_local_size(int size) {
   return size >= 1 && size <= 1024 && (size & (size - 1)) == 0;
 }
-
-// The particle kernels' work-group size for `items` work items (particles
-// over lanes): `asked` where set; on GPUs 64; on CPUs the largest of 64, 32
-// and 16 that still gives each compute unit (a PoCL worker thread) 16
-// groups. Groups cost unequal time (a packing's dense and loose parts, the
-// servo walls' step in the last one); more of them even out between the
-// workers: at 5 000 beads (625 work items in float, 2 cores) 16 rather than
-// 64 (docs/performance.md, "Work-group size"). Results do not depend on it:
-// only the observables' partial sums (added on the host in double) do.
-int particle_local_size(int asked, size_t items, int compute_units, bool gpu);
 
 // The options the environment asks for: SIMSOLS_CL_DEVICE, SIMSOLS_LANES,
 // SIMSOLS_LOCAL_SIZE, SIMSOLS_PREFETCH and SIMSOLS_HUGE_PAGES (0 or 1),

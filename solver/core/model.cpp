@@ -78,12 +78,10 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
   }
   wall_buf_ = device_->alloc(wk.bytes().size(), wk.bytes().data());
   const int asked = device_->options().local_size;
-  if (asked != 0 && !allowed_local_size(asked))
+  if (!allowed_local_size(asked))
     throw DeviceError("EngineOptions::local_size (SIMSOLS_LOCAL_SIZE) must be a power of two "
                       "from 1 to 1024, not " + std::to_string(asked));
-  const size_t items = (scene_.particles.size() + config().lanes - 1) / config().lanes;
-  local_size_ = particle_local_size(asked, items,
-                                    device_->compute_units(), device_->is_gpu());
+  local_size_ = static_cast<size_t>(asked);
   make_clumps();
 }
 

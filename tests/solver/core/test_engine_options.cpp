@@ -109,26 +109,6 @@ TEST(EngineOptions, LanesOutsideTheAllowedSetAreRefusedByTheConfig) {
   EXPECT_THROW(make_kernel_config(two_beads(Precision::Float), *device), DeviceError);
 }
 
-TEST(EngineOptions, LocalSizeFollowsTheWorkOnCpusAndIsFixedOnGpus) {
-  // 5 000 beads in float on 2 cores: 625 work items, 16 groups of 16 per core
-  EXPECT_EQ(particle_local_size(0, 625, 2, false), 16);
-  EXPECT_EQ(particle_local_size(0, 1250, 2, false), 32);  // the same in double (4 lanes)
-  EXPECT_EQ(particle_local_size(0, 6250, 2, false), 64);  // 50 000 beads
-  EXPECT_EQ(particle_local_size(0, 6250, 16, false), 16);
-  EXPECT_EQ(particle_local_size(0, 72, 2, false), 16);  // never below 16 unless asked
-  EXPECT_EQ(particle_local_size(0, 5000, 132, true), 64);
-  EXPECT_EQ(particle_local_size(8, 625, 2, false), 8);  // asked
-}
-
-TEST(EngineOptions, TheDefaultLocalSizeReachesTheModel) {
-  auto device = Device::open(EngineOptions{});
-  Scene s = two_beads(Precision::Float);
-  Simulation sim(device, s);
-  EXPECT_EQ(sim.model().local_size(),
-            static_cast<size_t>(particle_local_size(0, 1, device->compute_units(), device->is_gpu())));
-  EXPECT_GE(device->compute_units(), 1);
-}
-
 TEST(EngineOptions, LocalSizesThatAreNotPowersOfTwoAreRefused) {
   EngineOptions o;
   o.local_size = 48;  // the observables' reduction halves its group
