@@ -13,8 +13,11 @@ std::string variable(const char* name) {
   return v ? v : "";
 }
 
-// A whole positive number, or a UsageError naming the variable.
-int positive(const char* name, const std::string& text, const char* allowed) {
+// The whole number `name` holds if `allowed` accepts it, else a UsageError
+// naming the variable and `allowed_text`; unset, `fallback`.
+int allowed_number(const char* name, int fallback, bool (*allowed)(int), const char* allowed_text) {
+  const std::string text = variable(name);
+  if (text.empty()) return fallback;
   size_t used = 0;
   int v = 0;
   try {
@@ -22,8 +25,9 @@ int positive(const char* name, const std::string& text, const char* allowed) {
   } catch (const std::exception&) {
     used = 0;
   }
-  if (used != text.size() || v < 1)
-    throw UsageError("out_of_range", "environment", 0, name, "'" + text + "': allowed " + allowed);
+  if (used != text.size() || !allowed(v))
+    throw UsageError("out_of_range", "environment", 0, name,
+                     "'" + text + "': allowed " + allowed_text);
   return v;
 }
 
@@ -44,20 +48,11 @@ EngineOptions engine_options_from_environment() {
   EngineOptions o;
   o.device = variable("SIMSOLS_CL_DEVICE");
   o.cl_options = variable("SIMSOLS_CL_OPTIONS");
-  if (const std::string l = variable("SIMSOLS_LANES"); !l.empty()) {
-    o.lanes = positive("SIMSOLS_LANES", l, "1, 2, 4, 8 or 16");
-    if (!allowed_lanes(o.lanes))
-      throw UsageError("out_of_range", "environment", 0, "SIMSOLS_LANES",
-                       "'" + l + "': allowed 1, 2, 4, 8 or 16");
-  }
+  o.lanes = allowed_number("SIMSOLS_LANES", o.lanes, allowed_lanes, "1, 2, 4, 8 or 16");
   o.prefetch = on_off("SIMSOLS_PREFETCH", o.prefetch);
   o.huge_pages = on_off("SIMSOLS_HUGE_PAGES", o.huge_pages);
-  if (const std::string s = variable("SIMSOLS_LOCAL_SIZE"); !s.empty()) {
-    o.local_size = positive("SIMSOLS_LOCAL_SIZE", s, "a power of two from 1 to 1024");
-    if (!allowed_local_size(o.local_size))
-      throw UsageError("out_of_range", "environment", 0, "SIMSOLS_LOCAL_SIZE",
-                       "'" + s + "': allowed a power of two from 1 to 1024");
-  }
+  o.local_size = allowed_number("SIMSOLS_LOCAL_SIZE", o.local_size, allowed_local_size,
+                                "a power of two from 1 to 1024");
   return o;
 }
 
