@@ -29,10 +29,9 @@
 #include "app/experiment/progress.h"
 #include "app/experiment/run_cost.h"
 #include "solver/io/scene_toml.h"
-#include "app/experiment/oedometer_run.h"
+#include "app/experiment/apparatus_report.h"
+#include "app/experiment/apparatus_run.h"
 #include "app/experiment/preparation.h"
-#include "app/experiment/shear_run.h"
-#include "app/experiment/triaxial_run.h"
 #include "solver/core/simulation.h"
 #include "solver/core/slots.h"
 
@@ -46,6 +45,7 @@ struct RunOptions {
   std::string precision;
   double duration = 0;
   long long stop_after = 0;  // stop (with a checkpoint) after this many steps of this invocation
+  std::string stop_at;       // stop (with a checkpoint) at the end of this stage of the test
   bool quiet = false;
   bool explain = false;       // print the compiled effect slots and exit
   std::string frames_dir;     // --frames: PNG frames every `frames_every` steps
@@ -116,39 +116,6 @@ void dump(Simulation& sim, const std::filesystem::path& dir, ParaviewSeries* par
   if (sim.scene().outputs.dump_csv)
     write_particles_csv(dir / step_name("particles", sim.steps(), "csv"), sim.snapshot());
   if (paraview) paraview->write(sim);
-}
-
-void print_summary(const ShearRunResult& r, const std::string& dir) {
-  const ShearSummary& s = r.summary;
-  const char* how = r.finished ? "finished" : r.interrupted ? "interrupted" : "stopped";
-  std::printf("shear test %s: sigma = %.0f kPa, d = %.4g mm, %d beads, %lld steps in %.0f s\n", how,
-              s.normal_stress_target * 1e-3, s.bead_diameter * 1e3, r.particles, r.steps,
-              s.wall_seconds);
-  if (r.rows.empty()) {
-    std::printf("  nothing measured yet: stopped before shearing began (step %lld)\n", r.steps);
-  } else {
-    std::printf(
-        "  peak     tau/sigma = %.3f  phi_peak     = %.2f deg  (tau = %.2f kPa at %.2f mm; the first "
-        "peak)\n"
-        "  residual tau/sigma = %.3f  phi_residual = %.2f deg  (tau = %.2f kPa, mean over the last "
-        "20 %%)\n",
-        s.peak_ratio, s.peak_angle, s.peak_tau * 1e-3, s.peak_displacement * 1e3, s.residual_ratio,
-        s.residual_angle, s.residual_tau * 1e-3);
-    if (s.max_ratio > s.peak_ratio)
-      std::printf("  largest  tau/sigma = %.3f  (phi = %.2f deg at %.2f mm, after the peak)\n",
-                  s.max_ratio, s.max_angle, s.max_displacement * 1e3);
-    std::printf("  max dilatancy angle %.2f deg; inertial number <= %.2g; beads outside %d\n"
-                "  sigma band %+.2f%% / %+.2f%% (RMS %.2f%%)%s; tau/sigma at rest %.3f\n",
-                s.max_dilatancy_angle, s.max_inertial_number, s.max_outside,
-                100 * s.sigma_band_lo, 100 * s.sigma_band_hi, 100 * s.sigma_rms,
-                s.valid ? "" : " INVALID: the load was not held within +-10 %",
-                s.start_ratio);
-    if (!r.finished)
-      std::printf("  (so far: %zu of the test's rows, at %.2f mm)\n", r.rows.size(),
-                  r.rows.back().displacement * 1e3);
-  }
-  std::printf("  results in %s\n", dir.c_str());
-  if (!r.finished) std::printf("  %s\n", resume_hint(dir).c_str());
 }
 
 // --precision overrides numerics.precision.
@@ -297,13 +264,10 @@ Scene load_run_scene(const RunOptions& opt) {
   if (opt.duration != 0) scene.numerics.duration = opt.duration;
   validate_scene(scene, scene.source_path);
   FrameOptions::resolve(opt.frame, &scene);  // a bad [view] is refused even without --frames
-  if (scene.shear_box && opt.duration != 0)
+  if (const ApparatusKind* kind = apparatus_kind(scene); kind && opt.duration != 0)
     throw UsageError("conflicting_keys", "--duration",
-                     "a shear test's loading program sets its duration "
-                     "(shear_box.shear_displacement)");
-  if ((scene.oedometer || scene.triaxial) && opt.duration != 0)
-    throw UsageError("conflicting_keys", "--duration",
-                     "an oedometer's or a triaxial test's loading program sets its duration");
+                     std::string(kind->test_noun) + "'s loading programme sets its duration (see [" +
+                         kind->name + "])");
   return scene;
 }
 
@@ -323,14 +287,14 @@ std::unique_ptr<Simulation> load_resume(const std::filesystem::path& dir,
   return load_checkpoint(device, ck.string(), extra);
 }
 
-ShearRunOptions shear_options(const RunOptions& opt, const std::shared_ptr<Device>& device,
-                              FrameSeries* frames, const InterruptScope& interrupt) {
-  ShearRunOptions shear;
+ProgrammeRunOptions programme_options(const RunOptions& opt, const std::shared_ptr<Device>& device,
+                                      FrameSeries* frames, const InterruptScope& interrupt) {
+  ProgrammeRunOptions shear;
   shear.device = device;
   shear.out_dir = opt.out_dir;
   shear.quiet = opt.quiet;
   shear.stop_after = opt.stop_after;
-  shear.label = "shear";
+  shear.stop_at = opt.stop_at;
   shear.stop_requested = interrupt.stop_function();
   if (frames) {
     shear.chunk_steps = std::min(2000LL, frames->every());
@@ -341,55 +305,10 @@ ShearRunOptions shear_options(const RunOptions& opt, const std::shared_ptr<Devic
   return shear;
 }
 
-int finish_shear(const ShearRunResult& r, const RunOptions& opt, const InterruptScope& interrupt) {
-  print_summary(r, opt.out_dir);
-  return r.interrupted ? interrupt.exit_status() : 0;
-}
-
-int finish_oedometer(const OedometerRunResult& r, const RunOptions& opt,
-                     const InterruptScope& interrupt) {
-  const std::string& dir = opt.out_dir;
-  const OedometerSummary& s = r.summary;
-  const char* how = r.state.finished ? "finished" : r.state.interrupted ? "interrupted" : "stopped";
-  std::printf("oedometer test %s: %zu of its load steps, %d beads, %lld steps in %.0f s\n", how,
-              s.steps.size(), r.state.particles, r.state.steps, s.wall_seconds);
-  for (size_t i = 0; i < s.steps.size(); ++i) {
-    const OedometerStep& st = s.steps[i];
-    std::printf("  step %2zu  sigma'_v = %7.1f kPa  e = %.5f  eps_v = %7.4f %%  K0 = %.3f%s\n",
-                i + 1, st.sigma_top * 1e-3, st.void_ratio, 100 * st.strain, st.k0,
-                st.equilibrium ? "" : "  (held for step_time, not in equilibrium)");
-  }
-  if (r.state.finished) {
-    std::printf("  Cc = %.4f (%d steps)  Cs = %.4f (%d steps)  K0 (NC) = %.3f  side friction "
-                "%.1f %%\n",
-                s.cc, s.cc_points, s.cs, s.cs_points, s.k0_nc, 100 * s.side_friction);
-    if (s.jaky_k0 > 0)
-      std::printf("  Jaky 1 - sin(%.1f deg) = %.3f; the measured K0 implies phi' = %.1f deg\n",
-                  s.jaky_friction_angle, s.jaky_k0, s.implied_friction_angle);
-    if (!s.valid) std::printf("  INVALID: a step ended at step_time, not in equilibrium\n");
-  }
-  std::printf("  results in %s\n", dir.c_str());
-  if (!r.state.finished) std::printf("  %s\n", resume_hint(dir).c_str());
-  return r.state.interrupted ? interrupt.exit_status() : 0;
-}
-
-int finish_triaxial(const TriaxialRunResult& r, const RunOptions& opt,
-                    const InterruptScope& interrupt) {
-  const TriaxialSummary& s = r.summary;
-  const char* how = r.state.finished ? "finished" : r.state.interrupted ? "interrupted" : "stopped";
-  std::printf("triaxial test %s: p'0 = %.0f kPa, %d beads, %lld steps in %.0f s\n", how,
-              s.confining_stress * 1e-3, r.state.particles, r.state.steps, s.wall_seconds);
-  if (!r.rows.empty())
-    std::printf("  peak     phi = %.2f deg  q/p' = %.3f at eps_a = %.2f %%\n"
-                "  critical phi = %.2f deg  q/p' = %.3f  e = %.4f  p' = %.1f kPa (last 20 %%)\n"
-                "  max dilatancy angle %.2f deg; walls vs internal stress within %.2f %% of p'; "
-                "inertial number <= %.2g\n",
-                s.peak_angle, s.peak_q_over_p, 100 * s.peak_axial_strain, s.critical_angle,
-                s.critical_q_over_p, s.critical_void_ratio, s.critical_p * 1e-3,
-                s.max_dilatancy_angle, 100 * s.wall_internal_gap, s.max_inertial_number);
-  std::printf("  results in %s\n", opt.out_dir.c_str());
-  if (!r.state.finished) std::printf("  %s\n", resume_hint(opt.out_dir).c_str());
-  return r.state.interrupted ? interrupt.exit_status() : 0;
+// The test's result lines; the exit status (that of an interrupt when one stopped it).
+int finish_test(const TestRun& run, const RunOptions& opt, const InterruptScope& interrupt) {
+  std::printf("%s", test_result_text(run, opt.out_dir).c_str());
+  return run.state.interrupted ? interrupt.exit_status() : 0;
 }
 
 int run_scene(const RunOptions& opt) {
@@ -409,32 +328,24 @@ int run_scene(const RunOptions& opt) {
   if (!opt.frames_dir.empty()) frames = std::make_unique<FrameSeries>(opt, engine);
   const std::shared_ptr<Device> device = frames ? frames->device() : Device::open(engine);
   const std::filesystem::path dir = opt.out_dir;
+  // The specimen's preparation (run_scene_test's first step) before Ctrl-C
+  // is caught: it has no checkpoint, so an interrupt ends it at once.
   if (scene)
-    prepare_to_relative_density(*scene, device, dir, [&](const std::string& line) {
+    prepare_specimen(*scene, device, dir, [&](const std::string& line) {
       if (!opt.quiet) std::fprintf(stderr, "[prepare] %s\n", line.c_str());
     });
   InterruptScope interrupt;
   std::unique_ptr<Simulation> sim;
   std::string extra;
   if (opt.resume) sim = load_resume(dir, device, &extra);
-  const ShearRunOptions shear = shear_options(opt, device, frames.get(), interrupt);
-  if (sim && sim->scene().shear_box)
-    return finish_shear(resume_shear(std::move(sim), extra, shear), opt, interrupt);
-  if (scene && scene->shear_box) return finish_shear(run_shear(*scene, shear), opt, interrupt);
-  ProgrammeRunOptions programme = shear;  // the same options, labelled by apparatus
-  const Scene& chosen = sim ? sim->scene() : *scene;
-  if (chosen.oedometer) {
-    programme.label = "oedometer";
-    return finish_oedometer(sim ? resume_oedometer(std::move(sim), extra, programme)
-                                : run_oedometer(*scene, programme),
-                            opt, interrupt);
-  }
-  if (chosen.triaxial) {
-    programme.label = "triaxial";
-    return finish_triaxial(sim ? resume_triaxial(std::move(sim), extra, programme)
-                               : run_triaxial(*scene, programme),
-                           opt, interrupt);
-  }
+  const ProgrammeRunOptions programme = programme_options(opt, device, frames.get(), interrupt);
+  if (sim && sim->scene().has_apparatus())
+    return finish_test(resume_test(std::move(sim), extra, programme), opt, interrupt);
+  if (scene && scene->has_apparatus())
+    return finish_test(run_test(*scene, programme), opt, interrupt);
+  if (!opt.stop_at.empty())
+    throw UsageError("conflicting_keys", "--stop-at",
+                     "the scene has no apparatus, so no stages to stop at (use --stop-after N)");
   if (!sim) {
     sim = std::make_unique<Simulation>(device, *scene);
     std::filesystem::create_directories(dir);
@@ -453,6 +364,23 @@ int run(const RunOptions& opt) {
 
 }  // namespace
 
+namespace {
+
+// --stop-at's help: each kind's stages, from the registry.
+std::string stop_at_help() {
+  std::string text = "Stop at the end of this stage of the test, with a checkpoint (resume with "
+                     "--resume); the stages of";
+  for (const ApparatusKind& k : apparatus_kinds()) {
+    std::string stages = k.stages;
+    for (char& c : stages)
+      if (c == '|') c = ',';
+    text += std::string(&k == apparatus_kinds().data() ? " " : "; ") + k.test_noun + ": " + stages;
+  }
+  return text;
+}
+
+}  // namespace
+
 CommandRunner add_run_command(CLI::App& app) {
   auto opt = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "Run a scene headless and write its results");
@@ -467,6 +395,7 @@ CommandRunner add_run_command(CLI::App& app) {
   cmd->add_option("--stop-after", opt->stop_after,
                   "Stop after this many steps (a checkpoint is written; resume with --resume)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--stop-at", opt->stop_at, stop_at_help());
   cmd->add_flag("--quiet,-q", opt->quiet, "No progress line");
   cmd->add_option("--frames", opt->frames_dir, "Write PNG frames (offscreen) into this folder");
   cmd->add_option("--every", opt->frames_every, "Steps between frames (with --frames)")

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "solver/apparatus/registry.h"
 #include "solver/core/engine_options.h"
 #include "solver/io/checkpoint.h"
 #include "solver/common/input_file.h"
@@ -51,9 +52,9 @@ void check_output_path(const std::string& out, const char* flag) {
 // drawn without the test's quantities, never refused for them.
 std::string test_caption(Simulation& sim, const std::string& state) {
   const Scene& s = sim.scene();
-  if (!s.shear_box && !s.triaxial && !s.oedometer) return "";
+  if (!s.has_apparatus()) return "";
   try {
-    const std::unique_ptr<LoadingProgramme> test = make_test(sim);
+    const std::unique_ptr<ApparatusTest> test = make_apparatus_test(sim);
     restore_programme(*test, state, "");
     return test->caption();
   } catch (const std::exception&) {

@@ -1,72 +1,76 @@
-// The run of one apparatus' test on the common driver (programme_run.h):
-// new or resumed, to its result. An apparatus brings its Test (a
-// LoadingProgramme with rows() and summary(), the summary with a
-// wall_seconds field) and its Outputs (a ProgrammeOutputs built from a
-// Test&); oedometer_run.cpp and triaxial_run.cpp are two such.
+// One apparatus' test run headless into a folder, whatever the apparatus:
+// the one path from a scene to its result that `simsols run`, Python, the
+// campaigns and the studies share.
+//
+// The scene's kind (solver/apparatus/registry.h) makes the test
+// (ApparatusTest); the common driver (programme_run.h) steps it with
+// progress, checkpoints, Ctrl-C and --stop-after; the kind's report
+// (apparatus_report.h) draws its plots. Folder layout, for every apparatus:
+//   scene.toml, scene.resolved.toml   the scene as given / as used (explicit beads)
+//   <rows file>                       shear.csv, oedometer.csv, triaxial.csv: one row
+//                                     per measurement, with units
+//   summary.txt                       the test's result (written last: its presence
+//                                     means the test finished)
+//   *.png                             the kind's plots (apparatus_report.h)
+//   density.csv, density.png, packing.txt   the specimen's preparation
+//   paraview/                         the ParaView series (solver/io/paraview.h)
+//   checkpoint.bin                    latest state; `--resume` continues from it
+//   fault.txt, fault_checkpoint.bin   only when a step ran away (guard.h)
 #pragma once
 
-#include <cstdio>
-#include <filesystem>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
-#include <type_traits>
-#include <utility>
 
 #include "app/experiment/programme_run.h"
+#include "solver/apparatus/registry.h"
 
 namespace simsols {
 
+// A test run (or stopped): the simulation, its test and how the run ended.
+struct TestRun {
+  std::unique_ptr<Simulation> sim;
+  std::unique_ptr<ApparatusTest> test;  // on *sim
+  const ApparatusKind* kind = nullptr;
+  ProgrammeRunState state;
+};
+
+// Runs the test of `scene` (which has an apparatus) into options.out_dir,
+// or with options.resume continues the one there.
+TestRun run_test(const Scene& scene, const ProgrammeRunOptions& options);
+
+// Continues the test in options.out_dir from a checkpoint already loaded
+// (`sim`, with the driver state `extra` it carried); SceneError when its
+// scene has no apparatus.
+TestRun resume_test(std::unique_ptr<Simulation> sim, const std::string& extra,
+                    const ProgrammeRunOptions& options);
+
+// The path every front end takes from a scene to its result:
+// prepare_specimen, then run_test. With options.resume `scene` is not used.
+TestRun run_scene_test(Scene scene, const ProgrammeRunOptions& options,
+                       const std::function<void(const std::string&)>& log);
+
+// The specimen prepared when the scene asks it (a relative density,
+// tamping, radius expansion: preparation.h), the scene then holding what
+// the test runs; lines to `log`. Nothing to do for other scenes.
+void prepare_specimen(Scene& scene, const std::shared_ptr<Device>& device,
+                      const std::string& out_dir,
+                      const std::function<void(const std::string&)>& log);
+
+// A finished or stopped run's rows and summary in the test's own types.
 template <class Test>
 struct TestRunResult {
   decltype(std::declval<const Test&>().summary()) summary;
   std::decay_t<decltype(std::declval<const Test&>().rows())> rows;
   ProgrammeRunState state;
 };
-
-template <class Test, class Outputs>
-TestRunResult<Test> drive_apparatus_test(Simulation& sim, Test& test,
-                                         const ProgrammeRunOptions& opt, double wall_before) {
-  Outputs outputs(test);
-  TestRunResult<Test> r;
-  r.state = drive_programme(sim, outputs, opt, wall_before);
-  r.rows = test.rows();
-  r.summary = test.summary();
-  r.summary.wall_seconds = r.state.wall_seconds;
+template <class Test>
+TestRunResult<Test> typed_result(const TestRun& run) {
+  const Test& test = dynamic_cast<const Test&>(*run.test);
+  TestRunResult<Test> r{test.summary(), test.rows(), run.state};
+  r.summary.wall_seconds = run.state.wall_seconds;
   return r;
-}
-
-// Continues the test in opt.out_dir from a loaded checkpoint. `is_this`
-// tells whether the checkpoint's scene holds this apparatus; `what` names
-// it in the refusal ("an oedometer test").
-template <class Test, class Outputs>
-TestRunResult<Test> resume_apparatus_test(std::unique_ptr<Simulation> sim,
-                                          const std::string& state,
-                                          const ProgrammeRunOptions& opt,
-                                          bool (*is_this)(const Scene&), const std::string& what) {
-  if (!is_this(sim->scene()))
-    throw SceneError("bad_checkpoint",
-                     (std::filesystem::path(opt.out_dir) / "checkpoint.bin").string(), 0,
-                     "--resume", "the checkpoint is not " + what);
-  Test test(*sim);
-  restore_programme(test, state, opt.out_dir);
-  std::fprintf(stderr, "[%s] resumed at %s\n", opt.label.c_str(),
-               where_programme_is(*sim, test).c_str());
-  return drive_apparatus_test<Test, Outputs>(*sim, test, opt, driver_wall_seconds(state));
-}
-
-// Runs the test of `scene`, or with opt.resume resumes the one in opt.out_dir.
-template <class Test, class Outputs>
-TestRunResult<Test> run_apparatus_test(const Scene& scene, const ProgrammeRunOptions& opt,
-                                       bool (*is_this)(const Scene&), const std::string& what) {
-  if (opt.resume) {
-    std::string state;
-    auto sim = load_run_checkpoint(opt, &state);
-    return resume_apparatus_test<Test, Outputs>(std::move(sim), state, opt, is_this, what);
-  }
-  Simulation sim(opt.device, scene);
-  Test test(sim);
-  start_run_folder(scene, opt.out_dir);
-  return drive_apparatus_test<Test, Outputs>(sim, test, opt, 0);
 }
 
 }  // namespace simsols

@@ -42,7 +42,7 @@ ShearSummary reanalysed(const fs::path& dir, const std::string& name,
 // Settling (its longest time), ~50 ms of consolidation and the shear at the
 // speed the inertial number sets (height ~ layers x 0.8 d).
 double shear_test_cost(const Scene& s) {
-  const ShearBox& b = *s.shear_box;
+  const ShearBox& b = *s.apparatus_as<ShearBox>();
   const double dt = effective_time_step(s);
   const double d = 2 * s.particles[0].radius;
   const double rho = s.materials[s.particles[0].material].density;
@@ -64,11 +64,11 @@ ShearRunResult finished_shear_test(const fs::path& dir, const std::string& title
 namespace {
 
 void check_spec(const Scene& base, const std::string& base_name, const CampaignSpec& spec) {
-  if (base.oedometer)
+  if (base.apparatus_as<Oedometer>())
     throw SceneError("not_applicable", base_name, 0, "oedometer",
                      "an oedometer test is already a programme over stresses (its load_steps); "
                      "a campaign takes a shear box or a triaxial cell");
-  if (!base.shear_box)
+  if (!base.apparatus_as<ShearBox>())
     throw SceneError("missing_field", base_name, 0, "shear_box",
                      "the campaign's base scene must describe a shear box or a triaxial cell");
   for (double d : spec.sizes_mm)
@@ -102,7 +102,7 @@ void write_report(const std::vector<CampaignTest>& tests, const std::string& bas
                   const CampaignSpec& spec, const std::string& out_dir, double seconds) {
   std::vector<CampaignEntry> entries;
   for (const CampaignTest& t : tests)
-    entries.push_back({t.d_mm, t.s_kpa, t.scene.shear_box->specimen.layers,
+    entries.push_back({t.d_mm, t.s_kpa, t.scene.apparatus_as<ShearBox>()->specimen.layers,
                        static_cast<int>(t.scene.particles.size()), t.result.rows,
                        t.result.summary});
   write_campaign_report(out_dir, base_name, spec.sizes_mm, entries, seconds);
@@ -126,7 +126,7 @@ std::vector<CampaignTest> plan_campaign(const Scene& base, const std::string& ba
       t.d_mm = d;
       t.s_kpa = s;
       Scene sc = paper_test_scene(base, base_name, d, s, spec.layers, [&](Scene& x) {
-        if (spec.displacement_mm > 0) x.shear_box->shear_displacement = spec.displacement_mm * 1e-3;
+        if (spec.displacement_mm > 0) x.apparatus_as<ShearBox>()->shear_displacement = spec.displacement_mm * 1e-3;
         if (spec.precision) x.numerics.precision = *spec.precision;
       });
       validate_scene(sc, base_name + " (" + sc.name + ")");

@@ -9,6 +9,7 @@
 
 #include "app/experiment/preparation.h"
 #include "app/experiment/progress.h"
+#include "solver/apparatus/registry.h"
 #include "solver/apparatus/stage_checks.h"
 #include "solver/common/errors.h"
 #include "solver/scene/sphere_grid.h"
@@ -74,7 +75,7 @@ void place_shrunk(Scene& x, const Cell& c, std::int64_t seed, const std::string&
 Scene growth_scene(const Scene& scene, const Cell& c, double r_max) {
   Scene x = scene;
   const Specimen& s = *scene.specimen();
-  const std::string table = scene.shear_box ? "shear_box" : scene.triaxial ? "triaxial" : "oedometer";
+  const std::string table = apparatus_kind(scene)->name;
   place_shrunk(x, c, s.seed, scene.source_path, table);
   x.effects.gravity = {0, 0, 0};
   for (Wall& w : x.walls) w.servo.enabled = false;

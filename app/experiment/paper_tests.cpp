@@ -53,7 +53,7 @@ std::string paper_test_name(double d_mm, double s_kpa) {
 
 Scene paper_test_scene(const Scene& base, const std::string& base_name, double d_mm, double s_kpa,
                        int layers, const std::function<void(Scene&)>& adjust) {
-  if (!base.shear_box)
+  if (!base.apparatus_as<ShearBox>())
     throw SceneError("missing_field", base_name, 0, "shear_box", "the base scene has no shear box");
   if (layers <= 0) {
     const std::optional<double> d = nearest_table1_size(d_mm);
@@ -68,9 +68,9 @@ Scene paper_test_scene(const Scene& base, const std::string& base_name, double d
   }
   Scene sc = base;
   sc.particles.clear();
-  sc.walls.erase(sc.walls.begin() + base.shear_box->first_wall,
-                 sc.walls.begin() + base.shear_box->first_wall + kShearBoxWalls);
-  ShearBox b = *base.shear_box;
+  sc.walls.erase(sc.walls.begin() + base.apparatus_as<ShearBox>()->first_wall,
+                 sc.walls.begin() + base.apparatus_as<ShearBox>()->first_wall + kShearBoxWalls);
+  ShearBox b = *base.apparatus_as<ShearBox>();
   if (b.specimen.method == Specimen::Method::Given)
     throw SceneError("bad_enum", base_name, 0, "shear_box.specimen.method",
                      "the programme prepares its own specimens: use \"layers\" or \"pour\"");
@@ -79,7 +79,7 @@ Scene paper_test_scene(const Scene& base, const std::string& base_name, double d
   b.normal_stress = s_kpa * 1e3;
   b.split_height = 0;
   b.gap = 0;
-  sc.shear_box = b;
+  sc.apparatus = b;
   sc.name = paper_test_name(d_mm, s_kpa);
   sc.source_text.clear();
   if (adjust) adjust(sc);

@@ -11,9 +11,7 @@
 #include "app/experiment/progress.h"
 #include "app/experiment/tamping.h"
 #include "render/plot/chart.h"
-#include "solver/apparatus/oedometer_test.h"
-#include "solver/apparatus/shear_test.h"
-#include "solver/apparatus/triaxial_test.h"
+#include "solver/apparatus/registry.h"
 #include "solver/common/number_text.h"
 #include "solver/io/output.h"
 #include "solver/scene/clump.h"
@@ -24,11 +22,7 @@ namespace {
 using Log = std::function<void(const std::string&)>;
 
 // The search's preparations, in order: at most kSearchTrials + 2.
-double longest_settle(const Scene& s) {
-  if (s.shear_box) return s.shear_box->settle_time;
-  if (s.triaxial) return s.triaxial->settle_time;
-  return s.oedometer ? s.oedometer->settle_time : 0;
-}
+double longest_settle(const Scene& s) { return s.cell() ? s.cell()->settle_time : 0; }
 
 DensityTrial trial(const Scene& base, const std::shared_ptr<Device>& device, const char* role,
                    double friction, int number, const Log& log) {
@@ -164,17 +158,9 @@ void density_chart(const DensitySearch& s, const std::string& title, const std::
 }  // namespace
 
 SpecimenCell specimen_cell(const Scene& s) {
-  if (s.shear_box) return {s.shear_box->length, s.shear_box->width, s.specimen()};
-  if (s.triaxial) return {s.triaxial->length, s.triaxial->width, s.specimen()};
-  if (s.oedometer) return {s.oedometer->length, s.oedometer->width, s.specimen()};
-  return {};
-}
-
-std::unique_ptr<LoadingProgramme> make_test(Simulation& sim) {
-  const Scene& s = sim.scene();
-  if (s.shear_box) return std::make_unique<ShearTest>(sim);
-  if (s.triaxial) return std::make_unique<TriaxialTest>(sim);
-  return std::make_unique<OedometerTest>(sim);
+  const ApparatusCell* c = s.cell();
+  if (!c) return {};
+  return {c->length, c->width, &c->specimen};
 }
 
 Packing measure_specimen(Simulation& sim) {
@@ -196,7 +182,7 @@ Packing measure_specimen(Simulation& sim) {
 Settled settle_specimen(const Scene& scene, const std::shared_ptr<Device>& device,
                         const std::function<void(const std::string&)>& progress) {
   Simulation sim(device, scene);
-  const std::unique_ptr<LoadingProgramme> test = make_test(sim);
+  const std::unique_ptr<ApparatusTest> test = make_apparatus_test(sim);
   test->advance(1);
   Ticker ticker;
   while (!test->done() && std::strcmp(test->stage_name(), "settle") == 0) {

@@ -31,16 +31,13 @@ inline constexpr double kLooseFriction = 1.0;
 inline constexpr int kSearchTrials = 5;
 inline constexpr double kSearchTolerance = 0.05;
 
-// The apparatus cell of a scene: footprint and specimen (Scene::specimen);
+// The apparatus cell of a scene (Scene::cell): footprint and specimen;
 // nullptr specimen when the scene has no apparatus.
 struct SpecimenCell {
   double length = 0, width = 0;
   const Specimen* specimen = nullptr;
 };
 SpecimenCell specimen_cell(const Scene& scene);
-
-// The scene's apparatus test (shear, triaxial or oedometer) on `sim`.
-std::unique_ptr<LoadingProgramme> make_test(Simulation& sim);
 
 // The packing of the simulation's specimen now.
 Packing measure_specimen(Simulation& sim);

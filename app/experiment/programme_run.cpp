@@ -102,7 +102,8 @@ ProgrammeRunState drive_programme(Simulation& sim, ProgrammeOutputs& out,
     }
     const long long budget = opt.stop_after > 0 ? opt.stop_after - (sim.steps() - first) : 1LL << 40;
     if (budget <= 0) break;
-    const bool settling = std::strcmp(test.stage_name(), "settle") == 0;
+    const std::string stage = test.stage_name();
+    const bool settling = stage == "settle";
     try {
       test.advance(std::min<long long>(budget, std::max(1LL, opt.chunk_steps)));
       sim.check();  // before frames, progress and checkpoints look at it
@@ -116,6 +117,10 @@ ProgrammeRunState drive_programme(Simulation& sim, ProgrammeOutputs& out,
       throw;
     }
     if (opt.after_chunk) opt.after_chunk(sim, test);
+    if (!opt.stop_at.empty() && stage == opt.stop_at && stage != test.stage_name()) {
+      state.stopped_after = stage;
+      break;
+    }
     if (!announced && test.measuring()) {
       announced = true;
       if (!opt.quiet) out.on_measuring(opt.label);
@@ -134,10 +139,10 @@ ProgrammeRunState drive_programme(Simulation& sim, ProgrammeOutputs& out,
   state.steps = sim.steps();
   state.particles = sim.model().particles();
   state.dt = sim.dt();
-  if (state.finished) {
-    out.write_results(sim, dir, state.wall_seconds);
-    if (paraview) paraview->write(sim);
-  }
+  if (state.finished) out.write_results(sim, dir, state.wall_seconds);
+  // The state reached, finished or stopped, is the series' last frame: a
+  // run stopped early (--stop-after, Ctrl-C) opens in ParaView too.
+  if (paraview) paraview->write(sim);
   return state;
 }
 

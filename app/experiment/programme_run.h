@@ -28,6 +28,10 @@ struct ProgrammeRunOptions {
   bool resume = false;         // continue from out_dir/checkpoint.bin
   bool quiet = false;
   long long stop_after = 0;    // stop (checkpointed) after this many steps; 0 = no limit
+  // Stop (checkpointed) at the end of the stage of this name (a
+  // LoadingProgramme::stage_name: "consolidate" stops a shear test
+  // consolidated, before it shears); "" = none.
+  std::string stop_at;
   double checkpoint_seconds = 60;  // wall time between checkpoints
   // Called after every chunk of at most `chunk_steps` steps (frame export):
   // the simulation and the programme (whether its measured stage has begun,
@@ -59,7 +63,8 @@ class ProgrammeOutputs {
 };
 
 struct ProgrammeRunState {
-  bool finished = false;       // false: stopped by stop_after or interrupted (resumable)
+  bool finished = false;       // false: stopped by stop_after, stop_at or interrupted (resumable)
+  std::string stopped_after;   // the stage whose end stopped the run (options.stop_at), or ""
   bool interrupted = false;    // stopped by stop_requested
   long long steps = 0;
   int particles = 0;

@@ -57,7 +57,7 @@ void apply_levels(Scene& sc, const FactorLevels& u) {
     m.rolling_friction = f[1].value(u[1]);
     m.restitution = f[2].value(u[2]);
   }
-  ShearBox& b = *sc.shear_box;
+  ShearBox& b = *sc.apparatus_as<ShearBox>();
   sc.materials[b.specimen.material].young_modulus = f[3].value(u[3]);
   b.specimen.preparation.friction = f[4].value(u[4]);
   b.specimen.preparation.rolling_friction = f[1].base;
@@ -98,7 +98,7 @@ std::vector<SensitivityPoint> study_points(const SensitivityPreset& p) {
 // The study's base scene: the default experiment's glass and box, poured.
 Scene base_scene(const SensitivityPreset& p) {
   Scene sc = parse_scene(default_shear_scene_text(), kDefaultSceneName);
-  ShearBox& b = *sc.shear_box;
+  ShearBox& b = *sc.apparatus_as<ShearBox>();
   b.specimen.method = Specimen::Method::Pour;
   b.settle_time = p.settle_time;
   b.shear_displacement = p.displacement_mm * 1e-3;
@@ -191,9 +191,9 @@ std::vector<SensitivityTest> plan_sensitivity(const SensitivityPreset& preset,
     Scene sc = paper_test_scene(base, kDefaultSceneName, preset.diameter_mm, preset.stress_kpa,
                                 layers, [&](Scene& x) {
                                   apply_levels(x, pt.levels);
-                                  x.shear_box->specimen.seed = pt.seed;
-                                  x.shear_box->length = scale * preset.box_length;
-                                  x.shear_box->width = scale * preset.box_width;
+                                  x.apparatus_as<ShearBox>()->specimen.seed = pt.seed;
+                                  x.apparatus_as<ShearBox>()->length = scale * preset.box_length;
+                                  x.apparatus_as<ShearBox>()->width = scale * preset.box_width;
                                 });
     sc.name = pt.label;
     validate_scene(sc, "sensitivity study (" + pt.label + ")");
@@ -220,7 +220,7 @@ double settled_void_ratio(const fs::path& dir) {
 double consolidated_void_ratio(const SensitivityTest& t) {
   double solids = 0;
   for (const Particle& p : t.scene.particles) solids += 4.0 / 3.0 * M_PI * std::pow(p.radius, 3);
-  const ShearBox& b = *t.scene.shear_box;
+  const ShearBox& b = *t.scene.apparatus_as<ShearBox>();
   return b.length * b.width * t.result.summary.specimen_height / solids - 1;
 }
 

@@ -146,7 +146,7 @@ std::string tests_csv(const std::vector<SensitivityTest>& tests) {
     const SensitivityPoint& p = t.point;
     const ShearSummary& s = t.result.summary;
     o << p.label << ',' << design_name(p.design) << ',' << p.trajectory << ',' << p.step << ',' << p.seed << ','
-      << t.scene.shear_box->length / (2 * t.scene.particles[0].radius) << ',';
+      << t.scene.apparatus_as<ShearBox>()->length / (2 * t.scene.particles[0].radius) << ',';
     for (int i = 0; i < kSensitivityFactors; ++i)
       o << format_number("%.6g", sensitivity_factors()[i].value(p.levels[i])) << ',';
     o << t.scene.particles.size() << ',' << format_number("%.5g", t.void_ratio) << ','
@@ -270,7 +270,7 @@ void scale_chart(const SensitivityAnalysis& a, const std::vector<SensitivityTest
     s.markers = true;
     std::map<double, std::pair<double, double>> by_ratio;  // L/d -> value, bar
     for (const SensitivityTest& t : tests) {
-      const double ratio = t.scene.shear_box->length / (2 * t.scene.particles[0].radius);
+      const double ratio = t.scene.apparatus_as<ShearBox>()->length / (2 * t.scene.particles[0].radius);
       if (t.point.design == Design::scale) by_ratio[ratio] = {responses_of(t.result.summary)[r], NAN};
       if (t.point.design == Design::base) by_ratio[ratio] = {a.noise_mean[r], a.noise_band[r]};
     }
@@ -337,7 +337,7 @@ std::string summary_md(const SensitivityPreset& p, const SensitivityAnalysis& a,
     if (t.point.design == Design::noise || t.point.design == Design::morris) continue;
     const Responses y = responses_of(t.result.summary);
     o << "| " << t.point.label << " | "
-      << num(t.scene.shear_box->length / (2 * t.scene.particles[0].radius), "%.1f") << " | "
+      << num(t.scene.apparatus_as<ShearBox>()->length / (2 * t.scene.particles[0].radius), "%.1f") << " | "
       << t.scene.particles.size() << " | " << num(t.void_ratio, "%.3f") << " | "
       << num(t.shear_void_ratio, "%.3f") << " | " << num(y[0])
       << " | " << num(y[1]) << " | " << num(y[2]) << " |\n";

@@ -63,7 +63,7 @@ Wall plane(const char* name, const Vec3& point, const Vec3& normal) {
 Scene column(const ShapePreset& p, const ShapeCase& c) {
   const double a = kColumnLength * p.diameter, w = kColumnWidth * p.diameter;
   Scene s = parse_scene(poured_scene(p, c, a, w, p.column_layers), "shape study column (" + c.label + ")");
-  s.oedometer.reset();
+  s.apparatus = {};
   s.walls = {plane("floor", {0, 0, 0}, {0, 0, 1}), plane("back", {0, 0, 0}, {1, 0, 0}),
              plane("left", {0, 0, 0}, {0, 1, 0}), plane("right", {0, w, 0}, {0, -1, 0}),
              plane("gate", {a, 0, 0}, {-1, 0, 0})};

@@ -1,18 +1,7 @@
-// One direct shear test run headless into a folder, shared by `simsols run`
-// (a scene with a [shear_box]) and `simsols campaign` (many of them), on the
-// common driver of programme_run.h.
-//
-// Folder layout:
-//   scene.toml, scene.resolved.toml   the scene as given / as used (explicit beads)
-//   shear.csv                         one row per measurement (see ShearRow)
-//   summary.txt                       peak / residual / dilatancy / servo band
-//   shear_stress.png, shear_ratio.png, dilation.png   the paper's Figures 3-7 axes
-//   paraview/                         the ParaView series (every output.dump_interval
-//                                     and the end; solver/io/paraview.h)
-//   checkpoint.bin                    latest state; `--resume` continues from it
-//   fault.txt, fault_checkpoint.bin   only when a step ran away (guard.h): what,
-//                                     where, and the state just before it
-// summary.txt is written last: its presence means the test finished.
+// One direct shear test run headless into a folder, in the shear test's own
+// types, for the campaigns and studies of the shear box: run_test
+// (apparatus_run.h, where the folder's layout is) with its rows and summary
+// as ShearRow / ShearSummary.
 #pragma once
 
 #include <memory>

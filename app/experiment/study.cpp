@@ -343,16 +343,16 @@ Scene shear_case_scene(const StudyPreset& preset, const StudySettings& s) {
         for (Material& m : x.materials) m.young_modulus *= s.stiffness_scale;
         x.effects.rolling = s.rolling ? RollingModel::ConstantTorque : RollingModel::None;
         x.effects.damping = s.damping ? DampingModel::Viscous : DampingModel::None;
-        x.shear_box->inertial_number = s.inertial_number;
-        x.shear_box->shear_speed = 0;
-        x.shear_box->shear_displacement = preset.displacement_mm * 1e-3;
-        x.shear_box->rows = preset.rows;
-        x.shear_box->specimen.seed = s.seed;
+        x.apparatus_as<ShearBox>()->inertial_number = s.inertial_number;
+        x.apparatus_as<ShearBox>()->shear_speed = 0;
+        x.apparatus_as<ShearBox>()->shear_displacement = preset.displacement_mm * 1e-3;
+        x.apparatus_as<ShearBox>()->rows = preset.rows;
+        x.apparatus_as<ShearBox>()->specimen.seed = s.seed;
         if (s.specimen == StudySpecimen::Poured) {
-          x.shear_box->specimen.method = Specimen::Method::Pour;
-          x.shear_box->length *= preset.poured_box_scale;
-          x.shear_box->width *= preset.poured_box_scale;
-          x.shear_box->settle_time = preset.poured_settle_time;
+          x.apparatus_as<ShearBox>()->specimen.method = Specimen::Method::Pour;
+          x.apparatus_as<ShearBox>()->length *= preset.poured_box_scale;
+          x.apparatus_as<ShearBox>()->width *= preset.poured_box_scale;
+          x.apparatus_as<ShearBox>()->settle_time = preset.poured_settle_time;
         }
       });
   if (s.perturbation != 0 && !s.perturb_at_shear && !sc.particles.empty())

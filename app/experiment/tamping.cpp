@@ -10,6 +10,7 @@
 #include "solver/common/errors.h"
 #include "solver/common/number_text.h"
 #include "solver/io/output.h"
+#include "solver/apparatus/registry.h"
 #include "solver/apparatus/stage_checks.h"
 #include "solver/scene/clump.h"
 
@@ -211,7 +212,7 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
     l.target_top = (solid_total * (1 + void_ratio) + solid * (1 + l.target_void_ratio)) / area;
     solid_total += solid;
     Simulation sim(device, built);
-    const std::unique_ptr<LoadingProgramme> test = make_test(sim);
+    const std::unique_ptr<ApparatusTest> test = make_apparatus_test(sim);
     tamp(sim, *test, l.target_top, area, l, log);
     l.void_ratio = measure_specimen(sim).bulk_void_ratio;
     floor = specimen_top(sim);
@@ -231,9 +232,9 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
                 area * layers.back().platen_stop / solid_total - 1, 1e3 * layers.back().platen_stop, void_ratio,
                 layers.back().void_ratio, 1e3 * floor);
   log(done);
-  if (built.shear_box && built.shear_box->split_height >= floor)
+  if (built.apparatus_as<ShearBox>() && built.apparatus_as<ShearBox>()->split_height >= floor)
     throw SceneError("out_of_range", scene.source_path, 0, "shear_box.split_height",
-                     "the shear plane at " + shortest_number(1e3 * built.shear_box->split_height) +
+                     "the shear plane at " + shortest_number(1e3 * built.apparatus_as<ShearBox>()->split_height) +
                          " mm is above the tamped specimen's top at " + shortest_number(1e3 * floor) +
                          " mm: set split_height inside (0, " + shortest_number(floor) + ") m");
   Specimen& s = *built.specimen();

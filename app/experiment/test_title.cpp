@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "solver/apparatus/registry.h"
 #include "solver/io/output.h"
 #include "solver/scene/scene.h"
 
@@ -39,20 +40,11 @@ std::string specimen_words(const Scene& s, const Specimen& sp) {
 }  // namespace
 
 std::string test_title(const Scene& s) {
-  std::string apparatus, stress;
-  if (s.shear_box) {
-    apparatus = "Direct shear";
-    stress = "σ = " + number(s.shear_box->normal_stress * 1e-3) + " kPa";
-  } else if (s.triaxial) {
-    apparatus = "Triaxial";
-    stress = "σ₃ = " + number(s.triaxial->confining_stress * 1e-3) + " kPa";
-  } else if (s.oedometer) {
-    apparatus = "Oedometer";
-  } else {
-    return s.description.empty() ? s.name : s.description;
-  }
-  std::string title = apparatus;
+  const ApparatusKind* kind = apparatus_kind(s);
+  if (!kind) return s.description.empty() ? s.name : s.description;
+  std::string title = kind->title;
   if (const Specimen* sp = s.specimen()) title += ", " + specimen_words(s, *sp);
+  const std::string stress = kind->stress_words(s);
   if (!stress.empty()) title += ", " + stress;
   return title;
 }

@@ -22,7 +22,7 @@ constexpr auto fmt = format_number;  // printf conversion of one number (output.
 // consolidation allowances (they end at equilibrium, usually sooner) and
 // the compression at its strain rate.
 double estimated_cost(const Scene& s) {
-  const Triaxial& t = *s.triaxial;
+  const Triaxial& t = *s.apparatus_as<Triaxial>();
   const SpecimenStats b = specimen_stats(s, t.wall_material);
   const double rate = t.strain_rate > 0 ? t.strain_rate
                                         : triaxial_strain_rate(t.inertial_number, b.diameter,
@@ -32,7 +32,7 @@ double estimated_cost(const Scene& s) {
 }
 
 void check_spec(const Scene& base, const std::string& base_name, const TriaxialCampaignSpec& spec) {
-  if (!base.triaxial)
+  if (!base.apparatus_as<Triaxial>())
     throw SceneError("missing_field", base_name, 0, "triaxial",
                      "the triaxial campaign's base scene must describe a triaxial cell");
   if (spec.stresses_kpa.empty())
@@ -72,10 +72,10 @@ TriaxialRunResult finished_triaxial_test(const fs::path& dir, const std::string&
 
 TriaxialRunResult run_triaxial_test(const Scene& scene, const ProgrammeRunOptions& options,
                                     const std::string& title) {
-  TriaxialRunResult r = run_triaxial(scene, options);
+  TriaxialRunResult r = typed_result<TriaxialTest>(run_test(scene, options));
   if (!r.state.finished) return r;
   TriaxialRunResult back =
-      finished_triaxial_test(options.out_dir, title, scene.triaxial->confining_stress);
+      finished_triaxial_test(options.out_dir, title, scene.apparatus_as<Triaxial>()->confining_stress);
   r.rows = std::move(back.rows);
   r.summary = std::move(back.summary);
   return r;
@@ -109,7 +109,7 @@ std::vector<TriaxialCampaignTest> plan_triaxial_campaign(const Scene& base,
     TriaxialCampaignTest t;
     t.s_kpa = s;
     t.scene = base;
-    t.scene.triaxial->confining_stress = s * 1e3;
+    t.scene.apparatus_as<Triaxial>()->confining_stress = s * 1e3;
     if (spec.precision) t.scene.numerics.precision = *spec.precision;
     t.scene.name = base.name + "_s3_" + fmt("%g", s) + "kPa";
     t.scene.source_text.clear();  // scene.toml is then the resolved scene

@@ -18,7 +18,8 @@
 #include <vector>
 
 #include "app/experiment/campaign.h"
-#include "app/experiment/triaxial_run.h"
+#include "app/experiment/apparatus_run.h"
+#include "solver/apparatus/triaxial_test.h"
 
 namespace simsols {
 
@@ -26,6 +27,8 @@ struct TriaxialCampaignSpec {
   std::vector<double> stresses_kpa{50, 100, 200};  // sigma_3
   std::optional<Precision> precision;              // nullopt = the base scene's
 };
+
+using TriaxialRunResult = TestRunResult<TriaxialTest>;
 
 struct TriaxialCampaignTest {
   double s_kpa = 0;

@@ -77,7 +77,7 @@ LabApp::LabApp(const LabOptions& options) : opt_(options) {
     message_ = err;
     if (!opt_.scene.empty()) err = exp_->load_preset(6.35, 160);
   }
-  if (const auto kind = apparatus_kind(exp_->scene())) apparatus_ = int(*kind);
+  if (const int bench = lab_bench_index(exp_->scene()); bench >= 0) apparatus_ = bench;
   if (opt_.script.empty()) {
     act(exp_->prepare());
     return;

@@ -126,7 +126,7 @@ class LabApp {
   std::unique_ptr<Script> script_;
   int exit_status_ = 0;
   // panel state
-  int apparatus_ = 0;  // the panel's choice: LabApparatusKind
+  int apparatus_ = 0;  // the panel's choice: an index into lab_benches()
   int preset_size_ = 4, preset_stress_ = 1;
   char scene_path_[512] = "";
   char out_path_[512] = "results/lab";

@@ -1,5 +1,8 @@
 #include "app/lab/lab_apparatus.h"
 
+#include "app/experiment/default_scenes.h"
+#include "solver/apparatus/registry.h"
+
 namespace simsols {
 
 const char* to_string(LabStage s) {
@@ -15,45 +18,48 @@ const char* to_string(LabStage s) {
   return "?";
 }
 
-const char* to_string(LabApparatusKind k) {
-  switch (k) {
-    case LabApparatusKind::ShearBox: return "shear_box";
-    case LabApparatusKind::Triaxial: return "triaxial";
-    case LabApparatusKind::Oedometer: return "oedometer";
-  }
-  return "?";
+namespace {
+
+// The registry's order (checked by tests/app/lab/test_lab_apparatus.cpp).
+const LabBench kBenches[] = {
+    {"shear_box", "shear box", make_lab_shear_box, nullptr, nullptr},
+    {"oedometer", "oedometer", make_lab_oedometer, default_oedometer_scene_text,
+     kDefaultOedometerSceneName},
+    {"triaxial", "triaxial", make_lab_triaxial, default_triaxial_scene_text,
+     kDefaultTriaxialSceneName},
+};
+
+}  // namespace
+
+std::span<const LabBench> lab_benches() { return kBenches; }
+
+int lab_bench_index(std::string_view kind) {
+  for (std::size_t i = 0; i < std::size(kBenches); ++i)
+    if (kind == kBenches[i].kind) return static_cast<int>(i);
+  return -1;
 }
 
-std::optional<LabApparatusKind> parse_apparatus_kind(const std::string& name) {
-  for (LabApparatusKind k :
-       {LabApparatusKind::ShearBox, LabApparatusKind::Triaxial, LabApparatusKind::Oedometer})
-    if (name == to_string(k)) return k;
-  return std::nullopt;
+int lab_bench_index(const Scene& scene) {
+  const ApparatusKind* kind = apparatus_kind(scene);
+  return kind ? lab_bench_index(kind->name) : -1;
 }
 
-std::optional<LabApparatusKind> apparatus_kind(const Scene& scene) {
-  if (scene.shear_box) return LabApparatusKind::ShearBox;
-  if (scene.triaxial) return LabApparatusKind::Triaxial;
-  if (scene.oedometer) return LabApparatusKind::Oedometer;
-  return std::nullopt;
+std::string lab_kind_names() {
+  std::string out;
+  for (const LabBench& b : kBenches) out += (out.empty() ? "" : "|") + std::string(b.kind);
+  return out;
 }
 
 std::unique_ptr<LabApparatus> make_lab_apparatus(Simulation& sim) {
-  const std::optional<LabApparatusKind> kind = apparatus_kind(sim.scene());
-  if (!kind) return nullptr;
-  switch (*kind) {
-    case LabApparatusKind::ShearBox: return make_lab_shear_box(sim);
-    case LabApparatusKind::Triaxial: return make_lab_triaxial(sim);
-    case LabApparatusKind::Oedometer: return make_lab_oedometer(sim);
-  }
-  return nullptr;
+  const int i = lab_bench_index(sim.scene());
+  return i < 0 ? nullptr : kBenches[i].make(sim);
 }
 
 std::string unknown_setting(const LabApparatus& a, const std::string& key) {
   std::string list;
   for (const LabSetting& s : a.settings())
     list += (list.empty() ? "" : ", ") + s.key + " (" + s.unit + ")";
-  return std::string("the ") + to_string(a.kind()) + " has no setting '" + key + "'" +
+  return std::string("the ") + a.kind() + " has no setting '" + key + "'" +
          (list.empty() ? "; it has no live settings" : "; its settings: " + list);
 }
 

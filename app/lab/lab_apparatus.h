@@ -20,8 +20,9 @@
 #pragma once
 
 #include <memory>
-#include <optional>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "app/lab/lab_plots.h"
@@ -34,11 +35,23 @@ namespace simsols {
 enum class LabStage { Empty, Building, Prepared, Loading, Loaded, Running, Done };
 const char* to_string(LabStage s);  // the apparatus-neutral words
 
-enum class LabApparatusKind { ShearBox, Triaxial, Oedometer };
-const char* to_string(LabApparatusKind k);                                // "shear_box", ...
-std::optional<LabApparatusKind> parse_apparatus_kind(const std::string& name);
-std::optional<LabApparatusKind> apparatus_kind(const Scene& scene);       // from its table
-inline constexpr const char* kApparatusNames = "shear_box|triaxial|oedometer";
+class LabApparatus;
+
+// What the lab has for each kind of the registry (solver/apparatus/
+// registry.h), in the registry's order: the panel's word, its bench, and
+// its default scene (nullptr: the shear box's 6.35 mm / 160 kPa preset).
+struct LabBench {
+  const char* kind;        // the registry's name
+  const char* panel_name;  // "shear box"
+  std::unique_ptr<LabApparatus> (*make)(Simulation& sim);
+  const char* (*default_scene_text)();
+  const char* default_scene_name;
+};
+std::span<const LabBench> lab_benches();
+// The bench's index for the scene's apparatus, or for a kind's name; -1
+// when there is none.
+int lab_bench_index(const Scene& scene);
+int lab_bench_index(std::string_view kind);
 
 // One live control: `key` for scripts (set_stress -> "stress"), the
 // panel's label, its unit and current value in that unit.
@@ -51,7 +64,7 @@ class LabApparatus {
  public:
   virtual ~LabApparatus() = default;
 
-  virtual LabApparatusKind kind() const = 0;
+  virtual const char* kind() const = 0;  // the registry's name
   virtual LoadingProgramme& programme() = 0;
 
   // The stage; `started` is true once loading (or the programme) has begun.
@@ -91,6 +104,8 @@ class LabApparatus {
 // The apparatus of `sim`'s scene, its test built on `sim` (not owned) and
 // set to hold when loaded. nullptr when the scene has none the lab runs.
 std::unique_ptr<LabApparatus> make_lab_apparatus(Simulation& sim);
+// The registry's names of the kinds the lab runs: "shear_box|oedometer|triaxial".
+std::string lab_kind_names();
 std::unique_ptr<LabApparatus> make_lab_shear_box(Simulation& sim);  // lab_shear_box.cpp
 std::unique_ptr<LabApparatus> make_lab_triaxial(Simulation& sim);   // lab_triaxial.cpp
 std::unique_ptr<LabApparatus> make_lab_oedometer(Simulation& sim);  // lab_oedometer.cpp

@@ -54,12 +54,11 @@ std::string LabExperiment::load_preset(double d_mm, double s_kpa) {
 // The shear box's default is the lab's preset (6.35 mm, 160 kPa); the
 // triaxial cell's and the oedometer's are their built-in scenes, in the
 // precision chosen in the panel.
-std::string LabExperiment::load_default(LabApparatusKind kind) {
-  if (kind == LabApparatusKind::ShearBox) return load_preset(6.35, 160);
-  const bool tri = kind == LabApparatusKind::Triaxial;
-  const char* name = tri ? kDefaultTriaxialSceneName : kDefaultOedometerSceneName;
+std::string LabExperiment::load_default(const LabBench& bench) {
+  if (!bench.default_scene_text) return load_preset(6.35, 160);
+  const char* name = bench.default_scene_name;
   try {
-    Scene sc = parse_scene(tri ? default_triaxial_scene_text() : default_oedometer_scene_text(), name);
+    Scene sc = parse_scene(bench.default_scene_text(), name);
     sc.numerics.precision = scene_.numerics.precision;
     return adopt_scene(std::move(sc), name, name, true);
   } catch (const SceneError& e) {
@@ -72,9 +71,9 @@ std::string LabExperiment::load_default(LabApparatusKind kind) {
 std::string LabExperiment::load_scene_file(const std::string& path) {
   try {
     Scene sc = load_scene(path);
-    if (!apparatus_kind(sc))
-      return path + ": the lab runs shear box, triaxial and oedometer tests; this scene has none "
-                    "of the tables [shear_box], [triaxial], [oedometer]";
+    if (lab_bench_index(sc) < 0)
+      return path + ": the lab runs the tests of the apparatus " + lab_kind_names() +
+             "; this scene has none of those tables";
     const SpecimenCell cell = specimen_cell(sc);
     if (cell.specimen && cell.specimen->preparation.relative_density)
       return path + ": specimen.preparation.relative_density is searched by 'simsols run " + path +
@@ -259,8 +258,8 @@ std::string LabExperiment::load_checkpoint(const std::string& path) {
   try {
     std::string extra;
     auto sim = simsols::load_checkpoint(device_, path, &extra);
-    if (!apparatus_kind(sim->scene()))
-      return path + ": not a checkpoint of a shear box, triaxial or oedometer test";
+    if (lab_bench_index(sim->scene()) < 0)
+      return path + ": not a checkpoint of a test the lab runs (" + lab_kind_names() + ")";
     bool started = true;
     if (extra.rfind(kStateTag, 0) == 0) {
       extra.erase(0, std::string(kStateTag).size());

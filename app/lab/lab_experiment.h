@@ -45,7 +45,7 @@ class LabExperiment {
 
   // Scene choice. Empty string on success, else the error (nothing changed).
   std::string load_preset(double d_mm, double s_kpa);      // a shear box of Table 1
-  std::string load_default(LabApparatusKind kind);         // the built-in scene
+  std::string load_default(const LabBench& bench);         // the built-in scene
   std::string load_scene_file(const std::string& path);    // any of the three
   const Scene& scene() const { return scene_; }
   const std::string& scene_label() const { return label_; }

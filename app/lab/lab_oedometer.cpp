@@ -15,9 +15,9 @@ namespace {
 
 class LabOedometer : public LabApparatus {
  public:
-  explicit LabOedometer(Simulation& sim) : test_(sim), steps_(sim.scene().oedometer->load_steps) {}
+  explicit LabOedometer(Simulation& sim) : test_(sim), steps_(sim.scene().apparatus_as<Oedometer>()->load_steps) {}
 
-  LabApparatusKind kind() const override { return LabApparatusKind::Oedometer; }
+  const char* kind() const override { return "oedometer"; }
   LoadingProgramme& programme() override { return test_; }
 
   LabStage stage(bool started) const override {

@@ -22,7 +22,6 @@ namespace {
 const char* kViews[] = {"flat opaque", "flat transparent", "force chains",
                         "Alioscopy (full screen)", "eight-view grid", "single view"};
 const char* kPresets[] = {"front", "side", "top", "three-quarter"};
-const char* kApparatus[] = {"shear box", "triaxial", "oedometer"};  // LabApparatusKind's order
 
 
 }  // namespace
@@ -95,9 +94,15 @@ void LabApp::draw_specimen(LabStage stage) {
 // scene (the shear box's preset, the others' built-in scenes) and prepares it.
 void LabApp::draw_apparatus_choice() {
   ImGui::SetNextItemWidth(150);
-  if (ImGui::Combo("apparatus", &apparatus_, kApparatus, 3)) {
+  const auto benches = lab_benches();
+  const auto name = [](void* data, int i, const char** out) {
+    *out = static_cast<const LabBench*>(data)[i].panel_name;
+    return true;
+  };
+  if (ImGui::Combo("apparatus", &apparatus_, name, const_cast<LabBench*>(benches.data()),
+                   int(benches.size()))) {
     message_.clear();
-    const std::string err = exp_->load_default(LabApparatusKind(apparatus_));
+    const std::string err = exp_->load_default(benches[size_t(apparatus_)]);
     act(err);
     if (err.empty()) act(exp_->prepare());
   }
@@ -107,10 +112,11 @@ void LabApp::draw_apparatus_choice() {
 // built-in scene (Default); or the scene file typed in the field (Open), of
 // any apparatus. Each prepares the specimen at once.
 void LabApp::draw_preset_and_scene_file() {
-  if (apparatus_ != int(LabApparatusKind::ShearBox)) {
+  const LabBench& bench = lab_benches()[size_t(apparatus_)];
+  if (bench.default_scene_text) {
     if (ImGui::Button("Default scene")) {
       message_.clear();
-      const std::string err = exp_->load_default(LabApparatusKind(apparatus_));
+      const std::string err = exp_->load_default(bench);
       act(err);
       if (err.empty()) act(exp_->prepare());
     }
@@ -125,7 +131,7 @@ void LabApp::draw_preset_and_scene_file() {
     const std::string err = exp_->load_scene_file(scene_path_);
     act(err);  // a failed load keeps the current experiment
     if (err.empty()) {
-      apparatus_ = int(*apparatus_kind(exp_->scene()));
+      apparatus_ = lab_bench_index(exp_->scene());
       act(exp_->prepare());
     }
   }
@@ -164,7 +170,7 @@ void LabApp::draw_precision_and_time_step() {
   ImGui::SetNextItemWidth(200);
   if (ImGui::SliderFloat("time step (x Rayleigh)", &dt_fraction, 0.05f, 0.5f, "%.2f"))
     exp_->set_dt_fraction(dt_fraction);
-  const auto& box = exp_->scene().shear_box;
+  const ShearBox* box = exp_->scene().apparatus_as<ShearBox>();
   if (!box) return;  // the accuracy study is of the shear box
   const StudySpecimen kind = box && box->specimen.method == Specimen::Method::Layers
                                  ? StudySpecimen::Layered

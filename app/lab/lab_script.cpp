@@ -29,7 +29,7 @@ void LabApp::take_script_screenshot() {
 // The commands, as docs/lab.md lists them. A new command is one entry here
 // and its handler in lab_script_commands.cpp.
 const LabApp::Script::Command LabApp::Script::kCommands[] = {
-    {"apparatus", kApparatusNames, &Script::choose_apparatus},
+    {"apparatus", "shear_box|oedometer|triaxial", &Script::choose_apparatus},
     {"preset", "D_MM S_KPA", &Script::choose_preset},
     {"open", "SCENE.toml", &Script::open_scene},
     {"precision", "float|double", &Script::choose_precision},
@@ -78,7 +78,7 @@ std::string LabApp::state_text() {
   Simulation* sim = exp_->simulation();
   LabApparatus* a = exp_->apparatus();
   o << "stage = " << exp_->stage_text() << "\n";
-  if (a) o << "apparatus = " << to_string(a->kind()) << "\n";
+  if (a) o << "apparatus = " << a->kind() << "\n";
   o << "scene = " << exp_->scene_label() << "\n";  // the next prepare's
   o << "paused = " << (exp_->paused() ? 1 : 0) << "\n";
   if (sim) {

@@ -55,10 +55,11 @@ bool set_slot(Effects& e, const std::string& slot, const std::string& choice) {
 // The apparatus' default scene (the shear box's 6.35 mm / 160 kPa preset),
 // as the panel's combo box.
 void LabApp::Script::choose_apparatus(const Line& line) {
-  const std::optional<LabApparatusKind> kind = parse_apparatus_kind(line.argument);
-  if (!kind)
-    return fail(line, "apparatus " + std::string(kApparatusNames) + ", got '" + line.argument + "'", 2);
-  if (succeeded(line, experiment().load_default(*kind))) lab.apparatus_ = int(*kind);
+  const int bench = lab_bench_index(line.argument);
+  if (bench < 0)
+    return fail(line, "apparatus " + lab_kind_names() + ", got '" + line.argument + "'", 2);
+  if (succeeded(line, experiment().load_default(lab_benches()[size_t(bench)])))
+    lab.apparatus_ = bench;
 }
 
 void LabApp::Script::choose_preset(const Line& line) {
@@ -66,7 +67,7 @@ void LabApp::Script::choose_preset(const Line& line) {
   if (std::sscanf(line.argument.c_str(), "%lf %lf", &d, &kpa) != 2)
     return fail(line, "preset D_MM S_KPA", 2);
   if (!succeeded(line, experiment().load_preset(d, kpa))) return;
-  lab.apparatus_ = int(LabApparatusKind::ShearBox);
+  lab.apparatus_ = lab_bench_index("shear_box");
   const double size = nearest_table1_size(d).value_or(d);
   for (int k = 0; k < 5; ++k)  // the panel's combo boxes follow
     if (kTable1SizesMm[k] == size) lab.preset_size_ = k;
@@ -76,7 +77,7 @@ void LabApp::Script::choose_preset(const Line& line) {
 
 void LabApp::Script::open_scene(const Line& line) {
   if (succeeded(line, experiment().load_scene_file(line.argument)))
-    lab.apparatus_ = int(*apparatus_kind(experiment().scene()));
+    lab.apparatus_ = lab_bench_index(experiment().scene());
 }
 
 void LabApp::Script::choose_precision(const Line& line) {

@@ -17,7 +17,7 @@ class LabShearBox : public LabApparatus {
  public:
   explicit LabShearBox(Simulation& sim) : test_(sim) { test_.hold_before_shear(true); }
 
-  LabApparatusKind kind() const override { return LabApparatusKind::ShearBox; }
+  const char* kind() const override { return "shear_box"; }
   LoadingProgramme& programme() override { return test_; }
 
   LabStage stage(bool started) const override {
@@ -53,7 +53,7 @@ class LabShearBox : public LabApparatus {
   std::string set(const std::string& key, double value, Scene& scene) override {
     if (key == "stress") {
       if (!(value > 0) || value > 1e6) return "normal stress must be in (0, 1e6] kPa";
-      if (scene.shear_box) scene.shear_box->normal_stress = value * 1e3;
+      if (scene.apparatus_as<ShearBox>()) scene.apparatus_as<ShearBox>()->normal_stress = value * 1e3;
       test_.set_normal_stress(value * 1e3);
       return {};
     }

@@ -17,7 +17,7 @@ class LabTriaxial : public LabApparatus {
  public:
   explicit LabTriaxial(Simulation& sim) : test_(sim) { test_.hold_when_consolidated(true); }
 
-  LabApparatusKind kind() const override { return LabApparatusKind::Triaxial; }
+  const char* kind() const override { return "triaxial"; }
   LoadingProgramme& programme() override { return test_; }
 
   LabStage stage(bool started) const override {
@@ -65,7 +65,7 @@ class LabTriaxial : public LabApparatus {
   std::string set(const std::string& key, double value, Scene& scene) override {
     if (key == "stress") {
       if (!(value > 0) || value > 1e6) return "σ₃ must be in (0, 1e6] kPa";
-      if (scene.triaxial) scene.triaxial->confining_stress = value * 1e3;
+      if (scene.apparatus_as<Triaxial>()) scene.apparatus_as<Triaxial>()->confining_stress = value * 1e3;
       test_.set_confining_stress(value * 1e3);
       return {};
     }

@@ -33,14 +33,11 @@
 #include <toml++/toml.h>
 #include <vector>
 
-#include "app/experiment/oedometer_run.h"
+#include "app/experiment/apparatus_run.h"
+#include "solver/apparatus/registry.h"
 #include "app/experiment/preparation.h"
 #include "app/experiment/sensitivity.h"
 #include "app/experiment/shear_run.h"
-#include "app/experiment/triaxial_run.h"
-#include "solver/apparatus/oedometer_analysis.h"
-#include "solver/apparatus/shear_analysis.h"
-#include "solver/apparatus/triaxial_analysis.h"
 #include "solver/common/errors.h"
 #include "solver/core/engine_options.h"
 #include "solver/core/guard.h"
@@ -175,6 +172,32 @@ std::shared_ptr<Device> device_or_open(std::shared_ptr<Device> device) {
 
 // A CSV with a header line (the rows files: shear.csv, ...) as one float64
 // array per column, named as in the file (units in the names).
+// The walls now, one dict each: name, point (m), normal, velocity (m/s),
+// the force the beads exert on it (N), its contacts; `apparatus` names the
+// apparatus it belongs to ("" for the scene's own walls).
+py::list walls_list(Simulation& sim) {
+  const Scene& scene = sim.scene();
+  const std::vector<WallReaction> reactions = sim.wall_reactions();
+  const ApparatusKind* kind = apparatus_kind(scene);
+  const int first = kind ? scene.cell()->first_wall : 0, last = kind ? first + kind->walls : 0;
+  py::list out;
+  for (int k = 0; k < int(scene.walls.size()); ++k) {
+    const Vec3 p = sim.wall_point(k), v = sim.wall_velocity(k), n = scene.walls[size_t(k)].normal;
+    const Vec3 f = reactions[size_t(k)].force;
+    py::dict w;
+    w["name"] = scene.walls[size_t(k)].name;
+    w["apparatus"] = kind && k >= first && k < last ? kind->name : "";
+    w["point"] = py::make_tuple(p[0], p[1], p[2]);
+    w["normal"] = py::make_tuple(n[0], n[1], n[2]);
+    w["velocity"] = py::make_tuple(v[0], v[1], v[2]);
+    w["force"] = py::make_tuple(f[0], f[1], f[2]);
+    w["contacts"] = reactions[size_t(k)].contacts;
+    w["servo"] = scene.walls[size_t(k)].servo.enabled;
+    out.append(w);
+  }
+  return out;
+}
+
 py::dict csv_columns(const std::string& text) {
   std::istringstream in(text);
   std::string line;
@@ -212,56 +235,42 @@ py::dict summary_dict(const std::string& text) {
 }
 
 struct TestOutcome {
-  std::string apparatus, rows_csv, summary;
+  std::string apparatus, rows_csv, summary, stage, stopped_after;
   bool finished = false;
   long long steps = 0;
 };
 
-template <class Result>
-TestOutcome outcome(const char* apparatus, const Result& r, std::string rows, std::string summary) {
-  return {apparatus, std::move(rows), std::move(summary), r.state.finished, r.state.steps};
-}
-
-// The scene's test, as `simsols run SCENE --out DIR` runs it (the
-// preparation to a density first, the same outputs in `out`).
-TestOutcome run_scene_test(Scene scene, const std::string& out, bool quiet,
-                           const std::shared_ptr<Device>& device) {
-  prepare_to_relative_density(scene, device, out, [&](const std::string& line) {
-    if (!quiet) std::fprintf(stderr, "[prepare] %s\n", line.c_str());
-  });
+// The scene's test, as `simsols run SCENE --out DIR` runs it: the one path
+// from a scene to its result (apparatus_run.h), the same outputs in `out`.
+TestOutcome scene_test(const Scene& scene, const std::string& out, bool quiet,
+                       const std::string& stop_at, const std::shared_ptr<Device>& device) {
   ProgrammeRunOptions opt;
   opt.device = device;
   opt.out_dir = out;
   opt.quiet = quiet;
-  if (scene.shear_box) {
-    opt.label = "shear";
-    const ShearRunResult r = run_shear(scene, opt);
-    return {"shear_box", shear_rows_csv(r.rows), shear_summary_text(r.summary), r.finished, r.steps};
-  }
-  if (scene.oedometer) {
-    opt.label = "oedometer";
-    const OedometerRunResult r = run_oedometer(scene, opt);
-    return outcome("oedometer", r, oedometer_rows_csv(r.rows), oedometer_summary_text(r.summary));
-  }
-  if (scene.triaxial) {
-    opt.label = "triaxial";
-    const TriaxialRunResult r = run_triaxial(scene, opt);
-    return outcome("triaxial", r, triaxial_rows_csv(r.rows), triaxial_summary_text(r.summary));
-  }
-  throw SceneError("no_apparatus", scene.name, 0, "shear_box",
-                   "the scene has no [shear_box], [triaxial] or [oedometer] table: no test to run "
-                   "(Simulation steps it)");
+  opt.stop_at = stop_at;
+  const TestRun run = simsols::run_scene_test(scene, opt, [&](const std::string& line) {
+    if (!quiet) std::fprintf(stderr, "[prepare] %s\n", line.c_str());
+  });
+  return {run.kind->name,          run.test->rows_csv(),
+          run.test->summary_text(run.state.wall_seconds),
+          run.test->stage_name(),  run.state.stopped_after,
+          run.state.finished,      run.state.steps};
 }
 
-py::dict run_test(const Scene& scene, const std::string& out, bool quiet, std::shared_ptr<Device> device) {
+py::dict run_test(const Scene& scene, const std::string& out, bool quiet, std::shared_ptr<Device> device,
+                  const std::string& stop_at) {
   TestOutcome o;
   {
     py::gil_scoped_release release;
-    o = run_scene_test(scene, out, quiet, device_or_open(std::move(device)));
+    o = scene_test(scene, out, quiet, stop_at, device_or_open(std::move(device)));
   }
   py::dict r;
   r["apparatus"] = o.apparatus;
   r["finished"] = o.finished;
+  r["stage"] = o.stage;
+  r["stopped_after"] = o.stopped_after;
+  r["checkpoint"] = out + "/checkpoint.bin";
   r["steps"] = o.steps;
   r["summary"] = o.finished ? summary_dict(o.summary) : py::dict();
   r["rows"] = csv_columns(o.rows_csv);
@@ -410,13 +419,18 @@ void define_simulation(py::module_& m) {
            "(n,) touching neighbours and walls")
       .def("contacts", &contacts_arrays,
            "(pairs (m, 2) int32, forces (m, 3) N): b = -1 - wall for a wall; the force b exerts on a")
+      .def("walls", &walls_list,
+           "The walls now, as dicts: name, apparatus (its kind, '' for the scene's own), point "
+           "(m), normal, velocity (m/s), force the beads exert (N), contacts, servo")
       .def("save_checkpoint", [](Simulation& s, const std::string& path) { save_checkpoint(s, path); },
            py::arg("path"));
   m.def("run_test", &run_test, py::arg("scene"), py::arg("out"), py::arg("quiet") = true,
-        py::arg("device") = nullptr,
-        "The scene's test (shear box, triaxial or oedometer) as `simsols run SCENE --out OUT`: "
-        "its outputs in `out`; returns apparatus, finished, steps, summary (summary.txt's keys) "
-        "and rows (the rows CSV's columns as arrays)");
+        py::arg("device") = nullptr, py::arg("stop_at") = "",
+        "The scene's test (any apparatus) as `simsols run SCENE --out OUT [--stop-at STAGE]`: "
+        "its outputs in `out`; returns apparatus, finished, stage (where it is now), "
+        "stopped_after (the stage stop_at ended), checkpoint (its path: load_checkpoint "
+        "continues from it), steps, summary (summary.txt's keys) and rows (the rows CSV's "
+        "columns as arrays)");
   m.def("study_sensitivity", &study_sensitivity, py::arg("out"), py::arg("preset") = "paper",
         py::arg("quiet") = true, py::arg("device") = nullptr,
         "The sensitivity study as `simsols study sensitivity --out OUT --preset PRESET` (its "

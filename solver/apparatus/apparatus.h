@@ -24,11 +24,14 @@
 // test resumes exactly.
 //
 // LoadingProgramme is the interface the drivers share (the headless run,
-// the campaign, the lab, progress lines); ShearTest (shear_test.h) is the
-// first implementation. A new apparatus is new files next to it.
+// the campaign, the lab, progress lines); ApparatusTest adds what a run
+// writes of it (its rows file, summary.txt). ShearTest, OedometerTest and
+// TriaxialTest implement it; the registry (registry.h) makes the one a
+// scene's apparatus needs, so no driver names an apparatus.
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -68,6 +71,24 @@ class LoadingProgramme {
   virtual std::string save_state() const = 0;
   // Throws std::runtime_error when `text` is malformed.
   virtual void restore_state(const std::string& text) = 0;
+};
+
+// A loading programme that is an apparatus' test: what a headless run
+// writes of it, whatever the apparatus.
+class ApparatusTest : public LoadingProgramme {
+ public:
+  // The rows file's name in a run's folder ("shear.csv"), the rows so far
+  // as CSV with units, and how many there are.
+  virtual const char* rows_file() const = 0;
+  virtual std::string rows_csv() const = 0;
+  virtual std::size_t row_count() const = 0;
+  // summary.txt of the test so far, with the wall seconds spent on it.
+  virtual std::string summary_text(double wall_seconds) const = 0;
+  // How the test is driven, for the run's header ("servo gain ... m/(s N),
+  // integral time ... s").
+  virtual std::string describe() const = 0;
+  // A line for when the measured stage begins ("shearing at ... mm/s"), or "".
+  virtual std::string measuring_line() const { return {}; }
 };
 
 }  // namespace simsols

@@ -47,7 +47,7 @@ void add_walls(Scene& scene, Oedometer& o, double top, double r_max) {
 }
 
 void build(Scene& scene) {
-  Oedometer& o = *scene.oedometer;
+  Oedometer& o = *scene.apparatus_as<Oedometer>();
   check_fields(o, scene);
   if (auto issue = place_specimen(scene, o.specimen, o.length, o.width, "oedometer"))
     throw TableProblem{*issue};
@@ -60,10 +60,7 @@ void build(Scene& scene) {
 }  // namespace
 
 std::optional<SceneIssue> build_oedometer(Scene& scene) {
-  if (!scene.oedometer) return std::nullopt;
-  if (scene.shear_box)
-    return SceneIssue{"conflicting_keys", "oedometer",
-                      "a scene holds one apparatus: [shear_box] or [oedometer], not both"};
+  if (!scene.apparatus_as<Oedometer>()) return std::nullopt;
   try {
     build(scene);
   } catch (const TableProblem& p) {

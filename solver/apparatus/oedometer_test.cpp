@@ -19,9 +19,9 @@ constexpr double kSettleShare = 0.3;
 constexpr double kStepShare = 0.2;
 
 const Oedometer& oedometer_of(const Simulation& sim) {
-  if (!sim.scene().oedometer)
-    throw std::invalid_argument("OedometerTest: the scene has no oedometer");
-  return *sim.scene().oedometer;
+  const Oedometer* o = sim.scene().apparatus_as<Oedometer>();
+  if (!o) throw std::invalid_argument("OedometerTest: the scene has no oedometer");
+  return *o;
 }
 
 }  // namespace
@@ -252,6 +252,21 @@ void OedometerTest::restore_state(const std::string& text) {
         r.sigma_hx >> r.sigma_hy >> r.sigma_h >> r.height >> r.void_ratio >> r.k0 >>
         r.side_friction >> r.coordination >> r.kinetic_energy >> r.end_of_step;
   if (!in) throw std::runtime_error("malformed oedometer-test rows");
+}
+
+std::string OedometerTest::rows_csv() const { return oedometer_rows_csv(rows_); }
+
+std::string OedometerTest::summary_text(double wall_seconds) const {
+  OedometerSummary s = summary();
+  s.wall_seconds = wall_seconds;
+  return oedometer_summary_text(s);
+}
+
+std::string OedometerTest::describe() const {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "servo gain %.3g m/(s N), integral time %.3g s (first step)",
+                servo_gain(), servo_integral_time());
+  return buf;
 }
 
 }  // namespace simsols

@@ -38,7 +38,7 @@ constexpr double kOedometerBeadsInertial = 1e-4;
 constexpr double kOedometerPlatenInertial = 1e-5;
 constexpr double kOedometerForceError = 0.01;
 
-class OedometerTest : public LoadingProgramme {
+class OedometerTest : public ApparatusTest {
  public:
   enum class Stage : int { Settle = 0, Load = 1, Done = 2 };
 
@@ -54,6 +54,13 @@ class OedometerTest : public LoadingProgramme {
   std::string caption() const override;
   std::string save_state() const override;
   void restore_state(const std::string& text) override;  // throws std::runtime_error
+
+  // ApparatusTest: oedometer.csv and the summary (oedometer_analysis.h).
+  const char* rows_file() const override { return "oedometer.csv"; }
+  std::string rows_csv() const override;
+  std::size_t row_count() const override { return rows_.size(); }
+  std::string summary_text(double wall_seconds) const override;
+  std::string describe() const override;
 
   Stage stage() const { return stage_; }
   int load_step() const { return step_; }  // 0-based index into load_steps

@@ -112,7 +112,7 @@ void add_walls(Scene& scene, ShearBox& b, const SpecimenExtent& e) {
 }
 
 void build(Scene& scene) {
-  ShearBox& b = *scene.shear_box;
+  ShearBox& b = *scene.apparatus_as<ShearBox>();
   check_box(b, scene);
   if (auto issue = place_specimen(scene, b.specimen, b.length, b.width, "shear_box"))
     throw TableProblem{*issue};
@@ -130,7 +130,7 @@ void build(Scene& scene) {
 }  // namespace
 
 std::optional<SceneIssue> build_shear_box(Scene& scene) {
-  if (!scene.shear_box) return std::nullopt;
+  if (!scene.apparatus_as<ShearBox>()) return std::nullopt;
   try {
     build(scene);
   } catch (const TableProblem& p) {

@@ -31,8 +31,9 @@ constexpr double kEquilibriumBeads = 0.1;
 constexpr double kEquilibriumPlaten = 0.01;
 
 const ShearBox& box_of(const Simulation& sim) {
-  if (!sim.scene().shear_box) throw std::invalid_argument("ShearTest: the scene has no shear box");
-  return *sim.scene().shear_box;
+  const ShearBox* box = sim.scene().apparatus_as<ShearBox>();
+  if (!box) throw std::invalid_argument("ShearTest: the scene has no shear box");
+  return *box;
 }
 
 }  // namespace
@@ -420,6 +421,30 @@ void ShearTest::restore_state(const std::string& text) {
     if (version >= 3) in >> r.sigma_target;
   }
   if (!in) throw std::runtime_error("malformed shear-test rows");
+}
+
+std::string ShearTest::rows_csv() const { return shear_rows_csv(rows_); }
+
+std::string ShearTest::summary_text(double wall_seconds) const {
+  ShearSummary s = summary();
+  s.wall_seconds = wall_seconds;
+  return shear_summary_text(s);
+}
+
+std::string ShearTest::describe() const {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "servo gain %.3g m/(s N), integral time %.3g s", gain_,
+                integral_time_);
+  return buf;
+}
+
+std::string ShearTest::measuring_line() const {
+  char buf[192];
+  std::snprintf(buf, sizeof buf,
+                "shearing at %.4g mm/s (inertial number %.2g at the start; target < 1e-3), "
+                "specimen height %.2f mm",
+                speed_ * 1e3, inertial_number(), summary().specimen_height * 1e3);
+  return buf;
 }
 
 }  // namespace simsols

@@ -46,7 +46,7 @@ enum class ShearPhase : int { Settle = 0, Consolidate = 1, Shear = 2, Done = 3 }
 const char* phase_name(ShearPhase p);
 
 // The direct shear test's loading programme (apparatus.h).
-class ShearTest : public LoadingProgramme {
+class ShearTest : public ApparatusTest {
  public:
   // `sim` must hold a scene with a shear box; it is not owned.
   explicit ShearTest(Simulation& sim);
@@ -62,6 +62,14 @@ class ShearTest : public LoadingProgramme {
   std::string caption() const override;
   std::string save_state() const override;
   void restore_state(const std::string& text) override;  // throws std::runtime_error when malformed
+
+  // ApparatusTest: shear.csv and the summary (shear_analysis.h).
+  const char* rows_file() const override { return "shear.csv"; }
+  std::string rows_csv() const override;
+  std::size_t row_count() const override { return rows_.size(); }
+  std::string summary_text(double wall_seconds) const override;
+  std::string describe() const override;
+  std::string measuring_line() const override;
 
   ShearPhase phase() const { return phase_; }
 

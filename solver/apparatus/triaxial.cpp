@@ -53,7 +53,7 @@ void add_walls(Scene& scene, Triaxial& t, double top, double r_max) {
 }
 
 void build(Scene& scene) {
-  Triaxial& t = *scene.triaxial;
+  Triaxial& t = *scene.apparatus_as<Triaxial>();
   check_fields(t, scene);
   if (auto issue = place_specimen(scene, t.specimen, t.length, t.width, "triaxial"))
     throw TableProblem{*issue};
@@ -66,10 +66,7 @@ void build(Scene& scene) {
 }  // namespace
 
 std::optional<SceneIssue> build_triaxial(Scene& scene) {
-  if (!scene.triaxial) return std::nullopt;
-  if (scene.shear_box || scene.oedometer)
-    return SceneIssue{"conflicting_keys", "triaxial",
-                      "a scene holds one apparatus: [shear_box], [oedometer] or [triaxial]"};
+  if (!scene.apparatus_as<Triaxial>()) return std::nullopt;
   try {
     build(scene);
   } catch (const TableProblem& p) {

@@ -20,8 +20,9 @@ constexpr double kBeadsInertial = 1e-4;
 constexpr double kSettleShare = 0.3, kConsolidateShare = 0.3;  // progress estimates
 
 const Triaxial& triaxial_of(const Simulation& sim) {
-  if (!sim.scene().triaxial) throw std::invalid_argument("TriaxialTest: the scene has no triaxial cell");
-  return *sim.scene().triaxial;
+  const Triaxial* t = sim.scene().apparatus_as<Triaxial>();
+  if (!t) throw std::invalid_argument("TriaxialTest: the scene has no triaxial cell");
+  return *t;
 }
 
 }  // namespace
@@ -404,6 +405,20 @@ void TriaxialTest::restore_state(const std::string& text) {
         r.sigma_z >> r.p >> r.q >> r.friction_angle >> r.void_ratio >> r.coordination >> r.lw_x >>
         r.lw_y >> r.lw_z >> r.lw_gap >> r.fabric_anisotropy >> r.kinetic_energy >> r.inertial_number;
   if (!in) throw std::runtime_error("malformed triaxial-test rows");
+}
+
+std::string TriaxialTest::rows_csv() const { return triaxial_rows_csv(rows_); }
+
+std::string TriaxialTest::summary_text(double wall_seconds) const {
+  TriaxialSummary s = summary();
+  s.wall_seconds = wall_seconds;
+  return triaxial_summary_text(s);
+}
+
+std::string TriaxialTest::describe() const {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "axial strain rate %.3g 1/s, five servo plates", strain_rate());
+  return buf;
 }
 
 }  // namespace simsols

@@ -44,7 +44,7 @@
 
 namespace simsols {
 
-class TriaxialTest : public LoadingProgramme {
+class TriaxialTest : public ApparatusTest {
  public:
   enum class Stage : int { Settle = 0, Consolidate = 1, Compress = 2, Done = 3 };
 
@@ -60,6 +60,13 @@ class TriaxialTest : public LoadingProgramme {
   std::string caption() const override;
   std::string save_state() const override;
   void restore_state(const std::string& text) override;  // throws std::runtime_error
+
+  // ApparatusTest: triaxial.csv and the summary (triaxial_analysis.h).
+  const char* rows_file() const override { return "triaxial.csv"; }
+  std::string rows_csv() const override;
+  std::size_t row_count() const override { return rows_.size(); }
+  std::string summary_text(double wall_seconds) const override;
+  std::string describe() const override;
 
   Stage stage() const { return stage_; }
   const std::vector<TriaxialRow>& rows() const { return rows_; }

@@ -31,15 +31,18 @@ void read_clumps(const Reader& root, Scene& scene);
 // returns the generator of each generated particle.
 std::vector<size_t> read_generators(const Reader& root, Scene& scene);
 
-// scene_tables_shear_box.cpp: [shear_box], built into walls and a specimen;
-// the first problem of the build, if any.
-std::optional<SceneIssue> read_shear_box(const Reader& root, Scene& scene);
+// scene_tables_apparatus.cpp: the scene's apparatus table, whichever kind
+// of the registry (solver/apparatus/registry.h) it is, read into
+// Scene::apparatus and then built (walls and specimen) by the kind's
+// `build`; the first problem of the build, if any. Each kind's reader
+// only reads:
+std::optional<SceneIssue> read_apparatus(const Reader& root, Scene& scene);
+// True when `kind` (a registry name) has a table reader here.
+bool has_apparatus_reader(std::string_view kind);
 
-// scene_tables_oedometer.cpp: [oedometer], likewise.
-std::optional<SceneIssue> read_oedometer(const Reader& root, Scene& scene);
-
-// scene_tables_triaxial.cpp: [triaxial], likewise.
-std::optional<SceneIssue> read_triaxial(const Reader& root, Scene& scene);
+void read_shear_box(const Reader& table, Scene& scene);  // scene_tables_shear_box.cpp
+void read_oedometer(const Reader& table, Scene& scene);  // scene_tables_oedometer.cpp
+void read_triaxial(const Reader& table, Scene& scene);   // scene_tables_triaxial.cpp
 
 // The [<apparatus>.specimen] sub-table of an apparatus table
 // (scene_tables_shear_box.cpp).

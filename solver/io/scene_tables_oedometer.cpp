@@ -1,12 +1,10 @@
 // [oedometer]: one-dimensional compression in a rigid square ring
-// (docs/oedometer.md), expanded into walls and beads by build_oedometer().
-#include "solver/apparatus/oedometer.h"
+// (docs/oedometer.md), expanded into walls and beads by build_oedometer() (registry.h).
 #include "solver/io/scene_tables.h"
 
 namespace simsols::scene_toml {
 
-std::optional<SceneIssue> read_oedometer(const Reader& root, Scene& scene) {
-  if (!root.has("oedometer")) return std::nullopt;
+void read_oedometer(const Reader& root, Scene& scene) {
   Reader r = root.sub("oedometer", {"length", "width", "wall_material", "load_steps", "step_time",
                                     "settle_time", "servo_gain", "servo_max_speed",
                                     "servo_integral_time", "friction_angle", "specimen"});
@@ -27,8 +25,7 @@ std::optional<SceneIssue> read_oedometer(const Reader& root, Scene& scene) {
   o.servo_integral_time = r.number("servo_integral_time", o.servo_integral_time);
   o.friction_angle = r.number("friction_angle", o.friction_angle);
   o.specimen = read_specimen(r, scene);
-  scene.oedometer = o;
-  return build_oedometer(scene);
+  scene.apparatus = o;
 }
 
 }  // namespace simsols::scene_toml

@@ -1,7 +1,7 @@
 // [shear_box]: the direct shear apparatus and its specimen
 // (docs/shear-box.md), expanded into walls and beads by build_shear_box().
 #include "solver/apparatus/grading.h"
-#include "solver/apparatus/shear_box.h"
+#include "solver/apparatus/specimen.h"
 #include <cmath>
 
 #include "solver/io/scene_tables.h"
@@ -177,8 +177,7 @@ Specimen read_specimen(const Reader& apparatus, const Scene& scene) {
   return s;
 }
 
-std::optional<SceneIssue> read_shear_box(const Reader& root, Scene& scene) {
-  if (!root.has("shear_box")) return std::nullopt;
+void read_shear_box(const Reader& root, Scene& scene) {
   Reader r = root.sub("shear_box",
                       {"length", "width", "split_height", "gap", "wall_material", "normal_stress",
                        "shear_speed", "inertial_number", "shear_displacement", "loading",
@@ -213,8 +212,7 @@ std::optional<SceneIssue> read_shear_box(const Reader& root, Scene& scene) {
   b.rows = static_cast<int>(rows);
 
   b.specimen = read_specimen(r, scene);
-  scene.shear_box = b;
-  return build_shear_box(scene);
+  scene.apparatus = b;
 }
 
 }  // namespace simsols::scene_toml

@@ -1,12 +1,10 @@
 // [triaxial]: a cuboid specimen between six rigid plates (docs/triaxial.md),
 // expanded into walls and beads by build_triaxial().
-#include "solver/apparatus/triaxial.h"
 #include "solver/io/scene_tables.h"
 
 namespace simsols::scene_toml {
 
-std::optional<SceneIssue> read_triaxial(const Reader& root, Scene& scene) {
-  if (!root.has("triaxial")) return std::nullopt;
+void read_triaxial(const Reader& root, Scene& scene) {
   Reader r = root.sub("triaxial",
                       {"length", "width", "wall_material", "confining_stress", "path", "b_value",
                        "axial_strain", "strain_rate", "inertial_number", "settle_time",
@@ -38,8 +36,7 @@ std::optional<SceneIssue> read_triaxial(const Reader& root, Scene& scene) {
     r.fail("out_of_range", "rows", std::to_string(rows) + " is out of range, allowed [10, 1000000]");
   t.rows = static_cast<int>(rows);
   t.specimen = read_specimen(r, scene);
-  scene.triaxial = t;
-  return build_triaxial(scene);
+  scene.apparatus = t;
 }
 
 }  // namespace simsols::scene_toml

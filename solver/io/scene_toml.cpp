@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "solver/apparatus/registry.h"
 #include "solver/common/input_file.h"
 #include "solver/io/scene_tables.h"
 
@@ -35,9 +36,8 @@ class Loader {
     read_clumps(r, scene_);
     read_walls(r, scene_);
     read_effects(r, scene_);  // before the apparatus: a pour rains under its gravity
-    if (auto issue = read_shear_box(r, scene_)) fail(std::move(*issue));
-    if (auto issue = read_oedometer(r, scene_)) fail(std::move(*issue));
-    if (auto issue = read_triaxial(r, scene_)) fail(std::move(*issue));
+    if (auto issue = one_apparatus(root)) fail(std::move(*issue));
+    if (auto issue = read_apparatus(r, scene_)) fail(std::move(*issue));
     read_numerics(r, scene_);
     read_outputs(r, scene_);
     read_view(r, scene_);
@@ -57,6 +57,21 @@ class Loader {
       field.resize(cut);
     }
     return 0;
+  }
+
+  // At most one apparatus table (registry.h), whatever their order: the
+  // second found in the registry's order is the one at fault.
+  static std::optional<SceneIssue> one_apparatus(const toml::table& root) {
+    const char* first = nullptr;
+    for (const ApparatusKind& k : apparatus_kinds()) {
+      if (!root.contains(k.name)) continue;
+      if (first)
+        return SceneIssue{"conflicting_keys", k.name,
+                          std::string("a scene holds one apparatus: [") + first + "] and [" +
+                              k.name + "] are both given"};
+      first = k.name;
+    }
+    return std::nullopt;
   }
 
   // Issues about generated particles are reported at their generator.

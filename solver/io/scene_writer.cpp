@@ -4,7 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <variant>
 
+#include "solver/apparatus/registry.h"
 #include "solver/io/scene_toml.h"
 #include "solver/io/toml_reader.h"
 
@@ -82,9 +84,7 @@ class Writer {
     for (size_t i = 0; i < s_.pair_overrides.size(); ++i) write(s_.pair_overrides[i], i);
     for (size_t i = 0; i < s_.walls.size(); ++i)
       if (!is_box_wall(i)) write(s_.walls[i], i);
-    if (s_.shear_box) write_shear_box(*s_.shear_box);
-    if (s_.oedometer) write_oedometer(*s_.oedometer);
-    if (s_.triaxial) write_triaxial(*s_.triaxial);
+    std::visit([this](const auto& a) { write_apparatus(a); }, s_.apparatus);
     write_effects();
     write_numerics();
     write_outputs();
@@ -155,20 +155,15 @@ class Writer {
 
   // The apparatus' walls are written as its table, which rebuilds them.
   bool is_box_wall(size_t i) const {
-    const int k = static_cast<int>(i);
-    if (s_.shear_box && k >= s_.shear_box->first_wall &&
-        k < s_.shear_box->first_wall + kShearBoxWalls)
-      return true;
-    if (s_.oedometer && k >= s_.oedometer->first_wall &&
-        k < s_.oedometer->first_wall + kOedometerWalls)
-      return true;
-    return s_.triaxial && k >= s_.triaxial->first_wall &&
-           k < s_.triaxial->first_wall + kTriaxialWalls;
+    const ApparatusKind* kind = apparatus_kind(s_);
+    const int k = static_cast<int>(i), first = kind ? s_.cell()->first_wall : 0;
+    return kind && k >= first && k < first + kind->walls;
   }
 
   // The apparatus with its resolved values; its specimen is the explicit
   // particles below, so reading it back rebuilds the same walls.
-  void write_shear_box(const ShearBox& b) {
+  void write_apparatus(std::monostate) {}
+  void write_apparatus(const ShearBox& b) {
     header("[shear_box]");
     line("length", b.length);
     line("width", b.width);
@@ -204,7 +199,7 @@ class Writer {
     if (p.e_max) line("e_max", *p.e_max);
   }
 
-  void write_oedometer(const Oedometer& o) {
+  void write_apparatus(const Oedometer& o) {
     header("[oedometer]");
     line("length", o.length);
     line("width", o.width);
@@ -224,7 +219,7 @@ class Writer {
     write_preparation("oedometer", o.specimen.preparation);
   }
 
-  void write_triaxial(const Triaxial& t) {
+  void write_apparatus(const Triaxial& t) {
     header("[triaxial]");
     line("length", t.length);
     line("width", t.width);

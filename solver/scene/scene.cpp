@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <type_traits>
 
 namespace simsols {
 
@@ -25,11 +26,22 @@ double Scene::total_mass() const {
   return sum;
 }
 
+const ApparatusCell* Scene::cell() const {
+  return std::visit(
+      [](const auto& a) -> const ApparatusCell* {
+        if constexpr (std::is_base_of_v<ApparatusCell, std::decay_t<decltype(a)>>) return &a;
+        return nullptr;
+      },
+      apparatus);
+}
+
+ApparatusCell* Scene::cell() {
+  return const_cast<ApparatusCell*>(static_cast<const Scene*>(this)->cell());
+}
+
 const Specimen* Scene::specimen() const {
-  return shear_box   ? &shear_box->specimen
-         : oedometer ? &oedometer->specimen
-         : triaxial  ? &triaxial->specimen
-                     : nullptr;
+  const ApparatusCell* c = cell();
+  return c ? &c->specimen : nullptr;
 }
 
 Specimen* Scene::specimen() {

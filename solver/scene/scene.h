@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "solver/common/vec3.h"
@@ -265,6 +266,20 @@ struct Specimen {
   Preparation preparation;         // how it settles (every method)
 };
 
+// What every apparatus is: a cell on a floor at z = 0, x in [0, length],
+// y in [0, width], holding a specimen, its walls Scene::walls[first_wall..]
+// (in the apparatus' own order). The builders (the registry's `build`,
+// solver/apparatus/registry.h) place the specimen and add the walls.
+struct ApparatusCell {
+  double length = 0;           // m, inside, along x
+  double width = 0;            // m, inside, along y
+  int wall_material = -1;      // the walls' material; -1 = "steel" (added when absent)
+  double settle_time = 0.01;   // s, longest settling under gravity
+  Specimen specimen;
+  int first_wall = 0;          // set by the builder
+};
+
+
 // The direct shear apparatus of the reference paper (its section 5) and its
 // loading program. The box is x in [0, length] (the shear direction),
 // y in [0, width], floor at z = 0, split at z = split_height into a lower and
@@ -273,12 +288,10 @@ struct Specimen {
 // held horizontally; the platen is servo-controlled to the normal stress.
 // build_shear_box() (shear_box.h) turns this into twelve walls (and particles) and
 // resolves the automatic values (0 below) into numbers.
-struct ShearBox {
-  double length = 60.23e-3;        // m, inside, along the shear direction x
-  double width = 60.07e-3;         // m, inside, along y
+struct ShearBox : ApparatusCell {
+  ShearBox() { length = 60.23e-3; width = 60.07e-3; }  // inside: x the shear direction
   double split_height = 0;         // m; 0 = mid-height of the specimen (see shear_box.h)
   double gap = 0;                  // m between the halves; 0 = 0.2 x smallest diameter
-  int wall_material = -1;          // the box's material; -1 = "steel" (added when absent)
   double normal_stress = 160e3;    // Pa, the platen's target
   double shear_speed = 0;          // m/s; 0 = from inertial_number
   double inertial_number = 8e-4;   // target I = (v/H) d sqrt(rho/sigma) for the automatic speed
@@ -293,11 +306,8 @@ struct ShearBox {
   double servo_gain = 0;           // m/(s N); 0 = automatic (from the Hertz stiffness)
   double servo_max_speed = 0.5;    // m/s, the platen's speed cap
   double servo_integral_time = 0;  // s; 0 = automatic
-  double settle_time = 0.01;       // s, longest settling under gravity
   double consolidate_time = 0.1;   // s, longest consolidation under the platen
   int rows = 400;                  // output rows over the shear displacement
-  Specimen specimen;
-  int first_wall = 0;  // set by build_shear_box: its 12 walls (ShearBoxWall order)
 };
 
 // The apparatus walls, in this order from ShearBox::first_wall: the lower
@@ -318,19 +328,14 @@ enum ShearBoxWall : int {
 // those after it the unloading branch. build_oedometer() (apparatus/
 // oedometer.h) turns this into six walls (and particles) and resolves the
 // automatic values (0 below).
-struct Oedometer {
-  double length = 60e-3;           // m, inside, along x
-  double width = 60e-3;            // m, inside, along y
-  int wall_material = -1;          // the ring's material; -1 = "steel" (added when absent)
+struct Oedometer : ApparatusCell {
+  Oedometer() { length = 60e-3; width = 60e-3; }  // inside
   std::vector<double> load_steps = {25e3, 50e3, 100e3, 200e3, 400e3, 800e3, 200e3, 50e3, 25e3};  // Pa
   double step_time = 0.1;          // s, longest hold of one load step
-  double settle_time = 0.01;       // s, longest settling under gravity
   double servo_gain = 0;           // m/(s N); 0 = automatic (from the Hertz stiffness)
   double servo_max_speed = 0.5;    // m/s, the platen's speed cap
   double servo_integral_time = 0;  // s; 0 = automatic
   double friction_angle = 0;       // deg, phi' for Jaky's K0 = 1 - sin phi'; 0 = none given
-  Specimen specimen;
-  int first_wall = 0;  // set by build_oedometer: its 6 walls (OedometerWall order)
 };
 
 // The oedometer's walls, in this order from Oedometer::first_wall.
@@ -353,31 +358,30 @@ enum OedometerWall : int {
 //                    sigma3 + b (sigma1 - sigma3).
 // build_triaxial() (apparatus/triaxial.h) turns this into six walls (and
 // particles) and resolves the automatic values (0 below).
-struct Triaxial {
+struct Triaxial : ApparatusCell {
+  Triaxial() { length = 30e-3; width = 30e-3; settle_time = 0.02; }  // inside at the start
   enum class Path : std::uint8_t { ConstantSigma3, ConstantP, TrueTriaxial };
-  double length = 30e-3;           // m, inside at the start, along x
-  double width = 30e-3;            // m, inside at the start, along y
-  int wall_material = -1;          // the plates' material; -1 = "steel" (added when absent)
   double confining_stress = 100e3; // Pa, p'0 and sigma3
   Path path = Path::ConstantSigma3;
   double b_value = 0.5;            // true_triaxial: (sigma2 - sigma3) / (sigma1 - sigma3), [0, 1]
   double axial_strain = 0.15;      // to compress to
   double strain_rate = 0;          // 1/s; 0 = from inertial_number
   double inertial_number = 5e-4;   // target I = strain_rate d sqrt(rho / p0)
-  double settle_time = 0.02;       // s, longest settling under gravity
   double consolidate_time = 0.1;   // s, longest isotropic consolidation
   double servo_gain = 0;           // m/(s N); 0 = automatic (from the Hertz stiffness)
   double servo_max_speed = 0.5;    // m/s, the plates' speed cap
   double servo_integral_time = 0;  // s; 0 = automatic
   int rows = 200;                  // rows over the axial strain
-  Specimen specimen;
-  int first_wall = 0;  // set by build_triaxial: its 6 walls (TriaxialWall order)
 };
 
 // The triaxial cell's walls, in this order from Triaxial::first_wall.
 enum TriaxialWall : int {
   kTriFloor = 0, kTriX0, kTriX1, kTriY0, kTriY1, kTriPlaten, kTriaxialWalls
 };
+
+// A scene's apparatus: none, or one of the kinds in the registry's order
+// (solver/apparatus/registry.h: a new kind is added there and here).
+using Apparatus = std::variant<std::monostate, ShearBox, Oedometer, Triaxial>;
 
 struct Scene {
   std::string name = "unnamed";
@@ -392,9 +396,10 @@ struct Scene {
   Numerics numerics;
   Outputs outputs;
   ViewHints view;
-  std::optional<ShearBox> shear_box;  // a direct shear test (walls included in `walls`)
-  std::optional<Oedometer> oedometer;  // an oedometer test (walls included in `walls`)
-  std::optional<Triaxial> triaxial;    // a triaxial test (walls included in `walls`)
+  // The scene's apparatus, at most one (its walls are included in `walls`).
+  // What each kind is and does is told by the registry
+  // (solver/apparatus/registry.h), not by the code that holds a scene.
+  Apparatus apparatus;
 
   // Where it came from (empty for scenes built in code).
   std::string source_path;
@@ -404,8 +409,16 @@ struct Scene {
   double mass(const Particle& p) const;  // kg, a solid sphere of its material
   double total_mass() const;             // kg, of every particle
   bool has_gravity() const;
-  // The specimen of the scene's apparatus (shear box, oedometer or
-  // triaxial cell); nullptr without one.
+  // The apparatus when it is an A (ShearBox, Oedometer, Triaxial), else nullptr.
+  template <class A>
+  const A* apparatus_as() const { return std::get_if<A>(&apparatus); }
+  template <class A>
+  A* apparatus_as() { return std::get_if<A>(&apparatus); }
+  bool has_apparatus() const { return apparatus.index() != 0; }
+  // The cell every apparatus has (ApparatusCell); nullptr without one.
+  const ApparatusCell* cell() const;
+  ApparatusCell* cell();
+  // The specimen of the scene's apparatus; nullptr without one.
   const Specimen* specimen() const;
   Specimen* specimen();
   // Largest capillary rupture distance of any pair (0 without cohesion), m.

@@ -61,7 +61,7 @@ Scene small_shear_box(const std::string& name, double sigma, double displacement
   b.specimen.layers = 4;
   b.specimen.seed = 5;
   b.specimen.method = method;
-  s.shear_box = b;
+  s.apparatus = b;
   if (auto issue = build_shear_box(s)) ADD_FAILURE() << issue->field << ": " << issue->message;
   return s;
 }

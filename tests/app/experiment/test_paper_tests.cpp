@@ -46,10 +46,10 @@ TEST(PaperTests, APrintedSizeBuildsTheTable1Specimen) {
   const Scene exact = paper_test_scene(base, kDefaultSceneName, 4.7625, 280);
   EXPECT_EQ(printed.name, "d4.7625mm_280kPa");
   EXPECT_EQ(printed.name, exact.name);
-  EXPECT_EQ(printed.shear_box->specimen.diameter, 4.7625e-3);
-  EXPECT_EQ(printed.shear_box->specimen.layers, 4);
+  EXPECT_EQ(printed.apparatus_as<ShearBox>()->specimen.diameter, 4.7625e-3);
+  EXPECT_EQ(printed.apparatus_as<ShearBox>()->specimen.layers, 4);
   EXPECT_EQ(printed.particles.size(), exact.particles.size());
-  EXPECT_EQ(printed.shear_box->normal_stress, 280e3);
+  EXPECT_EQ(printed.apparatus_as<ShearBox>()->normal_stress, 280e3);
 }
 
 TEST(PaperTests, OtherSizesAreRefusedWithTheAcceptedOnes) {
@@ -67,7 +67,7 @@ TEST(PaperTests, OtherSizesAreRefusedWithTheAcceptedOnes) {
   }
   // with its layers, any size is a test of the programme
   const Scene five = paper_test_scene(base, kDefaultSceneName, 5, 280, 4);
-  EXPECT_EQ(five.shear_box->specimen.diameter, 5e-3);
+  EXPECT_EQ(five.apparatus_as<ShearBox>()->specimen.diameter, 5e-3);
 }
 
 }  // namespace

@@ -71,7 +71,7 @@ TEST(Preparation, TheTestPoursTheSpecimenTheSearchChose) {
                                             std::printf("%s\n", l.c_str());
                                             ++lines;
                                           }));
-  const Preparation& p = scene.triaxial->specimen.preparation;
+  const Preparation& p = scene.apparatus_as<Triaxial>()->specimen.preparation;
   ASSERT_TRUE(p.friction && p.e_min && p.e_max);
   EXPECT_FALSE(p.relative_density);
   EXPECT_GE(lines, 4);  // densest, loosest, a trial, the outcome
@@ -121,8 +121,8 @@ TEST(Preparation, LayeredTampingReachesTheTargetVoidRatio) {
                                           }));
   ASSERT_EQ(lines.size(), 4u);  // a line per layer, then the tamped specimen's
   EXPECT_EQ(lines.back().rfind("tamped: e = ", 0), 0u) << lines.back();
-  EXPECT_EQ(scene.triaxial->specimen.method, Specimen::Method::Given);
-  EXPECT_EQ(scene.triaxial->specimen.preparation.tamping_layers, 0);
+  EXPECT_EQ(scene.apparatus_as<Triaxial>()->specimen.method, Specimen::Method::Given);
+  EXPECT_EQ(scene.apparatus_as<Triaxial>()->specimen.preparation.tamping_layers, 0);
   EXPECT_EQ(scene.particles.size(), 150u);
   EXPECT_NEAR(layer_void_ratio(0.85, 0.05, 1, 3), 1.85 / 0.95 - 1, 1e-15);
   EXPECT_NEAR(layer_void_ratio(0.85, 0.05, 3, 3), 0.85, 1e-15);
@@ -166,7 +166,7 @@ TEST(Preparation, RadiusExpansionGrowsTheBeadsAndFrictionSetsTheDensity) {
                                               ++lines;
                                             }));
     EXPECT_GE(lines, 1);
-    const Specimen& s = scene.triaxial->specimen;
+    const Specimen& s = scene.apparatus_as<Triaxial>()->specimen;
     EXPECT_EQ(s.method, Specimen::Method::Given);
     EXPECT_FALSE(s.preparation.expansion);
     ASSERT_EQ(scene.particles.size(), poured.particles.size());
@@ -192,7 +192,7 @@ TEST(Preparation, RadiusExpansionToAVoidRatioKeepsTheChosenTrialsSpecimen) {
   std::filesystem::remove_all(dir);
   ASSERT_TRUE(prepare_to_relative_density(scene, default_device(), dir,
                                           [&](const std::string& l) { std::printf("%s\n", l.c_str()); }));
-  const Specimen& s = scene.triaxial->specimen;
+  const Specimen& s = scene.apparatus_as<Triaxial>()->specimen;
   EXPECT_EQ(s.method, Specimen::Method::Given);
   ASSERT_TRUE(s.preparation.friction);
   EXPECT_FALSE(s.preparation.void_ratio);

@@ -122,18 +122,18 @@ TEST(Sensitivity, ThePlanBuildsEveryDesignsScenes) {
   for (const SensitivityTest& t : tests) {
     names.insert(t.scene.name);
     EXPECT_GT(t.cost, 0);
-    EXPECT_EQ(t.scene.shear_box->specimen.method, Specimen::Method::Pour);
+    EXPECT_EQ(t.scene.apparatus_as<ShearBox>()->specimen.method, Specimen::Method::Pour);
     // the factor values are in the scene
-    const Material& glass = t.scene.materials[t.scene.shear_box->specimen.material];
+    const Material& glass = t.scene.materials[t.scene.apparatus_as<ShearBox>()->specimen.material];
     const auto& f = sensitivity_factors();
     EXPECT_DOUBLE_EQ(glass.sliding_friction, f[0].value(t.point.levels[0]));
     EXPECT_DOUBLE_EQ(glass.young_modulus, f[3].value(t.point.levels[3]));
-    EXPECT_DOUBLE_EQ(*t.scene.shear_box->specimen.preparation.friction,
+    EXPECT_DOUBLE_EQ(*t.scene.apparatus_as<ShearBox>()->specimen.preparation.friction,
                      f[4].value(t.point.levels[4]));
   }
   EXPECT_EQ(names.size(), tests.size());  // one folder each
   const SensitivityTest& scale = tests.back();
-  EXPECT_NEAR(scale.scene.shear_box->length / (2 * scale.scene.particles[0].radius),
+  EXPECT_NEAR(scale.scene.apparatus_as<ShearBox>()->length / (2 * scale.scene.particles[0].radius),
               p.box_ratios.back(), 1e-9);
   EXPECT_GT(scale.scene.particles.size(), tests.front().scene.particles.size());
   EXPECT_THROW(sensitivity_preset("fast"), UsageError);

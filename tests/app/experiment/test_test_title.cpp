@@ -20,16 +20,16 @@ TEST(TestTitle, SaysTheApparatusTheSpecimenAndTheStress) {
             "Triaxial, sand grains (D50 4.76 mm), σ₃ = 100 kPa");
   // a built specimen of clumps (as a checkpoint holds it): the grains' name
   Scene built = load_scene(asset("triaxial_sand.toml"));
-  built.triaxial->specimen.method = Specimen::Method::Given;
-  built.triaxial->specimen.grain = -1;
+  built.apparatus_as<Triaxial>()->specimen.method = Specimen::Method::Given;
+  built.apparatus_as<Triaxial>()->specimen.grain = -1;
   built.clumps.push_back(Clump{});
   built.clumps.back().grain = 0;
   EXPECT_EQ(test_title(built), "Triaxial, " + built.grains[0].name + " grains, σ₃ = 100 kPa");
   Scene s = load_scene(asset("shear_box.toml"));
-  s.shear_box->normal_stress = 280e3;
-  s.shear_box->specimen.diameter = 2.38125e-3;
+  s.apparatus_as<ShearBox>()->normal_stress = 280e3;
+  s.apparatus_as<ShearBox>()->specimen.diameter = 2.38125e-3;
   EXPECT_EQ(test_title(s), "Direct shear, 2.38 mm glass beads, σ = 280 kPa");
-  s.shear_box.reset();
+  s.apparatus = {};
   s.description = "A bead on a plane";
   EXPECT_EQ(test_title(s), "A bead on a plane");
   s.description.clear();

@@ -155,5 +155,35 @@ def test_a_shear_test_from_python_equals_simsols_run(tmp_path):
         assert np.array_equal(r["rows"][name], table[name]), name
     # the Python run wrote the same outputs as the command
     assert (tmp_path / "py" / "summary.txt").exists() and (tmp_path / "py" / "shear.csv").exists()
-    with pytest.raises(simsols.SceneError, match="no \\[shear_box\\]"):
+    with pytest.raises(simsols.SceneError, match="no apparatus"):
         simsols.run_test(simsols.load_scene(os.path.join(ASSETS, "scenes", "settling_bead.toml")), str(tmp_path / "x"))
+
+
+def test_a_test_stopped_at_the_end_of_a_stage_hands_its_apparatus_over(tmp_path):
+    """stop_at stops a shear test consolidated, before it shears: its
+    checkpoint loads with the apparatus' walls (the platen servo-held on the
+    specimen), and the same test resumed by `simsols run --resume` finishes
+    with the rows of a run straight through."""
+    path = os.path.join(ASSETS, "tests", "shear_small.toml")
+    r = simsols.run_test(simsols.load_scene(path), str(tmp_path / "py"), stop_at="consolidate")
+    assert not r["finished"] and r["stopped_after"] == "consolidate" and r["stage"] == "shear"
+    assert len(r["rows"]["displacement_mm"]) <= 1  # at most the row at rest
+    sim = simsols.load_checkpoint(r["checkpoint"])
+    assert sim.steps == r["steps"]
+    walls = sim.walls()
+    box = [w for w in walls if w["apparatus"] == "shear_box"]
+    assert len(box) == 12
+    platen = [w for w in box if w["servo"]]
+    assert len(platen) == 1 and platen[0]["normal"][2] == -1.0
+    # the beads push the platen up with the consolidation stress (within the
+    # servo's 1 % equilibrium band, shear_test.h) on the box's area
+    box_table = simsols.load_scene(path).to_dict()["shear_box"]
+    load = box_table["normal_stress"] * box_table["length"] * box_table["width"]
+    assert platen[0]["force"][2] == pytest.approx(load, rel=0.05)
+    with pytest.raises(simsols.SceneError, match="not a stage"):
+        simsols.run_test(simsols.load_scene(path), str(tmp_path / "bad"), stop_at="consolidated")
+    exe = os.environ["SIMSOLS_EXE"]
+    assert os.system(f"'{exe}' run --resume --out '{tmp_path / 'py'}' -q > /dev/null") == 0
+    straight = tmp_path / "straight"
+    assert os.system(f"'{exe}' run '{path}' --out '{straight}' -q > /dev/null") == 0
+    assert (tmp_path / "py" / "shear.csv").read_text() == (straight / "shear.csv").read_text()

@@ -58,8 +58,8 @@ duration = 1
 
 TEST(OedometerScene, SixWallsAroundThePouredSpecimen) {
   const Scene s = parse_scene(oedometer_toml(), "oed.toml");
-  ASSERT_TRUE(s.oedometer);
-  const Oedometer& o = *s.oedometer;
+  ASSERT_TRUE(s.apparatus_as<Oedometer>());
+  const Oedometer& o = *s.apparatus_as<Oedometer>();
   EXPECT_EQ(s.particles.size(), 108u);
   ASSERT_EQ(s.walls.size(), size_t(kOedometerWalls));
   EXPECT_EQ(s.walls[o.first_wall + kOedPlaten].name, "platen");
@@ -76,8 +76,8 @@ TEST(OedometerScene, RoundTripRebuildsTheSameApparatus) {
   const Scene b = parse_scene(to_toml(a), "b.toml");
   ASSERT_EQ(a.walls.size(), b.walls.size());
   for (size_t w = 0; w < a.walls.size(); ++w) EXPECT_EQ(a.walls[w].point, b.walls[w].point);
-  EXPECT_EQ(a.oedometer->load_steps, b.oedometer->load_steps);
-  EXPECT_EQ(b.oedometer->friction_angle, 21);
+  EXPECT_EQ(a.apparatus_as<Oedometer>()->load_steps, b.apparatus_as<Oedometer>()->load_steps);
+  EXPECT_EQ(b.apparatus_as<Oedometer>()->friction_angle, 21);
   EXPECT_EQ(to_toml(a), to_toml(b));
 }
 
@@ -166,7 +166,7 @@ TEST(OedometerTest, LoadsAndUnloadsInEquilibriumAndResumesExactly) {
   const std::vector<OedometerRow> rows = run(scene, 0, &hash);
   const OedometerSummary s = analyse_oedometer(rows, 2, 0);
   ASSERT_EQ(s.steps.size(), 4u);
-  const Oedometer& o = *scene.oedometer;
+  const Oedometer& o = *scene.apparatus_as<Oedometer>();
   const double weight = scene.total_mass() * 9.81 / oedometer_area(o);
   for (size_t i = 0; i < rows.size(); ++i) {
     const OedometerRow& r = rows[i];

@@ -170,7 +170,7 @@ TEST(Packing, TheResolvedSceneKeepsThePreparation) {
   const Scene a = parse_scene(poured("friction = 0.125\nrolling_friction = 1e-4\ne_min = 0.6\ne_max = 0.9\n"),
                               "prep.toml");
   const Scene b = parse_scene(to_toml(a), "resolved.toml");
-  const Preparation& p = b.oedometer->specimen.preparation;
+  const Preparation& p = b.apparatus_as<Oedometer>()->specimen.preparation;
   EXPECT_EQ(p.friction, 0.125);
   EXPECT_EQ(p.rolling_friction, 1e-4);
   EXPECT_EQ(p.e_min, 0.6);

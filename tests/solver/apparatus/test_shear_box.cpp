@@ -51,8 +51,8 @@ TEST(ShearBoxScene, Table1SpecimensHaveTheLayersAndBeadCounts) {
     std::snprintf(spec, sizeof spec, "material = \"glass\"\ndiameter = %.17g\nlayers = %d\nseed = 3",
                   t.d, t.layers);
     const Scene s = parse_scene(box_toml(spec), "table1.toml");
-    ASSERT_TRUE(s.shear_box);
-    const ShearBox& b = *s.shear_box;
+    ASSERT_TRUE(s.apparatus_as<ShearBox>());
+    const ShearBox& b = *s.apparatus_as<ShearBox>();
     EXPECT_EQ(static_cast<int>(s.particles.size()), t.layers * t.per_layer) << t.d;
     EXPECT_EQ(static_cast<int>(s.walls.size()), int(kShearBoxWalls));
     EXPECT_DOUBLE_EQ(b.gap, 0.2 * t.d);
@@ -134,7 +134,7 @@ duration = 1
     spheres += 4.0 / 3.0 * std::numbers::pi * std::pow(p.radius, 3);
     bottom = std::min(bottom, p.position[2] - p.radius);  // the lowest grain's, as placed
   }
-  const ShearBox& b = *s.shear_box;
+  const ShearBox& b = *s.apparatus_as<ShearBox>();
   const double area = shear_area(b);
   EXPECT_NEAR(b.split_height, bottom + 0.5 * grains * 1.8 / area, 1e-9 * b.split_height);
   EXPECT_LT(grains, 0.9 * spheres);  // the overlaps would have raised it
@@ -328,7 +328,7 @@ Outcome run_test(const Scene& scene, bool love_weber = false) {
   Simulation sim(default_device(), scene);
   ShearTest test(sim);
   Outcome out;
-  const ShearBox& b = *scene.shear_box;
+  const ShearBox& b = *scene.apparatus_as<ShearBox>();
   double best = -1;
   while (!test.done()) {
     if (!test.advance(1 << 20) || !love_weber) continue;
@@ -356,7 +356,7 @@ Outcome run_test(const Scene& scene, bool love_weber = false) {
 // largest deviation of a row's sigma from the target allowed.
 void check_platen(double sigma, ShearBox::Loading loading, double band) {
   Scene scene = small_box(sigma, 1.5e-3);
-  scene.shear_box->loading = loading;
+  scene.apparatus_as<ShearBox>()->loading = loading;
   const Outcome o = run_test(scene, true);
   const ShearSummary& s = o.summary;
   ASSERT_EQ(o.rows.size(), 101u);  // the row at rest and 100
@@ -452,7 +452,7 @@ TEST(ShearTest, FrictionlessNestedLayerPeakIsOneOverSqrt2) {
   b.rows = 400;
   b.settle_time = 0;
   b.specimen.method = Specimen::Method::Given;
-  s.shear_box = b;
+  s.apparatus = b;
   if (auto issue = build_shear_box(s)) FAIL() << issue->field << ": " << issue->message;
   validate_scene(s, "nested_layer");
   const Outcome o = run_test(s);

@@ -74,7 +74,7 @@ TEST(StiffAndSmall, GlassUnder400kPaStaysQuietInFloat) {
   b.settle_time = 0;  // nothing to settle: the platen comes down at once
   b.shear_displacement = d;
   b.specimen.method = Specimen::Method::Given;
-  s.shear_box = b;
+  s.apparatus = b;
   if (auto issue = build_shear_box(s)) FAIL() << issue->field << ": " << issue->message;
   validate_scene(s, "stiff_and_small");
 
@@ -180,14 +180,14 @@ TEST(ServoUnderShock, SigmaSettlesAfterJumps50To400To50kPa) {
   const int scale = full_form() ? 3 : 1, rows = 300 * scale;
   Scene s = small_shear_box("servo_shock", low, 0.3e-3 * scale);  // the paper's glass
   if (HasFailure()) return;
-  s.shear_box->rows = rows;
-  s.shear_box->loading = ShearBox::Loading::Servo;  // the servo's case
+  s.apparatus_as<ShearBox>()->rows = rows;
+  s.apparatus_as<ShearBox>()->loading = ShearBox::Loading::Servo;  // the servo's case
   validate_scene(s, "servo_shock");
 
   const auto t0 = std::chrono::steady_clock::now();
   Simulation sim(default_device(), s);
   ShearTest test(sim);
-  const int platen = s.shear_box->first_wall + kPlaten;
+  const int platen = s.apparatus_as<ShearBox>()->first_wall + kPlaten;
   std::vector<std::int64_t> jump_step;  // step of each jump
   std::vector<double> integral_steps;   // the servo's integral time after it, in steps
   std::vector<double> instant;          // the platen's force in the last step of each row
@@ -239,7 +239,7 @@ TEST(ServoUnderShock, SigmaSettlesAfterJumps50To400To50kPa) {
       if (k < a + third) head = std::max(head, std::fabs(err));
       if (k >= e - third) {
         tail = std::max(tail, std::fabs(err));
-        ring = std::max(ring, std::fabs(instant[k] / (target * shear_area(*s.shear_box)) - 1));
+        ring = std::max(ring, std::fabs(instant[k] / (target * shear_area(*s.apparatus_as<ShearBox>())) - 1));
       }
     }
     const std::int64_t steps = settled < e ? r[settled].step - jump_step[j] : -1;
@@ -301,10 +301,10 @@ TEST(BoxGap, WedgedBeadsNeitherEscapeNorExplode) {
   b.rows = 100;
   b.settle_time = 0;
   b.specimen.method = Specimen::Method::Given;
-  s.shear_box = b;
+  s.apparatus = b;
   if (auto issue = build_shear_box(s)) FAIL() << issue->field << ": " << issue->message;
   validate_scene(s, "box_gap");
-  const ShearBox& box = *s.shear_box;
+  const ShearBox& box = *s.apparatus_as<ShearBox>();
 
   const auto t0 = std::chrono::steady_clock::now();
   Simulation sim(default_device(), s);

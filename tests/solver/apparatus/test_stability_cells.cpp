@@ -64,7 +64,7 @@ struct Watch {
 
 void run_watched(Simulation& sim, TriaxialTest& test, Watch& w, std::int64_t steps,
                  std::int64_t every) {
-  const Triaxial& t = *sim.scene().triaxial;
+  const Triaxial& t = *sim.scene().apparatus_as<Triaxial>();
   for (std::int64_t done = 0; done < steps && w.finite && !test.done(); done += every) {
     test.advance(every);
     w.sample(sim, t);
@@ -142,8 +142,8 @@ TEST(DrivenPlate, FullRateIntoADensePackingNeitherTunnelsNorExplodes) {
   while (!test.consolidated_now() && sim.time() < 5) test.advance(1 << 14);
   ASSERT_TRUE(test.consolidated_now());
   const TriaxialTest::AtRest rest = test.at_rest();
-  const double height = rest.volume / (scene.triaxial->length * scene.triaxial->width);
-  test.set_strain_rate(scene.triaxial->servo_max_speed / height);
+  const double height = rest.volume / (scene.apparatus_as<Triaxial>()->length * scene.apparatus_as<Triaxial>()->width);
+  test.set_strain_rate(scene.apparatus_as<Triaxial>()->servo_max_speed / height);
   ASSERT_TRUE(test.start_compression());
   Watch w;
   run_watched(sim, test, w, 1LL << 40, 100);
@@ -155,7 +155,7 @@ TEST(DrivenPlate, FullRateIntoADensePackingNeitherTunnelsNorExplodes) {
               "to %.1f %%; peak q %.1f kPa; beads outside the plates' cuboid at most %d (bound "
               "0); largest overlap bead-bead %.3f %% of d, bead-plate %.3f %% of d (bound 2 %%); "
               "fastest bead %.3g m/s; %lld steps in %.1f s\n",
-              form_name(), scene.particles.size(), scene.triaxial->servo_max_speed,
+              form_name(), scene.particles.size(), scene.apparatus_as<Triaxial>()->servo_max_speed,
               test.strain_rate(), 100 * test.rows().back().axial_strain, peak_q * 1e-3, w.escaped,
               100 * w.worst.pair / d, 100 * w.worst.wall / d, w.fastest,
               static_cast<long long>(sim.steps()), seconds_since(t0));

@@ -31,7 +31,7 @@ rows = 15
 
 TEST(TriaxialScene, SixPlatesAroundTheSpecimenAndRoundTrip) {
   const Scene a = parse_scene(triaxial_toml(), "tri.toml");
-  ASSERT_TRUE(a.triaxial);
+  ASSERT_TRUE(a.apparatus_as<Triaxial>());
   EXPECT_EQ(a.particles.size(), 150u);
   ASSERT_EQ(a.walls.size(), size_t(kTriaxialWalls));
   for (int w = kTriX0; w <= kTriPlaten; ++w) EXPECT_TRUE(a.walls[w].servo.enabled);

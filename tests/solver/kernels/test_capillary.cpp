@@ -119,7 +119,7 @@ TEST(CapillaryPairs, InteractionsOverrideVolumeAndAnglePerPair) {
 Scene small_wet_box(double sigma, bool wet) {
   const double d = 6.35e-3;
   Scene s = small_shear_box(wet ? "wet_box" : "dry_box", sigma, kWetShear);
-  s.shear_box->rows = 60;
+  s.apparatus_as<ShearBox>()->rows = 60;
   if (wet) {
     s.effects.cohesion = CohesionModel::Capillary;
     // 1e-3 of a bead's volume per bridge (pendular state)

@@ -1,0 +1,28 @@
+// What a run shows of each kind of apparatus: its plots (PNG, drawn with
+// render/plot) and the lines `simsols run` prints at the end. One entry per
+// kind of the registry (solver/apparatus/registry.h), in a table of its own
+// because plots live above the solver; a test checks that every kind has
+// one.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "app/experiment/apparatus_run.h"
+
+namespace simsols {
+
+// The plots of `test` into `dir` (shear_plots.h, oedometer_plots.h,
+// triaxial_plots.h), titled `title`.
+void write_test_plots(const std::string& dir, const std::string& title, const ApparatusKind& kind,
+                      const ApparatusTest& test);
+
+// The result lines of a run into `dir`, finished or stopped ("shear test
+// finished: ...", the peak and residual, where the results are, how to
+// resume).
+std::string test_result_text(const TestRun& run, const std::string& dir);
+
+// True when the kind called `kind` has a report here.
+bool has_test_report(std::string_view kind);
+
+}  // namespace simsols

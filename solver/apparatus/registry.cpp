@@ -1,0 +1,101 @@
+// The table of apparatus kinds (registry.h): one entry per kind, in the
+// order of the Apparatus variant.
+#include "solver/apparatus/registry.h"
+
+#include <cstdio>
+#include <variant>
+
+#include "solver/apparatus/oedometer.h"
+#include "solver/apparatus/oedometer_test.h"
+#include "solver/apparatus/shear_box.h"
+#include "solver/apparatus/shear_test.h"
+#include "solver/apparatus/triaxial.h"
+#include "solver/apparatus/triaxial_test.h"
+
+namespace simsols {
+namespace {
+
+template <class Test>
+std::unique_ptr<ApparatusTest> make(Simulation& sim) {
+  return std::make_unique<Test>(sim);
+}
+
+std::string kpa(const char* symbol, double pascals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%s = %.3g kPa", symbol, pascals * 1e-3);
+  return buf;
+}
+
+std::string shear_box_stress(const Scene& s) {
+  return kpa("σ", s.apparatus_as<ShearBox>()->normal_stress);
+}
+std::string triaxial_stress(const Scene& s) {
+  return kpa("σ₃", s.apparatus_as<Triaxial>()->confining_stress);
+}
+std::string no_stress(const Scene&) { return {}; }
+
+const ApparatusKind kKinds[] = {
+    {"shear_box", "Direct shear", "a direct shear test", "shear", kShearBoxWalls, "settle|consolidate|shear", build_shear_box,
+     make<ShearTest>, shear_box_stress},
+    {"oedometer", "Oedometer", "an oedometer test", "oedometer", kOedometerWalls, "settle|load", build_oedometer,
+     make<OedometerTest>, no_stress},
+    {"triaxial", "Triaxial", "a triaxial test", "triaxial", kTriaxialWalls, "settle|consolidate|compress", build_triaxial, make<TriaxialTest>,
+     triaxial_stress},
+};
+static_assert(std::size(kKinds) + 1 == std::variant_size_v<Apparatus>,
+              "one registry entry per alternative of Scene::apparatus");
+static_assert(std::is_same_v<std::variant_alternative_t<1, Apparatus>, ShearBox> &&
+                  std::is_same_v<std::variant_alternative_t<2, Apparatus>, Oedometer> &&
+                  std::is_same_v<std::variant_alternative_t<3, Apparatus>, Triaxial>,
+              "the registry's order is the variant's");
+
+}  // namespace
+
+std::span<const ApparatusKind> apparatus_kinds() { return kKinds; }
+
+const ApparatusKind* apparatus_kind(const Scene& scene) {
+  const std::size_t i = scene.apparatus.index();
+  return i == 0 ? nullptr : &kKinds[i - 1];
+}
+
+const ApparatusKind* find_apparatus_kind(std::string_view name) {
+  for (const ApparatusKind& k : kKinds)
+    if (name == k.name) return &k;
+  return nullptr;
+}
+
+std::string apparatus_names(std::string_view separator) {
+  std::string out;
+  for (const ApparatusKind& k : kKinds) {
+    if (!out.empty()) out += separator;
+    out += k.name;
+  }
+  return out;
+}
+
+bool has_stage(const ApparatusKind& kind, std::string_view stage) {
+  std::string_view rest = kind.stages;
+  while (!rest.empty()) {
+    const size_t bar = rest.find('|');
+    if (rest.substr(0, bar) == stage) return !stage.empty();
+    if (bar == std::string_view::npos) break;
+    rest.remove_prefix(bar + 1);
+  }
+  return false;
+}
+
+const ApparatusKind& required_apparatus_kind(const Scene& scene) {
+  const ApparatusKind* kind = apparatus_kind(scene);
+  if (!kind)
+    throw SceneError("no_apparatus", scene.source_path.empty() ? scene.name : scene.source_path,
+                     0, "apparatus",
+                     "the scene has no apparatus (one of the tables " + apparatus_names(", ") +
+                         "): no test to run");
+  return *kind;
+}
+
+std::unique_ptr<ApparatusTest> make_apparatus_test(Simulation& sim) {
+  return required_apparatus_kind(sim.scene()).make_test(sim);
+}
+
+}  // namespace simsols

@@ -1,0 +1,66 @@
+// The registry of apparatus: every kind the laboratory has, in one table.
+//
+// A scene holds at most one apparatus (Scene::apparatus, a variant whose
+// alternatives follow this table's order). Everything that must tell the
+// kinds apart asks this table instead of testing the scene's fields: the
+// runs (which test to drive), the titles of plots, the preparation (which
+// cell to settle in), the lab, Python and the scene reader's "one apparatus"
+// rule. Front ends see a kind only through its entry; what a test does is
+// behind ApparatusTest (apparatus.h).
+//
+// A new apparatus (docs/architecture.md, "A new apparatus"): its
+// description struct in scene.h and the Apparatus variant, a folder of its
+// own beside shear_box/ (geometry, loading programme, analysis), one entry
+// here, its table reader in solver/io, its plots in app/experiment
+// (apparatus_plots.cpp) and its bench in the lab (lab_apparatus.cpp).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "solver/apparatus/apparatus.h"
+#include "solver/common/errors.h"
+#include "solver/core/simulation.h"
+#include "solver/scene/scene.h"
+#include "solver/scene/scene_check.h"
+
+namespace simsols {
+
+struct ApparatusKind {
+  const char* name;       // its scene table and its key everywhere: "shear_box"
+  const char* title;      // the test in a plot's title: "Direct shear"
+  const char* test_noun;  // in sentences: "a direct shear test"
+  const char* label;      // progress lines' prefix: "shear"
+  int walls;              // how many walls it adds, from its first_wall
+  const char* stages;     // its programme's stages in order: "settle|consolidate|shear"
+  // Its walls and specimen placed from the description in the scene (the
+  // automatic values resolved); a problem with its field, or nothing.
+  std::optional<SceneIssue> (*build)(Scene& scene);
+  // Its loading programme on `sim` (whose scene holds this kind).
+  std::unique_ptr<ApparatusTest> (*make_test)(Simulation& sim);
+  // The stress a title quotes ("σ = 160 kPa"), or "".
+  std::string (*stress_words)(const Scene& scene);
+};
+
+// The kinds, in the order of the Apparatus variant's alternatives after
+// std::monostate.
+std::span<const ApparatusKind> apparatus_kinds();
+// The kind of the scene's apparatus; nullptr when it has none.
+const ApparatusKind* apparatus_kind(const Scene& scene);
+// The kind called `name`; nullptr when there is none.
+const ApparatusKind* find_apparatus_kind(std::string_view name);
+// The kinds' names joined by `separator`: "shear_box|oedometer|triaxial".
+std::string apparatus_names(std::string_view separator);
+// True when `stage` is one of the kind's stages.
+bool has_stage(const ApparatusKind& kind, std::string_view stage);
+
+// The kind of the scene's apparatus; SceneError (no_apparatus) naming the
+// scene when it has none.
+const ApparatusKind& required_apparatus_kind(const Scene& scene);
+// The scene's test on `sim`; SceneError as above when it has no apparatus.
+std::unique_ptr<ApparatusTest> make_apparatus_test(Simulation& sim);
+
+}  // namespace simsols

@@ -1,0 +1,45 @@
+// The apparatus table of a scene: which reader reads it, then the
+// registry's build (scene_tables.h).
+#include <string_view>
+
+#include "solver/apparatus/registry.h"
+#include "solver/io/scene_tables.h"
+
+namespace simsols::scene_toml {
+namespace {
+
+struct ApparatusReader {
+  std::string_view kind;  // the registry's name, the table's name
+  void (*read)(const Reader& root, Scene& scene);
+};
+
+constexpr ApparatusReader kReaders[] = {
+    {"shear_box", read_shear_box},
+    {"oedometer", read_oedometer},
+    {"triaxial", read_triaxial},
+};
+
+const ApparatusReader* reader_of(std::string_view kind) {
+  for (const ApparatusReader& r : kReaders)
+    if (r.kind == kind) return &r;
+  return nullptr;
+}
+
+}  // namespace
+
+bool has_apparatus_reader(std::string_view kind) { return reader_of(kind) != nullptr; }
+
+std::optional<SceneIssue> read_apparatus(const Reader& root, Scene& scene) {
+  for (const ApparatusKind& kind : apparatus_kinds()) {
+    if (!root.has(kind.name)) continue;
+    const ApparatusReader* reader = reader_of(kind.name);
+    if (!reader)
+      return SceneIssue{"unsupported", kind.name,
+                        std::string("no table reader for the apparatus '") + kind.name + "'"};
+    reader->read(root, scene);
+    return kind.build(scene);
+  }
+  return std::nullopt;
+}
+
+}  // namespace simsols::scene_toml

@@ -1,0 +1,91 @@
+// The registry of apparatus (registry.h): one entry per alternative of
+// Scene::apparatus, found by scene and by name, each with a table reader
+// (solver/io/scene_tables_apparatus.cpp); one apparatus per scene whatever
+// the tables' order; the built-in scenes of each kind read back as that
+// kind, their test made by the registry.
+#include <gtest/gtest.h>
+
+#include <set>
+#include <string>
+
+#include "solver/apparatus/registry.h"
+#include "solver/apparatus/shear_test.h"
+#include "solver/common/errors.h"
+#include "solver/io/scene_tables.h"
+#include "solver/io/scene_toml.h"
+#include "tests/support/test_support.h"
+
+namespace simsols {
+namespace {
+
+std::string scene_file(const std::string& name) {
+  return std::string(SIMSOLS_SOURCE_DIR) + "/assets/scenes/" + name;
+}
+
+TEST(ApparatusRegistry, OneEntryPerAlternativeWithUniqueNames) {
+  const auto kinds = apparatus_kinds();
+  ASSERT_EQ(kinds.size() + 1, std::variant_size_v<Apparatus>);
+  std::set<std::string> names, labels;
+  for (const ApparatusKind& k : kinds) {
+    names.insert(k.name);
+    labels.insert(k.label);
+    EXPECT_EQ(find_apparatus_kind(k.name), &k);
+    EXPECT_TRUE(scene_toml::has_apparatus_reader(k.name)) << k.name;
+    EXPECT_GT(k.walls, 0) << k.name;
+    EXPECT_NE(k.build, nullptr);
+    EXPECT_NE(k.make_test, nullptr);
+  }
+  EXPECT_EQ(names.size(), kinds.size());
+  EXPECT_EQ(labels.size(), kinds.size());
+  EXPECT_EQ(find_apparatus_kind("shear box"), nullptr);
+  EXPECT_EQ(apparatus_names("|"), "shear_box|oedometer|triaxial");
+}
+
+TEST(ApparatusRegistry, EachBuiltInSceneIsItsKind) {
+  for (const char* kind : {"shear_box", "oedometer", "triaxial"}) {
+    const Scene s = load_scene(scene_file(std::string(kind) + ".toml"));
+    ASSERT_NE(apparatus_kind(s), nullptr) << kind;
+    EXPECT_STREQ(apparatus_kind(s)->name, kind);
+    ASSERT_NE(s.cell(), nullptr);
+    EXPECT_EQ(s.specimen(), &s.cell()->specimen);
+    // its walls are the last ones added, as many as the registry says
+    EXPECT_EQ(s.cell()->first_wall + apparatus_kind(s)->walls, int(s.walls.size())) << kind;
+  }
+  Scene none = load_scene(scene_file("example_minimal.toml"));
+  EXPECT_EQ(apparatus_kind(none), nullptr);
+  EXPECT_EQ(none.cell(), nullptr);
+  EXPECT_EQ(none.specimen(), nullptr);
+  try {
+    required_apparatus_kind(none);
+    FAIL() << "a scene without an apparatus has no kind";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.code, "no_apparatus");
+    EXPECT_NE(std::string(e.what()).find("shear_box, oedometer, triaxial"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(ApparatusRegistry, MakesTheTestOfTheScenesKind) {
+  const Scene s = load_scene(scene_file("shear_box.toml"));
+  Simulation sim(default_device(), s);
+  const std::unique_ptr<ApparatusTest> test = make_apparatus_test(sim);
+  ASSERT_NE(dynamic_cast<ShearTest*>(test.get()), nullptr);
+  EXPECT_STREQ(test->rows_file(), "shear.csv");
+  EXPECT_EQ(test->row_count(), 0u);
+  EXPECT_STREQ(test->stage_name(), "settle");
+}
+
+// Two apparatus tables: refused at the second in the registry's order,
+// whichever comes first in the file.
+TEST(ApparatusRegistry, OneApparatusPerSceneWhateverTheOrder) {
+  const std::string shear = "[shear_box]\n[shear_box.specimen]\nmethod = \"layers\"\n"
+                            "material = \"glass\"\ndiameter = 6.35e-3\nlayers = 1\n";
+  const std::string triaxial = "[triaxial]\n[triaxial.specimen]\nmethod = \"layers\"\n"
+                               "material = \"glass\"\ndiameter = 6.35e-3\nlayers = 1\n";
+  const std::string glass = testing::glass_toml();
+  testing::expect_scene_error(glass + shear + triaxial, "conflicting_keys", "triaxial");
+  testing::expect_scene_error(glass + triaxial + shear, "conflicting_keys", "triaxial");
+}
+
+}  // namespace
+}  // namespace simsols
