@@ -138,7 +138,7 @@ void ViewPacker::build() {
   // scalar, so LANES = 1 whatever the solver uses.
   KernelConfig config = m.config();
   config.lanes = 1;
-  std::vector<KernelFile> files{kernel_file("common.cl")};
+  std::vector<KernelFile> files{kernel_file("layout.h"), kernel_file("common.cl")};
   for (const KernelFile& f : render_kernel_files()) files.push_back(f);
   auto program = std::make_unique<Program>(m.device(), config, files);
   pack_beads_ = program->kernel("pack_beads");

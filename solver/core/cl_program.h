@@ -15,6 +15,7 @@
 
 #include "solver/core/cl_device.h"
 #include "solver/kernels/kernel_source.h"
+#include "solver/kernels/layout.h"
 #include "solver/scene/scene.h"
 
 namespace simsols {
@@ -55,7 +56,8 @@ struct KernelConfig {
   int history_planes() const { return (contact_record() ? 1 : 0) + (rolling_spring ? 1 : 0); }
   size_t real_size() const { return double_precision ? 8 : 4; }
   size_t history_bytes_per_contact() const { return history_planes() * 4 * real_size(); }
-  int pair_record() const { return capillary ? 12 : 8; }  // reals per pair coefficient record
+  // reals per pair coefficient record (layout.h, PairSlot)
+  int pair_record() const { return capillary ? PAIR_RECORD_CAPILLARY : PAIR_RECORD_BASE; }
   bool operator==(const KernelConfig&) const = default;
 };
 

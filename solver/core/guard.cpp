@@ -6,6 +6,7 @@
 
 #include "solver/core/observe.h"
 #include "solver/core/pipeline.h"
+#include "solver/kernels/layout.h"
 
 namespace simsols {
 
@@ -44,8 +45,10 @@ void Guard::set_interval(std::int64_t steps) {
 }
 
 Guard::Mark Guard::read_mark() {
-  int v[3] = {0, 0, 0};
-  model_.device().read(state_.flags.get(), sizeof v, v, 4 * sizeof(int));
+  static_assert(FLAG_RUNAWAY_WHAT == FLAG_RUNAWAY_FIRST + 1 &&
+                FLAG_RUNAWAY_COUNT == FLAG_RUNAWAY_FIRST + 2);
+  int v[3] = {0, 0, 0};  // FLAG_RUNAWAY_FIRST, _WHAT, _COUNT
+  model_.device().read(state_.flags.get(), sizeof v, v, FLAG_RUNAWAY_FIRST * sizeof(int));
   Mark m;
   m.particle = v[0];
   m.what = v[1];
@@ -55,7 +58,7 @@ Guard::Mark Guard::read_mark() {
 
 void Guard::clear_mark() {
   const int clear[3] = {State::kNoRunaway, 0, 0};
-  model_.device().write(state_.flags.get(), sizeof clear, clear, 4 * sizeof(int));
+  model_.device().write(state_.flags.get(), sizeof clear, clear, FLAG_RUNAWAY_FIRST * sizeof(int));
   state_.fault_seen = false;
 }
 

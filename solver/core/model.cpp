@@ -128,13 +128,17 @@ void Model::make_clumps() {
   body_offset_buf_ = device_->alloc(offsets.bytes().size(), offsets.bytes().data());
 }
 
-// The pair table as the kernels read it (common.cl), with the friction
-// override applied.
+// The pair table as the kernels read it (contact_law.cl), in the slots of
+// layout.h's PairSlot, with the friction override applied.
 std::vector<unsigned char> Model::pack_pairs() const {
   RealPacker pk(config().double_precision);
   for (const PairCoefficients& c : pairs_.pairs) {
     const double mu_s = friction_ ? friction_->sliding.value_or(c.sliding_friction) : c.sliding_friction;
     const double mu_r = friction_ ? friction_->rolling.value_or(c.rolling_friction) : c.rolling_friction;
+    static_assert(PAIR_E_STAR == 0 && PAIR_G_STAR == 1 && PAIR_GAMMA_N == 2 && PAIR_MU_S == 3 &&
+                  PAIR_MU_R == 4 && PAIR_KT_RATIO == 5 && PAIR_RECORD_BASE == 8 &&
+                  PAIR_CAP_TENSION == 8 && PAIR_CAP_VOLUME == 9 && PAIR_CAP_RUPTURE == 10 &&
+                  PAIR_RECORD_CAPILLARY == 12, "the order put below");
     pk.put4(c.e_star, c.g_star, c.gamma_n, mu_s);
     pk.put4(mu_r, std::sqrt(6 * c.g_star / c.e_star), 0, 0);
     if (config().capillary) pk.put4(c.capillary_tension, c.liquid_volume, c.rupture_distance, 0);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "solver/core/kernel_args.h"
+#include "solver/kernels/layout.h"
 #include "solver/core/observe.h"
 
 namespace simsols {
@@ -73,10 +74,10 @@ std::array<std::uint32_t, 2> size_lists(const Model& m, State& s) {
            arg("skin", Real{m.skin()}),
            arg("table", s.table), arg("n", s.n));
   launch(m, k.count_neighbors, s.n);
-  int flags[2] = {0, 0};
+  int flags[FLAG_LONGEST_LIST + 1] = {};
   m.device().read(s.flags.get(), sizeof flags, flags);
-  if (flags[1] > kMaxNeighbors)
-    throw DeviceError("a particle has " + std::to_string(flags[1]) +
+  if (flags[FLAG_LONGEST_LIST] > kMaxNeighbors)
+    throw DeviceError("a particle has " + std::to_string(flags[FLAG_LONGEST_LIST]) +
                       " neighbours within the skin (limit 256): reduce numerics.skin or the "
                       "size ratio");
   set_args(m, k.slice_widths, arg("nbr_count", s.nbr_count), arg("nbr_upper", s.nbr_upper),
@@ -171,22 +172,23 @@ std::int64_t check_interval(const Model& m, double vmax) {
 
 void request_rebuild(const Model& m, State& s) {
   const int rebuild = 1;
-  m.device().write(s.flags.get(), sizeof rebuild, &rebuild);
+  m.device().write(s.flags.get(), sizeof rebuild, &rebuild, FLAG_REBUILD * sizeof(int));
   s.next_check = s.step;
 }
 
 void detect_contacts(const Model& m, State& s) {
   if (s.step < s.next_check) return;
-  int flags[5] = {0, 0, 0, 0, 0};
+  int flags[FLAG_RUNAWAY_FIRST + 1] = {};
   m.device().read(s.flags.get(), sizeof flags, flags);
-  if (flags[4] != State::kNoRunaway) s.fault_seen = true;  // the runaway mark (guard.h)
+  if (flags[FLAG_RUNAWAY_FIRST] != State::kNoRunaway) s.fault_seen = true;  // the runaway mark (guard.h)
   float v2 = 0;
-  std::memcpy(&v2, &flags[2], sizeof v2);
-  if (flags[3]) ++s.late_builds;
+  std::memcpy(&v2, &flags[FLAG_MAX_SPEED2], sizeof v2);
+  if (flags[FLAG_LATE]) ++s.late_builds;
   s.next_check = s.step + check_interval(m, std::sqrt(double(v2)));
-  const int zero[4] = {0, 0, 0, 0};
-  if (flags[0] || flags[2] || flags[3]) m.device().write(s.flags.get(), sizeof zero, zero);
-  if (!flags[0]) return;
+  const int zero[FLAG_LATE + 1] = {};  // the slots before the runaway mark
+  if (flags[FLAG_REBUILD] || flags[FLAG_MAX_SPEED2] || flags[FLAG_LATE])
+    m.device().write(s.flags.get(), sizeof zero, zero);
+  if (!flags[FLAG_REBUILD]) return;
 
   build_grid(m, s);
   // The offsets in use become the "old" ones the springs are carried from

@@ -6,6 +6,7 @@
 
 #include "solver/core/pipeline.h"
 #include "solver/core/real_packer.h"
+#include "solver/kernels/layout.h"
 
 namespace simsols {
 
@@ -159,7 +160,7 @@ void State::make_walls(const Model& model) {
   wall_vel = make(d, nw * r4, wv.data());
   wall_touch = make(d, n * sizeof(int));
   // no wall near any particle and no slot until the first list build (the
-  // first step's: flags[0], make_flags)
+  // first step's: FLAG_REBUILD, make_flags)
   wall_near = make(d, nw ? n * sizeof(int) : 16);
   wall_off = make(d, (slices + 1) * sizeof(std::uint32_t));
   old_wall_off = make(d, (slices + 1) * sizeof(std::uint32_t));
@@ -183,11 +184,14 @@ void State::make_servo(const Model& model) {
 
 void State::make_flags(const Model& model, float v2_start) {
   // the first step builds the lists, and sets the next check from the
-  // fastest particle's start speed (flags[2], float bits), so a scene that
+  // fastest particle's start speed (FLAG_MAX_SPEED2, float bits), so a scene that
   // starts fast is checked as often as one that became fast; no runaway mark
   int v2_bits = 0;
   std::memcpy(&v2_bits, &v2_start, sizeof v2_bits);
-  const int init_flags[8] = {1, 0, v2_bits, 0, kNoRunaway, 0, 0, 0};
+  int init_flags[FLAG_SLOTS] = {};
+  init_flags[FLAG_REBUILD] = 1;
+  init_flags[FLAG_MAX_SPEED2] = v2_bits;
+  init_flags[FLAG_RUNAWAY_FIRST] = kNoRunaway;
   flags = make(model.device(), sizeof init_flags, init_flags);
 }
 

@@ -74,8 +74,7 @@ INLINE void member_moved(int i, real3 x, __global const float4* pos_build,
                          __global volatile int* flags, real skin) {
   const real3 moved = x - to_real3(pos_build[i].xyz);
   const real moved2 = dot(moved, moved);
-  if (moved2 > (real)0.0625 * skin * skin) flags[0] = 1;
-  if (moved2 > (real)0.25 * skin * skin) flags[3] = 1;
+  mark_travel(flags, moved2, skin);
 }
 
 __kernel void move_clumps(__global real4* pos, __global float4* pos_lo, __global real4* vel,

@@ -99,6 +99,15 @@ INLINE real3 rel_pos(real4 a, real4 b
   return d;
 }
 
+// The neighbour lists' validity, after a particle travelled sqrt(moved2)
+// since the last build (integrate.cl, clumps.cl): beyond skin/4 the host
+// rebuilds them (FLAG_REBUILD, layout.h); beyond skin/2 they were stale
+// (FLAG_LATE), a contact may have been missed.
+INLINE void mark_travel(__global volatile int* flags, real moved2, real skin) {
+  if (moved2 > (real)0.0625 * skin * skin) flags[FLAG_REBUILD] = 1;
+  if (moved2 > (real)0.25 * skin * skin) flags[FLAG_LATE] = 1;
+}
+
 #ifdef POS_COMPENSATED
 // (hi, lo) += d with Knuth's two-sum: no rounding error is lost.
 INLINE void add_compensated(real4* hi, float4* lo, real3 d) {

@@ -29,9 +29,10 @@
 //            attraction between beads up to the rupture distance
 //
 // Each argument is a lane (one contact per lane, see common.cl). Pair
-// coefficients come from the pair table (PAIR_RECORD reals per pair):
-//   [0] E*  [1] G*  [2] gamma_n  [3] mu_s  [4] mu_r  [5] sqrt(6 G*/E*)
-//   [8] gamma cos(theta)  [9] liquid volume V  [10] rupture distance (HAS_CAPILLARY)
+// coefficients come from the pair table, PAIR_RECORD reals per pair, its
+// slots named in layout.h (PairSlot): E*, G*, gamma_n, mu_s, mu_r,
+// sqrt(6 G*/E*), and with HAS_CAPILLARY gamma cos(theta), the liquid volume
+// and the rupture distance.
 // The torque on i about its centre is lever_i n x F_t + rolling; the
 // partner (a sphere) receives lever_j n x F_t - rolling.
 typedef struct {
@@ -69,38 +70,38 @@ typedef struct {
 INLINE PairLanes gather_pairs(__global const real* pairs, const int* pair, int nmat) {
   PairLanes c;
   if (nmat == 1) {  // one material: the same coefficients in every lane
-    c.estar = (lane)pairs[0];
-    c.gstar = (lane)pairs[1];
-    c.gamma = (lane)pairs[2];
-    c.mu_s = (lane)pairs[3];
-    c.mu_r = (lane)pairs[4];
-    c.kt_ratio = (lane)pairs[5];
+    c.estar = (lane)pairs[PAIR_E_STAR];
+    c.gstar = (lane)pairs[PAIR_G_STAR];
+    c.gamma = (lane)pairs[PAIR_GAMMA_N];
+    c.mu_s = (lane)pairs[PAIR_MU_S];
+    c.mu_r = (lane)pairs[PAIR_MU_R];
+    c.kt_ratio = (lane)pairs[PAIR_KT_RATIO];
 #ifdef HAS_CAPILLARY
-    c.cap_tension = (lane)pairs[8];
-    c.cap_volume = (lane)pairs[9];
-    c.cap_rupture = (lane)pairs[10];
+    c.cap_tension = (lane)pairs[PAIR_CAP_TENSION];
+    c.cap_volume = (lane)pairs[PAIR_CAP_VOLUME];
+    c.cap_rupture = (lane)pairs[PAIR_CAP_RUPTURE];
 #endif
     return c;
   }
-  real t[6][LANES];
+  real t[PAIR_BASE_REALS][LANES];
   #pragma unroll
   for (int l = 0; l < LANES; ++l)
-    for (int k = 0; k < 6; ++k) t[k][l] = pairs[PAIR_RECORD * pair[l] + k];
+    for (int k = 0; k < PAIR_BASE_REALS; ++k) t[k][l] = pairs[PAIR_RECORD * pair[l] + k];
 #ifdef HAS_CAPILLARY
-  real u[3][LANES];
+  real u[PAIR_CAP_REALS][LANES];
   #pragma unroll
   for (int l = 0; l < LANES; ++l)
-    for (int k = 0; k < 3; ++k) u[k][l] = pairs[PAIR_RECORD * pair[l] + 8 + k];
-  c.cap_tension = LANE_LOAD(u[0]);
+    for (int k = 0; k < PAIR_CAP_REALS; ++k) u[k][l] = pairs[PAIR_RECORD * pair[l] + PAIR_CAP_TENSION + k];
+  c.cap_tension = LANE_LOAD(u[0]);  // u[k]: slot PAIR_CAP_TENSION + k
   c.cap_volume = LANE_LOAD(u[1]);
   c.cap_rupture = LANE_LOAD(u[2]);
 #endif
-  c.estar = LANE_LOAD(t[0]);
-  c.gstar = LANE_LOAD(t[1]);
-  c.gamma = LANE_LOAD(t[2]);
-  c.mu_s = LANE_LOAD(t[3]);
-  c.mu_r = LANE_LOAD(t[4]);
-  c.kt_ratio = LANE_LOAD(t[5]);
+  c.estar = LANE_LOAD(t[PAIR_E_STAR]);
+  c.gstar = LANE_LOAD(t[PAIR_G_STAR]);
+  c.gamma = LANE_LOAD(t[PAIR_GAMMA_N]);
+  c.mu_s = LANE_LOAD(t[PAIR_MU_S]);
+  c.mu_r = LANE_LOAD(t[PAIR_MU_R]);
+  c.kt_ratio = LANE_LOAD(t[PAIR_KT_RATIO]);
   return c;
 }
 

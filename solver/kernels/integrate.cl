@@ -15,17 +15,13 @@
 //   F_b = -rho_f V g                                         (buoyancy)
 //   M_f = -pi mu_f d^3 (w - curl(u)/2) = -pi mu_f d^3 w       (uniform u)
 // evaluated with the half-step velocities, like the contact dashpots. Also keeps the neighbour-list bookkeeping that the
-// host reads every few steps (pipeline.cpp, detect_contacts):
-//   flags[0] = 1  a particle moved more than skin/4 since the last build: rebuild
-//   flags[2]      largest |v|^2 since the last check (float bits, atomic max)
-//   flags[3] = 1  a particle moved more than skin/2: the lists were stale (late)
-// and the runaway mark the Guard reads (guard.h): a particle whose new state
-// is not finite, or which moved more than a tenth of its radius in this one
-// step (a contact cannot be resolved: its overlap would jump by ten times
-// the 1 % a resolved contact reaches):
-//   flags[4]      the lowest such index (atomic min; INT_MAX when none)
-//   flags[5]      what: bit 0 not finite, bit 1 too fast
-//   flags[6]      how many were marked
+// host reads every few steps (pipeline.cpp, detect_contacts): the flags
+// FLAG_REBUILD, FLAG_MAX_SPEED2 and FLAG_LATE (layout.h, mark_travel in
+// common.cl), and the runaway mark the Guard reads (guard.h): a particle
+// whose new state is not finite, or which moved more than a tenth of its
+// radius in this one step (a contact cannot be resolved: its overlap would
+// jump by ten times the 1 % a resolved contact reaches), in
+// FLAG_RUNAWAY_FIRST, FLAG_RUNAWAY_WHAT and FLAG_RUNAWAY_COUNT.
 
 INLINE void integrate_one(int i, __global real4* pos, __global float4* pos_lo,
                           __global real4* vel, __global real4* omega,
@@ -74,20 +70,19 @@ INLINE void integrate_one(int i, __global real4* pos, __global float4* pos_lo,
                      (fabs(x.x) + fabs(x.y) + fabs(x.z) < INFINITY);
   const int fast = step2 > (real)0.01 * x.w * x.w;  // a tenth of its radius
   if (!finite || fast) {
-    atomic_min(&flags[4], i);
-    atomic_or(&flags[5], finite ? 2 : 1);
-    atomic_inc(&flags[6]);
+    atomic_min(&flags[FLAG_RUNAWAY_FIRST], i);
+    atomic_or(&flags[FLAG_RUNAWAY_WHAT], finite ? 2 : 1);
+    atomic_inc(&flags[FLAG_RUNAWAY_COUNT]);
   }
   // pos_build is float in every precision: it only measures a path against
   // the skin (~0.1 d), far above a float's rounding
   const real3 moved = x.xyz - to_real3(pos_build[i].xyz);
   const real moved2 = dot(moved, moved);
-  if (moved2 > (real)0.0625 * skin * skin) flags[0] = 1;
-  if (moved2 > (real)0.25 * skin * skin) flags[3] = 1;
+  mark_travel(flags, moved2, skin);
   // |v|^2 >= 0, so its float bits order like ints; only a new maximum pays
   // for the atomic (one shared word: contended if every particle wrote it)
   const int v2 = as_int((float)dot(v.xyz, v.xyz));
-  if (v2 > flags[2]) atomic_max(&flags[2], v2);
+  if (v2 > flags[FLAG_MAX_SPEED2]) atomic_max(&flags[FLAG_MAX_SPEED2], v2);
 }
 
 // Stage: finish the particles, one launch per step for everything that is

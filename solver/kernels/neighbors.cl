@@ -27,7 +27,7 @@
 //                    place (a lower slot's id is needed only to find it)
 // The previous list's history waits in the share buffer during a rebuild
 // (the shares are dead then: written and read within one step).
-// flags[1] receives the longest list asked for when one exceeds MAX_CAP.
+// flags[FLAG_LONGEST_LIST] receives the longest list asked for when one exceeds MAX_CAP.
 
 #define MAX_CAP 256
 
@@ -94,7 +94,7 @@ __kernel void count_neighbors(__global const real4* pos POS_LO_CARG,
   int list[MAX_CAP];
   const int wanted = find_neighbors(i, pos[i] POS_LO_PASS, count, start, sorted, pos, body,
                                     inv_cell, skin, table, list);
-  if (wanted > MAX_CAP) atomic_max(&flags[1], wanted);
+  if (wanted > MAX_CAP) atomic_max(&flags[FLAG_LONGEST_LIST], wanted);
   const int len = min(wanted, MAX_CAP);
   nbr_count[i] = len;
   nbr_upper[i] = len - lower_part(list, len, i);

@@ -382,10 +382,10 @@ INLINE void advance_wall(int w, __global real4* wall_point, __global float4* wal
 #endif
   p.w += length(v) * dt;
   wall_point[w] = p;
-  if (p.w > (real)0.25 * skin) flags[0] = 1;
-  if (p.w > (real)0.5 * skin) flags[3] = 1;
+  if (p.w > (real)0.25 * skin) flags[FLAG_REBUILD] = 1;
+  if (p.w > (real)0.5 * skin) flags[FLAG_LATE] = 1;
   const int v2 = as_int((float)dot(v, v));
-  if (v2 > flags[2]) atomic_max(&flags[2], v2);
+  if (v2 > flags[FLAG_MAX_SPEED2]) atomic_max(&flags[FLAG_MAX_SPEED2], v2);
 }
 
 // The forces of chunk c's particles (`chunk` consecutive indices) on each

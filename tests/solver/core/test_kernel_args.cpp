@@ -34,7 +34,7 @@ class KernelArgs : public ::testing::Test {
           return s;
         }()) {}
   Kernel build() {
-    std::vector<KernelFile> files = {kernel_file("common.cl"), {"scale.cl", kScale}};
+    std::vector<KernelFile> files = {kernel_file("layout.h"), kernel_file("common.cl"), {"scale.cl", kScale}};
     program_ = std::make_unique<Program>(sim_.model().device(), sim_.model().config(), files);
     return program_->kernel("scale");
   }

@@ -429,7 +429,7 @@ TEST_P(RigidPairRotation, TangentialForceStaysInPlaneAndKeepsItsSize) {
   Scene scene = empty_scene(prec, glass(0.87, 0.3, 5e-5));  // friction, damping, rolling on
   scene.particles = {sphere(kR, {0, 0, 0}), sphere(kR, {2 * kR, 0, 0})};
   const KernelConfig config = make_kernel_config(scene, dev);
-  std::vector<KernelFile> files = {kernel_file("common.cl"), kernel_file("contact_law.cl"),
+  std::vector<KernelFile> files = {kernel_file("layout.h"), kernel_file("common.cl"), kernel_file("contact_law.cl"),
                                    {"rigid_pair.cl", kRigidPairKernel}};
   const Program program(dev, config, files);
   const Kernel kernel = program.kernel("rigid_pair");
