@@ -78,12 +78,14 @@ usage() {
 Usage: ./setup.sh [COMMAND] [ARGS...]
 
 Commands:
-  run [ARGS...]  (default) install missing packages, build Release, run the
-                 default experiment headless:
+  run [ARGS...]  (default) install missing packages, build the program and
+                 the Python module (Release), open the lab when there is a
+                 display, else run the default experiment headless:
                    $BIN run $DEFAULT_SCENE --out $DEFAULT_OUT [ARGS...]
                  ARGS go to 'simsols run' (e.g. --precision double).
-  test           install missing packages, build Release, run the whole
-                 test suite (ctest --preset $PRESET); exits with its status.
+  test           install missing packages, build everything (Release), run
+                 the whole test suite (ctest --preset $PRESET); exits with
+                 its status.
   packages       print the Debian packages this script installs, one per line.
   help           show this text.
 
@@ -125,12 +127,18 @@ install_packages() {
   "${as_root[@]}" "${apt[@]}" install -y --no-install-recommends "${missing[@]}"
 }
 
-# Configures and builds Release with the CMake preset.
+# Configures and builds Release with the CMake preset: with no argument
+# everything (the test suite too), else only the targets named.
 build() {
   say "Configuring (cmake --preset $PRESET)"
   cmake --preset "$PRESET"
-  say "Building with $JOBS jobs"
-  cmake --build --preset "$PRESET" -j "$JOBS"
+  if (($# > 0)); then
+    say "Building $* with $JOBS jobs"
+    cmake --build --preset "$PRESET" -j "$JOBS" --target "$@"
+  else
+    say "Building everything, tests included, with $JOBS jobs"
+    cmake --build --preset "$PRESET" -j "$JOBS"
+  fi
 }
 
 # `import simsols` from anywhere: a .pth file puts the build's python folder
@@ -152,7 +160,9 @@ link_python_module() {
 
 cmd_run() {
   install_packages
-  build
+  # What the lab and the default experiment use: the program and `import
+  # simsols`; `./setup.sh test` builds the test suite on top.
+  build simsols simsols_python
   link_python_module
   if [[ -n "${DISPLAY:-}" || -n "${WAYLAND_DISPLAY:-}" ]] && [[ -z "${SIMSOLS_HEADLESS:-}" ]]; then
     say "Display found: opening the lab ($BIN lab); set SIMSOLS_HEADLESS=1 to run the default experiment headless"

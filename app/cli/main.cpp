@@ -8,14 +8,17 @@
 //   simsols lab [SCENE] [--script F]     the desktop lab (window)
 //   simsols study accuracy --out DIR     what accuracy costs in time
 //
-// Exit status: 0 success, 2 bad input (UsageError, SceneError), 3 device
-// failure, 4 the run ran away (NaN or a particle too fast; see
-// solver/core/guard.h), 5 a result could not be written (IoError), 130 / 143
-// stopped by SIGINT / SIGTERM with a checkpoint (app/cli/interrupt.h).
+// Exit status: 0 success, 2 bad input (UsageError, SceneError), 3 the
+// OpenCL device or the renderer failed (DeviceError, RenderError), 4 the run
+// ran away (NaN or a particle too fast; see solver/core/guard.h), 5 a result
+// could not be written (IoError), 70 an internal error (any other exception:
+// a fault of the program, reported as such, never as a device failure),
+// 130 / 143 stopped by SIGINT / SIGTERM with a checkpoint (app/cli/interrupt.h).
 #include <cstdio>
 #include <map>
 
 #include "app/cli/commands.h"
+#include "render/gl/render_error.h"
 #include "solver/common/errors.h"
 #include "solver/core/guard.h"
 
@@ -54,9 +57,18 @@ int main(int argc, char** argv) {
     } catch (const simsols::IoError& e) {
       std::fprintf(stderr, "error: %s\n", e.what());
       return 5;
-    } catch (const std::exception& e) {
+    } catch (const simsols::DeviceError& e) {
       std::fprintf(stderr, "error: %s\n", e.what());
       return 3;
+    } catch (const simsols::render::RenderError& e) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      return 3;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr,
+                   "internal error: %s\n(a fault of SimSols, not of your input or device: "
+                   "please report it with the command line)\n",
+                   e.what());
+      return 70;
     }
   }
   return 2;
