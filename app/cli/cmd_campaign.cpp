@@ -105,15 +105,16 @@ int campaign(const CampaignOptions& opt) {
   const Scene base = opt.base.empty() ? parse_scene(default_shear_scene_text(), base_name)
                                       : load_scene(opt.base);
   if (base.apparatus_as<Triaxial>()) return triaxial_campaign(opt, base, base_name);
-  if (base.apparatus_as<ShearBox>() && base.apparatus_as<ShearBox>()->specimen.preparation.relative_density)
+  const Preparation* prep = base.specimen() ? &base.specimen()->preparation : nullptr;
+  if (base.apparatus_as<ShearBox>() && prep->relative_density)
     throw SceneError("not_applicable", base_name, 0, "shear_box.specimen.preparation.relative_density",
                      "a shear campaign pours a new specimen for each size; give the preparation "
                      "friction instead (simsols run finds it: its scene.resolved.toml)");
-  if (base.apparatus_as<ShearBox>() && base.apparatus_as<ShearBox>()->specimen.preparation.expansion)
+  if (base.apparatus_as<ShearBox>() && prep->expansion)
     throw SceneError("not_applicable", base_name, 0, "shear_box.specimen.preparation.expansion",
                      "a shear campaign pours a new specimen for each size; grow one with simsols run "
                      "and campaign over its scene.resolved.toml's sizes by hand");
-  if (base.apparatus_as<ShearBox>() && base.apparatus_as<ShearBox>()->specimen.preparation.tamping_layers)
+  if (base.apparatus_as<ShearBox>() && prep->tamping_layers)
     throw SceneError("not_applicable", base_name, 0, "shear_box.specimen.preparation.tamping_layers",
                      "a shear campaign pours a new specimen for each size; tamp one with simsols run "
                      "and campaign over its scene.resolved.toml's sizes by hand");

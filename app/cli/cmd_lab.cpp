@@ -22,8 +22,8 @@ int run_lab(const LabOptions& options) {
 CommandRunner add_lab_command(CLI::App& app) {
   auto opt = std::make_shared<LabOptions>();
   auto size = std::make_shared<std::string>("1400x860");
-  CLI::App* cmd = app.add_subcommand("lab", "The desktop lab: run the direct shear test live");
-  cmd->add_option("scene", opt->scene, "Scene file with a [shear_box] (default: the 6.35 mm preset)");
+  CLI::App* cmd = app.add_subcommand("lab", "The desktop lab: operate a shear box, oedometer or triaxial cell live");
+  cmd->add_option("scene", opt->scene, "Scene file with an apparatus (default: the shear box's 6.35 mm preset)");
   cmd->add_option("--script", opt->script, "Run the commands of this file (see docs/lab.md)");
   cmd->add_option("--size", *size, "Window size WxH")->capture_default_str();
   return [opt, size] {

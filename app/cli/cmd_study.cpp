@@ -414,7 +414,7 @@ int study(const StudyOptions& opt) {
 
 CommandRunner add_study_command(CLI::App& app) {
   auto opt = std::make_shared<StudyOptions>();
-  CLI::App* cmd = app.add_subcommand("study", "Measured studies: what accuracy costs in time");
+  CLI::App* cmd = app.add_subcommand("study", "Measured studies: what accuracy costs in time (accuracy), the strength's sensitivity to the model (sensitivity), the grains' shape (shape)");
   cmd->add_option("study", opt->what,
                   "accuracy (run the study), sensitivity (the strength's response to the "
                   "contact coefficients, density and box size), shape (angle of repose and "

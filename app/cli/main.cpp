@@ -6,7 +6,8 @@
 //   simsols bench                        particle-steps per second and memory
 //   simsols snapshot SCENE|CKPT --out F  one offscreen frame (PNG)
 //   simsols lab [SCENE] [--script F]     the desktop lab (window)
-//   simsols study accuracy --out DIR     what accuracy costs in time
+//   simsols study accuracy|sensitivity|shape --out DIR   the measured studies
+//   simsols plot ...                     several shear tests' curves on common axes
 //
 // Exit status: 0 success, 2 bad input (UsageError, SceneError), 3 the
 // OpenCL device or the renderer failed (DeviceError, RenderError), 4 the run
@@ -14,11 +15,15 @@
 // could not be written (IoError), 70 an internal error (any other exception:
 // a fault of the program, reported as such, never as a device failure),
 // 130 / 143 stopped by SIGINT / SIGTERM with a checkpoint (app/cli/interrupt.h).
+#include <algorithm>
 #include <cstdio>
 #include <map>
+#include <string>
+#include <vector>
 
 #include "app/cli/commands.h"
 #include "render/gl/render_error.h"
+#include "solver/common/did_you_mean.h"
 #include "solver/common/errors.h"
 #include "solver/core/guard.h"
 
@@ -38,6 +43,19 @@ int main(int argc, char** argv) {
   add(simsols::add_lab_command);
   add(simsols::add_study_command);
   add(simsols::add_plot_command);
+  // A mistyped command: named, with the closest one and the list (CLI11
+  // alone says only that a subcommand is required).
+  if (argc > 1 && argv[1][0] != '-') {
+    std::vector<std::string> names;
+    for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+    if (std::find(names.begin(), names.end(), argv[1]) == names.end()) {
+      std::string list;
+      for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+      std::fprintf(stderr, "error: unknown command '%s'%s; the commands: %s (simsols --help)\n",
+                   argv[1], simsols::did_you_mean(argv[1], names).c_str(), list.c_str());
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -58,15 +58,18 @@ TestRun drive(std::unique_ptr<Simulation> sim, const ProgrammeRunOptions& opt,
   check_stop_at(*run.kind, opt.stop_at);
   run.test = make_apparatus_test(*sim);
   run.sim = std::move(sim);
+  ProgrammeRunOptions labelled = opt;
+  if (labelled.label.empty()) labelled.label = run.kind->label;
+  // a resumed test's series keeps its frames up to the checkpoint, however
+  // the caller came to resume it
+  labelled.resume = resumed_state != nullptr;
   double wall_before = 0;
   if (resumed_state) {
     restore_programme(*run.test, *resumed_state, opt.out_dir);
     wall_before = driver_wall_seconds(*resumed_state);
-    std::fprintf(stderr, "[%s] resumed at %s\n", opt.label.c_str(),
+    std::fprintf(stderr, "[%s] resumed at %s\n", labelled.label.c_str(),
                  where_programme_is(*run.sim, *run.test).c_str());
   }
-  ProgrammeRunOptions labelled = opt;
-  if (labelled.label.empty()) labelled.label = run.kind->label;
   TestOutputs outputs(*run.kind, *run.test);
   run.state = drive_programme(*run.sim, outputs, labelled, wall_before);
   return run;

@@ -68,9 +68,8 @@ Scene paper_test_scene(const Scene& base, const std::string& base_name, double d
   }
   Scene sc = base;
   sc.particles.clear();
-  sc.walls.erase(sc.walls.begin() + base.apparatus_as<ShearBox>()->first_wall,
-                 sc.walls.begin() + base.apparatus_as<ShearBox>()->first_wall + kShearBoxWalls);
   ShearBox b = *base.apparatus_as<ShearBox>();
+  sc.walls.erase(sc.walls.begin() + b.first_wall, sc.walls.begin() + b.first_wall + kShearBoxWalls);
   if (b.specimen.method == Specimen::Method::Given)
     throw SceneError("bad_enum", base_name, 0, "shear_box.specimen.method",
                      "the programme prepares its own specimens: use \"layers\" or \"pour\"");

@@ -191,9 +191,10 @@ std::vector<SensitivityTest> plan_sensitivity(const SensitivityPreset& preset,
     Scene sc = paper_test_scene(base, kDefaultSceneName, preset.diameter_mm, preset.stress_kpa,
                                 layers, [&](Scene& x) {
                                   apply_levels(x, pt.levels);
-                                  x.apparatus_as<ShearBox>()->specimen.seed = pt.seed;
-                                  x.apparatus_as<ShearBox>()->length = scale * preset.box_length;
-                                  x.apparatus_as<ShearBox>()->width = scale * preset.box_width;
+                                  ShearBox& box = *x.apparatus_as<ShearBox>();
+                                  box.specimen.seed = pt.seed;
+                                  box.length = scale * preset.box_length;
+                                  box.width = scale * preset.box_width;
                                 });
     sc.name = pt.label;
     validate_scene(sc, "sensitivity study (" + pt.label + ")");

@@ -343,16 +343,17 @@ Scene shear_case_scene(const StudyPreset& preset, const StudySettings& s) {
         for (Material& m : x.materials) m.young_modulus *= s.stiffness_scale;
         x.effects.rolling = s.rolling ? RollingModel::ConstantTorque : RollingModel::None;
         x.effects.damping = s.damping ? DampingModel::Viscous : DampingModel::None;
-        x.apparatus_as<ShearBox>()->inertial_number = s.inertial_number;
-        x.apparatus_as<ShearBox>()->shear_speed = 0;
-        x.apparatus_as<ShearBox>()->shear_displacement = preset.displacement_mm * 1e-3;
-        x.apparatus_as<ShearBox>()->rows = preset.rows;
-        x.apparatus_as<ShearBox>()->specimen.seed = s.seed;
+        ShearBox& box = *x.apparatus_as<ShearBox>();
+        box.inertial_number = s.inertial_number;
+        box.shear_speed = 0;
+        box.shear_displacement = preset.displacement_mm * 1e-3;
+        box.rows = preset.rows;
+        box.specimen.seed = s.seed;
         if (s.specimen == StudySpecimen::Poured) {
-          x.apparatus_as<ShearBox>()->specimen.method = Specimen::Method::Pour;
-          x.apparatus_as<ShearBox>()->length *= preset.poured_box_scale;
-          x.apparatus_as<ShearBox>()->width *= preset.poured_box_scale;
-          x.apparatus_as<ShearBox>()->settle_time = preset.poured_settle_time;
+          box.specimen.method = Specimen::Method::Pour;
+          box.length *= preset.poured_box_scale;
+          box.width *= preset.poured_box_scale;
+          box.settle_time = preset.poured_settle_time;
         }
       });
   if (s.perturbation != 0 && !s.perturb_at_shear && !sc.particles.empty())

@@ -52,7 +52,7 @@ struct LabApp::Script {
   LabExperiment& experiment() { return *lab.exp_; }
 
   // The commands (lab_script_commands.cpp), as docs/lab.md lists them.
-  void choose_apparatus(const Line& line);     // apparatus shear_box|triaxial|oedometer
+  void choose_apparatus(const Line& line);     // apparatus KIND (a name of the registry)
   void choose_preset(const Line& line);        // preset D_MM S_KPA
   void open_scene(const Line& line);           // open SCENE.toml
   void choose_precision(const Line& line);     // precision float|double

@@ -53,7 +53,7 @@ class LabShearBox : public LabApparatus {
   std::string set(const std::string& key, double value, Scene& scene) override {
     if (key == "stress") {
       if (!(value > 0) || value > 1e6) return "normal stress must be in (0, 1e6] kPa";
-      if (scene.apparatus_as<ShearBox>()) scene.apparatus_as<ShearBox>()->normal_stress = value * 1e3;
+      if (ShearBox* b = scene.apparatus_as<ShearBox>()) b->normal_stress = value * 1e3;
       test_.set_normal_stress(value * 1e3);
       return {};
     }

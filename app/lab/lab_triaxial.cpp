@@ -65,7 +65,7 @@ class LabTriaxial : public LabApparatus {
   std::string set(const std::string& key, double value, Scene& scene) override {
     if (key == "stress") {
       if (!(value > 0) || value > 1e6) return "σ₃ must be in (0, 1e6] kPa";
-      if (scene.apparatus_as<Triaxial>()) scene.apparatus_as<Triaxial>()->confining_stress = value * 1e3;
+      if (Triaxial* t = scene.apparatus_as<Triaxial>()) t->confining_stress = value * 1e3;
       test_.set_confining_stress(value * 1e3);
       return {};
     }

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <mutex>
 #include <vector>
 
 namespace simsols::render {
@@ -154,8 +155,16 @@ class EglContext final : public GlContext {
   void make_current() override { eglMakeCurrent(display_, surface_, surface_, context_); }
 
  private:
-  static std::map<EGLDisplay, int>& display_users() {
-    static std::map<EGLDisplay, int> users;
+  // How many contexts use each EGL display, process-wide because EGL's
+  // displays are (eglGetPlatformDisplay returns the same one to every
+  // caller); contexts open and close on any thread (the lab builds in the
+  // background), so every use holds the mutex.
+  struct DisplayUsers {
+    std::mutex mutex;
+    std::map<EGLDisplay, int> count;
+  };
+  static DisplayUsers& display_users() {
+    static DisplayUsers users;
     return users;
   }
 
@@ -180,7 +189,11 @@ class EglContext final : public GlContext {
       *why = "eglInitialize failed (error " + egl_error() + ")";
       return false;
     }
-    ++display_users()[d];
+    {
+      DisplayUsers& users = display_users();
+      const std::lock_guard lock(users.mutex);
+      ++users.count[d];
+    }
     display_ = d;
     return true;
   }
@@ -234,7 +247,9 @@ class EglContext final : public GlContext {
     if (context_ != EGL_NO_CONTEXT) eglDestroyContext(display_, context_);
     // eglGetPlatformDisplay returns the same display to every context of the
     // process and eglTerminate ends it for all: the last one out terminates.
-    if (--display_users()[display_] == 0) eglTerminate(display_);
+    DisplayUsers& users = display_users();
+    const std::lock_guard lock(users.mutex);
+    if (--users.count[display_] == 0) eglTerminate(display_);
     display_ = EGL_NO_DISPLAY;
     context_ = EGL_NO_CONTEXT;
     surface_ = EGL_NO_SURFACE;

@@ -45,7 +45,7 @@ void read_oedometer(const Reader& table, Scene& scene);  // scene_tables_oedomet
 void read_triaxial(const Reader& table, Scene& scene);   // scene_tables_triaxial.cpp
 
 // The [<apparatus>.specimen] sub-table of an apparatus table
-// (scene_tables_shear_box.cpp).
+// (scene_tables_specimen.cpp).
 Specimen read_specimen(const Reader& apparatus, const Scene& scene);
 
 // scene_tables_settings.cpp

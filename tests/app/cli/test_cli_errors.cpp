@@ -129,6 +129,24 @@ TEST(CliErrors, UsageAndWriteFailuresHaveTheirOwnStatus) {
   EXPECT_NE(usage.out.find("command line: field '--stresses'"), std::string::npos) << usage.out;
 }
 
+// A mistyped command is named with the closest one and the list; help
+// after a known command is that command's, with status 0.
+TEST(CliErrors, AMistypedCommandIsNamedWithTheClosestOne) {
+  const fs::path d = fresh_dir("mistyped");
+  const Result typo = run_in(d, "campain --out c");
+  EXPECT_EQ(typo.status, 2) << typo.out;
+  EXPECT_NE(typo.out.find("unknown command 'campain' (did you mean 'campaign'?)"), std::string::npos)
+      << typo.out;
+  EXPECT_NE(typo.out.find("run, bench, campaign"), std::string::npos) << typo.out;
+  const Result far = run_in(d, "xyzzy");
+  EXPECT_EQ(far.status, 2) << far.out;
+  EXPECT_EQ(far.out.find("did you mean"), std::string::npos) << far.out;
+  const Result help = run_in(d, "run --help");
+  EXPECT_EQ(help.status, 0) << help.out;
+  EXPECT_NE(help.out.find("--stop-at"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("settle,consolidate,compress"), std::string::npos) << help.out;
+}
+
 TEST(CliErrors, CampaignChecksItsFlagsAfterLoadingTheBuiltInScene) {
   const fs::path d = fresh_dir("campaign_flag");
   const Result r = run_in(d, "campaign --out c --layers -3");
