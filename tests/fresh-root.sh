@@ -105,7 +105,7 @@ installed=$(sed -n 's/.*==> Installing missing packages: //p' "$LOG" | head -n 1
   echo "fresh-root summary ($(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores $(uname -m), commit ${SHA:0:12})"
   echo "  root: $base_count packages (mmdebstrap bookworm, variant debootstrap, + sudo), made in ${t_root} s"
   echo "  setup.sh installed $(wc -w <<<"$installed") packages: $installed"
-  grep -m1 -o '[0-9]* newly installed' "$LOG" | sed 's/^/  apt: /' || true
+  grep -o '[0-9]* newly installed' "$LOG" | sort -n | tail -n 1 | sed 's/^/  apt: /' || true
   [[ -n $b0 && -n $b1 ]] && echo "  build: $((b1 - b0)) s"
   echo "  ./setup.sh: exit $run_rc in ${t_run} s (from the clone to the default experiment's results)"
   [[ -z ${FIRST_RUN_ONLY:-} ]] && echo "  ./setup.sh test: exit $test_rc in ${t_test} s"
