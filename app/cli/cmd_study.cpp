@@ -35,6 +35,7 @@
 #include "app/experiment/shape_study.h"
 #include "app/experiment/study.h"
 #include "app/experiment/study_ensemble.h"
+#include "app/experiment/study_run.h"
 #include "app/experiment/study_state.h"
 
 namespace simsols {
@@ -82,52 +83,6 @@ std::vector<StudySettings> selected_cases(const StudyPreset& preset, const Study
   return cases;
 }
 
-void report_case(const StudyCase& c, bool shear) {
-  if (c.contact.ok)
-    std::fprintf(stderr, "    contact: worst error %.3g %%\n", c.contact.worst());
-  else
-    std::fprintf(stderr, "    contact: failed: %s\n", c.contact.failure.c_str());
-  if (!shear) return;
-  if (c.shear.ok)
-    std::fprintf(stderr, "    shear: phi_peak %.2f, phi_res %.2f, psi_max %.2f deg in %.1f s\n",
-                 c.shear.peak_angle, c.shear.residual_angle, c.shear.dilatancy_angle,
-                 c.shear.wall_seconds);
-  else
-    std::fprintf(stderr, "    shear: failed: %s\n", c.shear.failure.c_str());
-}
-
-// The contact checks have no specimen and no shear speed or skin: a run
-// whose time step, precision, stiffness and effects an earlier run had
-// (another member, the round-off twin) reuses that run's results.
-ContactErrors contact_checks_of(const StudySettings& s, const std::vector<StudyCase>& done,
-                                const std::shared_ptr<Device>& device) {
-  for (const StudyCase& c : done)
-    if (c.settings.dt_fraction == s.dt_fraction && c.settings.precision == s.precision &&
-        c.settings.stiffness_scale == s.stiffness_scale && c.settings.rolling == s.rolling &&
-        c.settings.damping == s.damping)
-      return c.contact;
-  return run_contact_checks(s, device);
-}
-
-// The finished cases of an earlier invocation (--resume), or none.
-std::vector<StudyCase> resumed_cases(const StudyOptions& opt, const StudyPreset& preset,
-                                     const std::vector<StudySettings>& cases) {
-  const fs::path state = fs::path(opt.out) / "study_state.txt";
-  if (!opt.resume) return {};
-  if (!fs::exists(state))
-    throw SceneError("io", state.string(), 0, "--resume",
-                     "no study to resume here (a study writes this file after its first case)");
-  std::ifstream in(state, std::ios::binary);
-  const std::string text((std::istreambuf_iterator<char>(in)), {});
-  std::vector<StudyCase> done = parse_study_state(text, state.string(), preset, cases);
-  compare_to_reference(done);
-  std::fprintf(stderr, "[study] resumed after %zu of %zu cases%s\n", done.size(), cases.size(),
-               fs::exists(fs::path(opt.out) / "case_checkpoint.bin")
-                   ? " (the next one from its checkpoint)"  // --jobs 1's name
-                   : "");
-  return done;
-}
-
 std::string resume_command(const StudyOptions& opt) {
   std::string c = "simsols study " + opt.what + " --out " + opt.out + " --preset " + opt.preset;
   if (opt.ensemble > 0) c += " --ensemble " + std::to_string(opt.ensemble);
@@ -160,154 +115,29 @@ int print_table(const StudyOptions& opt) {
   return 0;
 }
 
-int jobs_of(const StudyOptions& opt) { return std::max(1, opt.jobs); }
-
-// Case i's checkpoint: case_checkpoint.bin when the cases run one at a
-// time, case_checkpoint_<i+1>.bin with --jobs > 1 (several run at once).
-fs::path checkpoint_path(const StudyOptions& opt, size_t i, int jobs) {
-  return fs::path(opt.out) /
-         (jobs > 1 ? "case_checkpoint_" + std::to_string(i + 1) + ".bin" : "case_checkpoint.bin");
+// The accuracy study's cases on the pool of study_run.h (--jobs workers),
+// Ctrl-C caught; the status: 0, or the interrupt's.
+int run_accuracy_study(const StudyOptions& opt, const StudyPreset& preset,
+                       const std::vector<StudySettings>& cases, std::vector<StudyCase> done) {
+  InterruptScope interrupt;
+  StudyRunOptions run;
+  run.out = opt.out;
+  run.quiet = opt.quiet;
+  run.jobs = std::max(1, opt.jobs);
+  run.open_device = [] { return open_command_device(); };
+  run.stop_requested = interrupt.stop_function();
+  const StudyRunOutcome o = run_study(preset, cases, std::move(done), run);
+  if (!o.complete()) {
+    std::printf("study interrupted: %zu of the %zu cases finished in order%s. Resume with: %s\n",
+                o.finished, o.total,
+                o.interrupted ? ", the running cases' states are in case_checkpoint*.bin" : "",
+                resume_command(opt).c_str());
+    return interrupt.exit_status();
+  }
+  std::printf("study %s (%s): %zu cases; results in %s (cases.csv, summary.md, pareto.png)\n",
+              opt.what.c_str(), preset.name.c_str(), o.finished, opt.out.c_str());
+  return 0;
 }
-
-// The study's runs and the workers that run them (--jobs: that many cases
-// at once, each worker on its own OpenCL context and queue, so a device
-// that a small specimen leaves idle between launches runs several). A
-// case's result does not depend on which worker ran it. Results are
-// written as each case finishes; study_state.txt keeps the finished
-// prefix of the cases (what --resume continues after), so a case that
-// finished after an unfinished one runs again on resume.
-class StudyRun {
- public:
-  StudyRun(const StudyOptions& opt, const StudyPreset& preset, std::vector<StudySettings> cases,
-           std::vector<StudyCase> done)
-      : opt_(opt), preset_(preset), cases_(std::move(cases)), results_(cases_.size()),
-        first_(done.size()), next_(done.size()) {
-    for (size_t i = 0; i < done.size(); ++i) results_[i] = std::move(done[i]);
-  }
-
-  int run(int jobs) {
-    jobs_ = jobs;
-    t0_ = std::chrono::steady_clock::now();
-    // one context and queue per worker, opened here, one after the other
-    std::vector<std::shared_ptr<Device>> devices(static_cast<size_t>(jobs));
-    for (auto& d : devices) d = open_command_device();
-    {
-      std::vector<std::jthread> workers;  // joined when the scope ends, also on a throw
-      for (int k = 1; k < jobs; ++k) workers.emplace_back([this, d = devices[k]] { work(d); });
-      work(devices[0]);
-    }
-    if (error_) std::rethrow_exception(error_);
-    const size_t finished = prefix().size();
-    if (finished < cases_.size()) {
-      std::printf("study interrupted: %zu of the %zu cases finished in order%s. Resume with: %s\n",
-                  finished, cases_.size(),
-                  interrupted_ ? ", the running cases' states are in case_checkpoint*.bin" : "",
-                  resume_command(opt_).c_str());
-      return interrupt_.exit_status();
-    }
-    std::printf("study %s (%s): %zu cases; results in %s (cases.csv, summary.md, pareto.png)\n",
-                opt_.what.c_str(), preset_.name.c_str(), finished, opt_.out.c_str());
-    return 0;
-  }
-
- private:
-  // The finished cases, in case order.
-  std::vector<StudyCase> finished() const {
-    std::vector<StudyCase> f;
-    for (const auto& r : results_)
-      if (r) f.push_back(*r);
-    return f;
-  }
-  std::vector<StudyCase> prefix() const {
-    std::vector<StudyCase> f;
-    for (const auto& r : results_) {
-      if (!r) break;
-      f.push_back(*r);
-    }
-    return f;
-  }
-
-  // The next case to run, or nullopt when none is left or a stop was asked.
-  std::optional<size_t> take() {
-    std::lock_guard lock(mutex_);
-    if (next_ >= cases_.size() || interrupt_.requested() || error_) return std::nullopt;
-    const size_t i = next_++;
-    if (!opt_.quiet) {
-      const double elapsed =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
-      const size_t ran = ran_;
-      const std::string eta =
-          ran > 0 ? ", ETA " + human_seconds(elapsed / double(ran) *
-                                             double(cases_.size() - first_ - ran))
-                  : "";
-      std::fprintf(stderr, "[study %zu/%zu] %s specimen, %s: %s, seed %d (elapsed %s%s)\n", i + 1,
-                   cases_.size(), specimen_name(cases_[i].specimen), cases_[i].knob.c_str(),
-                   cases_[i].label.c_str(), cases_[i].seed, human_seconds(elapsed).c_str(),
-                   eta.c_str());
-    }
-    return i;
-  }
-
-  void work(std::shared_ptr<Device> device) {
-    try {
-      while (const std::optional<size_t> i = take()) run_case(*i, device);
-    } catch (...) {
-      std::lock_guard lock(mutex_);
-      if (!error_) error_ = std::current_exception();
-      failed_ = true;
-    }
-  }
-
-  void run_case(size_t i, const std::shared_ptr<Device>& device) {
-    StudyCase c;
-    c.settings = cases_[i];
-    std::vector<StudyCase> known;
-    {
-      std::lock_guard lock(mutex_);
-      known = finished();
-    }
-    c.contact = contact_checks_of(cases_[i], known, device);
-    // a checkpoint of this case from an interrupted study, whichever --jobs wrote it
-    fs::path checkpoint = checkpoint_path(opt_, i, 2);
-    if (!fs::exists(checkpoint) && (jobs_ == 1 || i == first_)) checkpoint = checkpoint_path(opt_, i, 1);
-    // stop on Ctrl-C, and when another worker failed (its error ends the study)
-    const ShearCaseControl control{[this] { return interrupt_.requested() || failed_.load(); },
-                                   checkpoint.string(), device};
-    if (preset_.shear) c.shear = run_shear_case(preset_, cases_[i], control);
-    std::lock_guard lock(mutex_);
-    if (c.shear.interrupted) {
-      if (failed_) return;  // stopped for another worker's error: the error is the news
-      interrupted_ = true;
-      std::printf("study interrupted in case %zu/%zu (%s); its state is in %s\n", i + 1,
-                  cases_.size(), cases_[i].label.c_str(), checkpoint.string().c_str());
-      return;
-    }
-    fs::remove(checkpoint);
-    if (!opt_.quiet) report_case(c, preset_.shear);
-    results_[i] = c;
-    ++ran_;
-    std::vector<StudyCase> all = finished(), ordered = prefix();
-    compare_to_reference(all);
-    write_study_outputs(opt_.out, preset_, all);
-    write_file_atomic((fs::path(opt_.out) / "study_state.txt").string(),
-                      study_state_text(preset_, cases_, ordered));
-  }
-
-  const StudyOptions& opt_;
-  const StudyPreset& preset_;
-  const std::vector<StudySettings> cases_;
-  std::vector<std::optional<StudyCase>> results_;
-  const size_t first_;  // finished before this invocation
-  size_t next_;
-  size_t ran_ = 0;  // finished by this invocation
-  int jobs_ = 1;
-  bool interrupted_ = false;
-  std::exception_ptr error_;
-  std::atomic<bool> failed_ = false;
-  std::mutex mutex_;
-  InterruptScope interrupt_;
-  std::chrono::steady_clock::time_point t0_;
-};
 
 // `simsols study shape --out DIR [--preset quick|ci]`: the shape study
 // (shape_study.h), its results rewritten after each case; a stop (Ctrl-C)
@@ -402,12 +232,13 @@ int study(const StudyOptions& opt) {
                      std::to_string(opt.jobs) + " is out of range, allowed [1, 16] cases at once");
   if (opt.no_shear) preset->shear = false;
   const std::vector<StudySettings> cases = study_runs(*preset, selected_cases(*preset, opt));
-  std::vector<StudyCase> done = resumed_cases(opt, *preset, cases);
+  std::vector<StudyCase> done;
+  if (opt.resume) done = resumed_study_cases(opt.out, *preset, cases);
   if (!done.empty()) write_study_outputs(opt.out, *preset, done);  // today's tables and charts
   if (!opt.resume)  // another study's case states, whichever --jobs wrote them
     for (size_t i = 0; i < cases.size(); ++i)
-      for (int jobs : {1, 2}) fs::remove(checkpoint_path(opt, i, jobs));
-  return StudyRun(opt, *preset, cases, std::move(done)).run(jobs_of(opt));
+      for (int jobs : {1, 2}) fs::remove(study_case_checkpoint(opt.out, i, jobs));
+  return run_accuracy_study(opt, *preset, cases, std::move(done));
 }
 
 }  // namespace
