@@ -3,6 +3,8 @@
 
 #include "app/experiment/preparation.h"
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -25,7 +27,13 @@ std::string scene_error_text(const std::string& given, const SceneError& e) {
 }
 }  // namespace
 
-LabExperiment::LabExperiment(std::shared_ptr<Device> device) : device_(std::move(device)) {}
+// A preparation's files (density.csv, density.png, tamping's) go to a
+// folder of this lab's own process.
+LabExperiment::LabExperiment(std::shared_ptr<Device> device)
+    : device_(std::move(device)),
+      preparation_dir_((std::filesystem::temp_directory_path() /
+                        ("simsols-lab-preparation-" + std::to_string(::getpid())))
+                           .string()) {}
 
 LabExperiment::~LabExperiment() {
   if (building_.valid()) building_.wait();
@@ -74,16 +82,6 @@ std::string LabExperiment::load_scene_file(const std::string& path) {
     if (lab_bench_index(sc) < 0)
       return path + ": the lab runs the tests of the apparatus " + lab_kind_names() +
              "; this scene has none of those tables";
-    const SpecimenCell cell = specimen_cell(sc);
-    if (cell.specimen && cell.specimen->preparation.relative_density)
-      return path + ": specimen.preparation.relative_density is searched by 'simsols run " + path +
-             " --out DIR'; open DIR/scene.resolved.toml here, which holds the friction it found";
-    if (cell.specimen && cell.specimen->preparation.tamping_layers)
-      return path + ": specimen.preparation.tamping_layers builds the specimen with 'simsols run " + path +
-             " --out DIR'; open DIR/scene.resolved.toml here, which holds the tamped specimen";
-    if (cell.specimen && cell.specimen->preparation.expansion)
-      return path + ": specimen.preparation.expansion grows the specimen with 'simsols run " + path +
-             " --out DIR'; open DIR/scene.resolved.toml here, which holds the grown specimen";
     return adopt_scene(std::move(sc), path, path, false);
   } catch (const std::exception& e) {
     return e.what();
@@ -108,9 +106,19 @@ std::string LabExperiment::prepare() {
   running_ = false;
   loading_started_ = false;
   auto device = device_;
-  const Scene scene = scene_;
-  building_ = std::async(std::launch::async,
-                         [device, scene] { return std::make_unique<Simulation>(device, scene); });
+  news_ = std::make_shared<BuildNews>();
+  building_ = std::async(std::launch::async, [device, scene = scene_, news = news_,
+                                              dir = preparation_dir_]() mutable {
+    const bool prepared = prepare_to_relative_density(scene, device, dir, [&](const std::string& l) {
+      const std::lock_guard lock(news->mutex);
+      news->line = l;
+    });
+    {
+      const std::lock_guard lock(news->mutex);
+      news->prepared = prepared;
+    }
+    return std::make_unique<Simulation>(device, scene);
+  });
   return {};
 }
 
@@ -126,6 +134,8 @@ std::string LabExperiment::poll() {
     building_ = {};
     return e.what();
   }
+  const std::lock_guard lock(news_->mutex);
+  if (news_->prepared) scene_ = sim_->scene();  // Reset builds the prepared specimen again
   return {};
 }
 
@@ -146,6 +156,10 @@ LabStage LabExperiment::stage() const {
 
 std::string LabExperiment::stage_text() const {
   const LabStage s = stage();
+  if (s == LabStage::Building && news_) {
+    const std::lock_guard lock(news_->mutex);
+    if (!news_->line.empty()) return std::string(to_string(s)) + ": " + news_->line;
+  }
   return s == LabStage::Empty || s == LabStage::Building ? to_string(s) : app_->stage_text(s);
 }
 

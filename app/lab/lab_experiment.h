@@ -28,6 +28,7 @@
 #include <atomic>
 #include <future>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <utility>
@@ -59,7 +60,12 @@ class LabExperiment {
   }
 
   // Bench actions; each returns an error text or "" (e.g. "prepare first").
-  std::string prepare();  // starts the build; poll() finishes it
+  // Starts the build in the background; poll() finishes it. A scene that
+  // asks a preparation (a relative density, tamping, radius expansion:
+  // preparation.h) is prepared first, as `simsols run` prepares it (its
+  // density.csv and friends in preparation_dir()); the prepared scene is
+  // then the one Reset builds again, without searching.
+  std::string prepare();
   std::string apply_load();  // the stress: settle, consolidate, hold
   std::string start();       // the measured stage (shear, compression, load programme)
   void pause() { running_ = false; }
@@ -88,7 +94,8 @@ class LabExperiment {
   double steps_per_second() const { return rate_; }
 
   LabStage stage() const;
-  std::string stage_text() const;  // in the apparatus' words
+  std::string stage_text() const;  // in the apparatus' words (the preparation's last line while building)
+  const std::string& preparation_dir() const { return preparation_dir_; }
   Simulation* simulation() { return sim_.get(); }
   LabApparatus* apparatus() { return app_.get(); }
   std::size_t rows() const { return app_ ? app_->rows() : 0; }
@@ -116,7 +123,16 @@ class LabExperiment {
   std::string label_;
   std::unique_ptr<Simulation> sim_;
   std::unique_ptr<LabApparatus> app_;
+  // What the background build says (its preparation's lines) and whether
+  // it prepared the specimen, shared with the build's thread.
+  struct BuildNews {
+    mutable std::mutex mutex;
+    std::string line;
+    bool prepared = false;
+  };
   std::future<std::unique_ptr<Simulation>> building_;
+  std::shared_ptr<BuildNews> news_;
+  std::string preparation_dir_;
   bool running_ = false, loading_started_ = false;
   std::string fault_;  // a runaway (guard.h), until taken by take_fault()
   double rate_ = 0;            // steps per second of wall time, measured

@@ -16,6 +16,7 @@
 #include "solver/common/did_you_mean.h"
 #include "app/lab/lab_script.h"
 #include "solver/core/slots.h"
+#include "solver/scene/choices.h"
 
 namespace simsols {
 
@@ -80,6 +81,11 @@ std::string LabApp::state_text() {
   o << "stage = " << exp_->stage_text() << "\n";
   if (a) o << "apparatus = " << a->kind() << "\n";
   o << "scene = " << exp_->scene_label() << "\n";  // the next prepare's
+  if (const Specimen* s = exp_->scene().specimen()) {
+    o << "specimen_method = " << choice_name(s->method) << "\n";
+    if (s->preparation.friction) o << "preparation_friction = " << *s->preparation.friction << "\n";
+  }
+  o << "preparation_dir = " << exp_->preparation_dir() << "\n";
   o << "paused = " << (exp_->paused() ? 1 : 0) << "\n";
   if (sim) {
     char hash[32];

@@ -316,6 +316,33 @@ TEST_F(LabApparatus, TriaxialAndOedometerOperatedExportedAndCheckpointed) {
   check_screenshots();
 }
 
+// A scene that asks a preparation opens in the lab and is prepared there as
+// `simsols run` prepares it (test_preparation.cpp's soft cell grown by
+// radius expansion to e = 0.85 between the given e_min and e_max): the
+// friction the search chose becomes the scene's, its density.csv is in the
+// lab's preparation folder, and Reset builds the grown specimen again.
+TEST_F(LabApparatus, AScenePreparedToADensityOpensAndPrepares) {
+  std::string text = triaxial_scene();
+  text.replace(text.find("young_modulus = 62.784e9"), 24, "young_modulus = 1e9");
+  text.replace(text.find("seed = 2\n"), 9,
+               "seed = 2\n\n[triaxial.specimen.preparation]\nexpansion = true\nvoid_ratio = 0.85\n"
+               "e_min = 0.773\ne_max = 1.005\n");
+  std::ofstream(p("dense.toml")) << text;
+  std::ofstream(p("dense.txt")) << "open " << p("dense.toml").string() << "\nprepare\nstate "
+                                << p("dense.state").string() << "\nprepare\nstate "
+                                << p("again.state").string() << "\n";
+  ASSERT_EQ(run(lab(p("dense.txt")), p("dense.log")), 0) << slurp(p("dense.log"));
+  auto s = read_state(p("dense.state"));
+  EXPECT_EQ(s["apparatus"], "triaxial");
+  EXPECT_EQ(s["specimen_method"], "given") << "the grown specimen is the scene's";
+  EXPECT_GE(num(s, "preparation_friction"), 0.0);
+  EXPECT_LE(num(s, "preparation_friction"), 1.0);
+  EXPECT_TRUE(fs::exists(fs::path(s["preparation_dir"]) / "density.csv")) << s["preparation_dir"];
+  auto again = read_state(p("again.state"));
+  EXPECT_EQ(again["hash"], s["hash"]) << "Reset builds the same specimen";
+  fs::remove_all(s["preparation_dir"]);
+}
+
 // A setting the apparatus has not is refused, naming it and listing none.
 TEST_F(LabApparatus, AnUnknownSettingIsRefusedByName) {
   std::ofstream(p("bad.txt")) << "open " << p("oed.toml").string() << "\nprepare\nset_rate 1\n";
