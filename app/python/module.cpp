@@ -192,7 +192,13 @@ py::list walls_list(Simulation& sim) {
     w["velocity"] = py::make_tuple(v[0], v[1], v[2]);
     w["force"] = py::make_tuple(f[0], f[1], f[2]);
     w["contacts"] = reactions[size_t(k)].contacts;
-    w["servo"] = scene.walls[size_t(k)].servo.enabled;
+    const WallServo s = sim.servo_setting(k);
+    w["servo"] = s.enabled ? py::object(py::dict(py::arg("target_force") = s.target_force,
+                                                 py::arg("gain") = s.gain,
+                                                 py::arg("max_speed") = s.max_speed,
+                                                 py::arg("integral_time") = s.integral_time,
+                                                 py::arg("dead_weight_mass") = s.mass))
+                           : py::object(py::none());
     out.append(w);
   }
   return out;
@@ -421,7 +427,9 @@ void define_simulation(py::module_& m) {
            "(pairs (m, 2) int32, forces (m, 3) N): b = -1 - wall for a wall; the force b exerts on a")
       .def("walls", &walls_list,
            "The walls now, as dicts: name, apparatus (its kind, '' for the scene's own), point "
-           "(m), normal, velocity (m/s), force the beads exert (N), contacts, servo")
+           "(m), normal, velocity (m/s), force the beads exert (N), contacts, servo (None, or "
+           "its settings now: target_force N, gain m/(s N), max_speed m/s, integral_time s, "
+           "dead_weight_mass kg, 0 for a servo)")
       .def("save_checkpoint", [](Simulation& s, const std::string& path) { save_checkpoint(s, path); },
            py::arg("path"));
   m.def("run_test", &run_test, py::arg("scene"), py::arg("out"), py::arg("quiet") = true,

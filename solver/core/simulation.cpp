@@ -67,6 +67,22 @@ void Simulation::set_servo(int wall, const WallServo& c) {
   }
 }
 
+WallServo Simulation::servo_setting(int wall) {
+  check_wall(*model_, wall, "servo_setting");
+  WallServo s;
+  if (!model_->config().servo) return s;
+  guard_->before_reading();
+  const auto a = read_real4(*model_, state_->servo, 2 * size_t(wall));
+  const auto b = read_real4(*model_, state_->servo, 2 * size_t(wall) + 1);
+  s.target_force = a[0];  // the order of servo_record (state.cpp)
+  s.gain = a[1];
+  s.max_speed = a[2];
+  s.enabled = a[3] != 0;
+  s.integral_time = b[0] > 0 ? 1 / b[0] : 0;
+  s.mass = b[1] > 0 ? 1 / b[1] : 0;
+  return s;
+}
+
 Simulation::ServoReading Simulation::read_servo(int wall) {
   check_wall(*model_, wall, "read_servo");
   guard_->before_reading();

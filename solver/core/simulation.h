@@ -42,6 +42,10 @@ class Simulation {
     std::int64_t steps = 0;
   };
   ServoReading read_servo(int wall);
+  // The wall's servo as it is set now (by the scene, or set_servo since):
+  // its target force, gain, speed cap, integral time, the dead weight's
+  // mass; not enabled when the kernels have no servo walls.
+  WallServo servo_setting(int wall);
   Vec3 wall_point(int wall);  // current reference point, absolute
   Vec3 wall_velocity(int wall);  // m/s, prescribed or set by its force control
   // Moves a wall at once (no sweep: the caller makes sure it lands clear of

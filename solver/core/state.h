@@ -75,9 +75,9 @@ class State {
   // wall_mean: per wall the force summed over steps (xyz) and the steps (w),
   // kept when the kernels have servo walls (read_wall_means)
   Buffer servo, wall_reaction, wall_mean;
-  // flags[0]: list rebuild needed, flags[1]: longest list asked for,
-  // flags[2]: max |v|^2 since the last check, flags[3]: late, flags[4..6]:
-  // the runaway mark (see integrate.cl and guard.h), flags[7] spare.
+  // flags: FLAG_SLOTS ints, their slots named in solver/kernels/layout.h
+  // (list rebuild needed, longest list asked for, max |v|^2 since the last
+  // check, late, the runaway mark of guard.h).
   // groups_done: finish_particles' count of its work groups done, 0 between
   // launches (integrate.cl, SERVO_IN_FINISH), apart from flags' cache line
   Buffer flags, groups_done, obs_partial, wall_partial;

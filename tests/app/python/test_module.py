@@ -174,11 +174,14 @@ def test_a_test_stopped_at_the_end_of_a_stage_hands_its_apparatus_over(tmp_path)
     box = [w for w in walls if w["apparatus"] == "shear_box"]
     assert len(box) == 12
     platen = [w for w in box if w["servo"]]
-    assert len(platen) == 1 and platen[0]["normal"][2] == -1.0
-    # the beads push the platen up with the consolidation stress (within the
-    # servo's 1 % equilibrium band, shear_test.h) on the box's area
+    assert len(platen) == 1 and platen[0]["name"] == "platen" and platen[0]["normal"][2] == -1.0
+    # its target is the normal stress on the box's area, carried by a dead
+    # weight (shear_box.loading's default), and the beads push it up with
+    # that load (within the servo's 1 % equilibrium band, shear_test.h)
     box_table = simsols.load_scene(path).to_dict()["shear_box"]
     load = box_table["normal_stress"] * box_table["length"] * box_table["width"]
+    assert platen[0]["servo"]["target_force"] == pytest.approx(load, rel=1e-6)
+    assert platen[0]["servo"]["dead_weight_mass"] > 0
     assert platen[0]["force"][2] == pytest.approx(load, rel=0.05)
     with pytest.raises(simsols.SceneError, match="not a stage"):
         simsols.run_test(simsols.load_scene(path), str(tmp_path / "bad"), stop_at="consolidated")
