@@ -54,7 +54,7 @@ std::string test_caption(Simulation& sim, const std::string& state) {
   const Scene& s = sim.scene();
   if (!s.has_apparatus()) return "";
   try {
-    const std::unique_ptr<ApparatusTest> test = make_apparatus_test(sim);
+    const std::unique_ptr<ApparatusProgramme> test = make_programme(sim);
     restore_programme(*test, state, "");
     return test->caption();
   } catch (const std::exception&) {

@@ -7,9 +7,9 @@
 #include "app/experiment/oedometer_plots.h"
 #include "app/experiment/shear_plots.h"
 #include "app/experiment/triaxial_plots.h"
-#include "solver/apparatus/oedometer_test.h"
-#include "solver/apparatus/shear_test.h"
-#include "solver/apparatus/triaxial_test.h"
+#include "solver/apparatus/oedometer/oedometer_programme.h"
+#include "solver/apparatus/shear_box/shear_programme.h"
+#include "solver/apparatus/triaxial/triaxial_programme.h"
 
 namespace simsols {
 namespace {
@@ -29,13 +29,13 @@ const char* how(const ProgrammeRunState& s) {
   return s.finished ? "finished" : s.interrupted ? "interrupted" : "stopped";
 }
 
-void shear_plots(const std::string& dir, const std::string& title, const ApparatusTest& t) {
-  const auto& test = dynamic_cast<const ShearTest&>(t);
+void shear_plots(const std::string& dir, const std::string& title, const ApparatusProgramme& t) {
+  const auto& test = dynamic_cast<const ShearProgramme&>(t);
   write_shear_plots(dir, title, test.rows(), test.summary());
 }
 
 std::string shear_text(const TestRun& run) {
-  const auto r = typed_result<ShearTest>(run);
+  const auto r = typed_result<ShearProgramme>(run);
   const ShearSummary& s = r.summary;
   std::string o = say("shear test %s: sigma = %.0f kPa, d = %.4g mm, %d beads, %lld steps in %.0f s\n",
                       how(r.state), s.normal_stress_target * 1e-3, s.bead_diameter * 1e3,
@@ -63,13 +63,13 @@ std::string shear_text(const TestRun& run) {
 }
 
 void oedometer_plots(const std::string& dir, const std::string& title,
-                            const ApparatusTest& t) {
-  const auto& test = dynamic_cast<const OedometerTest&>(t);
+                            const ApparatusProgramme& t) {
+  const auto& test = dynamic_cast<const OedometerProgramme&>(t);
   write_oedometer_plots(dir, title, test.rows(), test.summary());
 }
 
 std::string oedometer_text(const TestRun& run) {
-  const auto r = typed_result<OedometerTest>(run);
+  const auto r = typed_result<OedometerProgramme>(run);
   const OedometerSummary& s = r.summary;
   std::string o = say("oedometer test %s: %zu of its load steps, %d beads, %lld steps in %.0f s\n",
                       how(r.state), s.steps.size(), r.state.particles, r.state.steps, s.wall_seconds);
@@ -90,13 +90,13 @@ std::string oedometer_text(const TestRun& run) {
 }
 
 void triaxial_plots(const std::string& dir, const std::string& title,
-                           const ApparatusTest& t) {
-  const auto& test = dynamic_cast<const TriaxialTest&>(t);
+                           const ApparatusProgramme& t) {
+  const auto& test = dynamic_cast<const TriaxialProgramme&>(t);
   write_triaxial_plots(dir, title, test.rows(), test.summary());
 }
 
 std::string triaxial_text(const TestRun& run) {
-  const auto r = typed_result<TriaxialTest>(run);
+  const auto r = typed_result<TriaxialProgramme>(run);
   const TriaxialSummary& s = r.summary;
   std::string o = say("triaxial test %s: p'0 = %.0f kPa, %d beads, %lld steps in %.0f s\n",
                       how(r.state), s.confining_stress * 1e-3, r.state.particles, r.state.steps,
@@ -114,7 +114,7 @@ std::string triaxial_text(const TestRun& run) {
 
 struct TestReport {
   std::string_view kind;  // the registry's name
-  void (*plots)(const std::string& dir, const std::string& title, const ApparatusTest& t);
+  void (*plots)(const std::string& dir, const std::string& title, const ApparatusProgramme& t);
   std::string (*text)(const TestRun& run);
 };
 
@@ -141,7 +141,7 @@ const TestReport& report_of(const ApparatusKind& kind) {
 bool has_test_report(std::string_view kind) { return report_of(kind) != nullptr; }
 
 void write_test_plots(const std::string& dir, const std::string& title, const ApparatusKind& kind,
-                      const ApparatusTest& test) {
+                      const ApparatusProgramme& test) {
   report_of(kind).plots(dir, title, test);
 }
 

@@ -15,7 +15,7 @@ namespace simsols {
 // The plots of `test` into `dir` (shear_plots.h, oedometer_plots.h,
 // triaxial_plots.h), titled `title`.
 void write_test_plots(const std::string& dir, const std::string& title, const ApparatusKind& kind,
-                      const ApparatusTest& test);
+                      const ApparatusProgramme& test);
 
 // The result lines of a run into `dir`, finished or stopped ("shear test
 // finished: ...", the peak and residual, where the results are, how to

@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 // What every apparatus' run writes: its rows file, its plots, summary.txt.
 class TestOutputs : public ProgrammeOutputs {
  public:
-  TestOutputs(const ApparatusKind& kind, ApparatusTest& test) : kind_(kind), test_(test) {}
+  TestOutputs(const ApparatusKind& kind, ApparatusProgramme& test) : kind_(kind), test_(test) {}
   LoadingProgramme& programme() override { return test_; }
   void save_rows(const fs::path& dir) override {
     write_file_atomic((dir / test_.rows_file()).string(), test_.rows_csv());
@@ -37,7 +37,7 @@ class TestOutputs : public ProgrammeOutputs {
 
  private:
   const ApparatusKind& kind_;
-  ApparatusTest& test_;
+  ApparatusProgramme& test_;
 };
 
 // --stop-at names one of the kind's stages.
@@ -56,7 +56,7 @@ TestRun drive(std::unique_ptr<Simulation> sim, const ProgrammeRunOptions& opt,
   TestRun run;
   run.kind = apparatus_kind(sim->scene());
   check_stop_at(*run.kind, opt.stop_at);
-  run.test = make_apparatus_test(*sim);
+  run.programme = make_programme(*sim);
   run.sim = std::move(sim);
   ProgrammeRunOptions labelled = opt;
   if (labelled.label.empty()) labelled.label = run.kind->label;
@@ -65,12 +65,12 @@ TestRun drive(std::unique_ptr<Simulation> sim, const ProgrammeRunOptions& opt,
   labelled.resume = resumed_state != nullptr;
   double wall_before = 0;
   if (resumed_state) {
-    restore_programme(*run.test, *resumed_state, opt.out_dir);
+    restore_programme(*run.programme, *resumed_state, opt.out_dir);
     wall_before = driver_wall_seconds(*resumed_state);
     std::fprintf(stderr, "[%s] resumed at %s\n", labelled.label.c_str(),
-                 where_programme_is(*run.sim, *run.test).c_str());
+                 where_programme_is(*run.sim, *run.programme).c_str());
   }
-  TestOutputs outputs(*run.kind, *run.test);
+  TestOutputs outputs(*run.kind, *run.programme);
   run.state = drive_programme(*run.sim, outputs, labelled, wall_before);
   return run;
 }

@@ -3,7 +3,7 @@
 // campaigns and the studies share.
 //
 // The scene's kind (solver/apparatus/registry.h) makes the test
-// (ApparatusTest); the common driver (programme_run.h) steps it with
+// (ApparatusProgramme); the common driver (programme_run.h) steps it with
 // progress, checkpoints, Ctrl-C and --stop-after; the kind's report
 // (apparatus_report.h) draws its plots. Folder layout, for every apparatus:
 //   scene.toml, scene.resolved.toml   the scene as given / as used (explicit beads)
@@ -31,7 +31,7 @@ namespace simsols {
 // A test run (or stopped): the simulation, its test and how the run ended.
 struct TestRun {
   std::unique_ptr<Simulation> sim;
-  std::unique_ptr<ApparatusTest> test;  // on *sim
+  std::unique_ptr<ApparatusProgramme> programme;  // on *sim
   const ApparatusKind* kind = nullptr;
   ProgrammeRunState state;
 };
@@ -67,7 +67,7 @@ struct TestRunResult {
 };
 template <class Test>
 TestRunResult<Test> typed_result(const TestRun& run) {
-  const Test& test = dynamic_cast<const Test&>(*run.test);
+  const Test& test = dynamic_cast<const Test&>(*run.programme);
   TestRunResult<Test> r{test.summary(), test.rows(), run.state};
   r.summary.wall_seconds = run.state.wall_seconds;
   return r;

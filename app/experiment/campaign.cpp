@@ -9,7 +9,7 @@
 #include "app/experiment/paper_tests.h"
 #include "app/experiment/run_cost.h"
 #include "app/experiment/shear_plots.h"
-#include "solver/apparatus/shear_box.h"
+#include "solver/apparatus/shear_box/shear_box.h"
 #include "solver/common/errors.h"
 #include "solver/io/output.h"
 #include "solver/io/scene_toml.h"

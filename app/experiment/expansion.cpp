@@ -10,7 +10,7 @@
 #include "app/experiment/preparation.h"
 #include "app/experiment/progress.h"
 #include "solver/apparatus/registry.h"
-#include "solver/apparatus/stage_checks.h"
+#include "solver/apparatus/cell/stage_checks.h"
 #include "solver/common/errors.h"
 #include "solver/scene/sphere_grid.h"
 

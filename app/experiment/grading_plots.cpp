@@ -3,7 +3,7 @@
 #include <filesystem>
 
 #include "render/plot/chart.h"
-#include "solver/apparatus/grading.h"
+#include "solver/apparatus/specimen/grading.h"
 #include "solver/io/output.h"
 #include "solver/scene/clump.h"
 #include "solver/scene/choices.h"

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/apparatus/oedometer_analysis.h"
+#include "solver/apparatus/oedometer/oedometer_analysis.h"
 
 namespace simsols {
 

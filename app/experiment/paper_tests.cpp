@@ -6,7 +6,7 @@
 
 #include "solver/common/errors.h"
 #include "solver/io/scene_toml.h"
-#include "solver/apparatus/shear_box.h"
+#include "solver/apparatus/shear_box/shear_box.h"
 
 namespace simsols {
 

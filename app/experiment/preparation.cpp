@@ -182,7 +182,7 @@ Packing measure_specimen(Simulation& sim) {
 Settled settle_specimen(const Scene& scene, const std::shared_ptr<Device>& device,
                         const std::function<void(const std::string&)>& progress) {
   Simulation sim(device, scene);
-  const std::unique_ptr<ApparatusTest> test = make_apparatus_test(sim);
+  const std::unique_ptr<ApparatusProgramme> test = make_programme(sim);
   test->advance(1);
   Ticker ticker;
   while (!test->done() && std::strcmp(test->stage_name(), "settle") == 0) {

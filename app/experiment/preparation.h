@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "solver/apparatus/apparatus.h"
-#include "solver/apparatus/packing.h"
+#include "solver/apparatus/specimen/packing.h"
 #include "solver/core/cl_device.h"
 
 namespace simsols {

@@ -10,7 +10,7 @@
 
 #include "app/experiment/paper_tests.h"
 #include "app/experiment/test_title.h"
-#include "solver/apparatus/shear_analysis.h"
+#include "solver/apparatus/shear_box/shear_analysis.h"
 #include "solver/common/errors.h"
 #include "solver/io/output.h"
 #include "solver/io/scene_toml.h"

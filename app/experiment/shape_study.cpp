@@ -8,7 +8,7 @@
 
 #include "app/experiment/progress.h"
 #include "render/plot/chart.h"
-#include "solver/apparatus/shear_test.h"
+#include "solver/apparatus/shear_box/shear_programme.h"
 #include "solver/common/errors.h"
 #include "solver/common/line_fit.h"
 #include "solver/core/simulation.h"
@@ -171,7 +171,7 @@ std::string shear_scene(const ShapePreset& p, const ShapeCase& c) {
 void run_shear(const ShapePreset& p, const ShapeCase& c, const std::shared_ptr<Device>& device,
                const ShapeLog& log, ShapeResult& r) {
   Simulation sim(device, parse_scene(shear_scene(p, c), "shape study shear box (" + c.label + ")"));
-  ShearTest test(sim);
+  ShearProgramme test(sim);
   Ticker ticker;
   while (!test.done()) {
     test.advance(5000);

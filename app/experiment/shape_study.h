@@ -35,7 +35,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/apparatus/shear_analysis.h"
+#include "solver/apparatus/shear_box/shear_analysis.h"
 #include "solver/core/cl_device.h"
 
 namespace simsols {

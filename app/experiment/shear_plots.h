@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/apparatus/shear_test.h"
+#include "solver/apparatus/shear_box/shear_programme.h"
 
 namespace simsols {
 

@@ -8,7 +8,7 @@ namespace simsols {
 namespace {
 
 ShearRunResult shear_result(const TestRun& run) {
-  const auto typed = typed_result<ShearTest>(run);
+  const auto typed = typed_result<ShearProgramme>(run);
   ShearRunResult result;
   result.rows = typed.rows;
   result.summary = typed.summary;
@@ -22,7 +22,7 @@ ShearRunResult shear_result(const TestRun& run) {
 
 }  // namespace
 
-std::string where_test_is(const Simulation& sim, const ShearTest& test) {
+std::string where_test_is(const Simulation& sim, const ShearProgramme& test) {
   const double dx = test.rows().empty() ? 0 : test.rows().back().displacement;
   char buf[160];
   std::snprintf(buf, sizeof buf, "step %lld, t = %.6g s, %s, dx = %.3f mm (%zu rows)",

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "app/experiment/programme_run.h"
-#include "solver/apparatus/shear_test.h"
+#include "solver/apparatus/shear_box/shear_programme.h"
 #include "solver/scene/scene.h"
 
 namespace simsols {
@@ -38,6 +38,6 @@ ShearRunResult resume_shear(std::unique_ptr<Simulation> sim, const std::string& 
                             const ShearRunOptions& options);
 
 // Where a test stands: "step N, t = ... s, shear, dx = ... mm (R rows)".
-std::string where_test_is(const Simulation& sim, const ShearTest& test);
+std::string where_test_is(const Simulation& sim, const ShearProgramme& test);
 
 }  // namespace simsols

@@ -17,7 +17,7 @@
 #include "app/experiment/paper_tests.h"
 #include "solver/io/scene_toml.h"
 #include "app/experiment/shear_run.h"
-#include "solver/apparatus/shear_test.h"
+#include "solver/apparatus/shear_box/shear_programme.h"
 #include "app/experiment/study_ensemble.h"
 #include "solver/core/simulation.h"
 
@@ -362,7 +362,7 @@ Scene shear_case_scene(const StudyPreset& preset, const StudySettings& s) {
 }
 
 // Throws when the run broke (NaN, beads out, a neighbour list outrun).
-void check_case(Simulation& sim, const ShearTest& test) {
+void check_case(Simulation& sim, const ShearProgramme& test) {
   if (!test.rows().empty()) {
     const ShearRow& row = test.rows().back();
     if (!std::isfinite(row.tau) || !std::isfinite(row.dilation))
@@ -390,7 +390,7 @@ ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s,
     } else {
       sim = std::make_unique<Simulation>(device, shear_case_scene(preset, s));
     }
-    ShearTest test(*sim);
+    ShearProgramme test(*sim);
     if (!state.empty()) {
       test.restore_state(state);
       std::fprintf(stderr, "[study] case resumed at %s\n", where_test_is(*sim, test).c_str());

@@ -11,7 +11,7 @@
 #include "solver/common/number_text.h"
 #include "solver/io/output.h"
 #include "solver/apparatus/registry.h"
-#include "solver/apparatus/stage_checks.h"
+#include "solver/apparatus/cell/stage_checks.h"
 #include "solver/scene/clump.h"
 
 namespace simsols {
@@ -212,7 +212,7 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
     l.target_top = (solid_total * (1 + void_ratio) + solid * (1 + l.target_void_ratio)) / area;
     solid_total += solid;
     Simulation sim(device, built);
-    const std::unique_ptr<ApparatusTest> test = make_apparatus_test(sim);
+    const std::unique_ptr<ApparatusProgramme> test = make_programme(sim);
     tamp(sim, *test, l.target_top, area, l, log);
     l.void_ratio = measure_specimen(sim).bulk_void_ratio;
     floor = specimen_top(sim);

@@ -5,8 +5,8 @@
 
 #include "app/experiment/triaxial_campaign_report.h"
 #include "app/experiment/triaxial_plots.h"
-#include "solver/apparatus/platen_servo.h"
-#include "solver/apparatus/triaxial.h"
+#include "solver/apparatus/cell/platen_servo.h"
+#include "solver/apparatus/triaxial/triaxial.h"
 #include "solver/common/errors.h"
 #include "solver/io/output.h"
 #include "solver/io/scene_toml.h"
@@ -72,7 +72,7 @@ TriaxialRunResult finished_triaxial_test(const fs::path& dir, const std::string&
 
 TriaxialRunResult run_triaxial_test(const Scene& scene, const ProgrammeRunOptions& options,
                                     const std::string& title) {
-  TriaxialRunResult r = typed_result<TriaxialTest>(run_test(scene, options));
+  TriaxialRunResult r = typed_result<TriaxialProgramme>(run_test(scene, options));
   if (!r.state.finished) return r;
   TriaxialRunResult back =
       finished_triaxial_test(options.out_dir, title, scene.apparatus_as<Triaxial>()->confining_stress);

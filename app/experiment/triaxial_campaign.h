@@ -19,7 +19,7 @@
 
 #include "app/experiment/campaign.h"
 #include "app/experiment/apparatus_run.h"
-#include "solver/apparatus/triaxial_test.h"
+#include "solver/apparatus/triaxial/triaxial_programme.h"
 
 namespace simsols {
 
@@ -28,7 +28,7 @@ struct TriaxialCampaignSpec {
   std::optional<Precision> precision;              // nullopt = the base scene's
 };
 
-using TriaxialRunResult = TestRunResult<TriaxialTest>;
+using TriaxialRunResult = TestRunResult<TriaxialProgramme>;
 
 struct TriaxialCampaignTest {
   double s_kpa = 0;

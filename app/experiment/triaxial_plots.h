@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/apparatus/triaxial_analysis.h"
+#include "solver/apparatus/triaxial/triaxial_analysis.h"
 
 namespace simsols {
 

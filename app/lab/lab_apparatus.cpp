@@ -20,7 +20,7 @@ const char* to_string(LabStage s) {
 
 namespace {
 
-// The registry's order (checked by tests/app/lab/test_lab_apparatus.cpp).
+// In the registry's order, at most one bench per kind (tests/app/lab/test_lab_benches.cpp).
 const LabBench kBenches[] = {
     {"shear_box", "shear box", make_lab_shear_box, nullptr, nullptr},
     {"oedometer", "oedometer", make_lab_oedometer, default_oedometer_scene_text,

@@ -2,10 +2,10 @@
 // LabExperiment, the panel and the scripts run every apparatus the same way.
 // One implementation per apparatus, each in its own file, wrapping that
 // apparatus' LoadingProgramme:
-//   lab_shear_box.cpp   ShearTest: apply the normal stress, hold, shear
-//   lab_triaxial.cpp    TriaxialTest: settle and consolidate to sigma3, hold,
+//   lab_shear_box.cpp   ShearProgramme: apply the normal stress, hold, shear
+//   lab_triaxial.cpp    TriaxialProgramme: settle and consolidate to sigma3, hold,
 //                       compress
-//   lab_oedometer.cpp   OedometerTest: settle, then the load steps by itself
+//   lab_oedometer.cpp   OedometerProgramme: settle, then the load steps by itself
 //
 // The lab's stages (LabStage) are the bench's: Prepared (nothing run),
 // Loading (the stress is being applied: settling, consolidating), Loaded

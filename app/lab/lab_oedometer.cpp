@@ -7,7 +7,7 @@
 
 #include "app/experiment/oedometer_plots.h"
 #include "app/lab/lab_apparatus.h"
-#include "solver/apparatus/oedometer_test.h"
+#include "solver/apparatus/oedometer/oedometer_programme.h"
 #include "solver/io/output.h"
 
 namespace simsols {
@@ -22,8 +22,8 @@ class LabOedometer : public LabApparatus {
 
   LabStage stage(bool started) const override {
     switch (test_.stage()) {
-      case OedometerTest::Stage::Done: return LabStage::Done;
-      case OedometerTest::Stage::Load: return LabStage::Running;
+      case OedometerProgramme::Stage::Done: return LabStage::Done;
+      case OedometerProgramme::Stage::Load: return LabStage::Running;
       default: return started ? LabStage::Loading : LabStage::Prepared;
     }
   }
@@ -75,7 +75,7 @@ class LabOedometer : public LabApparatus {
     return {ended, equilibrium};
   }
 
-  OedometerTest test_;
+  OedometerProgramme test_;
   std::vector<double> steps_;  // Pa, the scene's load steps
 };
 
@@ -84,7 +84,7 @@ class LabOedometer : public LabApparatus {
 std::string LabOedometer::progress_text() const {
   const auto [ended, equilibrium] = steps_ended();
   char buf[300];
-  if (test_.stage() != OedometerTest::Stage::Load) {
+  if (test_.stage() != OedometerProgramme::Stage::Load) {
     std::snprintf(buf, sizeof buf, "%zu load steps; %d ended, %d of them in equilibrium",
                   steps_.size(), ended, equilibrium);
     return buf;

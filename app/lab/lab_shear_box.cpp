@@ -6,8 +6,8 @@
 
 #include "app/experiment/shear_plots.h"
 #include "app/lab/lab_apparatus.h"
-#include "solver/apparatus/shear_analysis.h"
-#include "solver/apparatus/shear_test.h"
+#include "solver/apparatus/shear_box/shear_analysis.h"
+#include "solver/apparatus/shear_box/shear_programme.h"
 #include "solver/io/output.h"
 
 namespace simsols {
@@ -108,7 +108,7 @@ class LabShearBox : public LabApparatus {
   }
 
  private:
-  ShearTest test_;
+  ShearProgramme test_;
 };
 
 // tau/sigma, tau, sigma with its target and the dilation against the

@@ -1,13 +1,13 @@
 // The triaxial test in the lab (lab_apparatus.h): "Apply σ₃" settles the
 // beads and consolidates them isotropically, then the five servo plates
-// hold σ₃ (TriaxialTest::hold_when_consolidated) until "start
+// hold σ₃ (TriaxialProgramme::hold_when_consolidated) until "start
 // compression"; σ₃ and the strain rate can be changed at any stage.
 #include <cstdio>
 #include <sstream>
 
 #include "app/experiment/triaxial_plots.h"
 #include "app/lab/lab_apparatus.h"
-#include "solver/apparatus/triaxial_test.h"
+#include "solver/apparatus/triaxial/triaxial_programme.h"
 #include "solver/io/output.h"
 
 namespace simsols {
@@ -22,8 +22,8 @@ class LabTriaxial : public LabApparatus {
 
   LabStage stage(bool started) const override {
     switch (test_.stage()) {
-      case TriaxialTest::Stage::Done: return LabStage::Done;
-      case TriaxialTest::Stage::Compress: return LabStage::Running;
+      case TriaxialProgramme::Stage::Done: return LabStage::Done;
+      case TriaxialProgramme::Stage::Compress: return LabStage::Running;
       default: break;
     }
     if (test_.consolidated_now()) return LabStage::Loaded;
@@ -32,7 +32,7 @@ class LabTriaxial : public LabApparatus {
   const char* stage_text(LabStage s) const override {
     switch (s) {
       case LabStage::Loading:
-        return test_.stage() == TriaxialTest::Stage::Settle ? "settling under gravity"
+        return test_.stage() == TriaxialProgramme::Stage::Settle ? "settling under gravity"
                                                             : "consolidating to σ₃";
       case LabStage::Loaded: return "consolidated, σ₃ held";
       case LabStage::Running: return "compressing";
@@ -92,7 +92,7 @@ class LabTriaxial : public LabApparatus {
   }
 
  private:
-  TriaxialTest test_;
+  TriaxialProgramme test_;
 };
 
 // Before compression: the plates at the last equilibrium check; then the
@@ -123,8 +123,8 @@ std::string LabTriaxial::state_lines() {
   o << "rows = " << test_.rows().size() << "\nsigma3_target_kpa = "
     << test_.confining_stress() * 1e-3 << "\nstrain_rate = " << test_.strain_rate()
     << "\nconsolidated = " << (test_.consolidated_now() ? 1 : 0) << "\n";
-  if (test_.stage() != TriaxialTest::Stage::Settle) {
-    const TriaxialTest::AtRest a = test_.at_rest();  // the last equilibrium check
+  if (test_.stage() != TriaxialProgramme::Stage::Settle) {
+    const TriaxialProgramme::AtRest a = test_.at_rest();  // the last equilibrium check
     o << "p_kpa = " << a.p * 1e-3 << "\nsigma_x_kpa = " << a.stress[0] * 1e-3
       << "\nsigma_y_kpa = " << a.stress[1] * 1e-3 << "\nsigma_z_kpa = " << a.stress[2] * 1e-3
       << "\nvoid_ratio_at_rest = " << a.void_ratio << "\n";

@@ -258,9 +258,9 @@ TestOutcome scene_test(const Scene& scene, const std::string& out, bool quiet,
   const TestRun run = simsols::run_scene_test(scene, opt, [&](const std::string& line) {
     if (!quiet) std::fprintf(stderr, "[prepare] %s\n", line.c_str());
   });
-  return {run.kind->name,          run.test->rows_csv(),
-          run.test->summary_text(run.state.wall_seconds),
-          run.test->stage_name(),  run.state.stopped_after,
+  return {run.kind->name,          run.programme->rows_csv(),
+          run.programme->summary_text(run.state.wall_seconds),
+          run.programme->stage_name(),  run.state.stopped_after,
           run.state.finished,      run.state.steps};
 }
 

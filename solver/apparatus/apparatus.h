@@ -24,9 +24,9 @@
 // test resumes exactly.
 //
 // LoadingProgramme is the interface the drivers share (the headless run,
-// the campaign, the lab, progress lines); ApparatusTest adds what a run
-// writes of it (its rows file, summary.txt). ShearTest, OedometerTest and
-// TriaxialTest implement it; the registry (registry.h) makes the one a
+// the campaign, the lab, progress lines); ApparatusProgramme adds what a run
+// writes of it (its rows file, summary.txt). ShearProgramme, OedometerProgramme and
+// TriaxialProgramme implement it; the registry (registry.h) makes the one a
 // scene's apparatus needs, so no driver names an apparatus.
 #pragma once
 
@@ -75,7 +75,7 @@ class LoadingProgramme {
 
 // A loading programme that is an apparatus' test: what a headless run
 // writes of it, whatever the apparatus.
-class ApparatusTest : public LoadingProgramme {
+class ApparatusProgramme : public LoadingProgramme {
  public:
   // The rows file's name in a run's folder ("shear.csv"), the rows so far
   // as CSV with units, and how many there are.

@@ -5,18 +5,18 @@
 #include <cstdio>
 #include <variant>
 
-#include "solver/apparatus/oedometer.h"
-#include "solver/apparatus/oedometer_test.h"
-#include "solver/apparatus/shear_box.h"
-#include "solver/apparatus/shear_test.h"
-#include "solver/apparatus/triaxial.h"
-#include "solver/apparatus/triaxial_test.h"
+#include "solver/apparatus/oedometer/oedometer.h"
+#include "solver/apparatus/oedometer/oedometer_programme.h"
+#include "solver/apparatus/shear_box/shear_box.h"
+#include "solver/apparatus/shear_box/shear_programme.h"
+#include "solver/apparatus/triaxial/triaxial.h"
+#include "solver/apparatus/triaxial/triaxial_programme.h"
 
 namespace simsols {
 namespace {
 
 template <class Test>
-std::unique_ptr<ApparatusTest> make(Simulation& sim) {
+std::unique_ptr<ApparatusProgramme> make(Simulation& sim) {
   return std::make_unique<Test>(sim);
 }
 
@@ -36,10 +36,10 @@ std::string no_stress(const Scene&) { return {}; }
 
 const ApparatusKind kKinds[] = {
     {"shear_box", "Direct shear", "a direct shear test", "shear", kShearBoxWalls, "settle|consolidate|shear", build_shear_box,
-     make<ShearTest>, shear_box_stress},
+     make<ShearProgramme>, shear_box_stress},
     {"oedometer", "Oedometer", "an oedometer test", "oedometer", kOedometerWalls, "settle|load", build_oedometer,
-     make<OedometerTest>, no_stress},
-    {"triaxial", "Triaxial", "a triaxial test", "triaxial", kTriaxialWalls, "settle|consolidate|compress", build_triaxial, make<TriaxialTest>,
+     make<OedometerProgramme>, no_stress},
+    {"triaxial", "Triaxial", "a triaxial test", "triaxial", kTriaxialWalls, "settle|consolidate|compress", build_triaxial, make<TriaxialProgramme>,
      triaxial_stress},
 };
 static_assert(std::size(kKinds) + 1 == std::variant_size_v<Apparatus>,
@@ -94,8 +94,8 @@ const ApparatusKind& required_apparatus_kind(const Scene& scene) {
   return *kind;
 }
 
-std::unique_ptr<ApparatusTest> make_apparatus_test(Simulation& sim) {
-  return required_apparatus_kind(sim.scene()).make_test(sim);
+std::unique_ptr<ApparatusProgramme> make_programme(Simulation& sim) {
+  return required_apparatus_kind(sim.scene()).make_programme(sim);
 }
 
 }  // namespace simsols

@@ -6,7 +6,7 @@
 // runs (which test to drive), the titles of plots, the preparation (which
 // cell to settle in), the lab, Python and the scene reader's "one apparatus"
 // rule. Front ends see a kind only through its entry; what a test does is
-// behind ApparatusTest (apparatus.h).
+// behind ApparatusProgramme (apparatus.h).
 //
 // A new apparatus (docs/architecture.md, "A new apparatus"): its
 // description struct in scene.h and the Apparatus variant, a folder of its
@@ -40,7 +40,7 @@ struct ApparatusKind {
   // automatic values resolved); a problem with its field, or nothing.
   std::optional<SceneIssue> (*build)(Scene& scene);
   // Its loading programme on `sim` (whose scene holds this kind).
-  std::unique_ptr<ApparatusTest> (*make_test)(Simulation& sim);
+  std::unique_ptr<ApparatusProgramme> (*make_programme)(Simulation& sim);
   // The stress a title quotes ("σ = 160 kPa"), or "".
   std::string (*stress_words)(const Scene& scene);
 };
@@ -61,6 +61,6 @@ bool has_stage(const ApparatusKind& kind, std::string_view stage);
 // scene when it has none.
 const ApparatusKind& required_apparatus_kind(const Scene& scene);
 // The scene's test on `sim`; SceneError as above when it has no apparatus.
-std::unique_ptr<ApparatusTest> make_apparatus_test(Simulation& sim);
+std::unique_ptr<ApparatusProgramme> make_programme(Simulation& sim);
 
 }  // namespace simsols

@@ -4,8 +4,8 @@
 // relative density or void ratio, layered tamping, radius expansion).
 #include <cmath>
 
-#include "solver/apparatus/grading.h"
-#include "solver/apparatus/specimen.h"
+#include "solver/apparatus/specimen/grading.h"
+#include "solver/apparatus/specimen/specimen.h"
 #include "solver/common/number_text.h"
 #include "solver/io/scene_tables.h"
 #include "solver/scene/clump.h"

@@ -223,7 +223,7 @@ struct Outputs {
 // The specimen of an apparatus with a rectangular cell: how its beads are
 // placed (apparatus/specimen.h).
 // A grading curve: the mass fraction of a specimen passing each size, as a
-// sieve analysis gives it (docs/specimens.md; solver/apparatus/grading.h).
+// sieve analysis gives it (docs/specimens.md; solver/apparatus/specimen/grading.h).
 struct Grading {
   enum class Law : std::uint8_t { Single, Uniform, LogNormal, Fuller, Sieve };
   Law law = Law::Single;       // Single: every bead of specimen.diameter

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The folders' dependency rules (solver/README.md, render/README.md,
-# app/README.md): each source folder may include only the folders listed
-# for it. Prints every include that breaks a rule and fails if there is one.
+# app/README.md): each source folder (with its subfolders, such as
+# solver/apparatus/shear_box) may include only the folders listed for it.
+# Prints every include that breaks a rule and fails if there is one.
 #   tests/layout/check_layers.sh [REPO_ROOT]
 set -euo pipefail
 cd "${1:-$(dirname "$0")/../..}"
@@ -31,7 +32,8 @@ for dir in "${!allowed[@]}"; do
       echo "$file:$line: $dir may not include $target (${text#*#})"
       bad=1
     fi
-  done < <(grep -Hn '#include "[a-z_]*/[a-z_]*/' "$dir"/*.h "$dir"/*.cpp "$dir"/*.in 2>/dev/null || true)
+  done < <(find "$dir" \( -name '*.h' -o -name '*.cpp' -o -name '*.in' \) -print0 |
+             xargs -0 -r grep -Hn '#include "[a-z_]*/[a-z_]*/' 2>/dev/null || true)
 done
 # Every source folder is under a rule.
 for dir in $(find solver render app -mindepth 1 -maxdepth 1 -type d | sort); do

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "solver/scene/scene.h"
-#include "solver/apparatus/shear_box.h"
+#include "solver/apparatus/shear_box/shear_box.h"
 #include "solver/core/simulation.h"
 
 namespace simsols {

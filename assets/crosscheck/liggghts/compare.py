@@ -14,7 +14,7 @@ apply to both:
   collapse     the largest fall of the platen over 0.1 mm of shear (5 rows
                of 0.02 mm), where it starts, and the change of tau over it
   tau drop     the largest fall of tau from one row to the next
-  first peak   SimSols' first peak (solver/apparatus/shear_analysis.cpp, first_peak)
+  first peak   SimSols' first peak (solver/apparatus/shear_box/shear_analysis.cpp, first_peak)
   largest      the largest tau/sigma and where
   window mean  mean tau/sigma over FROM_MM..TO_MM (default 1..6 mm) and over
                the last 20 % (SimSols' residual window), with the standard

@@ -13,9 +13,9 @@ writes into OUTDIR:
   platen.stl       the platen, at z = 0 (placed by the input at run time)
   params.in        every number the input script uses (variables)
 
-The walls are the twelve rectangles of solver/apparatus/shear_box.cpp, each as two
+The walls are the twelve rectangles of solver/apparatus/shear_box/shear_box.cpp, each as two
 triangles; the programme's numbers (time step, servo gains, check
-intervals, criteria) follow solver/apparatus/shear_test.cpp and solver/contact_model.cpp.
+intervals, criteria) follow solver/apparatus/shear_box/shear_programme.cpp and solver/contact_model.cpp.
 """
 import math
 import os
@@ -132,7 +132,7 @@ def main():
                    / (0.1631 * mats[p["material"]]["poisson_ratio"] + 0.8766) for p in parts)
         dt = num["dt_fraction"] * dt_r
 
-    # Walls (solver/apparatus/shear_box.cpp).
+    # Walls (solver/apparatus/shear_box/shear_box.cpp).
     platen_z = top + 0.1 * 2 * r_max
     upper_top = platen_z + 4 * r_max + 0.5 * travel
     low_h, up_lo = zs - g / 2, zs + g / 2
@@ -184,7 +184,7 @@ def main():
     rr_gs = mur(glass, steel) / r
     rr_ss = rr_gs
 
-    # Servo (solver/apparatus/shear_test.cpp, tune_servo): gain from the Hertz
+    # Servo (solver/apparatus/shear_box/shear_programme.cpp, tune_servo): gain from the Hertz
     # stiffness of the platen's contacts at the target stress.
     sigma = box["normal_stress"]
     area = L * W

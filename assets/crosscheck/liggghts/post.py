@@ -12,7 +12,7 @@ parameters in GEN_DIR/params.in (default OUTDIR/gen) and writes
                               normal_force_N, platen_z_mm, kinetic_energy_J,
                               bead_contacts_per_bead, outside
   OUTDIR/shear.csv            the same rows in SimSols' shear.csv layout
-                              (solver/apparatus/shear_test.cpp, shear_rows_csv)
+                              (solver/apparatus/shear_box/shear_programme.cpp, shear_rows_csv)
   OUTDIR/preparation.csv      settle and consolidation every check interval (from
                               log.liggghts): time, kinetic energies, top of the
                               highest bead, platen height and force (one step)

@@ -18,7 +18,7 @@
 #include "render/gl/alioscopy.h"
 #include "solver/common/errors.h"
 #include "solver/io/scene_toml.h"
-#include "solver/apparatus/shear_analysis.h"
+#include "solver/apparatus/shear_box/shear_analysis.h"
 
 namespace {
 

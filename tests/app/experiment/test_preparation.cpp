@@ -14,7 +14,7 @@
 
 #include "app/experiment/preparation.h"
 #include "app/experiment/tamping.h"
-#include "solver/apparatus/triaxial_test.h"
+#include "solver/apparatus/triaxial/triaxial_programme.h"
 #include "solver/io/output.h"
 #include "solver/io/scene_toml.h"
 #include "tests/support/test_support.h"

@@ -177,7 +177,7 @@ def test_a_test_stopped_at_the_end_of_a_stage_hands_its_apparatus_over(tmp_path)
     assert len(platen) == 1 and platen[0]["name"] == "platen" and platen[0]["normal"][2] == -1.0
     # its target is the normal stress on the box's area, carried by a dead
     # weight (shear_box.loading's default), and the beads push it up with
-    # that load (within the servo's 1 % equilibrium band, shear_test.h)
+    # that load (within the servo's 1 % equilibrium band, shear_programme.h)
     box_table = simsols.load_scene(path).to_dict()["shear_box"]
     load = box_table["normal_stress"] * box_table["length"] * box_table["width"]
     assert platen[0]["servo"]["target_force"] == pytest.approx(load, rel=1e-6)

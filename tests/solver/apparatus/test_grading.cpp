@@ -1,4 +1,4 @@
-// Grading curves (solver/apparatus/grading.h): the laws against their
+// Grading curves (solver/apparatus/specimen/grading.h): the laws against their
 // formulas, sizes drawn to a curve within their sampling error, the same
 // seed giving the same sizes, bad curves refused by field, and a graded
 // pour that settles (in float: the case that once met a negative overlap).
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "solver/apparatus/grading.h"
-#include "solver/apparatus/oedometer_test.h"
+#include "solver/apparatus/specimen/grading.h"
+#include "solver/apparatus/oedometer/oedometer_programme.h"
 #include "solver/io/scene_toml.h"
 #include "tests/support/test_support.h"
 
@@ -142,7 +142,7 @@ TEST(Grading, AGradedPourSettlesInFloat) {
   EXPECT_GE(solid, want);
   EXPECT_LT(solid, want + kPi / 6 * std::pow(largest, 3));
   Simulation sim(default_device(), scene);
-  OedometerTest test(sim);
+  OedometerProgramme test(sim);
   while (!test.done()) test.advance(1 << 16);  // throws RunawayError on a NaN
   std::printf("[measure] graded pour: %zu beads of %.3f to %.3f mm settled and loaded in %lld "
               "steps (float)\n",

@@ -1,4 +1,4 @@
-// The oedometer (oedometer.h), its loading programme (oedometer_test.h) and
+// The oedometer (oedometer.h), its loading programme (oedometer_programme.h) and
 // analysis (oedometer_analysis.h): the scene table, the indices on curves
 // with known slopes, and a small poured specimen loaded and unloaded on the
 // device, whose force balance, compression and resumption are checked.
@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "solver/apparatus/oedometer.h"
-#include "solver/apparatus/oedometer_test.h"
+#include "solver/apparatus/oedometer/oedometer.h"
+#include "solver/apparatus/oedometer/oedometer_programme.h"
 #include "solver/common/errors.h"
 #include "solver/io/checkpoint.h"
 #include "solver/io/scene_toml.h"
@@ -138,7 +138,7 @@ TEST(OedometerAnalysis, IndicesAreTheSlopesOfStraightLines) {
 // checkpoints, reloads and finishes from the checkpoint.
 std::vector<OedometerRow> run(const Scene& scene, size_t stop_at, std::uint64_t* hash) {
   auto sim = std::make_unique<Simulation>(default_device(), scene);
-  auto test = std::make_unique<OedometerTest>(*sim);
+  auto test = std::make_unique<OedometerProgramme>(*sim);
   while (!test->done()) {
     test->advance(1 << 20);
     if (stop_at > 0 && test->rows().size() == stop_at) {
@@ -149,7 +149,7 @@ std::vector<OedometerRow> run(const Scene& scene, size_t stop_at, std::uint64_t*
       std::string state;
       auto again = load_checkpoint(default_device(), path, &state);
       std::filesystem::remove(path);
-      auto resumed = std::make_unique<OedometerTest>(*again);
+      auto resumed = std::make_unique<OedometerProgramme>(*again);
       resumed->restore_state(state);
       test = std::move(resumed);
       sim = std::move(again);
@@ -160,7 +160,7 @@ std::vector<OedometerRow> run(const Scene& scene, size_t stop_at, std::uint64_t*
   return test->rows();
 }
 
-TEST(OedometerTest, LoadsAndUnloadsInEquilibriumAndResumesExactly) {
+TEST(OedometerProgramme, LoadsAndUnloadsInEquilibriumAndResumesExactly) {
   const Scene scene = parse_scene(oedometer_toml("step_time = 0.2"), "oed.toml");
   std::uint64_t hash = 0, hash_resumed = 0;
   const std::vector<OedometerRow> rows = run(scene, 0, &hash);

@@ -1,4 +1,4 @@
-// A prepared specimen's packing (solver/apparatus/packing.h) and the
+// A prepared specimen's packing (solver/apparatus/specimen/packing.h) and the
 // preparation keys that make it (scene.h, Preparation): exact solid
 // volumes and fabric on lattices, the pour's rain, the settling friction
 // switched on the device and back, and bad keys refused by field.
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <string>
 
-#include "solver/apparatus/packing.h"
+#include "solver/apparatus/specimen/packing.h"
 #include "solver/io/scene_toml.h"
 #include "tests/support/test_support.h"
 

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "solver/apparatus/registry.h"
-#include "solver/apparatus/shear_test.h"
+#include "solver/apparatus/shear_box/shear_programme.h"
 #include "solver/common/errors.h"
 #include "solver/io/scene_tables.h"
 #include "solver/io/scene_toml.h"
@@ -33,7 +33,7 @@ TEST(ApparatusRegistry, OneEntryPerAlternativeWithUniqueNames) {
     EXPECT_TRUE(scene_toml::has_apparatus_reader(k.name)) << k.name;
     EXPECT_GT(k.walls, 0) << k.name;
     EXPECT_NE(k.build, nullptr);
-    EXPECT_NE(k.make_test, nullptr);
+    EXPECT_NE(k.make_programme, nullptr);
   }
   EXPECT_EQ(names.size(), kinds.size());
   EXPECT_EQ(labels.size(), kinds.size());
@@ -68,8 +68,8 @@ TEST(ApparatusRegistry, EachBuiltInSceneIsItsKind) {
 TEST(ApparatusRegistry, MakesTheTestOfTheScenesKind) {
   const Scene s = load_scene(scene_file("shear_box.toml"));
   Simulation sim(default_device(), s);
-  const std::unique_ptr<ApparatusTest> test = make_apparatus_test(sim);
-  ASSERT_NE(dynamic_cast<ShearTest*>(test.get()), nullptr);
+  const std::unique_ptr<ApparatusProgramme> test = make_programme(sim);
+  ASSERT_NE(dynamic_cast<ShearProgramme*>(test.get()), nullptr);
   EXPECT_STREQ(test->rows_file(), "shear.csv");
   EXPECT_EQ(test->row_count(), 0u);
   EXPECT_STREQ(test->stage_name(), "settle");

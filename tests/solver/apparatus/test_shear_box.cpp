@@ -1,5 +1,5 @@
 // The direct shear apparatus (shear_box.h) and its loading program
-// (shear_test.h): the specimen the paper describes, the servo, the measured
+// (shear_programme.h): the specimen the paper describes, the servo, the measured
 // stresses against the contact forces inside, and a geometry with an
 // analytic peak.
 #include <gtest/gtest.h>
@@ -12,8 +12,8 @@
 
 #include "solver/common/errors.h"
 #include "solver/io/scene_toml.h"
-#include "solver/apparatus/shear_box.h"
-#include "solver/apparatus/shear_test.h"
+#include "solver/apparatus/shear_box/shear_box.h"
+#include "solver/apparatus/shear_box/shear_programme.h"
 #include "solver/scene/clump.h"
 #include "solver/core/stress.h"
 #include "tests/support/test_support.h"
@@ -326,7 +326,7 @@ struct Outcome {
 // wall stresses with the Love-Weber stress on the shear plane.
 Outcome run_test(const Scene& scene, bool love_weber = false) {
   Simulation sim(default_device(), scene);
-  ShearTest test(sim);
+  ShearProgramme test(sim);
   Outcome out;
   const ShearBox& b = *scene.apparatus_as<ShearBox>();
   double best = -1;
@@ -383,17 +383,17 @@ void check_platen(double sigma, ShearBox::Loading loading, double band) {
 
 // A dead weight's row means differ from its load only by the platen's
 // change of momentum over the row: measured within 0.001 %.
-TEST(ShearTest, DeadWeightHoldsSigmaAt50kPa) {
+TEST(ShearProgramme, DeadWeightHoldsSigmaAt50kPa) {
   check_platen(50e3, ShearBox::Loading::DeadWeight, 1e-4);
 }
-TEST(ShearTest, DeadWeightHoldsSigmaAt400kPa) {
+TEST(ShearProgramme, DeadWeightHoldsSigmaAt400kPa) {
   check_platen(400e3, ShearBox::Loading::DeadWeight, 1e-4);
 }
-TEST(ShearTest, ServoHoldsSigmaWithin2PercentAt400kPa) {
+TEST(ShearProgramme, ServoHoldsSigmaWithin2PercentAt400kPa) {
   check_platen(400e3, ShearBox::Loading::Servo, 0.02);
 }
 
-TEST(ShearTest, SameTestTwiceGivesTheSameCsv) {
+TEST(ShearProgramme, SameTestTwiceGivesTheSameCsv) {
   const Scene s = small_box(400e3, 0.5e-3);
   const std::string a = shear_rows_csv(run_test(s).rows);
   const std::string b = shear_rows_csv(run_test(s).rows);
@@ -404,7 +404,7 @@ TEST(ShearTest, SameTestTwiceGivesTheSameCsv) {
 // On a poured (random) specimen: in the paper's layered specimens the peak is
 // set by the layers' geometry and its glass friction (0.02) changes it by a
 // few per cent only (docs/shear-box.md).
-TEST(ShearTest, FrictionlessRollingFreeSpecimenHasALowerPeak) {
+TEST(ShearProgramme, FrictionlessRollingFreeSpecimenHasALowerPeak) {
   Scene glass = small_box(160e3, 2.5e-3, Precision::Float, Specimen::Method::Pour);
   Scene slick = glass;
   for (Material& m : slick.materials) m.sliding_friction = m.rolling_friction = 0;
@@ -424,7 +424,7 @@ TEST(ShearTest, FrictionlessRollingFreeSpecimenHasALowerPeak) {
 // must climb over the two lower beads ahead of it: with contact normals
 // n = (d/2 - x, +-d/2, -h)/d the force ratio is tau/sigma = (d/2 - x)/h, largest
 // at the start, x = 0, h = d/sqrt(2): tau/sigma = 1/sqrt(2) (35.26 degrees).
-TEST(ShearTest, FrictionlessNestedLayerPeakIsOneOverSqrt2) {
+TEST(ShearProgramme, FrictionlessNestedLayerPeakIsOneOverSqrt2) {
   Scene s;
   s.name = "nested_layer";
   Material m = testing::glass(0.87, 0, 0);

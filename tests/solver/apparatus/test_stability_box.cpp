@@ -11,8 +11,8 @@
 #include <cstring>
 #include <vector>
 
-#include "solver/apparatus/shear_box.h"
-#include "solver/apparatus/shear_test.h"
+#include "solver/apparatus/shear_box/shear_box.h"
+#include "solver/apparatus/shear_box/shear_programme.h"
 #include "tests/support/test_support.h"
 
 namespace simsols::testing {
@@ -80,7 +80,7 @@ TEST(StiffAndSmall, GlassUnder400kPaStaysQuietInFloat) {
 
   const auto t0 = std::chrono::steady_clock::now();
   Simulation sim(default_device(), s);
-  ShearTest test(sim);
+  ShearProgramme test(sim);
   test.hold_before_shear(true);  // consolidate, then hold sigma: no shear
   std::vector<double> ke;        // every `every` steps once consolidated
   double loading = 0;            // largest kinetic energy before (the platen's loading)
@@ -162,7 +162,7 @@ TEST(StiffAndSmall, GlassUnder400kPaStaysQuietInFloat) {
 // 400 kPa as at 50 kPa, the places where a servo overshoots and oscillates
 // apart. After each jump the row-mean sigma must come within 5 % of the new
 // target within three of the servo's integral times (its own time scale,
-// ShearTest::servo_integral_time) and stay in that band until the next
+// ShearProgramme::servo_integral_time) and stay in that band until the next
 // jump; the error's envelope must shrink (its largest value over the last
 // third of the segment below that over the first third); the platen's
 // force in single steps (read at the end of each row) must also stay
@@ -170,7 +170,7 @@ TEST(StiffAndSmall, GlassUnder400kPaStaysQuietInFloat) {
 // from one step to the next; no NaN, no bead escapes. This case found the
 // servo's gain kept at its 50 kPa tuning after the jump: at 400 kPa the
 // loop sat at its stability limit and the platen's force alternated by
-// +-22 % every step (row means within 3.5 %); ShearTest::set_normal_stress
+// +-22 % every step (row means within 3.5 %); ShearProgramme::set_normal_stress
 // now retunes it. The specimen: small_box of test_shear_box (6.35 mm beads,
 // 5 x 5 per layer, 4 layers), 300 rows over 0.3 mm; jumps after rows 100
 // and 200. The full form shears 0.9 mm with 900 rows (jumps after 300 and
@@ -186,7 +186,7 @@ TEST(ServoUnderShock, SigmaSettlesAfterJumps50To400To50kPa) {
 
   const auto t0 = std::chrono::steady_clock::now();
   Simulation sim(default_device(), s);
-  ShearTest test(sim);
+  ShearProgramme test(sim);
   const int platen = s.apparatus_as<ShearBox>()->first_wall + kPlaten;
   std::vector<std::int64_t> jump_step;  // step of each jump
   std::vector<double> integral_steps;   // the servo's integral time after it, in steps
@@ -308,7 +308,7 @@ TEST(BoxGap, WedgedBeadsNeitherEscapeNorExplode) {
 
   const auto t0 = std::chrono::steady_clock::now();
   Simulation sim(default_device(), s);
-  ShearTest test(sim);
+  ShearProgramme test(sim);
   Overlaps worst;
   double fastest = 0, fastest_loading = 0;
   int in_slot = 0;  // beads at gap height whose centre is within 0.99 r of a side wall

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/apparatus/triaxial_test.h"
+#include "solver/apparatus/triaxial/triaxial_programme.h"
 #include "solver/io/scene_toml.h"
 #include "tests/support/test_support.h"
 
@@ -62,7 +62,7 @@ struct Watch {
   }
 };
 
-void run_watched(Simulation& sim, TriaxialTest& test, Watch& w, std::int64_t steps,
+void run_watched(Simulation& sim, TriaxialProgramme& test, Watch& w, std::int64_t steps,
                  std::int64_t every) {
   const Triaxial& t = *sim.scene().apparatus_as<Triaxial>();
   for (std::int64_t done = 0; done < steps && w.finite && !test.done(); done += every) {
@@ -85,7 +85,7 @@ TEST(CellEdges, FiveServoPlatesJumpingTogetherLoseNoBead) {
                                  (full ? "0.2" : "0.05") + "\ninertial_number = 1e-3\n");
   const auto t0 = std::chrono::steady_clock::now();
   Simulation sim(default_device(), scene);
-  TriaxialTest test(sim);
+  TriaxialProgramme test(sim);
   test.hold_when_consolidated(true);
   Watch w;
   double worst_error = 0;
@@ -93,7 +93,7 @@ TEST(CellEdges, FiveServoPlatesJumpingTogetherLoseNoBead) {
     test.set_confining_stress(target);
     while (!test.consolidated_now() && w.finite && sim.time() < 5) run_watched(sim, test, w, 500, 500);
     ASSERT_TRUE(test.consolidated_now()) << "no equilibrium at " << target << " Pa";
-    const TriaxialTest::AtRest a = test.at_rest();
+    const TriaxialProgramme::AtRest a = test.at_rest();
     for (double s : a.stress) worst_error = std::max(worst_error, std::fabs(s / target - 1));
   }
   const double d = 6.35e-3;
@@ -137,11 +137,11 @@ TEST(DrivenPlate, FullRateIntoADensePackingNeitherTunnelsNorExplodes) {
   const Scene scene = cell_scene(std::string("axial_strain = ") + (full ? "0.1" : "0.03") + "\n");
   const auto t0 = std::chrono::steady_clock::now();
   Simulation sim(default_device(), scene);
-  TriaxialTest test(sim);
+  TriaxialProgramme test(sim);
   test.hold_when_consolidated(true);
   while (!test.consolidated_now() && sim.time() < 5) test.advance(1 << 14);
   ASSERT_TRUE(test.consolidated_now());
-  const TriaxialTest::AtRest rest = test.at_rest();
+  const TriaxialProgramme::AtRest rest = test.at_rest();
   const double height = rest.volume / (scene.apparatus_as<Triaxial>()->length * scene.apparatus_as<Triaxial>()->width);
   test.set_strain_rate(scene.apparatus_as<Triaxial>()->servo_max_speed / height);
   ASSERT_TRUE(test.start_compression());

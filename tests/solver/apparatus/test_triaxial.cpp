@@ -1,4 +1,4 @@
-// The triaxial cell (triaxial.h) and its loading programme (triaxial_test.h):
+// The triaxial cell (triaxial.h) and its loading programme (triaxial_programme.h):
 // the scene table, and a small poured specimen consolidated and compressed
 // on the device, whose plates' stresses are compared with the stress the
 // contacts carry inside (Love-Weber).
@@ -7,8 +7,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "solver/apparatus/triaxial.h"
-#include "solver/apparatus/triaxial_test.h"
+#include "solver/apparatus/triaxial/triaxial.h"
+#include "solver/apparatus/triaxial/triaxial_programme.h"
 #include "solver/common/errors.h"
 #include "solver/io/scene_toml.h"
 #include "tests/support/test_support.h"
@@ -48,10 +48,10 @@ TEST(TriaxialScene, BadValuesNameTheField) {
   expect_scene_error(triaxial_toml("strain_rate = -1"), "out_of_range", "triaxial.strain_rate");
 }
 
-TEST(TriaxialTest, ConsolidatesIsotropicallyAndTheWallsAgreeWithTheContacts) {
+TEST(TriaxialProgramme, ConsolidatesIsotropicallyAndTheWallsAgreeWithTheContacts) {
   const Scene scene = parse_scene(triaxial_toml(), "tri.toml");
   Simulation sim(default_device(), scene);
-  TriaxialTest test(sim);
+  TriaxialProgramme test(sim);
   while (!test.done()) test.advance(1 << 20);
   const std::vector<TriaxialRow>& rows = test.rows();
   ASSERT_EQ(rows.size(), 16u);

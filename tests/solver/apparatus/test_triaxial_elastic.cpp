@@ -1,5 +1,5 @@
 // The triaxial cell against elasticity theory: frictionless Hertz spheres
-// compressed isotropically, step by step to equilibrium (TriaxialTest held
+// compressed isotropically, step by step to equilibrium (TriaxialProgramme held
 // consolidating, its confining stress raised), give a bulk modulus that
 // effective-medium theory (Walton 1987, Digby 1981) predicts from the
 // packing's coordination number Z and porosity n:
@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/apparatus/triaxial_test.h"
+#include "solver/apparatus/triaxial/triaxial_programme.h"
 #include "solver/core/cl_device.h"
 #include "solver/core/simulation.h"
 #include "solver/io/scene_toml.h"
@@ -47,7 +47,7 @@ double effective_medium_bulk(double z, double porosity, double p) {
   return std::cbrt(z * z * (1 - porosity) * (1 - porosity) * e_star * e_star * p / (18 * kPi * kPi));
 }
 
-TriaxialTest::AtRest consolidate_to(Simulation& sim, TriaxialTest& test, double pascals) {
+TriaxialProgramme::AtRest consolidate_to(Simulation& sim, TriaxialProgramme& test, double pascals) {
   test.set_confining_stress(pascals);
   while (!test.consolidated_now()) {
     test.advance(1 << 16);
@@ -60,12 +60,12 @@ TriaxialTest::AtRest consolidate_to(Simulation& sim, TriaxialTest& test, double 
 TEST(TriaxialElastic, FrictionlessHertzBulkModulusAsEffectiveMediumTheoryAndTheLoopCloses) {
   const Scene scene = parse_scene(frictionless_toml(), "frictionless.toml");
   Simulation sim(default_device(), scene);
-  TriaxialTest test(sim);
+  TriaxialProgramme test(sim);
   test.hold_when_consolidated(true);
   std::vector<double> log_p, log_k, ratio;
   for (double p : {100e3, 200e3, 400e3, 800e3}) {
-    const TriaxialTest::AtRest a = consolidate_to(sim, test, p);
-    const TriaxialTest::AtRest b = consolidate_to(sim, test, 1.2 * p);
+    const TriaxialProgramme::AtRest a = consolidate_to(sim, test, p);
+    const TriaxialProgramme::AtRest b = consolidate_to(sim, test, 1.2 * p);
     const double k = (b.p - a.p) / ((a.volume - b.volume) / a.volume);
     const double mid = 0.5 * (a.p + b.p);
     const double k_emt = effective_medium_bulk(0.5 * (a.bead_coordination + b.bead_coordination),
@@ -79,9 +79,9 @@ TEST(TriaxialElastic, FrictionlessHertzBulkModulusAsEffectiveMediumTheoryAndTheL
     ratio.push_back(k / k_emt);
   }
   // Unload-reload: 960 kPa -> 480 -> 960.
-  const TriaxialTest::AtRest top = test.at_rest();
-  const TriaxialTest::AtRest low = consolidate_to(sim, test, 480e3);
-  const TriaxialTest::AtRest again = consolidate_to(sim, test, 960e3);
+  const TriaxialProgramme::AtRest top = test.at_rest();
+  const TriaxialProgramme::AtRest low = consolidate_to(sim, test, 480e3);
+  const TriaxialProgramme::AtRest again = consolidate_to(sim, test, 960e3);
   const double loop = (again.volume - top.volume) / top.volume;
   const double swing = (low.volume - top.volume) / top.volume;
   std::printf("[measure] loop 960 -> 480 -> 960 kPa: eps_v swing %.4g, left open %.3g (%.2f %% of "

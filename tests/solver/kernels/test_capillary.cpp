@@ -13,8 +13,8 @@
 #include <numbers>
 
 #include "solver/scene/contact_model.h"
-#include "solver/apparatus/shear_box.h"
-#include "solver/apparatus/shear_test.h"
+#include "solver/apparatus/shear_box/shear_box.h"
+#include "solver/apparatus/shear_box/shear_programme.h"
 #include "tests/support/test_support.h"
 
 namespace simsols::testing {
@@ -136,7 +136,7 @@ TEST(WetShearBox, WetSpecimenHasAnApparentCohesion) {
     std::vector<double> sig, tau;
     for (const double sigma : sigmas) {
       Simulation sim(default_device(), small_wet_box(sigma, wet));
-      ShearTest test(sim);
+      ShearProgramme test(sim);
       while (!test.done()) test.advance(1 << 20);
       const ShearSummary& r = test.summary();
       sig.push_back(sigma);

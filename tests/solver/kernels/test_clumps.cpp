@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <string>
 
-#include "solver/apparatus/oedometer_test.h"
-#include "solver/apparatus/platen_servo.h"
+#include "solver/apparatus/oedometer/oedometer_programme.h"
+#include "solver/apparatus/cell/platen_servo.h"
 #include "solver/io/checkpoint.h"
 #include "solver/io/scene_toml.h"
 #include "solver/scene/clump.h"
@@ -426,7 +426,7 @@ duration = 1
   const SpecimenStats stats = specimen_stats(scene, 0);
   EXPECT_NEAR(stats.volume, scene.clumps.size() * b.mass.volume, 1e-12 * stats.volume);
   Simulation sim(default_device(), scene);
-  OedometerTest test(sim);
+  OedometerProgramme test(sim);
   while (!test.done()) test.advance(1 << 16);  // throws RunawayError on a NaN
   const std::vector<OedometerRow>& rows = test.rows();
   ASSERT_FALSE(rows.empty());

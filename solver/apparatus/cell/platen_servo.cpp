@@ -1,4 +1,4 @@
-#include "solver/apparatus/platen_servo.h"
+#include "solver/apparatus/cell/platen_servo.h"
 
 #include "solver/scene/clump.h"
 

@@ -1,4 +1,4 @@
-#include "solver/apparatus/grading.h"
+#include "solver/apparatus/specimen/grading.h"
 
 #include <algorithm>
 #include <cmath>

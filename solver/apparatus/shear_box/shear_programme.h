@@ -1,6 +1,6 @@
-// ShearTest: the direct shear test's loading program and measurements.
+// ShearProgramme: the direct shear test's loading program and measurements.
 //
-// A Simulation of a scene with a [shear_box] is an apparatus; ShearTest
+// A Simulation of a scene with a [shear_box] is an apparatus; ShearProgramme
 // operates it as a technician would, in three named phases:
 //   Settle       gravity only, platen held above the beads, until the kinetic
 //                energy has died down (or settle_time has passed);
@@ -36,8 +36,8 @@
 #include <vector>
 
 #include "solver/apparatus/apparatus.h"
-#include "solver/apparatus/platen_servo.h"
-#include "solver/apparatus/shear_analysis.h"
+#include "solver/apparatus/cell/platen_servo.h"
+#include "solver/apparatus/shear_box/shear_analysis.h"
 #include "solver/core/simulation.h"
 
 namespace simsols {
@@ -46,10 +46,10 @@ enum class ShearPhase : int { Settle = 0, Consolidate = 1, Shear = 2, Done = 3 }
 const char* phase_name(ShearPhase p);
 
 // The direct shear test's loading programme (apparatus.h).
-class ShearTest : public ApparatusTest {
+class ShearProgramme : public ApparatusProgramme {
  public:
   // `sim` must hold a scene with a shear box; it is not owned.
-  explicit ShearTest(Simulation& sim);
+  explicit ShearProgramme(Simulation& sim);
 
   // LoadingProgramme: the stages are the phases (settle, consolidate,
   // shear, done); a row is measured every shear_displacement / rows.
@@ -63,7 +63,7 @@ class ShearTest : public ApparatusTest {
   std::string save_state() const override;
   void restore_state(const std::string& text) override;  // throws std::runtime_error when malformed
 
-  // ApparatusTest: shear.csv and the summary (shear_analysis.h).
+  // ApparatusProgramme: shear.csv and the summary (shear_analysis.h).
   const char* rows_file() const override { return "shear.csv"; }
   std::string rows_csv() const override;
   std::size_t row_count() const override { return rows_.size(); }

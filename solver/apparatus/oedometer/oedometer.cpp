@@ -1,10 +1,10 @@
-#include "solver/apparatus/oedometer.h"
+#include "solver/apparatus/oedometer/oedometer.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "solver/apparatus/cell_walls.h"
-#include "solver/apparatus/specimen.h"
+#include "solver/apparatus/cell/cell_walls.h"
+#include "solver/apparatus/specimen/specimen.h"
 
 namespace simsols {
 namespace {
@@ -37,7 +37,7 @@ void add_walls(Scene& scene, Oedometer& o, double top, double r_max) {
   o.first_wall = static_cast<int>(scene.walls.size());
   std::vector<Wall> w = cuboid_walls("ring", m, L, W, h, platen_z, 0);
   // The platen's servo, switched on and tuned by the loading programme
-  // (oedometer_test.h).
+  // (oedometer_programme.h).
   WallServo& servo = w[kOedPlaten].servo;
   servo.enabled = true;
   servo.target_force = o.load_steps.front() * oedometer_area(o);

@@ -5,8 +5,8 @@
 // analyse_shear_rows() turns the rows into a ShearSummary with the
 // definitions of geotechnical practice (the first peak, the residual over a
 // stated late window, the normal-stress band and the test's validity);
-// fit_mohr_coulomb() fits an envelope over several tests. ShearTest
-// (shear_test.h) fills the rows, the campaign re-reads kept tests through
+// fit_mohr_coulomb() fits an envelope over several tests. ShearProgramme
+// (shear_programme.h) fills the rows, the campaign re-reads kept tests through
 // the CSV and summary parsers, the lab draws the same marks live; the
 // definitions live here once.
 #pragma once
@@ -80,7 +80,7 @@ struct ShearSummary {
 };
 
 // The analysis of a test's rows, apart from the apparatus that measured
-// them (shared by ShearTest::summary, the campaign's kept tests and the
+// them (shared by ShearProgramme::summary, the campaign's kept tests and the
 // lab): fills the row-derived fields of `s` (peak, largest, residual,
 // dilatancy, sigma band and validity, inertial number, beads outside, the
 // start) using each row's sigma_target (s.normal_stress_target for rows

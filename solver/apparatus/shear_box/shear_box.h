@@ -24,8 +24,8 @@
 
 #include <optional>
 
-#include "solver/apparatus/cell_walls.h"
-#include "solver/apparatus/specimen.h"
+#include "solver/apparatus/cell/cell_walls.h"
+#include "solver/apparatus/specimen/specimen.h"
 #include "solver/scene/scene.h"
 #include "solver/scene/scene_check.h"
 

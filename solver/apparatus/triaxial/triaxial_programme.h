@@ -1,4 +1,4 @@
-// TriaxialTest: the triaxial test's loading programme and measurements.
+// TriaxialProgramme: the triaxial test's loading programme and measurements.
 //
 // A Simulation of a scene with a [triaxial] is the apparatus; the test
 // operates it in named stages:
@@ -38,18 +38,18 @@
 #include <vector>
 
 #include "solver/apparatus/apparatus.h"
-#include "solver/apparatus/platen_servo.h"
-#include "solver/apparatus/triaxial_analysis.h"
+#include "solver/apparatus/cell/platen_servo.h"
+#include "solver/apparatus/triaxial/triaxial_analysis.h"
 #include "solver/core/simulation.h"
 
 namespace simsols {
 
-class TriaxialTest : public ApparatusTest {
+class TriaxialProgramme : public ApparatusProgramme {
  public:
   enum class Stage : int { Settle = 0, Consolidate = 1, Compress = 2, Done = 3 };
 
   // `sim` must hold a scene with a triaxial cell; it is not owned.
-  explicit TriaxialTest(Simulation& sim);
+  explicit TriaxialProgramme(Simulation& sim);
 
   bool advance(std::int64_t max_steps) override;
   bool done() const override { return stage_ == Stage::Done; }
@@ -61,7 +61,7 @@ class TriaxialTest : public ApparatusTest {
   std::string save_state() const override;
   void restore_state(const std::string& text) override;  // throws std::runtime_error
 
-  // ApparatusTest: triaxial.csv and the summary (triaxial_analysis.h).
+  // ApparatusProgramme: triaxial.csv and the summary (triaxial_analysis.h).
   const char* rows_file() const override { return "triaxial.csv"; }
   std::string rows_csv() const override;
   std::size_t row_count() const override { return rows_.size(); }

@@ -1,4 +1,4 @@
-#include "solver/apparatus/triaxial_analysis.h"
+#include "solver/apparatus/triaxial/triaxial_analysis.h"
 
 #include <algorithm>
 #include <array>

@@ -1,7 +1,7 @@
-#include "solver/apparatus/specimen.h"
+#include "solver/apparatus/specimen/specimen.h"
 
-#include "solver/apparatus/cell_walls.h"
-#include "solver/apparatus/grading.h"
+#include "solver/apparatus/cell/cell_walls.h"
+#include "solver/apparatus/specimen/grading.h"
 #include "solver/scene/clump.h"
 
 #include <algorithm>

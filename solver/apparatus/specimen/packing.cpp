@@ -1,4 +1,4 @@
-#include "solver/apparatus/packing.h"
+#include "solver/apparatus/specimen/packing.h"
 
 #include <algorithm>
 #include <cmath>

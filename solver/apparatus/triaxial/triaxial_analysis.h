@@ -34,7 +34,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/apparatus/shear_analysis.h"
+#include "solver/apparatus/shear_box/shear_analysis.h"
 
 namespace simsols {
 

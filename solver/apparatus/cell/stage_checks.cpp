@@ -1,4 +1,4 @@
-#include "solver/apparatus/stage_checks.h"
+#include "solver/apparatus/cell/stage_checks.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 // build_triaxial() places the specimen (specimen.h) in the cell's initial
 // footprint and appends six rectangle walls: the fixed floor, four sides
 // (x0, x1, y0, y1) and the top platen, the last five servo-controlled by
-// the loading programme (triaxial_test.h). Each plate reaches past the
+// the loading programme (triaxial_programme.h). Each plate reaches past the
 // cell's edges by half the cell's largest side, so the plates can move in
 // and out (a true-triaxial apparatus' plates slide past each other) and
 // still close every edge: walls do not touch each other, only beads.

@@ -1,4 +1,4 @@
-#include "solver/apparatus/shear_analysis.h"
+#include "solver/apparatus/shear_box/shear_analysis.h"
 
 #include <algorithm>
 #include <cmath>

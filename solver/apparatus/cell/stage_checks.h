@@ -4,7 +4,7 @@
 // oedometer and the triaxial test (their headers state the criteria).
 #pragma once
 
-#include "solver/apparatus/platen_servo.h"
+#include "solver/apparatus/cell/platen_servo.h"
 #include "solver/core/simulation.h"
 
 namespace simsols {

@@ -9,7 +9,7 @@
 // side, so its two directions can be compared. The sides reach well above
 // the specimen (the pour column and the platen's start); the platen starts
 // a fifth of a diameter above the highest bead and is lowered onto the
-// settled specimen by the loading programme (oedometer_test.h).
+// settled specimen by the loading programme (oedometer_programme.h).
 // Automatic values (the wall material) are resolved into the Oedometer, so
 // to_toml() writes a scene that rebuilds the same walls.
 #pragma once

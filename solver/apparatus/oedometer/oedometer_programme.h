@@ -1,4 +1,4 @@
-// OedometerTest: the oedometer's loading programme and measurements.
+// OedometerProgramme: the oedometer's loading programme and measurements.
 //
 // A Simulation of a scene with an [oedometer] is the apparatus; the test
 // operates it in named stages:
@@ -26,8 +26,8 @@
 #include <vector>
 
 #include "solver/apparatus/apparatus.h"
-#include "solver/apparatus/oedometer_analysis.h"
-#include "solver/apparatus/platen_servo.h"
+#include "solver/apparatus/oedometer/oedometer_analysis.h"
+#include "solver/apparatus/cell/platen_servo.h"
 #include "solver/core/simulation.h"
 
 namespace simsols {
@@ -38,12 +38,12 @@ constexpr double kOedometerBeadsInertial = 1e-4;
 constexpr double kOedometerPlatenInertial = 1e-5;
 constexpr double kOedometerForceError = 0.01;
 
-class OedometerTest : public ApparatusTest {
+class OedometerProgramme : public ApparatusProgramme {
  public:
   enum class Stage : int { Settle = 0, Load = 1, Done = 2 };
 
   // `sim` must hold a scene with an oedometer; it is not owned.
-  explicit OedometerTest(Simulation& sim);
+  explicit OedometerProgramme(Simulation& sim);
 
   bool advance(std::int64_t max_steps) override;
   bool done() const override { return stage_ == Stage::Done; }
@@ -55,7 +55,7 @@ class OedometerTest : public ApparatusTest {
   std::string save_state() const override;
   void restore_state(const std::string& text) override;  // throws std::runtime_error
 
-  // ApparatusTest: oedometer.csv and the summary (oedometer_analysis.h).
+  // ApparatusProgramme: oedometer.csv and the summary (oedometer_analysis.h).
   const char* rows_file() const override { return "oedometer.csv"; }
   std::string rows_csv() const override;
   std::size_t row_count() const override { return rows_.size(); }

@@ -1,4 +1,4 @@
-#include "solver/apparatus/oedometer_analysis.h"
+#include "solver/apparatus/oedometer/oedometer_analysis.h"
 
 #include <algorithm>
 #include <cmath>

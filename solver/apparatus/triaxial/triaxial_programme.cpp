@@ -1,4 +1,4 @@
-#include "solver/apparatus/triaxial_test.h"
+#include "solver/apparatus/triaxial/triaxial_programme.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "solver/apparatus/packing.h"
-#include "solver/apparatus/stage_checks.h"
-#include "solver/apparatus/triaxial.h"
+#include "solver/apparatus/specimen/packing.h"
+#include "solver/apparatus/cell/stage_checks.h"
+#include "solver/apparatus/triaxial/triaxial.h"
 #include "solver/core/stress.h"
 
 namespace simsols {
@@ -21,13 +21,13 @@ constexpr double kSettleShare = 0.3, kConsolidateShare = 0.3;  // progress estim
 
 const Triaxial& triaxial_of(const Simulation& sim) {
   const Triaxial* t = sim.scene().apparatus_as<Triaxial>();
-  if (!t) throw std::invalid_argument("TriaxialTest: the scene has no triaxial cell");
+  if (!t) throw std::invalid_argument("TriaxialProgramme: the scene has no triaxial cell");
   return *t;
 }
 
 }  // namespace
 
-TriaxialTest::TriaxialTest(Simulation& sim) : sim_(sim), tri_(triaxial_of(sim)) {
+TriaxialProgramme::TriaxialProgramme(Simulation& sim) : sim_(sim), tri_(triaxial_of(sim)) {
   stats_ = specimen_stats(sim.scene(), tri_.wall_material);
   sigma3_ = tri_.confining_stress;
   rate_ = tri_.strain_rate > 0 ? tri_.strain_rate
@@ -35,7 +35,7 @@ TriaxialTest::TriaxialTest(Simulation& sim) : sim_(sim), tri_(triaxial_of(sim)) 
                                                       stats_.density, tri_.confining_stress);
 }
 
-const char* TriaxialTest::stage_name() const {
+const char* TriaxialProgramme::stage_name() const {
   switch (stage_) {
     case Stage::Settle: return "settle";
     case Stage::Consolidate: return "consolidate";
@@ -45,18 +45,18 @@ const char* TriaxialTest::stage_name() const {
   return "?";
 }
 
-std::int64_t TriaxialTest::check_every() const {
+std::int64_t TriaxialProgramme::check_every() const {
   return std::max<std::int64_t>(50, std::llround(kCheckSeconds / sim_.dt()));
 }
 
-TriaxialTest::Cell TriaxialTest::cell() {
+TriaxialProgramme::Cell TriaxialProgramme::cell() {
   const int f = tri_.first_wall;
   return {sim_.wall_point(f + kTriX0)[0], sim_.wall_point(f + kTriX1)[0],
           sim_.wall_point(f + kTriY0)[1], sim_.wall_point(f + kTriY1)[1],
           sim_.wall_point(f + kTriFloor)[2], sim_.wall_point(f + kTriPlaten)[2]};
 }
 
-std::array<double, 3> TriaxialTest::targets(double sigma_z) const {
+std::array<double, 3> TriaxialProgramme::targets(double sigma_z) const {
   const double s3 = sigma3_;
   if (stage_ != Stage::Compress) return {s3, s3, s3};
   switch (tri_.path) {
@@ -73,7 +73,7 @@ std::array<double, 3> TriaxialTest::targets(double sigma_z) const {
 
 // Each servo plate's force target and tuning for the stresses, on the
 // plates' current areas.
-void TriaxialTest::apply_servos(const std::array<double, 3>& stress, bool platen) {
+void TriaxialProgramme::apply_servos(const std::array<double, 3>& stress, bool platen) {
   const Cell c = cell();
   const double area[3] = {c.ly() * c.lz(), c.lx() * c.lz(), c.lx() * c.ly()};
   const double extent[3] = {c.lx(), c.ly(), c.lz()};
@@ -95,7 +95,7 @@ void TriaxialTest::apply_servos(const std::array<double, 3>& stress, bool platen
   }
 }
 
-void TriaxialTest::enter(Stage s) {
+void TriaxialProgramme::enter(Stage s) {
   const std::int64_t now = sim_.steps();
   const double elapsed = (now - stage_start_) * sim_.dt();
   if (stage_ == Stage::Settle) settle_seconds_ = elapsed;
@@ -134,7 +134,7 @@ void TriaxialTest::enter(Stage s) {
   next_row_ = now + row_steps_;
 }
 
-std::array<double, 3> TriaxialTest::wall_stresses(const Cell& c) {
+std::array<double, 3> TriaxialProgramme::wall_stresses(const Cell& c) {
   const auto means = sim_.read_wall_means();
   const int f = tri_.first_wall;
   const double fx = means[f + kTriX1].force[0] - means[f + kTriX0].force[0];
@@ -143,7 +143,7 @@ std::array<double, 3> TriaxialTest::wall_stresses(const Cell& c) {
           means[f + kTriPlaten].force[2] / (c.lx() * c.ly())};
 }
 
-bool TriaxialTest::consolidated() {
+bool TriaxialProgramme::consolidated() {
   const Cell c = cell();
   const std::array<double, 3> s = wall_stresses(c);
   consolidated_stress_ = s;
@@ -160,7 +160,7 @@ bool TriaxialTest::consolidated() {
          (sim_.steps() - stage_start_) * sim_.dt() >= tri_.consolidate_time;
 }
 
-void TriaxialTest::set_confining_stress(double pascals) {
+void TriaxialProgramme::set_confining_stress(double pascals) {
   sigma3_ = pascals;
   if (stage_ == Stage::Consolidate) {
     quiet_checks_ = 0;
@@ -171,7 +171,7 @@ void TriaxialTest::set_confining_stress(double pascals) {
   }
 }
 
-void TriaxialTest::set_strain_rate(double per_second) {
+void TriaxialProgramme::set_strain_rate(double per_second) {
   rate_ = per_second;
   if (stage_ != Stage::Compress) return;
   // The rows stay tri_.axial_strain / tri_.rows apart in strain.
@@ -183,26 +183,26 @@ void TriaxialTest::set_strain_rate(double per_second) {
   sim_.set_wall_velocity(tri_.first_wall + kTriPlaten, {0, 0, -rate_ * h0_});
 }
 
-bool TriaxialTest::follows_platen() const {
+bool TriaxialProgramme::follows_platen() const {
   return tri_.path != Triaxial::Path::ConstantSigma3;
 }
 
 // The sides' targets from the platen's stress now (its reaction this step),
 // so a constant-p or true-triaxial path is held between rows as well.
-void TriaxialTest::follow_platen() {
+void TriaxialProgramme::follow_platen() {
   const Cell c = cell();
   const std::vector<WallReaction> now = sim_.wall_reactions();
   const double sz = now[tri_.first_wall + kTriPlaten].force[2] / (c.lx() * c.ly());
   apply_servos(targets(sz), false);
 }
 
-bool TriaxialTest::start_compression() {
+bool TriaxialProgramme::start_compression() {
   if (stage_ != Stage::Consolidate) return false;
   enter(Stage::Compress);
   return true;
 }
 
-TriaxialTest::AtRest TriaxialTest::at_rest() {
+TriaxialProgramme::AtRest TriaxialProgramme::at_rest() {
   AtRest a;
   const Cell c = cell();
   a.stress = consolidated_stress_;
@@ -218,7 +218,7 @@ TriaxialTest::AtRest TriaxialTest::at_rest() {
   return a;
 }
 
-void TriaxialTest::measure_row(const std::array<double, 3>* at_rest) {
+void TriaxialProgramme::measure_row(const std::array<double, 3>* at_rest) {
   const Cell c = cell();
   const std::array<double, 3> s = at_rest ? *at_rest : wall_stresses(c);
   TriaxialRow r;
@@ -256,7 +256,7 @@ void TriaxialTest::measure_row(const std::array<double, 3>* at_rest) {
   rows_.push_back(r);
 }
 
-bool TriaxialTest::advance(std::int64_t max_steps) {
+bool TriaxialProgramme::advance(std::int64_t max_steps) {
   if (!started_) {
     started_ = true;
     stage_start_ = sim_.steps();
@@ -299,7 +299,7 @@ bool TriaxialTest::advance(std::int64_t max_steps) {
   return false;
 }
 
-TriaxialTest::StepCount TriaxialTest::step_count() const {
+TriaxialProgramme::StepCount TriaxialProgramme::step_count() const {
   const double dt = sim_.dt();
   const double in_stage = started_ ? double(sim_.steps() - stage_start_) : 0;
   const double settle = tri_.settle_time / dt * kSettleShare;
@@ -326,7 +326,7 @@ TriaxialTest::StepCount TriaxialTest::step_count() const {
   return c;
 }
 
-std::string TriaxialTest::caption() const {
+std::string TriaxialProgramme::caption() const {
   char buf[200];
   if (rows_.empty()) {
     std::snprintf(buf, sizeof buf, "%s", stage_name());
@@ -338,7 +338,7 @@ std::string TriaxialTest::caption() const {
   return buf;
 }
 
-std::string TriaxialTest::status() const {
+std::string TriaxialProgramme::status() const {
   char buf[200];
   if (stage_ == Stage::Compress && !rows_.empty()) {
     const TriaxialRow& r = rows_.back();
@@ -353,7 +353,7 @@ std::string TriaxialTest::status() const {
   return buf;
 }
 
-TriaxialSummary TriaxialTest::summary() const {
+TriaxialSummary TriaxialProgramme::summary() const {
   TriaxialSummary s;
   s.confining_stress = sigma3_;
   s.strain_rate = rate_;
@@ -364,7 +364,7 @@ TriaxialSummary TriaxialTest::summary() const {
   return s;
 }
 
-std::string TriaxialTest::save_state() const {
+std::string TriaxialProgramme::save_state() const {
   std::ostringstream o;
   o.precision(17);
   o << "triaxial_test 2\n"
@@ -382,7 +382,7 @@ std::string TriaxialTest::save_state() const {
   return o.str();
 }
 
-void TriaxialTest::restore_state(const std::string& text) {
+void TriaxialProgramme::restore_state(const std::string& text) {
   std::istringstream in(text);
   std::string tag;
   int version = 0, stage = 0;
@@ -407,15 +407,15 @@ void TriaxialTest::restore_state(const std::string& text) {
   if (!in) throw std::runtime_error("malformed triaxial-test rows");
 }
 
-std::string TriaxialTest::rows_csv() const { return triaxial_rows_csv(rows_); }
+std::string TriaxialProgramme::rows_csv() const { return triaxial_rows_csv(rows_); }
 
-std::string TriaxialTest::summary_text(double wall_seconds) const {
+std::string TriaxialProgramme::summary_text(double wall_seconds) const {
   TriaxialSummary s = summary();
   s.wall_seconds = wall_seconds;
   return triaxial_summary_text(s);
 }
 
-std::string TriaxialTest::describe() const {
+std::string TriaxialProgramme::describe() const {
   char buf[128];
   std::snprintf(buf, sizeof buf, "axial strain rate %.3g 1/s, five servo plates", strain_rate());
   return buf;

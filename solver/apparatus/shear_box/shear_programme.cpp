@@ -1,4 +1,4 @@
-#include "solver/apparatus/shear_test.h"
+#include "solver/apparatus/shear_box/shear_programme.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,9 +8,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "solver/apparatus/platen_servo.h"
-#include "solver/apparatus/shear_box.h"
-#include "solver/apparatus/stage_checks.h"
+#include "solver/apparatus/cell/platen_servo.h"
+#include "solver/apparatus/shear_box/shear_box.h"
+#include "solver/apparatus/cell/stage_checks.h"
 
 namespace simsols {
 namespace {
@@ -32,7 +32,7 @@ constexpr double kEquilibriumPlaten = 0.01;
 
 const ShearBox& box_of(const Simulation& sim) {
   const ShearBox* box = sim.scene().apparatus_as<ShearBox>();
-  if (!box) throw std::invalid_argument("ShearTest: the scene has no shear box");
+  if (!box) throw std::invalid_argument("ShearProgramme: the scene has no shear box");
   return *box;
 }
 
@@ -48,7 +48,7 @@ const char* phase_name(ShearPhase p) {
   return "?";
 }
 
-ShearTest::ShearTest(Simulation& sim) : sim_(sim), box_(box_of(sim)) {
+ShearProgramme::ShearProgramme(Simulation& sim) : sim_(sim), box_(box_of(sim)) {
   stats_ = specimen_stats(sim.scene(), box_.wall_material);
   diameter_ = stats_.diameter;
   density_ = stats_.density;
@@ -67,30 +67,30 @@ ShearTest::ShearTest(Simulation& sim) : sim_(sim), box_(box_of(sim)) {
 // changes: a gain tuned at 50 kPa is twice as sharp at 400 kPa, at the limit
 // of the loop's stability (docs/shear-box.md), and the platen rang from step
 // to step (stability case 6).
-void ShearTest::tune_servo() {
+void ShearProgramme::tune_servo() {
   const PlatenServo p = tune_platen_servo(stats_, shear_area(box_), sigma_target_, sim_.dt(),
                                           box_.servo_gain, box_.servo_integral_time);
   gain_ = p.gain;
   integral_time_ = p.integral_time;
 }
 
-double ShearTest::shear_speed_for(double height) const {
+double ShearProgramme::shear_speed_for(double height) const {
   if (speed_override_ > 0) return speed_override_;
   return box_.shear_speed > 0 ? box_.shear_speed
                               : speed_for_inertial_number(box_.inertial_number, height,
                                                           diameter_, density_, sigma_target_);
 }
 
-double ShearTest::inertial_number() const {
+double ShearProgramme::inertial_number() const {
   return height0_ > 0 ? inertial_number_of(speed_, height0_, diameter_, density_, sigma_target_)
                       : 0;
 }
 
-std::int64_t ShearTest::steps_for(double seconds) const {
+std::int64_t ShearProgramme::steps_for(double seconds) const {
   return std::max<std::int64_t>(1, std::llround(seconds / sim_.dt()));
 }
 
-void ShearTest::apply_servo(bool on) {
+void ShearProgramme::apply_servo(bool on) {
   WallServo s;
   s.enabled = on;
   s.target_force = sigma_target_ * shear_area(box_);
@@ -101,7 +101,7 @@ void ShearTest::apply_servo(bool on) {
   sim_.set_servo(box_.first_wall + kPlaten, s);
 }
 
-void ShearTest::set_normal_stress(double pascals) {
+void ShearProgramme::set_normal_stress(double pascals) {
   if (!(pascals > 0) || !std::isfinite(pascals))
     throw std::invalid_argument("normal stress must be > 0 Pa");
   sigma_target_ = pascals;
@@ -111,23 +111,23 @@ void ShearTest::set_normal_stress(double pascals) {
   retime_rows(shear_speed_for(specimen_height()));
 }
 
-double ShearTest::specimen_height() const {
+double ShearProgramme::specimen_height() const {
   return sim_.wall_point(box_.first_wall + kPlaten)[2] -
          sim_.wall_point(box_.first_wall + kFloor)[2];
 }
 
-void ShearTest::start_shear() {
+void ShearProgramme::start_shear() {
   hold_ = false;
   if (ready_to_shear()) enter(ShearPhase::Shear);
 }
 
-void ShearTest::set_shear_speed(double v) {
+void ShearProgramme::set_shear_speed(double v) {
   if (!(v > 0) || !std::isfinite(v)) throw std::invalid_argument("shear speed must be > 0 m/s");
   speed_override_ = v;
   if (phase_ == ShearPhase::Shear) retime_rows(v);
 }
 
-void ShearTest::retime_rows(double v) {
+void ShearProgramme::retime_rows(double v) {
   speed_ = v;
   move_lower_half(v);
   const double done = rows_.empty() ? 0 : rows_.back().displacement;
@@ -137,11 +137,11 @@ void ShearTest::retime_rows(double v) {
   next_row_ = sim_.steps() + row_steps_;
 }
 
-void ShearTest::move_lower_half(double vx) {
+void ShearProgramme::move_lower_half(double vx) {
   for (int w = kFloor; w <= kLowerLast; ++w) sim_.set_wall_velocity(box_.first_wall + w, {vx, 0, 0});
 }
 
-void ShearTest::enter(ShearPhase p) {
+void ShearProgramme::enter(ShearPhase p) {
   const std::int64_t now = sim_.steps();
   const double elapsed = (now - phase_start_) * sim_.dt();
   if (phase_ == ShearPhase::Settle) settle_seconds_ = elapsed;
@@ -185,7 +185,7 @@ void ShearTest::enter(ShearPhase p) {
   }
 }
 
-bool ShearTest::settled() {
+bool ShearProgramme::settled() {
   const double elapsed = (sim_.steps() - phase_start_) * sim_.dt();
   return settled_under_gravity(sim_, stats_, elapsed, box_.settle_time);
 }
@@ -195,7 +195,7 @@ bool ShearTest::settled() {
 // small against the shear speed, twice in a row. With a dead weight the
 // servo that brought the load hands it over at the first such state, and
 // equilibrium is then sought again under the weight alone.
-bool ShearTest::consolidated() {
+bool ShearProgramme::consolidated() {
   const std::int64_t now = sim_.steps();
   const double elapsed = (now - phase_start_) * sim_.dt();
   const int platen = box_.first_wall + kPlaten;
@@ -205,7 +205,7 @@ bool ShearTest::consolidated() {
   return false;
 }
 
-bool ShearTest::equilibrium(double reaction) {
+bool ShearProgramme::equilibrium(double reaction) {
   const int platen = box_.first_wall + kPlaten;
   const double target = sigma_target_ * shear_area(box_);
   const Observables o = sim_.observe();
@@ -226,7 +226,7 @@ bool ShearTest::equilibrium(double reaction) {
   return true;
 }
 
-void ShearTest::measure_row() {
+void ShearProgramme::measure_row() {
   const auto means = sim_.read_wall_means();
   sim_.read_servo(box_.first_wall + kPlaten);
   const int f = box_.first_wall;
@@ -267,7 +267,7 @@ void ShearTest::measure_row() {
   rows_.push_back(row);
 }
 
-bool ShearTest::advance(std::int64_t max_steps) {
+bool ShearProgramme::advance(std::int64_t max_steps) {
   if (!started_) {
     started_ = true;
     phase_start_ = sim_.steps();
@@ -306,7 +306,7 @@ bool ShearTest::advance(std::int64_t max_steps) {
 // consolidated()), usually well before their caps; the estimates use the
 // shares of the caps the paper's tests take (kSettleShare, kConsolidateShare)
 // and the shear its exact step count once it has begun.
-ShearTest::StepCount ShearTest::step_count() const {
+ShearProgramme::StepCount ShearProgramme::step_count() const {
   const double dt = sim_.dt();
   const double elapsed = started_ ? double(sim_.steps() - phase_start_) : 0;
   const double settle = box_.settle_time / dt * kSettleShare;
@@ -334,7 +334,7 @@ ShearTest::StepCount ShearTest::step_count() const {
   return c;
 }
 
-std::string ShearTest::status() const {
+std::string ShearProgramme::status() const {
   char buf[200];
   if (phase_ == ShearPhase::Shear && !rows_.empty()) {
     const ShearRow& r = rows_.back();
@@ -348,7 +348,7 @@ std::string ShearTest::status() const {
   return buf;
 }
 
-std::string ShearTest::caption() const {
+std::string ShearProgramme::caption() const {
   char buf[200];
   if (rows_.empty()) {
     std::snprintf(buf, sizeof buf, "%s", phase_name(phase_));
@@ -360,7 +360,7 @@ std::string ShearTest::caption() const {
   return buf;
 }
 
-ShearSummary ShearTest::summary() const {
+ShearSummary ShearProgramme::summary() const {
   ShearSummary s;
   s.normal_stress_target = sigma_target_;
   s.shear_speed = speed_;
@@ -373,7 +373,7 @@ ShearSummary ShearTest::summary() const {
   return s;
 }
 
-std::string ShearTest::save_state() const {
+std::string ShearProgramme::save_state() const {
   std::ostringstream o;
   o.precision(17);
   o << "shear_test 3\n"
@@ -394,7 +394,7 @@ std::string ShearTest::save_state() const {
   return o.str();
 }
 
-void ShearTest::restore_state(const std::string& text) {
+void ShearProgramme::restore_state(const std::string& text) {
   std::istringstream in(text);
   std::string tag;
   int version = 0, phase = 0;
@@ -423,22 +423,22 @@ void ShearTest::restore_state(const std::string& text) {
   if (!in) throw std::runtime_error("malformed shear-test rows");
 }
 
-std::string ShearTest::rows_csv() const { return shear_rows_csv(rows_); }
+std::string ShearProgramme::rows_csv() const { return shear_rows_csv(rows_); }
 
-std::string ShearTest::summary_text(double wall_seconds) const {
+std::string ShearProgramme::summary_text(double wall_seconds) const {
   ShearSummary s = summary();
   s.wall_seconds = wall_seconds;
   return shear_summary_text(s);
 }
 
-std::string ShearTest::describe() const {
+std::string ShearProgramme::describe() const {
   char buf[128];
   std::snprintf(buf, sizeof buf, "servo gain %.3g m/(s N), integral time %.3g s", gain_,
                 integral_time_);
   return buf;
 }
 
-std::string ShearTest::measuring_line() const {
+std::string ShearProgramme::measuring_line() const {
   char buf[192];
   std::snprintf(buf, sizeof buf,
                 "shearing at %.4g mm/s (inertial number %.2g at the start; target < 1e-3), "

@@ -1,7 +1,7 @@
-#include "solver/apparatus/shear_box.h"
+#include "solver/apparatus/shear_box/shear_box.h"
 
-#include "solver/apparatus/cell_walls.h"
-#include "solver/apparatus/specimen.h"
+#include "solver/apparatus/cell/cell_walls.h"
+#include "solver/apparatus/specimen/specimen.h"
 
 #include <algorithm>
 #include <cmath>
@@ -102,7 +102,7 @@ void add_walls(Scene& scene, ShearBox& b, const SpecimenExtent& e) {
   w.push_back(rectangle_wall("upper_frame", m, {L + frame / 2, W / 2, zs + g / 2}, {0, 0, -1}, ex,
                         frame / 2, W / 2));
   Wall platen = rectangle_wall("platen", m, {L / 2, W / 2, platen_z}, {0, 0, -1}, ex, L / 2, W / 2);
-  // Switched on by the loading program (shear_test.h); its settings are set
+  // Switched on by the loading program (shear_programme.h); its settings are set
   // there too, from the specimen's stiffness.
   platen.servo.enabled = true;
   platen.servo.target_force = b.normal_stress * shear_area(b);

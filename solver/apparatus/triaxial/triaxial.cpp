@@ -1,10 +1,10 @@
-#include "solver/apparatus/triaxial.h"
+#include "solver/apparatus/triaxial/triaxial.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "solver/apparatus/cell_walls.h"
-#include "solver/apparatus/specimen.h"
+#include "solver/apparatus/cell/cell_walls.h"
+#include "solver/apparatus/specimen/specimen.h"
 
 namespace simsols {
 namespace {

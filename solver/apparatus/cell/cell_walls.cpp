@@ -1,4 +1,4 @@
-#include "solver/apparatus/cell_walls.h"
+#include "solver/apparatus/cell/cell_walls.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "solver/apparatus/oedometer_test.h"
+#include "solver/apparatus/oedometer/oedometer_programme.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "solver/apparatus/oedometer.h"
-#include "solver/apparatus/stage_checks.h"
+#include "solver/apparatus/oedometer/oedometer.h"
+#include "solver/apparatus/cell/stage_checks.h"
 
 namespace simsols {
 namespace {
@@ -20,19 +20,19 @@ constexpr double kStepShare = 0.2;
 
 const Oedometer& oedometer_of(const Simulation& sim) {
   const Oedometer* o = sim.scene().apparatus_as<Oedometer>();
-  if (!o) throw std::invalid_argument("OedometerTest: the scene has no oedometer");
+  if (!o) throw std::invalid_argument("OedometerProgramme: the scene has no oedometer");
   return *o;
 }
 
 }  // namespace
 
-OedometerTest::OedometerTest(Simulation& sim) : sim_(sim), oed_(oedometer_of(sim)) {
+OedometerProgramme::OedometerProgramme(Simulation& sim) : sim_(sim), oed_(oedometer_of(sim)) {
   stats_ = specimen_stats(sim.scene(), oed_.wall_material);
   servo_ = tune_platen_servo(stats_, oedometer_area(oed_), target(), sim.dt(), oed_.servo_gain,
                              oed_.servo_integral_time);
 }
 
-const char* OedometerTest::stage_name() const {
+const char* OedometerProgramme::stage_name() const {
   switch (stage_) {
     case Stage::Settle: return "settle";
     case Stage::Load: return "load";
@@ -41,12 +41,12 @@ const char* OedometerTest::stage_name() const {
   return "?";
 }
 
-double OedometerTest::height() {
+double OedometerProgramme::height() {
   return sim_.wall_point(oed_.first_wall + kOedPlaten)[2] -
          sim_.wall_point(oed_.first_wall + kOedFloor)[2];
 }
 
-void OedometerTest::start_step(int index) {
+void OedometerProgramme::start_step(int index) {
   step_ = index;
   step_start_ = sim_.steps();
   quiet_checks_ = 0;
@@ -61,7 +61,7 @@ void OedometerTest::start_step(int index) {
   sim_.set_servo(oed_.first_wall + kOedPlaten, s);
 }
 
-void OedometerTest::enter(Stage s) {
+void OedometerProgramme::enter(Stage s) {
   const std::int64_t now = sim_.steps();
   if (stage_ == Stage::Settle) settle_seconds_ = (now - stage_start_) * sim_.dt();
   stage_ = s;
@@ -80,7 +80,7 @@ void OedometerTest::enter(Stage s) {
   start_step(0);
 }
 
-OedometerRow OedometerTest::measure_row(const Observables& o) {
+OedometerRow OedometerProgramme::measure_row(const Observables& o) {
   const auto means = sim_.read_wall_means();
   sim_.read_servo(oed_.first_wall + kOedPlaten);
   const int f = oed_.first_wall;
@@ -108,9 +108,9 @@ OedometerRow OedometerTest::measure_row(const Observables& o) {
   return r;
 }
 
-// Equilibrium (oedometer_test.h): the row's mean reaction on target, the
+// Equilibrium (oedometer_programme.h): the row's mean reaction on target, the
 // beads and the platen at rest on the scale of a quasi-static deformation.
-bool OedometerTest::quiet(const OedometerRow& row, const Observables& o) {
+bool OedometerProgramme::quiet(const OedometerRow& row, const Observables& o) {
   const double sigma = target();
   const double scale = row.height / stats_.diameter * std::sqrt(sigma / stats_.density);
   const double v_rms = rms_bead_speed(o, stats_);
@@ -119,7 +119,7 @@ bool OedometerTest::quiet(const OedometerRow& row, const Observables& o) {
          v_rms < kOedometerBeadsInertial * scale && v_platen < kOedometerPlatenInertial * scale;
 }
 
-bool OedometerTest::step_ended() {
+bool OedometerProgramme::step_ended() {
   const Observables o = sim_.observe();
   OedometerRow row = measure_row(o);
   quiet_checks_ = quiet(row, o) ? quiet_checks_ + 1 : 0;
@@ -130,7 +130,7 @@ bool OedometerTest::step_ended() {
   return row.end_of_step != 0;
 }
 
-bool OedometerTest::advance(std::int64_t max_steps) {
+bool OedometerProgramme::advance(std::int64_t max_steps) {
   if (!started_) {
     started_ = true;
     stage_start_ = sim_.steps();
@@ -158,7 +158,7 @@ bool OedometerTest::advance(std::int64_t max_steps) {
   return false;
 }
 
-OedometerTest::StepCount OedometerTest::step_count() const {
+OedometerProgramme::StepCount OedometerProgramme::step_count() const {
   const double dt = sim_.dt();
   const double settle = oed_.settle_time / dt * kSettleShare;
   const double per_step = oed_.step_time / dt * kStepShare;
@@ -178,7 +178,7 @@ OedometerTest::StepCount OedometerTest::step_count() const {
   return c;
 }
 
-std::string OedometerTest::caption() const {
+std::string OedometerProgramme::caption() const {
   char buf[200];
   if (rows_.empty()) {
     std::snprintf(buf, sizeof buf, "%s", stage_name());
@@ -190,7 +190,7 @@ std::string OedometerTest::caption() const {
   return buf;
 }
 
-std::string OedometerTest::status() const {
+std::string OedometerProgramme::status() const {
   char buf[200];
   if (stage_ == Stage::Load && !rows_.empty()) {
     const OedometerRow& r = rows_.back();
@@ -206,14 +206,14 @@ std::string OedometerTest::status() const {
   return buf;
 }
 
-OedometerSummary OedometerTest::summary() const {
+OedometerSummary OedometerProgramme::summary() const {
   OedometerSummary s = analyse_oedometer(rows_, oedometer_peak_step(oed_), oed_.friction_angle);
   s.bead_diameter = stats_.diameter;
   s.settle_time = settle_seconds_;
   return s;
 }
 
-std::string OedometerTest::save_state() const {
+std::string OedometerProgramme::save_state() const {
   std::ostringstream o;
   o.precision(17);
   o << "oedometer_test 1\n"
@@ -230,7 +230,7 @@ std::string OedometerTest::save_state() const {
   return o.str();
 }
 
-void OedometerTest::restore_state(const std::string& text) {
+void OedometerProgramme::restore_state(const std::string& text) {
   std::istringstream in(text);
   std::string tag;
   int version = 0, stage = 0;
@@ -254,15 +254,15 @@ void OedometerTest::restore_state(const std::string& text) {
   if (!in) throw std::runtime_error("malformed oedometer-test rows");
 }
 
-std::string OedometerTest::rows_csv() const { return oedometer_rows_csv(rows_); }
+std::string OedometerProgramme::rows_csv() const { return oedometer_rows_csv(rows_); }
 
-std::string OedometerTest::summary_text(double wall_seconds) const {
+std::string OedometerProgramme::summary_text(double wall_seconds) const {
   OedometerSummary s = summary();
   s.wall_seconds = wall_seconds;
   return oedometer_summary_text(s);
 }
 
-std::string OedometerTest::describe() const {
+std::string OedometerProgramme::describe() const {
   char buf[128];
   std::snprintf(buf, sizeof buf, "servo gain %.3g m/(s N), integral time %.3g s (first step)",
                 servo_gain(), servo_integral_time());
