@@ -2,7 +2,7 @@
 // run shares (progress lines, checkpoints on a wall-time cadence, Ctrl-C,
 // --stop-after, runaway faults, frames), with what differs between them
 // (the rows file, the results, the header line) asked of a
-// ProgrammeOutputs. shear_run.h and oedometer_run.h are its two users.
+// ProgrammeOutputs. apparatus_run.h is its user, for every apparatus.
 //
 // A folder's summary.txt is written last: its presence means the test
 // finished. checkpoint.bin holds the simulation and the programme's state

@@ -3,7 +3,7 @@
 // folder, then the strength read across them as a laboratory reads it.
 //
 // Every test runs from the base scene with [triaxial] confining_stress
-// replaced, in OUT/s3_<stress>kPa/ (triaxial_run.h), from the same bead
+// replaced, in OUT/s3_<stress>kPa/ (apparatus_run.h), from the same bead
 // positions. Resumable as the shear campaign is (campaign.h): a test whose
 // summary.txt exists is kept (its rows analysed again), an interrupted one
 // continues from its checkpoint. Afterwards (triaxial_campaign_report.h):

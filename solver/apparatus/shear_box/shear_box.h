@@ -1,7 +1,7 @@
 // Shear box: the direct shear apparatus as walls, and its specimen.
 //
 // build_shear_box() is to a [shear_box] what a generator is to particles: it
-// expands the apparatus of Scene::shear_box (scene.h) into twelve rectangle
+// expands the scene's ShearBox (Scene::apparatus, scene.h) into twelve rectangle
 // walls appended to Scene::walls (floor, the lower half's four side plates
 // and frame, the upper half's four and frame, the platen) and, unless the
 // specimen is given, places the beads. The frames stand for the thickness of
