@@ -289,20 +289,20 @@ std::unique_ptr<Simulation> load_resume(const std::filesystem::path& dir,
 
 ProgrammeRunOptions programme_options(const RunOptions& opt, const std::shared_ptr<Device>& device,
                                       FrameSeries* frames, const InterruptScope& interrupt) {
-  ProgrammeRunOptions shear;
-  shear.device = device;
-  shear.out_dir = opt.out_dir;
-  shear.quiet = opt.quiet;
-  shear.stop_after = opt.stop_after;
-  shear.stop_at = opt.stop_at;
-  shear.stop_requested = interrupt.stop_function();
+  ProgrammeRunOptions o;
+  o.device = device;
+  o.out_dir = opt.out_dir;
+  o.quiet = opt.quiet;
+  o.stop_after = opt.stop_after;
+  o.stop_at = opt.stop_at;
+  o.stop_requested = interrupt.stop_function();
   if (frames) {
-    shear.chunk_steps = std::min(2000LL, frames->every());
-    shear.after_chunk = [frames](Simulation& s, const LoadingProgramme& test) {
+    o.chunk_steps = std::min(2000LL, frames->every());
+    o.after_chunk = [frames](Simulation& s, const LoadingProgramme& test) {
       frames->after_steps(s, test.measuring(), test.caption());
     };
   }
-  return shear;
+  return o;
 }
 
 // The test's result lines; the exit status (that of an interrupt when one stopped it).
@@ -331,7 +331,7 @@ int run_scene(const RunOptions& opt) {
   // The specimen's preparation (run_scene_test's first step) before Ctrl-C
   // is caught: it has no checkpoint, so an interrupt ends it at once.
   if (scene)
-    prepare_specimen(*scene, device, dir, [&](const std::string& line) {
+    prepare_to_relative_density(*scene, device, dir, [&](const std::string& line) {
       if (!opt.quiet) std::fprintf(stderr, "[prepare] %s\n", line.c_str());
     });
   InterruptScope interrupt;
@@ -371,10 +371,7 @@ std::string stop_at_help() {
   std::string text = "Stop at the end of this stage of the test, with a checkpoint (resume with "
                      "--resume); the stages of";
   for (const ApparatusKind& k : apparatus_kinds()) {
-    std::string stages = k.stages;
-    for (char& c : stages)
-      if (c == '|') c = ',';
-    text += std::string(&k == apparatus_kinds().data() ? " " : "; ") + k.test_noun + ": " + stages;
+    text += std::string(&k == apparatus_kinds().data() ? " " : "; ") + k.test_noun + ": " + k.stages;
   }
   return text;
 }

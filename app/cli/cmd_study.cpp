@@ -16,14 +16,10 @@
 // prints that study's settings table of each specimen (markdown), as
 // docs/accuracy.md holds them; with --out, also draws its charts there again.
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <mutex>
 #include <optional>
-#include <thread>
 
 #include "app/cli/cluster_flags.h"
 #include "app/cli/commands.h"
@@ -36,7 +32,6 @@
 #include "app/experiment/study.h"
 #include "app/experiment/study_ensemble.h"
 #include "app/experiment/study_run.h"
-#include "app/experiment/study_state.h"
 
 namespace simsols {
 namespace {

@@ -14,6 +14,13 @@
 namespace simsols {
 namespace {
 
+// A kind's plots (shear_plots.h, ...) of its programme's rows and summary.
+template <class Programme, auto write>
+void plots(const std::string& dir, const std::string& title, const ApparatusProgramme& p) {
+  const auto& programme = dynamic_cast<const Programme&>(p);
+  write(dir, title, programme.rows(), programme.summary());
+}
+
 // printf into a string.
 std::string say(const char* format, ...) __attribute__((format(printf, 1, 2)));
 std::string say(const char* format, ...) {
@@ -27,11 +34,6 @@ std::string say(const char* format, ...) {
 
 const char* how(const ProgrammeRunState& s) {
   return s.finished ? "finished" : s.interrupted ? "interrupted" : "stopped";
-}
-
-void shear_plots(const std::string& dir, const std::string& title, const ApparatusProgramme& t) {
-  const auto& test = dynamic_cast<const ShearProgramme&>(t);
-  write_shear_plots(dir, title, test.rows(), test.summary());
 }
 
 std::string shear_text(const TestRun& run) {
@@ -62,12 +64,6 @@ std::string shear_text(const TestRun& run) {
   return o;
 }
 
-void oedometer_plots(const std::string& dir, const std::string& title,
-                            const ApparatusProgramme& t) {
-  const auto& test = dynamic_cast<const OedometerProgramme&>(t);
-  write_oedometer_plots(dir, title, test.rows(), test.summary());
-}
-
 std::string oedometer_text(const TestRun& run) {
   const auto r = typed_result<OedometerProgramme>(run);
   const OedometerSummary& s = r.summary;
@@ -87,12 +83,6 @@ std::string oedometer_text(const TestRun& run) {
              s.jaky_friction_angle, s.jaky_k0, s.implied_friction_angle);
   if (!s.valid) o += "  INVALID: a step ended at step_time, not in equilibrium\n";
   return o;
-}
-
-void triaxial_plots(const std::string& dir, const std::string& title,
-                           const ApparatusProgramme& t) {
-  const auto& test = dynamic_cast<const TriaxialProgramme&>(t);
-  write_triaxial_plots(dir, title, test.rows(), test.summary());
 }
 
 std::string triaxial_text(const TestRun& run) {
@@ -119,15 +109,13 @@ struct TestReport {
 };
 
 constexpr TestReport kReports[] = {
-    {"shear_box", shear_plots, shear_text},
-    {"oedometer", oedometer_plots, oedometer_text},
-    {"triaxial", triaxial_plots, triaxial_text},
+    {"shear_box", plots<ShearProgramme, write_shear_plots>, shear_text},
+    {"oedometer", plots<OedometerProgramme, write_oedometer_plots>, oedometer_text},
+    {"triaxial", plots<TriaxialProgramme, write_triaxial_plots>, triaxial_text},
 };
 
 const TestReport* report_of(std::string_view kind) {
-  for (const TestReport& r : kReports)
-    if (r.kind == kind) return &r;
-  return nullptr;
+  return entry_for_kind<TestReport>(kReports, kind);
 }
 
 const TestReport& report_of(const ApparatusKind& kind) {

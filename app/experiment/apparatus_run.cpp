@@ -43,19 +43,15 @@ class TestOutputs : public ProgrammeOutputs {
 // --stop-at names one of the kind's stages.
 void check_stop_at(const ApparatusKind& kind, const std::string& stop_at) {
   if (stop_at.empty() || has_stage(kind, stop_at)) return;
-  std::string stages = kind.stages;
-  for (char& c : stages)
-    if (c == '|') c = ',';
   throw UsageError("out_of_range", "--stop-at",
-                   "'" + stop_at + "' is not a stage of " + kind.test_noun +
-                       "; allowed: " + stages + " (it stops at the end of that stage)");
+                   "'" + stop_at + "' is not a stage of " + kind.test_noun + "; allowed: " +
+                       kind.stages + " (it stops at the end of that stage)");
 }
 
 TestRun drive(std::unique_ptr<Simulation> sim, const ProgrammeRunOptions& opt,
               const std::string* resumed_state) {
   TestRun run;
   run.kind = apparatus_kind(sim->scene());
-  check_stop_at(*run.kind, opt.stop_at);
   run.programme = make_programme(*sim);
   run.sim = std::move(sim);
   ProgrammeRunOptions labelled = opt;
@@ -83,6 +79,7 @@ TestRun resume_test(std::unique_ptr<Simulation> sim, const std::string& extra,
     throw SceneError("bad_checkpoint", (fs::path(opt.out_dir) / "checkpoint.bin").string(), 0,
                      "--resume", "the checkpoint is not a test of an apparatus (" +
                                      apparatus_names(", ") + ")");
+  check_stop_at(*apparatus_kind(sim->scene()), opt.stop_at);
   return drive(std::move(sim), opt, &extra);
 }
 
@@ -98,15 +95,9 @@ TestRun run_test(const Scene& scene, const ProgrammeRunOptions& opt) {
   return drive(std::move(sim), opt, nullptr);
 }
 
-void prepare_specimen(Scene& scene, const std::shared_ptr<Device>& device,
-                      const std::string& out_dir,
-                      const std::function<void(const std::string&)>& log) {
-  prepare_to_relative_density(scene, device, out_dir, log);
-}
-
 TestRun run_scene_test(Scene scene, const ProgrammeRunOptions& opt,
                        const std::function<void(const std::string&)>& log) {
-  if (!opt.resume) prepare_specimen(scene, opt.device, opt.out_dir, log);
+  if (!opt.resume) prepare_to_relative_density(scene, opt.device, opt.out_dir, log);
   return run_test(scene, opt);
 }
 

@@ -46,17 +46,12 @@ TestRun run_test(const Scene& scene, const ProgrammeRunOptions& options);
 TestRun resume_test(std::unique_ptr<Simulation> sim, const std::string& extra,
                     const ProgrammeRunOptions& options);
 
-// The path every front end takes from a scene to its result:
-// prepare_specimen, then run_test. With options.resume `scene` is not used.
+// The path every front end takes from a scene to its result: the specimen
+// prepared when the scene asks it (a relative density, tamping, radius
+// expansion: prepare_to_relative_density, preparation.h, its lines to
+// `log`), then run_test. With options.resume `scene` is not used.
 TestRun run_scene_test(Scene scene, const ProgrammeRunOptions& options,
                        const std::function<void(const std::string&)>& log);
-
-// The specimen prepared when the scene asks it (a relative density,
-// tamping, radius expansion: preparation.h), the scene then holding what
-// the test runs; lines to `log`. Nothing to do for other scenes.
-void prepare_specimen(Scene& scene, const std::shared_ptr<Device>& device,
-                      const std::string& out_dir,
-                      const std::function<void(const std::string&)>& log);
 
 // A finished or stopped run's rows and summary in the test's own types.
 template <class Test>

@@ -104,8 +104,8 @@ Scene as_given(const Scene& scene, Simulation& sim) {
 }  // namespace
 
 Expansion expand_specimen(const Scene& scene, const std::shared_ptr<Device>& device, const Log& log) {
-  const SpecimenCell cell = specimen_cell(scene);
-  const Specimen& spec = *cell.specimen;
+  const ApparatusCell& cell = *scene.cell();
+  const Specimen& spec = cell.specimen;
   const double area = cell.length * cell.width;
   double solid = 0, r_max = 0;
   for (const Particle& p : scene.particles) {

@@ -157,15 +157,9 @@ void density_chart(const DensitySearch& s, const std::string& title, const std::
 
 }  // namespace
 
-SpecimenCell specimen_cell(const Scene& s) {
-  const ApparatusCell* c = s.cell();
-  if (!c) return {};
-  return {c->length, c->width, &c->specimen};
-}
-
 Packing measure_specimen(Simulation& sim) {
   const Scene& scene = sim.scene();
-  const SpecimenCell cell = specimen_cell(scene);
+  const ApparatusCell* cell = scene.cell();
   GrainMap grains;
   if (!scene.clumps.empty()) {  // members' overlaps counted once
     grains.share = solid_volumes(scene);
@@ -176,7 +170,8 @@ Packing measure_specimen(Simulation& sim) {
       grains.grain.push_back(b.clump >= 0 ? b.clump : free_beads++);
     }
   }
-  return measure_packing(sample_contacts(sim), cell.length, cell.width, 0, grains);
+  return measure_packing(sample_contacts(sim), cell ? cell->length : 0, cell ? cell->width : 0, 0,
+                         grains);
 }
 
 Settled settle_specimen(const Scene& scene, const std::shared_ptr<Device>& device,

@@ -31,14 +31,6 @@ inline constexpr double kLooseFriction = 1.0;
 inline constexpr int kSearchTrials = 5;
 inline constexpr double kSearchTolerance = 0.05;
 
-// The apparatus cell of a scene (Scene::cell): footprint and specimen;
-// nullptr specimen when the scene has no apparatus.
-struct SpecimenCell {
-  double length = 0, width = 0;
-  const Specimen* specimen = nullptr;
-};
-SpecimenCell specimen_cell(const Scene& scene);
-
 // The packing of the simulation's specimen now.
 Packing measure_specimen(Simulation& sim);
 

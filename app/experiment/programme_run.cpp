@@ -55,10 +55,10 @@ void warn_late_builds(Simulation& sim) {
 
 // packing.txt once the specimen has settled, and its line.
 void report_packing(Simulation& sim, const fs::path& dir, const ProgrammeRunOptions& opt) {
-  const SpecimenCell cell = specimen_cell(sim.scene());
-  if (!cell.specimen) return;
+  const Specimen* specimen = sim.scene().specimen();
+  if (!specimen) return;
   const Packing p = measure_specimen(sim);
-  const Preparation& prep = cell.specimen->preparation;
+  const Preparation& prep = specimen->preparation;
   write_file_atomic((dir / "packing.txt").string(), packing_text(p, prep));
   if (opt.quiet) return;
   char dr[40] = "";

@@ -190,8 +190,7 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
   if (!specimen || specimen->preparation.tamping_layers <= 0) return false;
   const Preparation prep = specimen->preparation;
   const int n = prep.tamping_layers;
-  const SpecimenCell cell = specimen_cell(scene);
-  const double area = cell.length * cell.width;
+  const double area = scene.cell()->length * scene.cell()->width;
   const std::vector<ColumnGrain> grains = column_grains(scene);
   Scene empty = scene;
   empty.particles.clear();

@@ -34,9 +34,8 @@ const LabBench kBenches[] = {
 std::span<const LabBench> lab_benches() { return kBenches; }
 
 int lab_bench_index(std::string_view kind) {
-  for (std::size_t i = 0; i < std::size(kBenches); ++i)
-    if (kind == kBenches[i].kind) return static_cast<int>(i);
-  return -1;
+  const LabBench* bench = entry_for_kind<LabBench>(kBenches, kind);
+  return bench ? static_cast<int>(bench - kBenches) : -1;
 }
 
 int lab_bench_index(const Scene& scene) {

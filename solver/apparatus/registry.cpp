@@ -15,9 +15,9 @@
 namespace simsols {
 namespace {
 
-template <class Test>
+template <class Programme>
 std::unique_ptr<ApparatusProgramme> make(Simulation& sim) {
-  return std::make_unique<Test>(sim);
+  return std::make_unique<Programme>(sim);
 }
 
 std::string kpa(const char* symbol, double pascals) {
@@ -35,12 +35,12 @@ std::string triaxial_stress(const Scene& s) {
 std::string no_stress(const Scene&) { return {}; }
 
 const ApparatusKind kKinds[] = {
-    {"shear_box", "Direct shear", "a direct shear test", "shear", kShearBoxWalls, "settle|consolidate|shear", build_shear_box,
-     make<ShearProgramme>, shear_box_stress},
-    {"oedometer", "Oedometer", "an oedometer test", "oedometer", kOedometerWalls, "settle|load", build_oedometer,
-     make<OedometerProgramme>, no_stress},
-    {"triaxial", "Triaxial", "a triaxial test", "triaxial", kTriaxialWalls, "settle|consolidate|compress", build_triaxial, make<TriaxialProgramme>,
-     triaxial_stress},
+    {"shear_box", "Direct shear", "a direct shear test", "shear", kShearBoxWalls,
+     "settle,consolidate,shear", build_shear_box, make<ShearProgramme>, shear_box_stress},
+    {"oedometer", "Oedometer", "an oedometer test", "oedometer", kOedometerWalls, "settle,load",
+     build_oedometer, make<OedometerProgramme>, no_stress},
+    {"triaxial", "Triaxial", "a triaxial test", "triaxial", kTriaxialWalls,
+     "settle,consolidate,compress", build_triaxial, make<TriaxialProgramme>, triaxial_stress},
 };
 static_assert(std::size(kKinds) + 1 == std::variant_size_v<Apparatus>,
               "one registry entry per alternative of Scene::apparatus");
@@ -76,10 +76,10 @@ std::string apparatus_names(std::string_view separator) {
 bool has_stage(const ApparatusKind& kind, std::string_view stage) {
   std::string_view rest = kind.stages;
   while (!rest.empty()) {
-    const size_t bar = rest.find('|');
-    if (rest.substr(0, bar) == stage) return !stage.empty();
-    if (bar == std::string_view::npos) break;
-    rest.remove_prefix(bar + 1);
+    const size_t comma = rest.find(',');
+    if (rest.substr(0, comma) == stage) return !stage.empty();
+    if (comma == std::string_view::npos) break;
+    rest.remove_prefix(comma + 1);
   }
   return false;
 }

@@ -35,7 +35,7 @@ struct ApparatusKind {
   const char* test_noun;  // in sentences: "a direct shear test"
   const char* label;      // progress lines' prefix: "shear"
   int walls;              // how many walls it adds, from its first_wall
-  const char* stages;     // its programme's stages in order: "settle|consolidate|shear"
+  const char* stages;     // its programme's stages in order: "settle,consolidate,shear"
   // Its walls and specimen placed from the description in the scene (the
   // automatic values resolved); a problem with its field, or nothing.
   std::optional<SceneIssue> (*build)(Scene& scene);
@@ -60,6 +60,16 @@ bool has_stage(const ApparatusKind& kind, std::string_view stage);
 // The kind of the scene's apparatus; SceneError (no_apparatus) naming the
 // scene when it has none.
 const ApparatusKind& required_apparatus_kind(const Scene& scene);
+// The entry of a layer's own table for the kinds (the io readers, the
+// plots, the lab's benches: structs with a `kind` name, at most one per
+// kind) for the kind called `kind`; nullptr when it has none.
+template <class Entry>
+const Entry* entry_for_kind(std::span<const Entry> table, std::string_view kind) {
+  for (const Entry& e : table)
+    if (kind == e.kind) return &e;
+  return nullptr;
+}
+
 // The scene's test on `sim`; SceneError as above when it has no apparatus.
 std::unique_ptr<ApparatusProgramme> make_programme(Simulation& sim);
 

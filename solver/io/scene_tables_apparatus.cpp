@@ -20,9 +20,7 @@ constexpr ApparatusReader kReaders[] = {
 };
 
 const ApparatusReader* reader_of(std::string_view kind) {
-  for (const ApparatusReader& r : kReaders)
-    if (r.kind == kind) return &r;
-  return nullptr;
+  return entry_for_kind<ApparatusReader>(kReaders, kind);
 }
 
 }  // namespace
