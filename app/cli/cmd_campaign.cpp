@@ -102,8 +102,7 @@ int triaxial_campaign(const CampaignOptions& opt, Scene base, const std::string&
 int campaign(const CampaignOptions& opt) {
   // Everything is checked and every scene built before anything runs.
   const std::string base_name = opt.base.empty() ? kDefaultSceneName : opt.base;
-  const Scene base = opt.base.empty() ? parse_scene(default_shear_scene_text(), base_name)
-                                      : load_scene(opt.base);
+  const Scene base = opt.base.empty() ? default_shear_base() : load_scene(opt.base);
   if (base.apparatus_as<Triaxial>()) return triaxial_campaign(opt, base, base_name);
   const Preparation* prep = base.specimen() ? &base.specimen()->preparation : nullptr;
   if (base.apparatus_as<ShearBox>() && prep->relative_density)

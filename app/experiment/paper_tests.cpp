@@ -87,4 +87,10 @@ Scene paper_test_scene(const Scene& base, const std::string& base_name, double d
   return sc;
 }
 
+Scene default_shear_base() {
+  Scene base = parse_scene(default_shear_scene_text(), kDefaultSceneName);
+  base.outputs.dump_interval = 0;
+  return base;
+}
+
 }  // namespace simsols

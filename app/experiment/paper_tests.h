@@ -42,4 +42,11 @@ Scene paper_test_scene(const Scene& base, const std::string& base_name, double d
 const char* default_shear_scene_text();
 inline constexpr const char* kDefaultSceneName = "built-in shear_box.toml";
 
+// That scene as the base of the tests a programme plans (campaigns, the
+// studies, the lab's presets). Its ParaView frames every output.
+// dump_interval are the default experiment's own: a programme's tests write
+// their last state only, or a campaign of the 2.38 mm beads would write
+// hundreds of MB of frames nobody asked for.
+Scene default_shear_base();
+
 }  // namespace simsols

@@ -97,7 +97,7 @@ std::vector<SensitivityPoint> study_points(const SensitivityPreset& p) {
 
 // The study's base scene: the default experiment's glass and box, poured.
 Scene base_scene(const SensitivityPreset& p) {
-  Scene sc = parse_scene(default_shear_scene_text(), kDefaultSceneName);
+  Scene sc = default_shear_base();
   ShearBox& b = *sc.apparatus_as<ShearBox>();
   b.specimen.method = Specimen::Method::Pour;
   b.settle_time = p.settle_time;

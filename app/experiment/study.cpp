@@ -330,7 +330,7 @@ ContactErrors run_contact_checks(const StudySettings& s, std::shared_ptr<Device>
 namespace {
 
 Scene shear_case_scene(const StudyPreset& preset, const StudySettings& s) {
-  const Scene base = parse_scene(default_shear_scene_text(), kDefaultSceneName);
+  const Scene base = default_shear_base();
   const double d = preset.diameter_mm * 1e-3;
   Scene sc = paper_test_scene(
       base, kDefaultSceneName, preset.diameter_mm, preset.stress_kpa, preset.layers,

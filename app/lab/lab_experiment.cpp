@@ -47,7 +47,7 @@ std::string LabExperiment::load_preset(double d_mm, double s_kpa) {
   if (!(s_kpa > 0 && s_kpa <= 1e6))
     return given + std::string("the normal stress must be in (0, 1e6] kPa");
   try {
-    const Scene base = parse_scene(default_shear_scene_text(), kDefaultSceneName);
+    const Scene base = default_shear_base();
     Scene sc = paper_test_scene(base, kDefaultSceneName, d_mm, s_kpa, 0,
                                 [&](Scene& x) { x.numerics.precision = scene_.numerics.precision; });
     const std::string name = sc.name;
