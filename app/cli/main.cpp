@@ -9,7 +9,7 @@
 //   simsols study accuracy|sensitivity|shape --out DIR   the measured studies
 //   simsols plot ...                     several shear tests' curves on common axes
 //
-// Exit status: 0 success, 2 bad input (UsageError, SceneError), 3 the
+// Exit status: 0 success, 2 bad input (UsageError, SceneError, ReadError), 3 the
 // OpenCL device or the renderer failed (DeviceError, RenderError), 4 the run
 // ran away (NaN or a particle too fast; see solver/core/guard.h), 5 a result
 // could not be written (IoError), 70 an internal error (any other exception:
@@ -68,6 +68,9 @@ int main(int argc, char** argv) {
       return run();
     } catch (const simsols::InputError& e) {  // UsageError, SceneError
       std::fprintf(stderr, "error: %s\n", e.what());
+      return 2;
+    } catch (const simsols::ReadError& e) {  // a malformed file no caller named
+      std::fprintf(stderr, "error: a file could not be read: %s\n", e.what());
       return 2;
     } catch (const simsols::RunawayError& e) {
       std::fprintf(stderr, "error: %s\n", e.what());

@@ -202,6 +202,12 @@ std::vector<StudySettings> study_runs(const StudyPreset& preset,
 
 namespace {
 
+// A measurement that could not be made (the case fails and says why; the
+// study goes on with the other cases).
+struct CaseFailed : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 constexpr double kCheckRadius = 6.35e-3 / 2;  // the paper's largest beads
 
 // A Hertz impact on a wall, elastic and frictionless, at 0.1 m/s: overlap,
@@ -233,7 +239,7 @@ void check_hertz_impact(const StudySettings& s, const std::shared_ptr<Device>& d
   for (int i = 0; i < 200000 && t_out < 0; ++i) {
     sim.advance(1);
     const ParticleSnapshot q = sim.snapshot();
-    if (!std::isfinite(q.position[0][2])) throw std::runtime_error("NaN in the impact");
+    if (!std::isfinite(q.position[0][2])) throw CaseFailed("NaN in the impact");
     const double d = R - q.position[0][2];
     if (t_in < 0 && d > 0) t_in = prev_t + (0 - prev) / (d - prev) * (sim.time() - prev_t);
     if (t_in >= 0 && d <= 0 && prev > 0)
@@ -243,7 +249,7 @@ void check_hertz_impact(const StudySettings& s, const std::shared_ptr<Device>& d
     prev = d;
     prev_t = sim.time();
   }
-  if (t_out < 0) throw std::runtime_error("the impact never ended");
+  if (t_out < 0) throw CaseFailed("the impact never ended");
   const double duration = t_out - t_in;
   e.overlap = pct(overlap, dmax);
   e.force = pct(force, fmax);
@@ -266,10 +272,10 @@ void check_restitution(const StudySettings& s, const std::shared_ptr<Device>& de
   sc.particles = {p};
   Simulation sim(device, sc);
   if (!advance_through_contact(sim, 0, 200000))
-    throw std::runtime_error("the damped impact never ended");
+    throw CaseFailed("the damped impact never ended");
   const double out = sim.snapshot().velocity[0][2] / 0.1;
   if (!std::isfinite(out) || out > 1.0001)
-    throw std::runtime_error("the impact created energy (e = " + std::to_string(out) + ")");
+    throw CaseFailed("the impact created energy (e = " + std::to_string(out) + ")");
   e.restitution = pct(out, s.damping ? m.restitution : 1.0);
 }
 
@@ -298,7 +304,7 @@ void check_rolling_onset(const StudySettings& s, const std::shared_ptr<Device>& 
     sim.advance(1);
     const ParticleSnapshot q = sim.snapshot();
     const double slip = q.velocity[0][0] - q.angular_velocity[0][1] * R;
-    if (!std::isfinite(slip)) throw std::runtime_error("NaN while rolling");
+    if (!std::isfinite(slip)) throw CaseFailed("NaN while rolling");
     if (slip <= 1e-3 * v0) {
       const double f = (prev_slip - 1e-3 * v0) / (prev_slip - slip);
       t_roll = prev_t + f * (sim.time() - prev_t);
@@ -307,7 +313,7 @@ void check_rolling_onset(const StudySettings& s, const std::shared_ptr<Device>& 
     prev_slip = slip;
     prev_t = sim.time();
   }
-  if (t_roll < 0) throw std::runtime_error("never reached rolling");
+  if (t_roll < 0) throw CaseFailed("never reached rolling");
   e.rolling = pct(t_roll, t_theory);
 }
 
@@ -366,12 +372,12 @@ void check_case(Simulation& sim, const ShearProgramme& test) {
   if (!test.rows().empty()) {
     const ShearRow& row = test.rows().back();
     if (!std::isfinite(row.tau) || !std::isfinite(row.dilation))
-      throw std::runtime_error("NaN in the measurements");
+      throw CaseFailed("NaN in the measurements");
     if (row.outside > 0)
-      throw std::runtime_error(std::to_string(row.outside) + " beads left the box");
+      throw CaseFailed(std::to_string(row.outside) + " beads left the box");
   }
   if (sim.state().late_builds > 0)
-    throw std::runtime_error("a bead outran its neighbour list (skin too small for the step)");
+    throw CaseFailed("a bead outran its neighbour list (skin too small for the step)");
 }
 
 }  // namespace
@@ -412,7 +418,7 @@ ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s,
       }
       check_case(*sim, test);
       const Observables o = sim->steps() % 50000 < 5000 ? sim->observe() : Observables{};
-      if (!std::isfinite(o.kinetic())) throw std::runtime_error("NaN in the kinetic energy");
+      if (!std::isfinite(o.kinetic())) throw CaseFailed("NaN in the kinetic energy");
     }
     r.wall_seconds = wall_before + std::chrono::duration<double>(Clock::now() - t0).count();
     const ShearSummary sum = test.summary();
@@ -429,7 +435,7 @@ ShearResult run_shear_case(const StudyPreset& preset, const StudySettings& s,
     r.particles = sim->model().particles();
     r.particle_steps_per_second = r.wall_seconds > 0 ? double(r.particles) * r.steps / r.wall_seconds : 0;
     if (!std::isfinite(r.peak_angle) || !std::isfinite(r.residual_angle))
-      throw std::runtime_error("NaN in the summary");
+      throw CaseFailed("NaN in the summary");
     r.ok = true;
   } catch (const SceneError&) {
     throw;  // a damaged case checkpoint is the user's to hear about, not a failed case

@@ -10,6 +10,7 @@
 
 #include "solver/io/output.h"
 #include "solver/scene/choices.h"
+#include "solver/common/errors.h"
 
 namespace simsols {
 namespace {
@@ -142,7 +143,7 @@ class Columns {
   size_t at(const std::string& name) const {
     for (size_t i = 0; i < names_.size(); ++i)
       if (names_[i] == name) return i;
-    throw std::runtime_error("ensemble.csv has no column '" + name + "'");
+    throw ReadError("ensemble.csv has no column '" + name + "'");
   }
 
  private:
@@ -154,7 +155,7 @@ double number(const std::string& field, const std::string& what) {
   char* end = nullptr;
   const double v = std::strtod(field.c_str(), &end);
   if (end == field.c_str() || *end != '\0')
-    throw std::runtime_error("ensemble.csv: '" + field + "' is not a number (" + what + ")");
+    throw ReadError("ensemble.csv: '" + field + "' is not a number (" + what + ")");
   return v;
 }
 
@@ -171,7 +172,7 @@ Interval interval(const std::vector<std::string>& f, size_t mean, size_t half, i
 std::vector<SettingSummary> parse_ensemble_csv(const std::string& text) {
   std::istringstream in(text);
   std::string line;
-  if (!std::getline(in, line)) throw std::runtime_error("ensemble.csv is empty");
+  if (!std::getline(in, line)) throw ReadError("ensemble.csv is empty");
   const Columns c(line);
   const size_t specimen = c.at("specimen"), knob = c.at("knob"), label = c.at("label"), dt = c.at("dt_fraction"),
                precision = c.at("precision"), stiffness = c.at("stiffness_scale"),
@@ -182,11 +183,11 @@ std::vector<SettingSummary> parse_ensemble_csv(const std::string& text) {
   while (std::getline(in, line)) {
     if (line.empty()) continue;
     const std::vector<std::string> f = split_csv_line(line);
-    if (f.size() <= failure) throw std::runtime_error("ensemble.csv: a short row: " + line);
+    if (f.size() <= failure) throw ReadError("ensemble.csv: a short row: " + line);
     SettingSummary s;
     const std::optional<StudySpecimen> kind = parse_specimen(f[specimen]);
     if (!kind)
-      throw std::runtime_error("ensemble.csv: specimen '" + f[specimen] +
+      throw ReadError("ensemble.csv: specimen '" + f[specimen] +
                                "' is not one of: layered, poured");
     s.settings.specimen = *kind;
     s.settings.knob = f[knob];

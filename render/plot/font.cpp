@@ -1,5 +1,7 @@
 #include "render/plot/font.h"
 
+#include "solver/common/errors.h"
+
 #include <ft2build.h>
 #include FT_FREETYPE_H
 #include FT_BBOX_H
@@ -40,7 +42,7 @@ std::string find_font(const char* name) {
     std::error_code ec;
     if (std::filesystem::is_regular_file(p, ec)) return p.string();
   }
-  throw std::runtime_error(std::string("font file ") + kFontDirs[0] + "/" + name +
+  throw IoError(std::string("font file ") + kFontDirs[0] + "/" + name +
                            " not found (nor in the other standard font folders): install "
                            "Debian's package fonts-dejavu-core (apt-get install fonts-dejavu-core)");
 }
@@ -50,7 +52,7 @@ std::string find_font(const char* name) {
 class Fonts {
  public:
   Fonts() {
-    if (FT_Init_FreeType(&lib_) != 0) throw std::runtime_error("FreeType could not be initialised");
+    if (FT_Init_FreeType(&lib_) != 0) throw IoError("FreeType could not be initialised");
     try {
       regular_ = open(find_font(kRegularFile));
       try {
@@ -83,7 +85,7 @@ class Fonts {
     FT_F26Dot6& current = face == bold_ ? bold_size_ : regular_size_;
     if (current == size) return;
     if (FT_Set_Char_Size(face, 0, size, 72, 72) != 0)
-      throw std::runtime_error("FreeType cannot set the text size " + std::to_string(size_px));
+      throw IoError("FreeType cannot set the text size " + std::to_string(size_px));
     current = size;
   }
 
@@ -91,7 +93,7 @@ class Fonts {
   FT_Face open(const std::string& path) {
     FT_Face face = nullptr;
     if (const FT_Error e = FT_New_Face(lib_, path.c_str(), 0, &face); e != 0)
-      throw std::runtime_error("cannot read the font file " + path + " (FreeType error " +
+      throw IoError("cannot read the font file " + path + " (FreeType error " +
                                std::to_string(e) + ")");
     return face;
   }

@@ -25,22 +25,22 @@ void append(void* context, void* data, int size) {
 std::string encode_png(const Image& img) {
   if (img.width <= 0 || img.height <= 0 ||
       img.rgba.size() != 4 * static_cast<size_t>(img.width) * static_cast<size_t>(img.height))
-    throw std::runtime_error("PNG: the image is empty or its pixels do not match its size");
+    throw std::logic_error("PNG: the image is empty or its pixels do not match its size");
   std::string out;
   if (!stbi_write_png_to_func(append, &out, img.width, img.height, 4, img.rgba.data(), 4 * img.width))
-    throw std::runtime_error("PNG: encoding failed");
+    throw IoError("PNG: encoding failed");
   return out;
 }
 
 Image decode_png(const std::string& bytes) {
   if (bytes.size() > static_cast<size_t>(std::numeric_limits<int>::max()))
-    throw std::runtime_error("PNG: file too large");
+    throw ReadError("PNG: file too large");
   int w = 0, h = 0, channels = 0;
   const std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
       stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()),
                             &w, &h, &channels, 4),
       stbi_image_free);
-  if (!pixels) throw std::runtime_error(std::string("PNG: ") + stbi_failure_reason());
+  if (!pixels) throw ReadError(std::string("PNG: ") + stbi_failure_reason());
   Image img;
   img.width = w;
   img.height = h;
@@ -58,12 +58,12 @@ void write_png(const Image& img, const std::string& path) {
 
 Image read_png(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read PNG '" + path + "'");
+  if (!in) throw ReadError("cannot read PNG '" + path + "'");
   const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   try {
     return decode_png(bytes);
   } catch (const std::runtime_error& e) {
-    throw std::runtime_error(std::string(e.what()) + " in '" + path + "'");
+    throw ReadError(std::string(e.what()) + " in '" + path + "'");
   }
 }
 

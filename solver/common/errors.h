@@ -4,9 +4,21 @@
 //   UsageError   a command-line flag or argument         exit 2
 //   SceneError   a scene, profile, checkpoint or other    exit 2
 //                file the user handed in
+//   ReadError    a file read back or handed in that is    exit 2
+//                malformed (rows, a summary, a checkpoint's
+//                state, a mesh, a PNG), from code that does not
+//                know the file's role; callers that do rethrow
+//                it as a SceneError naming file and field
 //   IoError      a file that could not be written        exit 5
 //   DeviceError  the OpenCL runtime or a kernel build    exit 3
 //   RunawayError (core/guard.h) the run blew up           exit 4
+//
+// A fault of the program itself throws std::logic_error (or a standard
+// exception from the library): main reports it as an internal error, exit
+// 70, never as a device failure. A library function's precondition on its
+// arguments throws std::invalid_argument; the readers that take those
+// arguments from a file check them first or rethrow as SceneError.
+// tests/layout/check_errors.sh keeps the generic std::runtime_error out.
 //
 // UsageError and SceneError are InputErrors: they always name where the
 // problem is (file or "command line", line when known, field as a dotted
@@ -67,6 +79,13 @@ struct UsageError : InputError {
 
 // Failures of the OpenCL runtime or of a kernel build (with its build log).
 struct DeviceError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// A file that could not be read as what it should be: `what()` says which
+// row, field or key; the caller that knows the file's path and role usually
+// rethrows it as a SceneError.
+struct ReadError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 

@@ -42,7 +42,7 @@ inline constexpr std::uint32_t kCheckpointVersion = 8;
 void save_checkpoint(Simulation& sim, const std::string& path, const std::string& extra = {});
 
 // Throws SceneError naming `path` unless it is a complete checkpoint whose
-// size and checksum match (version 7, 6 or 5). Reads the file
+// size and checksum match (format version 5 to kCheckpointVersion). Reads the file
 // once; builds nothing. Returns the format version.
 std::uint32_t verify_checkpoint(const std::string& path);
 

@@ -1,6 +1,7 @@
 // Surface meshes read with Assimp and voxelized by parity along z
 // (mesh_body.h has the design).
 #include "solver/scene/mesh_body.h"
+#include "solver/common/errors.h"
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -84,7 +85,7 @@ void check_closed(const SurfaceMesh& mesh, const std::string& path) {
   add(crowded, " edge is shared by more than two triangles", " edges are shared by more than two triangles");
   add(flipped, " edge joins two triangles facing opposite ways",
       " edges join two triangles facing opposite ways");
-  throw std::runtime_error(path + ": the surface is not closed: " + what +
+  throw ReadError(path + ": the surface is not closed: " + what +
                            "; a grain mesh must be watertight");
 }
 
@@ -199,21 +200,21 @@ void fill_columns(VoxelBody& body, std::vector<std::vector<double>>& columns) {
 SurfaceMesh load_surface_mesh(const std::string& path) {
   std::error_code ec;
   const std::filesystem::file_status status = std::filesystem::status(path, ec);
-  if (!std::filesystem::exists(status)) throw std::runtime_error(path + ": no such file");
+  if (!std::filesystem::exists(status)) throw ReadError(path + ": no such file");
   if (std::filesystem::is_directory(status))
-    throw std::runtime_error(path + ": is a directory, not a mesh file");
+    throw ReadError(path + ": is a directory, not a mesh file");
   if (!std::ifstream(path, std::ios::binary))
-    throw std::runtime_error(path + ": cannot be opened for reading");
+    throw ReadError(path + ": cannot be opened for reading");
   Assimp::Importer importer;
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                          aiProcess_PreTransformVertices | aiProcess_ValidateDataStructure;
   const aiScene* scene = importer.ReadFile(path, flags);
   if (scene == nullptr) {
-    throw std::runtime_error(
+    throw ReadError(
         path + ": not a mesh file Assimp can read (STL or OBJ expected): " + importer.GetErrorString());
   }
   SurfaceMesh mesh = merge_meshes(*scene);
-  if (mesh.triangles.empty()) throw std::runtime_error(path + ": the file holds no triangles");
+  if (mesh.triangles.empty()) throw ReadError(path + ": the file holds no triangles");
   check_closed(mesh, path);
   return mesh;
 }

@@ -29,7 +29,7 @@ double rms_bead_speed(const Observables& o, const SpecimenStats& stats) {
 int platen_wall(const Scene& s) {
   for (size_t w = 0; w < s.walls.size(); ++w)
     if (s.walls[w].name == "platen") return static_cast<int>(w);
-  throw std::runtime_error("the apparatus has no platen");
+  throw std::logic_error("the apparatus has no platen");
 }
 
 double specimen_top(Simulation& sim) {

@@ -8,6 +8,7 @@
 
 #include "solver/common/line_fit.h"
 #include "solver/common/number_text.h"
+#include "solver/common/errors.h"
 
 namespace simsols {
 namespace {
@@ -125,7 +126,7 @@ std::vector<OedometerRow> parse_oedometer_rows_csv(const std::string& text) {
   std::istringstream in(text);
   std::string line;
   std::getline(in, line);
-  if (line != kHeader) throw std::runtime_error("not an oedometer.csv (header differs)");
+  if (line != kHeader) throw ReadError("not an oedometer.csv (header differs)");
   std::vector<OedometerRow> rows;
   while (std::getline(in, line)) {
     if (line.empty()) continue;
@@ -136,10 +137,10 @@ std::vector<OedometerRow> parse_oedometer_rows_csv(const std::string& text) {
     while (std::getline(fields, f, ',')) {
       char* end = nullptr;
       v.push_back(std::strtod(f.c_str(), &end));
-      if (f.empty() || *end != '\0') throw std::runtime_error(where + ": '" + f + "' is not a number");
+      if (f.empty() || *end != '\0') throw ReadError(where + ": '" + f + "' is not a number");
     }
     if (v.size() != kColumns)
-      throw std::runtime_error(where + " has " + std::to_string(v.size()) + " fields, expected " +
+      throw ReadError(where + " has " + std::to_string(v.size()) + " fields, expected " +
                                std::to_string(kColumns));
     OedometerRow r;
     r.time = v[0];

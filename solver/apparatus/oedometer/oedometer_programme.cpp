@@ -8,6 +8,7 @@
 
 #include "solver/apparatus/oedometer/oedometer.h"
 #include "solver/apparatus/cell/stage_checks.h"
+#include "solver/common/errors.h"
 
 namespace simsols {
 namespace {
@@ -237,21 +238,21 @@ void OedometerProgramme::restore_state(const std::string& text) {
   size_t count = 0;
   in >> tag >> version;
   if (tag != "oedometer_test" || version != 1)
-    throw std::runtime_error("the checkpoint holds no oedometer-test state");
+    throw ReadError("the checkpoint holds no oedometer-test state");
   in >> started_ >> stage >> step_ >> stage_start_ >> step_start_ >> next_check_ >>
       quiet_checks_ >> settle_seconds_ >> servo_.gain >> servo_.integral_time >> count;
   if (!in || stage < 0 || stage > 2 || step_ < 0 ||
       step_ >= static_cast<int>(oed_.load_steps.size()))
-    throw std::runtime_error("malformed oedometer-test state");
+    throw ReadError("malformed oedometer-test state");
   stage_ = static_cast<Stage>(stage);
   preparation_friction(sim_, oed_.specimen, started_ && stage_ == Stage::Settle);
-  if (count > 10000000) throw std::runtime_error("malformed oedometer-test state");
+  if (count > 10000000) throw ReadError("malformed oedometer-test state");
   rows_.assign(count, {});
   for (OedometerRow& r : rows_)
     in >> r.time >> r.step >> r.load_step >> r.sigma_target >> r.sigma_top >> r.sigma_base >>
         r.sigma_hx >> r.sigma_hy >> r.sigma_h >> r.height >> r.void_ratio >> r.k0 >>
         r.side_friction >> r.coordination >> r.kinetic_energy >> r.end_of_step;
-  if (!in) throw std::runtime_error("malformed oedometer-test rows");
+  if (!in) throw ReadError("malformed oedometer-test rows");
 }
 
 std::string OedometerProgramme::rows_csv() const { return oedometer_rows_csv(rows_); }

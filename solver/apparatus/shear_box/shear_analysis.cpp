@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "solver/common/line_fit.h"
+#include "solver/common/errors.h"
 
 namespace simsols {
 namespace {
@@ -237,7 +238,7 @@ double to_double(const std::string& s, const std::string& what) {
     if (used == 0) throw std::invalid_argument(s);
     return v;
   } catch (const std::exception&) {
-    throw std::runtime_error("malformed number '" + s + "' in " + what);
+    throw ReadError("malformed number '" + s + "' in " + what);
   }
 }
 
@@ -248,13 +249,13 @@ std::vector<ShearRow> parse_shear_rows_csv(const std::string& text) {
   std::string line;
   std::getline(in, line);
   if (line.rfind("time_s,step,displacement_mm", 0) != 0)
-    throw std::runtime_error("not a shear.csv (header differs)");
+    throw ReadError("not a shear.csv (header differs)");
   std::vector<ShearRow> rows;
   while (std::getline(in, line)) {
     if (line.empty()) continue;
     const auto f = split(line, ',');
     if (f.size() != 16 && f.size() != 17)  // 16: written before sigma_target_kPa
-      throw std::runtime_error("shear.csv row " + std::to_string(rows.size() + 1) + " has " +
+      throw ReadError("shear.csv row " + std::to_string(rows.size() + 1) + " has " +
                                std::to_string(f.size()) + " fields, expected 17");
     const std::string where = "shear.csv row " + std::to_string(rows.size() + 1);
     std::vector<double> v;
@@ -369,7 +370,7 @@ ShearSummary parse_shear_summary(const std::string& text) {
     }
   if (const auto it = kv.find("max_beads_outside"); it != kv.end())
     s.max_outside = static_cast<int>(to_double(it->second, it->first));
-  if (seen < 10) throw std::runtime_error("not a shear-test summary (too few keys)");
+  if (seen < 10) throw ReadError("not a shear-test summary (too few keys)");
   read_band(kv, s);
   return s;
 }

@@ -115,7 +115,7 @@ FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target, dou
                      double softening = 0.05);
 
 // The rows as CSV (mm, kPa, N, J) and back; the summary as "key = value"
-// lines and back. The parsers throw std::runtime_error on malformed text.
+// lines and back. The parsers throw ReadError (common/errors.h) on malformed text.
 std::string shear_rows_csv(const std::vector<ShearRow>& rows);
 std::vector<ShearRow> parse_shear_rows_csv(const std::string& text);
 std::string shear_summary_text(const ShearSummary& s);

@@ -11,6 +11,7 @@
 #include "solver/apparatus/cell/platen_servo.h"
 #include "solver/apparatus/shear_box/shear_box.h"
 #include "solver/apparatus/cell/stage_checks.h"
+#include "solver/common/errors.h"
 
 namespace simsols {
 namespace {
@@ -401,7 +402,7 @@ void ShearProgramme::restore_state(const std::string& text) {
   size_t count = 0;
   in >> tag >> version;
   if (tag != "shear_test" || version < 1 || version > 3)
-    throw std::runtime_error("the checkpoint holds no shear-test state");
+    throw ReadError("the checkpoint holds no shear-test state");
   in >> started_ >> phase >> phase_start_ >> next_check_ >> next_row_ >> row_steps_ >>
       shear_steps_ >> quiet_checks_ >> sigma_target_ >> speed_ >> gain_ >> integral_time_ >>
       x0_ >> z0_ >> height0_ >> settle_seconds_ >> consolidate_seconds_;
@@ -410,7 +411,7 @@ void ShearProgramme::restore_state(const std::string& text) {
   if (version >= 2) in >> hold_ >> ready_ >> speed_override_;  // version 1: no bench control
   if (version >= 3) in >> loaded_;  // before: a servo throughout
   in >> count;
-  if (!in || phase < 0 || phase > 3) throw std::runtime_error("malformed shear-test state");
+  if (!in || phase < 0 || phase > 3) throw ReadError("malformed shear-test state");
   phase_ = static_cast<ShearPhase>(phase);
   preparation_friction(sim_, box_.specimen, started_ && phase_ == ShearPhase::Settle);
   rows_.assign(count, {});
@@ -420,7 +421,7 @@ void ShearProgramme::restore_state(const std::string& text) {
         r.coordination >> r.kinetic_energy >> r.inertial_number >> r.outside;
     if (version >= 3) in >> r.sigma_target;
   }
-  if (!in) throw std::runtime_error("malformed shear-test rows");
+  if (!in) throw ReadError("malformed shear-test rows");
 }
 
 std::string ShearProgramme::rows_csv() const { return shear_rows_csv(rows_); }

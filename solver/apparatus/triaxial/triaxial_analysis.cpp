@@ -10,6 +10,7 @@
 
 #include "solver/common/line_fit.h"
 #include "solver/common/number_text.h"
+#include "solver/common/errors.h"
 
 namespace simsols {
 namespace {
@@ -201,13 +202,13 @@ std::vector<double> csv_numbers(const std::string& line, size_t row) {
       used = 0;
     }
     if (used == 0 || used != field.size())
-      throw std::runtime_error("triaxial.csv row " + std::to_string(row) + ", column " +
+      throw ReadError("triaxial.csv row " + std::to_string(row) + ", column " +
                                kColumns[std::min(v.size(), kColumnCount - 1)] + ": '" + field +
                                "' is not a number");
     v.push_back(x);
   }
   if (v.size() != kColumnCount)
-    throw std::runtime_error("triaxial.csv row " + std::to_string(row) + " has " +
+    throw ReadError("triaxial.csv row " + std::to_string(row) + " has " +
                              std::to_string(v.size()) + " fields, expected " +
                              std::to_string(kColumnCount));
   return v;
@@ -220,7 +221,7 @@ std::vector<TriaxialRow> parse_triaxial_rows_csv(const std::string& text) {
   std::string line, header;
   for (size_t i = 0; i < kColumnCount; ++i) header += std::string(i ? "," : "") + kColumns[i];
   std::getline(in, line);
-  if (line != header) throw std::runtime_error("not a triaxial.csv (its header differs)");
+  if (line != header) throw ReadError("not a triaxial.csv (its header differs)");
   std::vector<TriaxialRow> rows;
   while (std::getline(in, line)) {
     if (line.empty()) continue;

@@ -10,6 +10,7 @@
 #include "solver/apparatus/cell/stage_checks.h"
 #include "solver/apparatus/triaxial/triaxial.h"
 #include "solver/core/stress.h"
+#include "solver/common/errors.h"
 
 namespace simsols {
 namespace {
@@ -389,14 +390,14 @@ void TriaxialProgramme::restore_state(const std::string& text) {
   size_t count = 0;
   in >> tag >> version;
   if (tag != "triaxial_test" || version < 1 || version > 2)
-    throw std::runtime_error("the checkpoint holds no triaxial-test state");
+    throw ReadError("the checkpoint holds no triaxial-test state");
   in >> started_ >> stage >> stage_start_ >> next_check_ >> next_row_ >> row_steps_ >>
       compress_steps_ >> quiet_checks_ >> rate_ >> h0_ >> v0_ >> last_sigma_z_ >>
       settle_seconds_ >> consolidate_seconds_;
   if (version >= 2) in >> sigma3_ >> hold_;  // version 1: the scene's, no hold
   in >> count;
   if (!in || stage < 0 || stage > 3 || count > 10000000)
-    throw std::runtime_error("malformed triaxial-test state");
+    throw ReadError("malformed triaxial-test state");
   stage_ = static_cast<Stage>(stage);
   preparation_friction(sim_, tri_.specimen, started_ && stage_ == Stage::Settle);
   rows_.assign(count, {});
@@ -404,7 +405,7 @@ void TriaxialProgramme::restore_state(const std::string& text) {
     in >> r.time >> r.step >> r.axial_strain >> r.volumetric_strain >> r.sigma_x >> r.sigma_y >>
         r.sigma_z >> r.p >> r.q >> r.friction_angle >> r.void_ratio >> r.coordination >> r.lw_x >>
         r.lw_y >> r.lw_z >> r.lw_gap >> r.fabric_anisotropy >> r.kinetic_energy >> r.inertial_number;
-  if (!in) throw std::runtime_error("malformed triaxial-test rows");
+  if (!in) throw ReadError("malformed triaxial-test rows");
 }
 
 std::string TriaxialProgramme::rows_csv() const { return triaxial_rows_csv(rows_); }

@@ -2,7 +2,7 @@
 // shows of each kind (apparatus_report.h): every kind of the registry has a
 // report; a shear test stopped early through run_scene_test leaves a
 // checkpoint that resume_test continues, with the same steps as one run
-// straight through.
+// straight through; a malformed checkpoint state is the user's bad input.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -52,6 +52,20 @@ TEST(ApparatusRun, StoppedThenResumedIsTheStraightRun) {
   const std::string text = test_result_text(first, (base / "split").string());
   EXPECT_NE(text.find("oedometer test stopped"), std::string::npos) << text;
   EXPECT_NE(text.find("--resume"), std::string::npos) << text;
+  // A checkpoint whose programme state is malformed (the checksum right):
+  // bad input naming the checkpoint (exit 2), not an internal error.
+  fs::copy(base / "split", base / "broken", fs::copy_options::recursive);
+  const std::string ck = (base / "broken" / "checkpoint.bin").string();
+  save_checkpoint(*load_checkpoint(default_device(), ck, nullptr), ck, "oedometer 1 2 x");
+  ProgrammeRunOptions broken = options(base / "broken", 10);
+  broken.resume = true;
+  try {
+    run_test(scene, broken);
+    ADD_FAILURE() << "a malformed programme state was resumed";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.code, "bad_checkpoint");
+    EXPECT_EQ(e.file, ck);
+  }
   ProgrammeRunOptions more = options(base / "split", 350);
   more.resume = true;
   const TestRun second = run_test(scene, more);

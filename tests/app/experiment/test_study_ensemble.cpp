@@ -9,6 +9,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "solver/common/errors.h"
 #include "app/experiment/accuracy_table.h"
 #include "solver/io/output.h"
 #include "app/experiment/study_ensemble.h"
@@ -122,7 +123,7 @@ TEST(StudyEnsemble, EnsembleCsvRoundTripsToTheSameTable) {
   // the poured table holds its own rows only, the layered one its own
   EXPECT_EQ(ensemble_table_md(s, StudySpecimen::Poured).find("dt 0.5"), std::string::npos);
   EXPECT_NE(ensemble_table_md(s, StudySpecimen::Layered).find("dt 0.5"), std::string::npos);
-  EXPECT_THROW(parse_ensemble_csv("knob,label\n"), std::runtime_error);  // columns missing
+  EXPECT_THROW(parse_ensemble_csv("knob,label\n"), ReadError);  // columns missing
 }
 
 // One source for every table: docs/accuracy.md holds the table that

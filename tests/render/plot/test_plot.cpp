@@ -11,6 +11,7 @@
 #include <limits>
 #include <string>
 
+#include "solver/common/errors.h"
 #include "render/plot/chart.h"
 #include "render/plot/font.h"
 #include "render/plot/png.h"
@@ -88,10 +89,10 @@ TEST(Png, SignatureAndHeader) {
 
 TEST(Png, RejectsCorruptData) {
   std::string png = encode_png(varied_image(8, 8));
-  EXPECT_THROW(decode_png(png.substr(0, png.size() / 2)), std::runtime_error);
+  EXPECT_THROW(decode_png(png.substr(0, png.size() / 2)), ReadError);
   png[25] = 5;  // IHDR: no such colour type
-  EXPECT_THROW(decode_png(png), std::runtime_error);
-  EXPECT_THROW(decode_png("not a png"), std::runtime_error);
+  EXPECT_THROW(decode_png(png), ReadError);
+  EXPECT_THROW(decode_png("not a png"), ReadError);
 }
 
 TEST(Png, WriteIsAtomicAndNamesThePathOnFailure) {

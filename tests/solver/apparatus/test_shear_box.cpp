@@ -188,7 +188,7 @@ TEST(ShearAnalysis, RowsAndSummaryRoundTripThroughText) {
   }
   const std::string csv = shear_rows_csv(rows);
   EXPECT_EQ(shear_rows_csv(parse_shear_rows_csv(csv)), csv);
-  EXPECT_THROW(parse_shear_rows_csv("a,b\n1,2\n"), std::runtime_error);
+  EXPECT_THROW(parse_shear_rows_csv("a,b\n1,2\n"), ReadError);
   ShearSummary s;
   s.normal_stress_target = 160e3;
   s.peak_ratio = 0.7071;
@@ -200,7 +200,7 @@ TEST(ShearAnalysis, RowsAndSummaryRoundTripThroughText) {
   EXPECT_DOUBLE_EQ(back.normal_stress_target, 160e3);
   EXPECT_NEAR(back.peak_angle, 35.26, 1e-9);
   EXPECT_NEAR(back.sigma_max, 161e3, 1e-6);
-  EXPECT_THROW(parse_shear_summary("hello = 1\n"), std::runtime_error);
+  EXPECT_THROW(parse_shear_summary("hello = 1\n"), ReadError);
   s.max_ratio = 0.924;
   s.max_displacement = 4.56e-3;
   s.peak_tau = 112.6e3;
