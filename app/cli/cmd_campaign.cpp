@@ -15,6 +15,7 @@
 #include "app/experiment/paper_tests.h"
 #include "app/experiment/preparation.h"
 #include "app/experiment/triaxial_campaign.h"
+#include "solver/apparatus/registry.h"
 #include "solver/io/scene_toml.h"
 
 namespace simsols {
@@ -57,7 +58,9 @@ int report_interrupted(size_t k, size_t count, const std::string& name,
   return interrupt.exit_status();
 }
 
-int triaxial_campaign(const CampaignOptions& opt, Scene base, const std::string& base_name) {
+// The triaxial tests at several confining stresses, on one prepared specimen.
+int triaxial_campaign(const CampaignOptions& opt, const Scene& given, const std::string& base_name) {
+  Scene base = given;
   for (const auto& [given, flag] : {std::pair{opt.sizes_given, "--sizes"},
                                     {opt.layers_given, "--layers"},
                                     {opt.displacement_given, "--displacement"}})
@@ -99,24 +102,23 @@ int triaxial_campaign(const CampaignOptions& opt, Scene base, const std::string&
                      "triaxial tests");
 }
 
-int campaign(const CampaignOptions& opt) {
-  // Everything is checked and every scene built before anything runs.
-  const std::string base_name = opt.base.empty() ? kDefaultSceneName : opt.base;
-  const Scene base = opt.base.empty() ? default_shear_base() : load_scene(opt.base);
-  if (base.apparatus_as<Triaxial>()) return triaxial_campaign(opt, base, base_name);
-  const Preparation* prep = base.specimen() ? &base.specimen()->preparation : nullptr;
-  if (base.apparatus_as<ShearBox>() && prep->relative_density)
-    throw SceneError("not_applicable", base_name, 0, "shear_box.specimen.preparation.relative_density",
-                     "a shear campaign pours a new specimen for each size; give the preparation "
-                     "friction instead (simsols run finds it: its scene.resolved.toml)");
-  if (base.apparatus_as<ShearBox>() && prep->expansion)
-    throw SceneError("not_applicable", base_name, 0, "shear_box.specimen.preparation.expansion",
-                     "a shear campaign pours a new specimen for each size; grow one with simsols run "
-                     "and campaign over its scene.resolved.toml's sizes by hand");
-  if (base.apparatus_as<ShearBox>() && prep->tamping_layers)
-    throw SceneError("not_applicable", base_name, 0, "shear_box.specimen.preparation.tamping_layers",
-                     "a shear campaign pours a new specimen for each size; tamp one with simsols run "
-                     "and campaign over its scene.resolved.toml's sizes by hand");
+// The paper's programme (Table 1's sizes x the stresses) in a shear box.
+int shear_campaign(const CampaignOptions& opt, const Scene& base, const std::string& base_name) {
+  const Preparation& prep = base.specimen()->preparation;
+  const auto refuse = [&](const char* field, const char* how) {
+    throw SceneError("not_applicable", base_name, 0,
+                     std::string("shear_box.specimen.preparation.") + field,
+                     std::string("a shear campaign pours a new specimen for each size; ") + how);
+  };
+  if (prep.relative_density)
+    refuse("relative_density",
+           "give the preparation friction instead (simsols run finds it: its scene.resolved.toml)");
+  if (prep.expansion)
+    refuse("expansion", "grow one with simsols run and campaign over its scene.resolved.toml's "
+                        "sizes by hand");
+  if (prep.tamping_layers)
+    refuse("tamping_layers", "tamp one with simsols run and campaign over its "
+                             "scene.resolved.toml's sizes by hand");
   CampaignSpec spec;
   spec.sizes_mm = opt.sizes_mm;
   spec.stresses_kpa = opt.stresses_kpa;
@@ -138,6 +140,29 @@ int campaign(const CampaignOptions& opt) {
                               interrupt);
   }
   return report_done(opt, run, tests.size(), run.only ? tests[*run.only].scene.name : "", "tests");
+}
+
+// The campaigns, one for each apparatus kind that has one (registry.h's
+// names); the base scene's kind picks it.
+struct CampaignKind {
+  const char* kind;
+  int (*run)(const CampaignOptions& opt, const Scene& base, const std::string& base_name);
+};
+constexpr CampaignKind kCampaigns[] = {{"shear_box", shear_campaign},
+                                       {"triaxial", triaxial_campaign}};
+
+int campaign(const CampaignOptions& opt) {
+  // Everything is checked and every scene built before anything runs.
+  const std::string base_name = opt.base.empty() ? kDefaultSceneName : opt.base;
+  const Scene base = opt.base.empty() ? default_shear_base() : load_scene(opt.base);
+  const ApparatusKind& kind = required_apparatus_kind(base);
+  if (const CampaignKind* c = entry_for_kind<CampaignKind>(kCampaigns, kind.name))
+    return c->run(opt, base, base_name);
+  std::string names;
+  for (const CampaignKind& c : kCampaigns) names += (names.empty() ? "" : ", ") + std::string(c.kind);
+  throw SceneError("not_applicable", base_name, 0, kind.name,
+                   std::string(kind.test_noun) + " has no campaign over stresses (a scene's own "
+                   "programme runs it); the campaigns take: " + names);
 }
 
 }  // namespace

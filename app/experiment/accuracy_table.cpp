@@ -65,4 +65,11 @@ std::string expected_accuracy_text(const SettingSummary& s) {
   return text + where;
 }
 
+std::optional<StudySpecimen> accuracy_study_specimen(const Scene& scene) {
+  const ShearBox* box = scene.apparatus_as<ShearBox>();
+  if (!box) return std::nullopt;
+  return box->specimen.method == Specimen::Method::Layers ? StudySpecimen::Layered
+                                                          : StudySpecimen::Poured;
+}
+
 }  // namespace simsols

@@ -5,10 +5,12 @@
 // measured for the nearest setting.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "app/experiment/study_ensemble.h"
+#include "solver/scene/scene.h"
 
 namespace simsols {
 
@@ -18,6 +20,9 @@ const std::vector<SettingSummary>& accuracy_table();
 // (stiffness 1, inertial number of the baseline), or null.
 const SettingSummary* expected_accuracy(double dt_fraction, Precision precision,
                                         StudySpecimen specimen);
+// The study's specimen that `scene` is (the study measured shear tests:
+// a layered or a poured shear-box specimen), or nothing for another kind.
+std::optional<StudySpecimen> accuracy_study_specimen(const Scene& scene);
 // The panel's line for it: "... against the most accurate settings:
 // phi_peak +0.05 +- 0.08 deg, 0.07x their time (layered specimen, ...)";
 // the poured specimen's adds phi_res.

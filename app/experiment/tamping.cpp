@@ -231,11 +231,9 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
                 area * layers.back().platen_stop / solid_total - 1, 1e3 * layers.back().platen_stop, void_ratio,
                 layers.back().void_ratio, 1e3 * floor);
   log(done);
-  if (const ShearBox* box = built.apparatus_as<ShearBox>(); box && box->split_height >= floor)
-    throw SceneError("out_of_range", scene.source_path, 0, "shear_box.split_height",
-                     "the shear plane at " + shortest_number(1e3 * box->split_height) +
-                         " mm is above the tamped specimen's top at " + shortest_number(1e3 * floor) +
-                         " mm: set split_height inside (0, " + shortest_number(floor) + ") m");
+  if (const auto check = required_apparatus_kind(built).check_specimen_top)
+    if (std::optional<SceneIssue> issue = check(built, floor))
+      throw SceneError(issue->code, scene.source_path, 0, issue->field, issue->message);
   Specimen& s = *built.specimen();
   s.method = Specimen::Method::Given;
   s.preparation.tamping_layers = 0;

@@ -170,13 +170,10 @@ void LabApp::draw_precision_and_time_step() {
   ImGui::SetNextItemWidth(200);
   if (ImGui::SliderFloat("time step (x Rayleigh)", &dt_fraction, 0.05f, 0.5f, "%.2f"))
     exp_->set_dt_fraction(dt_fraction);
-  const ShearBox* box = exp_->scene().apparatus_as<ShearBox>();
-  if (!box) return;  // the accuracy study is of the shear box
-  const StudySpecimen kind = box && box->specimen.method == Specimen::Method::Layers
-                                 ? StudySpecimen::Layered
-                                 : StudySpecimen::Poured;
+  const std::optional<StudySpecimen> kind = accuracy_study_specimen(exp_->scene());
+  if (!kind) return;  // the accuracy study measured shear tests only
   if (const SettingSummary* a =
-          expected_accuracy(dt_fraction, exp_->scene().numerics.precision, kind)) {
+          expected_accuracy(dt_fraction, exp_->scene().numerics.precision, *kind)) {
     ImGui::PushTextWrapPos(0);
     const ImVec4 grey = ImGui::GetStyle().Colors[ImGuiCol_TextDisabled];
     ImGui::TextColored(grey, "%s", expected_accuracy_text(*a).c_str());

@@ -67,7 +67,7 @@ void LabApp::Script::choose_preset(const Line& line) {
   if (std::sscanf(line.argument.c_str(), "%lf %lf", &d, &kpa) != 2)
     return fail(line, "preset D_MM S_KPA", 2);
   if (!succeeded(line, experiment().load_preset(d, kpa))) return;
-  lab.apparatus_ = lab_bench_index("shear_box");
+  lab.apparatus_ = lab_bench_index(experiment().scene());
   const double size = nearest_table1_size(d).value_or(d);
   for (int k = 0; k < 5; ++k)  // the panel's combo boxes follow
     if (kTable1SizesMm[k] == size) lab.preset_size_ = k;

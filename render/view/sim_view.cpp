@@ -55,17 +55,17 @@ SimulationView::SimulationView(const Gl& gl, Simulation& sim)
     : sim_(sim), packer_(sim), buffers_(gl) {
   const Scene& scene = sim.scene();
   const glm::dvec3 origin = to_glm(packer_.origin());
-  // Layered shear-box specimens: one band per layer, from the reference
-  // heights (the layers' centres are evenly spaced by construction).
-  const ShearBox* box = scene.apparatus_as<ShearBox>();
-  if (box && box->specimen.method == Specimen::Method::Layers && box->specimen.layers > 1 &&
+  // Layered specimens: one band per layer, from the reference heights (the
+  // layers' centres are evenly spaced by construction).
+  const Specimen* specimen = scene.specimen();
+  if (specimen && specimen->method == Specimen::Method::Layers && specimen->layers > 1 &&
       !scene.particles.empty()) {
     double zmin = 1e300, zmax = -1e300;
     for (const Particle& p : scene.particles) {
       zmin = std::min(zmin, p.position[2]);
       zmax = std::max(zmax, p.position[2]);
     }
-    const int layers = box->specimen.layers;
+    const int layers = specimen->layers;
     if (zmax > zmin) packer_.set_layer_bands(zmin, (zmax - zmin) / (layers - 1));
   }
   // Bounds: the initial specimen and the rectangles, these no further than

@@ -36,11 +36,13 @@ std::string no_stress(const Scene&) { return {}; }
 
 const ApparatusKind kKinds[] = {
     {"shear_box", "Direct shear", "a direct shear test", "shear", kShearBoxWalls,
-     "settle,consolidate,shear", build_shear_box, make<ShearProgramme>, shear_box_stress},
+     "settle,consolidate,shear", build_shear_box, make<ShearProgramme>, shear_box_stress,
+     check_shear_box_specimen_top},
     {"oedometer", "Oedometer", "an oedometer test", "oedometer", kOedometerWalls, "settle,load",
-     build_oedometer, make<OedometerProgramme>, no_stress},
+     build_oedometer, make<OedometerProgramme>, no_stress, nullptr},
     {"triaxial", "Triaxial", "a triaxial test", "triaxial", kTriaxialWalls,
-     "settle,consolidate,compress", build_triaxial, make<TriaxialProgramme>, triaxial_stress},
+     "settle,consolidate,compress", build_triaxial, make<TriaxialProgramme>, triaxial_stress,
+     nullptr},
 };
 static_assert(std::size(kKinds) + 1 == std::variant_size_v<Apparatus>,
               "one registry entry per alternative of Scene::apparatus");

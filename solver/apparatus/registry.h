@@ -43,6 +43,10 @@ struct ApparatusKind {
   std::unique_ptr<ApparatusProgramme> (*make_programme)(Simulation& sim);
   // The stress a title quotes ("σ = 160 kPa"), or "".
   std::string (*stress_words)(const Scene& scene);
+  // Checks the apparatus against a prepared specimen (tamped, grown) whose
+  // highest grain's top is at `top` (m): a problem, or nothing; nullptr
+  // when the kind has nothing to check (the shear box: its shear plane).
+  std::optional<SceneIssue> (*check_specimen_top)(const Scene& scene, double top);
 };
 
 // The kinds, in the order of the Apparatus variant's alternatives after

@@ -17,6 +17,15 @@ namespace {
 
 using namespace scene_toml;
 
+// The tables a scene may have: the fixed ones and one per apparatus kind.
+std::vector<std::string> top_level_keys() {
+  std::vector<std::string> keys = {"scene", "materials", "interactions", "particles", "generators",
+                                   "grains", "clumps", "walls", "effects", "numerics", "output"};
+  for (const ApparatusKind& k : apparatus_kinds()) keys.emplace_back(k.name);
+  keys.emplace_back("view");
+  return keys;
+}
+
 // Reads one document into a Scene.
 class Loader {
  public:
@@ -24,9 +33,7 @@ class Loader {
 
   Scene load(const toml::table& root) {
     root_ = &root;
-    Reader r(root, "", ctx_,
-             {"scene", "materials", "interactions", "particles", "generators", "grains", "clumps", "walls", "effects",
-              "numerics", "output", "shear_box", "oedometer", "triaxial", "view"});
+    Reader r(root, "", ctx_, top_level_keys());
     read_info(r, scene_);
     read_materials(r, scene_);
     read_interactions(r, scene_);

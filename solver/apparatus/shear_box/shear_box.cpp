@@ -139,6 +139,15 @@ std::optional<SceneIssue> build_shear_box(Scene& scene) {
   return std::nullopt;
 }
 
+std::optional<SceneIssue> check_shear_box_specimen_top(const Scene& scene, double top) {
+  const ShearBox& box = *scene.apparatus_as<ShearBox>();
+  if (box.split_height < top) return std::nullopt;
+  return SceneIssue{"out_of_range", "shear_box.split_height",
+                    "the shear plane at " + shortest_number(1e3 * box.split_height) +
+                        " mm is above the prepared specimen's top at " + shortest_number(1e3 * top) +
+                        " mm: set split_height inside (0, " + shortest_number(top) + ") m"};
+}
+
 double shear_area(const ShearBox& box) { return box.length * box.width; }
 
 double shear_area_corrected(const ShearBox& box, double dx) {

@@ -35,6 +35,10 @@ namespace simsols {
 // problem, with its field under "shear_box".
 std::optional<SceneIssue> build_shear_box(Scene& scene);
 
+// A prepared specimen (tamped, grown) whose highest grain's top is at `top`
+// (m, from the floor): a problem when the shear plane is not below it.
+std::optional<SceneIssue> check_shear_box_specimen_top(const Scene& scene, double top);
+
 // Inside area of the box (m^2) and its corrected value after a relative
 // displacement dx of the halves.
 double shear_area(const ShearBox& box);

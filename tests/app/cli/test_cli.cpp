@@ -201,6 +201,12 @@ TEST(Cli, CampaignBadInputWritesNothing) {
   r = run("campaign " + kShear + " --out " + out.string() + " --stresses -50");
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find("--stresses"), std::string::npos) << r.out;
+  // a kind without a campaign: named, with the kinds that have one
+  r = run("campaign " + std::string(SIMSOLS_ASSETS_DIR) + "/scenes/oedometer.toml --out " +
+          out.string());
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("an oedometer test has no campaign"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("shear_box, triaxial"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(out));
 }
 

@@ -75,6 +75,23 @@ TEST(ApparatusRegistry, MakesTheTestOfTheScenesKind) {
   EXPECT_STREQ(test->stage_name(), "settle");
 }
 
+// A prepared specimen's top against the apparatus: the shear box refuses a
+// shear plane at or above it and names the field; kinds without such a
+// check have none.
+TEST(ApparatusRegistry, TheShearBoxChecksItsPlaneAgainstThePreparedTop) {
+  const Scene s = load_scene(scene_file("shear_box.toml"));
+  const ApparatusKind& kind = required_apparatus_kind(s);
+  ASSERT_NE(kind.check_specimen_top, nullptr);
+  const double plane = s.apparatus_as<ShearBox>()->split_height;
+  ASSERT_GT(plane, 0);
+  EXPECT_FALSE(kind.check_specimen_top(s, 1.01 * plane));
+  const std::optional<SceneIssue> issue = kind.check_specimen_top(s, 0.99 * plane);
+  ASSERT_TRUE(issue);
+  EXPECT_EQ(issue->code, "out_of_range");
+  EXPECT_EQ(issue->field, "shear_box.split_height");
+  EXPECT_EQ(find_apparatus_kind("oedometer")->check_specimen_top, nullptr);
+}
+
 // Two apparatus tables: refused at the second in the registry's order,
 // whichever comes first in the file.
 TEST(ApparatusRegistry, OneApparatusPerSceneWhateverTheOrder) {
