@@ -23,7 +23,8 @@ std::string KernelConfig::build_options() const {
   if (capillary) o += " -DHAS_CAPILLARY";
   if (fluid) o += " -DHAS_FLUID";
   o += " -DHIST_PLANES=" + std::to_string(history_planes());
-  if (rolling && rolling_spring) o += " -DHIST_ROLL=" + std::to_string(contact_record() ? 1 : 0);
+  for (const HistoryPlane& h : history_plane_table())
+    if (h.compiled(*this)) o += std::string(" -D") + h.define + "=" + std::to_string(history_plane(*this, h.define));
   o += " -DPAIR_RECORD=" + std::to_string(pair_record());
   if (walls) o += " -DHAS_WALLS";
   if (servo) o += " -DHAS_SERVO";
@@ -34,6 +35,36 @@ std::string KernelConfig::build_options() const {
   o += " -DLANES=" + std::to_string(lanes);
   if (!extra_options.empty()) o += " " + extra_options;
   return o;
+}
+
+namespace {
+
+// In plane order; contact_law.cl says what each holds.
+constexpr HistoryPlane kHistoryPlanes[] = {
+    {"HIST_CONTACT", "tangential = mindlin (its spring), damping = viscous (the dashpot's record)",
+     [](const KernelConfig& c) { return c.contact_record(); }},
+    {"HIST_ROLL", "rolling = spring_dashpot (the elastic rolling torque)",
+     [](const KernelConfig& c) { return c.rolling && c.rolling_spring; }},
+};
+
+}  // namespace
+
+std::span<const HistoryPlane> history_plane_table() { return kHistoryPlanes; }
+
+int history_plane(const KernelConfig& c, std::string_view define) {
+  int plane = 0;
+  for (const HistoryPlane& h : kHistoryPlanes) {
+    if (!h.compiled(c)) continue;
+    if (define == h.define) return plane;
+    ++plane;
+  }
+  return -1;
+}
+
+int KernelConfig::history_planes() const {
+  int n = 0;
+  for (const HistoryPlane& h : kHistoryPlanes) n += h.compiled(*this) ? 1 : 0;
+  return n;
 }
 
 KernelConfig make_kernel_config(const Scene& scene, const Device& device) {

@@ -45,15 +45,18 @@ struct KernelConfig {
 
   std::string build_options() const;
 
-  // Per-contact history, in records of 4 reals (one per history plane):
-  // the contact record (the tangential spring of mindlin in 3 reals, the
-  // normal dashpot's record of viscous damping in the 4th) and the elastic
-  // rolling torque (spring_dashpot). 0 when nothing needs history.
+  // Per-contact history: one plane (a record of 4 reals per contact) for
+  // each compiled sub-model that keeps state, as history_plane_table()
+  // declares; 0 when nothing needs history.
   bool contact_record() const { return friction || damping; }
   // The walls' step at the end of finish_particles (CPUs, lanes > 1),
   // instead of a servo_walls launch (integrate.cl).
   bool servo_in_finish() const { return servo && lanes > 1; }
-  int history_planes() const { return (contact_record() ? 1 : 0) + (rolling_spring ? 1 : 0); }
+  // rolling = constant_torque shares its cap among a particle's contacts of
+  // the previous step, whose counts are kept (State::touching) only then
+  // (HAS_SHARED_ROLLING_CAP in the kernels).
+  bool shared_rolling_cap() const { return rolling && !rolling_spring; }
+  int history_planes() const;
   size_t real_size() const { return double_precision ? 8 : 4; }
   size_t history_bytes_per_contact() const { return history_planes() * 4 * real_size(); }
   // reals per pair coefficient record (layout.h, PairSlot)
@@ -62,6 +65,21 @@ struct KernelConfig {
 };
 
 KernelConfig make_kernel_config(const Scene& scene, const Device& device);
+
+// The contact sub-models that keep per-contact history, each declaring its
+// plane (LAMMPS GRANULAR's history slots). The compiled ones are numbered
+// in this order and reach the kernels as -D<define>=<plane>; what each
+// plane's 4 reals hold is written beside the laws (contact_law.cl,
+// "Per-contact history"), which alone read and write them. The lists and
+// the wall slots carry every plane without knowing what it holds.
+struct HistoryPlane {
+  const char* define;  // the kernels' name for its plane: "HIST_CONTACT"
+  const char* slots;   // the effect slots that keep it, for --explain
+  bool (*compiled)(const KernelConfig& c);
+};
+std::span<const HistoryPlane> history_plane_table();
+// The plane of `define` under `c`, or -1 when that sub-model is not compiled.
+int history_plane(const KernelConfig& c, std::string_view define);
 
 // A kernel and the names of its parameters as the compiler reports them
 // (programs are built with -cl-kernel-arg-info). set_args (kernel_args.h)

@@ -286,7 +286,7 @@ size_t reduce_wall_forces(const Model& m, State& s) {
 }
 
 void derive_state(const Model& m, State& s) {
-  if (!m.config().rolling || m.config().rolling_spring) return;  // `touching` unused
+  if (!m.config().shared_rolling_cap()) return;  // `touching` unused
   const std::vector<double> f = read_reals(m, s.force, size_t(s.n) * 4);
   std::vector<int> count(s.n);
   for (int i = 0; i < s.n; ++i) count[i] = static_cast<int>(f[4 * size_t(i) + 3]);

@@ -199,9 +199,7 @@ void State::make_step_scratch(const Model& model) {
   Device& d = model.device();
   const size_t r4 = 4 * model.real_size();
   const int nw = model.walls();
-  // only the constant rolling torque shares its cap (forces.cl)
-  const bool shared_cap = model.config().rolling && !model.config().rolling_spring;
-  touching = make(d, shared_cap ? n * sizeof(int) : 16);
+  touching = make(d, model.config().shared_rolling_cap() ? n * sizeof(int) : 16);
   const size_t groups = model.global_size(n) / model.local_size();
   obs_partial = make(d, groups * 12 * model.real_size());
   const size_t wall_chunks = std::max<size_t>(1, (n + kWallChunk - 1) / kWallChunk);

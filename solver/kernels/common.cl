@@ -6,11 +6,10 @@
 //   HAS_ROLLING_SPRING  rolling = spring_dashpot (else constant torque)
 //   HAS_CAPILLARY       cohesion = capillary (pair records of 12 reals)
 //   HAS_FLUID           fluid = drag (integrate.cl)
-//   HIST_PLANES         per-contact history records (real4) each list or wall slot carries:
-//                       plane 0 the contact record (HAS_CONTACT_RECORD, below): xyz the
-//                       tangential spring (HAS_FRICTION), w the normal dashpot's record
-//                       (HAS_DAMPING, contact_law.cl); plane HIST_ROLL the elastic rolling
-//                       torque (HAS_ROLLING_SPRING); 0 = no history at all
+//   HIST_PLANES         per-contact history records (real4) each list or wall slot carries,
+//                       0 = no history at all; HIST_CONTACT, HIST_ROLL the planes of the
+//                       sub-models that keep history (cl_program.h's table; what each
+//                       holds: contact_law.cl, "Per-contact history")
 //   PAIR_RECORD         reals per pair coefficient record (8, or 12 with HAS_CAPILLARY)
 //   HAS_SERVO, HAS_CLUMPS  servo-controlled walls, clumps (clumps.cl)
 //   SLICE, LANES       list slice width and particles per work item (below)
@@ -77,6 +76,11 @@ typedef float4 real4;
 #endif
 #if defined(HAS_FRICTION) || defined(HAS_DAMPING)
 #define HAS_CONTACT_RECORD 1
+#endif
+// rolling = constant_torque shares its cap among a particle's contacts of
+// the previous step (forces.cl): their counts are kept (State::touching).
+#if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
+#define HAS_SHARED_ROLLING_CAP 1
 #endif
 
 // Wall record: four real4 per wall:
@@ -208,6 +212,13 @@ INLINE lane cap_count(__global const int* touching, const int* ii) {
   #pragma unroll
   for (int l = 0; l < LANES; ++l) t[l] = (real)max(1, touching[ii[l]]);
   return LANE_LOAD(t);
+}
+// The step's contact count of particle i (its force record's w), kept for
+// the next step's cap; nothing unless the cap is shared.
+INLINE void keep_contact_count(__global int* touching, int i, real count) {
+#ifdef HAS_SHARED_ROLLING_CAP
+  touching[i] = (int)count;
+#endif
 }
 // All four components of each lane's record, one 4-wide load per lane.
 typedef struct { v3 xyz; lane w; } Lane4;

@@ -343,3 +343,61 @@ INLINE ContactResult contact_law(lane delta, v3 n, v3 vrel, v3 wrel, lane rstar,
   return contact_law_h(delta, n, vrel, wrel, rstar, mstar, istar, c, dt, spring, dashpot, &roll,
                        (real)0.3);
 }
+
+// ---- Per-contact history ---------------------------------------------------
+// The sub-models that keep state from one step to the next declare it here,
+// beside their laws (LAMMPS GRANULAR's history slots). Each compiled one owns
+// a plane, one record of 4 reals per contact, numbered by the host's table
+// (cl_program.h, history_plane_table):
+//   HIST_CONTACT (HAS_CONTACT_RECORD)  tangential = mindlin: the spring xi in
+//                                      xyz; damping = viscous: the normal
+//                                      dashpot's record in w
+//   HIST_ROLL    (HAS_ROLLING_SPRING)  rolling = spring_dashpot: the elastic
+//                                      rolling torque M_k in xyz
+// The lists and the wall slots carry all HIST_PLANES planes without knowing
+// what they hold (neighbors.cl, walls.cl); the loops that run the law load
+// the records, turn them into a History and back with the two functions
+// below, and store them (forces.cl, walls.cl).
+#if defined(HAS_CONTACT_RECORD) && !defined(HIST_CONTACT)
+#error "HIST_CONTACT: the contact record has no plane (cl_program.cpp, kHistoryPlanes)"
+#endif
+#if defined(HAS_ROLLING_SPRING) && !defined(HIST_ROLL)
+#error "HIST_ROLL: the rolling spring has no plane (cl_program.cpp, kHistoryPlanes)"
+#endif
+typedef struct {
+  v3 sp;      // tangential spring
+  lane dash;  // normal dashpot's record
+  v3 rsp;     // elastic rolling torque
+} History;
+
+// Records of every plane, at least one (a private array may not be empty).
+#define HIST_RECORDS (HIST_PLANES > 0 ? HIST_PLANES : 1)
+
+// The history in the planes' records as loaded (rec[p]: plane p's).
+INLINE History history_from_planes(const Lane4* rec) {
+  History h;
+  h.sp = v_zero();
+  h.dash = (lane)0;
+  h.rsp = v_zero();
+#ifdef HAS_CONTACT_RECORD
+  h.sp = rec[HIST_CONTACT].xyz;
+  h.dash = rec[HIST_CONTACT].w;
+#endif
+#ifdef HAS_ROLLING_SPRING
+  h.rsp = rec[HIST_ROLL].xyz;
+#endif
+  return h;
+}
+
+// The planes' records to store; a lane whose contact is lost (`on` false)
+// ends its history (zeros).
+INLINE void history_planes_of(History h, lmask on, Lane4* rec) {
+#ifdef HAS_CONTACT_RECORD
+  rec[HIST_CONTACT].xyz = v_sel(on, h.sp, v_zero());
+  rec[HIST_CONTACT].w = SEL(on, h.dash, (lane)0);
+#endif
+#ifdef HAS_ROLLING_SPRING
+  rec[HIST_ROLL].xyz = v_sel(on, h.rsp, v_zero());
+  rec[HIST_ROLL].w = (lane)0;
+#endif
+}

@@ -32,12 +32,8 @@
 // -0, as the law's path leaves it), and the sums get the +0 that path adds.
 INLINE void apart(__global real* spring, __global real* share,
                   int slot, size_t at, size_t plane, ContactSums* sum) {
-#ifdef HAS_CONTACT_RECORD
-  store_slots(spring, at, v_zero(), (lane)0);
-#endif
-#ifdef HAS_ROLLING_SPRING
-  store_slots(spring + 4 * HIST_ROLL * plane, at, v_zero(), (lane)0);
-#endif
+  for (int p = 0; p < HIST_PLANES; ++p)
+    store_slots(spring + 4 * (size_t)p * plane, at, v_zero(), (lane)0);
   store_shares(share, slot, v_neg(v_zero()), (lane)0, v_zero(), (lane)0);
   sum->f = v_add(sum->f, v_zero());
   sum->t = v_add(sum->t, v_zero());
@@ -68,7 +64,7 @@ typedef struct {
   lane r, m, inertia;  // m: the body's mass (body_mass); inertia: the sphere's
   v3 v, w;
   real row[LANES];  // material: the particle's row of the pair table
-#if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
+#ifdef HAS_SHARED_ROLLING_CAP
   lane cap;  // the bead's part of the rolling cap's divisor
 #endif
 } Owner;
@@ -97,7 +93,7 @@ INLINE void gather_motion(Owner* o, __global const real* restrict vel,
   o->m = body_mass(body_offset, ii, vmi.w);
   o->inertia = (real)0.4 * vmi.w * o->r * o->r;
   LANE_STORE(wmi.w, o->row);
-#if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
+#ifdef HAS_SHARED_ROLLING_CAP
   o->cap = cap_count(contacts_last, ii);
 #endif
 }
@@ -194,7 +190,7 @@ INLINE v3 contact_velocity(const Owner* o, v3 vj, v3 wj, PairContact k) {
 INLINE lane pair_istar(const Owner* o, lane mj, lane rj,
                        __global const int* restrict contacts_last, const int* jj) {
   const lane inertia_j = (real)0.4 * mj * rj * rj;
-#if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
+#ifdef HAS_SHARED_ROLLING_CAP
   // the constant torque's cap is shared among the contacts (see above)
   return o->inertia * inertia_j / (o->inertia + inertia_j) /
          fmax(o->cap, cap_count(contacts_last, jj));
@@ -203,40 +199,21 @@ INLINE lane pair_istar(const Owner* o, lane mj, lane rj,
 #endif
 }
 
-// Per-contact history: the planes the compiled slots declare (common.cl).
-typedef struct {
-  v3 sp;      // tangential spring (contact record xyz)
-  lane dash;  // normal dashpot's record (contact record w)
-  v3 rsp;     // elastic rolling torque
-} History;
-
+// The slots' history: every plane's records at `at` (by component,
+// SLOT_REAL; plane p at 4 p `plane` reals), read as contact_law.cl says.
 INLINE History load_history(__global const real* restrict spring, size_t at, size_t plane) {
-  History h;
-#ifdef HAS_CONTACT_RECORD
-  const Lane4 record = load_slots(spring, at);
-  h.sp = record.xyz;
-  h.dash = record.w;
-#else
-  h.sp = v_zero();
-  h.dash = (lane)0;
-#endif
-#ifdef HAS_ROLLING_SPRING
-  h.rsp = load_slots(spring + 4 * HIST_ROLL * plane, at).xyz;
-#else
-  h.rsp = v_zero();
-#endif
-  return h;
+  Lane4 rec[HIST_RECORDS];
+  for (int p = 0; p < HIST_PLANES; ++p) rec[p] = load_slots(spring + 4 * (size_t)p * plane, at);
+  return history_from_planes(rec);
 }
 
 // Lost contacts end their history (lanes not listed: padding, zeros).
 INLINE void store_history(__global real* restrict spring, size_t at, size_t plane, lmask on,
                           History h) {
-#ifdef HAS_CONTACT_RECORD
-  store_slots(spring, at, v_sel(on, h.sp, v_zero()), SEL(on, h.dash, (lane)0));
-#endif
-#ifdef HAS_ROLLING_SPRING
-  store_slots(spring + 4 * HIST_ROLL * plane, at, v_sel(on, h.rsp, v_zero()), (lane)0);
-#endif
+  Lane4 rec[HIST_RECORDS];
+  history_planes_of(h, on, rec);
+  for (int p = 0; p < HIST_PLANES; ++p)
+    store_slots(spring + 4 * (size_t)p * plane, at, rec[p].xyz, rec[p].w);
 }
 
 #ifdef HAS_CAPILLARY

@@ -34,9 +34,7 @@ INLINE void integrate_one(int i, __global real4* pos, __global float4* pos_lo,
   real4 x = pos[i];
   const real m = v.w;
   const real4 fi = force[i];
-#if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
-  contacts_last[i] = (int)fi.w;  // contacts of this step: the next step's rolling cap (forces.cl)
-#endif
+  keep_contact_count(contacts_last, i, fi.w);  // the next step's rolling cap (forces.cl)
   real3 a = fi.xyz / m;
 #ifdef HAS_GRAVITY
   a += gravity.xyz;

@@ -236,36 +236,22 @@ INLINE WallContact wall_contact(__global const real* restrict walls,
   return k;
 }
 
-// History planes of the (particle, wall) slots, as in forces.cl (plane p at
+// The history of the (particle, wall) slots, as in forces.cl (plane p at
 // p * wall_stride records).
 INLINE History load_wall_history(__global const real* restrict wall_spring, int wall_stride,
                                  const int* slot) {
-  History h;
-#ifdef HAS_CONTACT_RECORD
-  const Lane4 record = gather4(wall_spring, slot);
-  h.sp = record.xyz;
-  h.dash = record.w;
-#else
-  h.sp = v_zero();
-  h.dash = (lane)0;
-#endif
-#ifdef HAS_ROLLING_SPRING
-  h.rsp = gather3(wall_spring + 4 * HIST_ROLL * (size_t)wall_stride, slot);
-#else
-  h.rsp = v_zero();
-#endif
-  return h;
+  Lane4 rec[HIST_RECORDS];
+  for (int p = 0; p < HIST_PLANES; ++p)
+    rec[p] = gather4(wall_spring + 4 * (size_t)p * (size_t)wall_stride, slot);
+  return history_from_planes(rec);
 }
 
 INLINE void store_wall_history(__global real* restrict wall_spring, int wall_stride,
                                const int* slot, const int* keep, lmask on, History h) {
-#ifdef HAS_CONTACT_RECORD
-  scatter4(wall_spring, slot, keep, v_sel(on, h.sp, v_zero()), SEL(on, h.dash, (lane)0));
-#endif
-#ifdef HAS_ROLLING_SPRING
-  __global real* roll_plane = wall_spring + 4 * HIST_ROLL * (size_t)wall_stride;
-  scatter4(roll_plane, slot, keep, v_sel(on, h.rsp, v_zero()), (lane)0);
-#endif
+  Lane4 rec[HIST_RECORDS];
+  history_planes_of(h, on, rec);
+  for (int p = 0; p < HIST_PLANES; ++p)
+    scatter4(wall_spring + 4 * (size_t)p * (size_t)wall_stride, slot, keep, rec[p].xyz, rec[p].w);
 }
 
 // The law between each lane's particle and wall w moving at vw (R* = r_i,
@@ -339,7 +325,7 @@ INLINE void wall_contacts(int base, __global const real* restrict pos POS_LO_SAR
   sum.t = t0.xyz;
   sum.touching = f0.w;
   sum.e = t0.w;
-#if defined(HAS_ROLLING) && !defined(HAS_ROLLING_SPRING)
+#ifdef HAS_SHARED_ROLLING_CAP
   // the constant rolling torque's cap is shared among the contacts (forces.cl)
   const lane roll_inertia = own.inertia / own.cap;
 #else
