@@ -96,6 +96,12 @@ TEST_P(EffectSlots, HistoryMemoryFollowsTheSlots) {
     EXPECT_EQ(k.history_bytes_per_contact(), c.planes * 4 * real);
     const State& st = sim.state();
     EXPECT_NE(k.build_options().find("-DHIST_PLANES=" + std::to_string(c.planes)), std::string::npos);
+    // each compiled sub-model's plane, numbered in the table's order
+    const bool record = k.friction || k.damping, roll = c.r == RollingModel::SpringDashpot;
+    EXPECT_EQ(history_plane(k, "HIST_CONTACT"), record ? 0 : -1);
+    EXPECT_EQ(history_plane(k, "HIST_ROLL"), roll ? (record ? 1 : 0) : -1);
+    EXPECT_EQ(k.build_options().find("-DHIST_ROLL=") != std::string::npos, roll);
+    EXPECT_EQ(k.shared_rolling_cap(), c.r == RollingModel::ConstantTorque);
     sim.advance(300);  // builds and runs with that layout
     EXPECT_GT(st.up_slots, 0);
     const size_t list = size_t(st.up_slots) * c.planes * 4 * real;
