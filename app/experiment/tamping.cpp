@@ -8,6 +8,7 @@
 #include "app/experiment/preparation.h"
 #include "app/experiment/progress.h"
 #include "solver/common/errors.h"
+#include "solver/common/line_fit.h"
 #include "solver/common/number_text.h"
 #include "solver/io/output.h"
 #include "solver/apparatus/registry.h"
@@ -167,6 +168,31 @@ void tamp(Simulation& sim, LoadingProgramme& test, double target, double area, T
   sim.advance(rest);
 }
 
+// After layer k of n, whose wall times so far are `seconds` (one per
+// layer): the time so far and an estimate of the rest. A layer settles
+// and is tamped with every grain below it in the simulation, so its cost
+// grows with j: the rest follows the least-squares line through the
+// layers' times (its slope at least 0), or the first layer's time alone.
+std::string layers_time(int n, const std::vector<double>& seconds) {
+  const int k = static_cast<int>(seconds.size());
+  double elapsed = 0;
+  for (double t : seconds) elapsed += t;
+  char buf[96];
+  if (k >= n) {
+    std::snprintf(buf, sizeof buf, "; %.0f s", elapsed);
+    return buf;
+  }
+  std::vector<double> layer(k);
+  for (int j = 0; j < k; ++j) layer[j] = j + 1;
+  const LineFit f = fit_line(layer, seconds);
+  const double slope = f.fitted ? std::max(0.0, f.slope) : 0;
+  const double at_mean = elapsed / k, mean_layer = (k + 1) / 2.0;
+  double left = 0;
+  for (int j = k + 1; j <= n; ++j) left += std::max(0.0, at_mean + slope * (j - mean_layer));
+  std::snprintf(buf, sizeof buf, "; %.0f s in, about %.0f s to go", elapsed, left);
+  return buf;
+}
+
 }  // namespace
 
 double layer_void_ratio(double e, double undercompaction, int j, int n) {
@@ -200,7 +226,9 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
   for (const Grain& g : scene.grains) bodies.push_back(grain_body(g));
   std::vector<TampedLayer> layers;
   double floor = 0, solid_total = 0;
+  std::vector<double> seconds;  // wall time per layer
   for (int k = 1; k <= n; ++k) {
+    const Ticker clock;
     const size_t from = grains.size() * (k - 1) / n, to = grains.size() * k / n;
     TampedLayer l;
     l.layer = k;
@@ -222,7 +250,9 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
                   "layer %d of %d: %d grains, e_j %.4f, platen stopped at %.3f mm (target %.3f mm, %.0f kPa); e %.4f",
                   k, n, l.grains, l.target_void_ratio, 1e3 * l.platen_stop, 1e3 * l.target_top,
                   l.stress / 1e3, l.void_ratio);
-    log(l.stress < kLooseLayerStress ? std::string(line) + kLooseLayerNote : std::string(line));
+    seconds.push_back(clock.elapsed());
+    log(std::string(line) + (l.stress < kLooseLayerStress ? kLooseLayerNote : "") +
+        layers_time(n, seconds));
   }
   char done[200];
   std::snprintf(done, sizeof done,

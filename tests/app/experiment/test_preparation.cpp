@@ -121,6 +121,10 @@ TEST(Preparation, LayeredTampingReachesTheTargetVoidRatio) {
                                           }));
   ASSERT_EQ(lines.size(), 4u);  // a line per layer, then the tamped specimen's
   EXPECT_EQ(lines.back().rfind("tamped: e = ", 0), 0u) << lines.back();
+  // the layers' lines tell the time so far and, but for the last, the rest
+  EXPECT_NE(lines[0].find(" s to go"), std::string::npos) << lines[0];
+  EXPECT_EQ(lines[2].find(" s to go"), std::string::npos) << lines[2];
+  EXPECT_EQ(lines[2].rfind(" s"), lines[2].size() - 2) << lines[2];
   EXPECT_EQ(scene.apparatus_as<Triaxial>()->specimen.method, Specimen::Method::Given);
   EXPECT_EQ(scene.apparatus_as<Triaxial>()->specimen.preparation.tamping_layers, 0);
   EXPECT_EQ(scene.particles.size(), 150u);
