@@ -83,10 +83,18 @@ int triaxial_campaign(const CampaignOptions& opt, const Scene& given, const std:
                      "with simsols run and campaign over its scene.resolved.toml");
   if (!opt.cluster.emitting() && !run.collect) run.device = open_command_device();
   // every test shears the same poured specimen: one search for its density
-  if (searches)
-    prepare_to_relative_density(base, run.device, opt.out_dir, [&](const std::string& line) {
-      if (!opt.quiet) std::fprintf(stderr, "[prepare] %s\n", line.c_str());
-    });
+  if (searches) {
+    const auto line = [&](const std::string& l) {
+      if (!opt.quiet) std::fprintf(stderr, "[prepare] %s\n", l.c_str());
+    };
+    try {
+      prepare_to_relative_density(base, run.device, opt.out_dir,
+                                  PrepLog(line, interrupt.stop_function()));
+    } catch (const PreparationStopped& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      return interrupt.exit_status();
+    }
+  }
   std::vector<TriaxialCampaignTest> tests =
       plan_triaxial_campaign(base, base_name, spec, opt.out_dir);
   if (emit_or_check_plan(opt.cluster, "campaign", opt.command_line, opt.out_dir,

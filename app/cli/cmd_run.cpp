@@ -328,12 +328,6 @@ int run_scene(const RunOptions& opt) {
   if (!opt.frames_dir.empty()) frames = std::make_unique<FrameSeries>(opt, engine);
   const std::shared_ptr<Device> device = frames ? frames->device() : Device::open(engine);
   const std::filesystem::path dir = opt.out_dir;
-  // The specimen's preparation (run_scene_test's first step) before Ctrl-C
-  // is caught: it has no checkpoint, so an interrupt ends it at once.
-  if (scene)
-    prepare_to_relative_density(*scene, device, dir, [&](const std::string& line) {
-      if (!opt.quiet) std::fprintf(stderr, "[prepare] %s\n", line.c_str());
-    });
   InterruptScope interrupt;
   std::unique_ptr<Simulation> sim;
   std::string extra;
@@ -341,8 +335,18 @@ int run_scene(const RunOptions& opt) {
   const ProgrammeRunOptions programme = programme_options(opt, device, frames.get(), interrupt);
   if (sim && sim->scene().has_apparatus())
     return finish_test(resume_test(std::move(sim), extra, programme), opt, interrupt);
-  if (scene && scene->has_apparatus())
-    return finish_test(run_test(*scene, programme), opt, interrupt);
+  if (scene && scene->has_apparatus()) {
+    // the specimen prepared first when the scene asks it (Ctrl-C stops that too)
+    const auto log = [&](const std::string& line) {
+      if (!opt.quiet) std::fprintf(stderr, "[prepare] %s\n", line.c_str());
+    };
+    try {
+      return finish_test(run_scene_test(*scene, programme, log), opt, interrupt);
+    } catch (const PreparationStopped& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      return interrupt.exit_status();
+    }
+  }
   if (!opt.stop_at.empty())
     throw UsageError("conflicting_keys", "--stop-at",
                      "the scene has no apparatus, so no stages to stop at (use --stop-after N)");

@@ -97,7 +97,10 @@ TestRun run_test(const Scene& scene, const ProgrammeRunOptions& opt) {
 
 TestRun run_scene_test(Scene scene, const ProgrammeRunOptions& opt,
                        const std::function<void(const std::string&)>& log) {
-  if (!opt.resume) prepare_to_relative_density(scene, opt.device, opt.out_dir, log);
+  if (!opt.resume) {
+    check_stop_at(required_apparatus_kind(scene), opt.stop_at);  // before a long preparation
+    prepare_to_relative_density(scene, opt.device, opt.out_dir, PrepLog(log, opt.stop_requested));
+  }
   return run_test(scene, opt);
 }
 

@@ -17,7 +17,7 @@
 namespace simsols {
 namespace {
 
-using Log = std::function<void(const std::string&)>;
+using Log = PrepLog;
 
 // Solid fraction the cell would hold at full size below the lid's start:
 // denser than a frictional packing of spheres, so the grown beads meet the
@@ -136,6 +136,7 @@ Expansion expand_specimen(const Scene& scene, const std::shared_ptr<Device>& dev
     const double v = -v_max * std::clamp(1 - sigma / kExpansionStress, -1.0, 1.0);
     sim.set_wall_velocity(lid, {0, 0, v});
     sim.advance(chunk);
+    log.check();
     if (!ticker.due()) continue;
     char line[200];
     std::snprintf(line, sizeof line, "growing: %.2f %% of full size, lid at %.3f mm pushing %.1f kPa, t = %.4f s, step %lld, %.0f s",

@@ -26,6 +26,7 @@
 #include <memory>
 #include <string>
 
+#include "app/experiment/progress.h"
 #include "solver/core/cl_device.h"
 #include "solver/scene/scene.h"
 
@@ -48,6 +49,6 @@ struct Expansion {
 // Grows the scene's poured specimen of spheres (Preparation::expansion);
 // `log` hears a progress line every 10 s of wall time.
 Expansion expand_specimen(const Scene& scene, const std::shared_ptr<Device>& device,
-                          const std::function<void(const std::string&)>& log);
+                          const PrepLog& log);
 
 }  // namespace simsols

@@ -19,7 +19,7 @@
 namespace simsols {
 namespace {
 
-using Log = std::function<void(const std::string&)>;
+using Log = PrepLog;
 
 // The search's preparations, in order: at most kSearchTrials + 2.
 double longest_settle(const Scene& s) { return s.cell() ? s.cell()->settle_time : 0; }
@@ -34,7 +34,7 @@ DensityTrial trial(const Scene& base, const std::shared_ptr<Device>& device, con
   char head[96];
   std::snprintf(head, sizeof head, "preparation %d of at most %d (%s, friction %.4f): ", number,
                 kSearchTrials + 2, role, friction);
-  const Log say = [&](const std::string& m) { log(head + m); };
+  const Log say = log.with_head(head);
   if (!p.expansion) return {role, friction, settle_specimen(scene, device, say), nullptr};
   auto grown = std::make_shared<const Scene>(expand_specimen(scene, device, say).grown);
   return {role, friction, settle_specimen(*grown, device, say), grown};
@@ -175,13 +175,14 @@ Packing measure_specimen(Simulation& sim) {
 }
 
 Settled settle_specimen(const Scene& scene, const std::shared_ptr<Device>& device,
-                        const std::function<void(const std::string&)>& progress) {
+                        const PrepLog& progress) {
   Simulation sim(device, scene);
   const std::unique_ptr<ApparatusProgramme> test = make_programme(sim);
   test->advance(1);
   Ticker ticker;
   while (!test->done() && std::strcmp(test->stage_name(), "settle") == 0) {
     test->advance(5000);
+    progress.check();
     if (!progress || !ticker.due()) continue;
     char line[128];
     std::snprintf(line, sizeof line, "settling, t = %.4f s of at most %.3f s, step %lld, %.0f s", sim.time(),
@@ -247,7 +248,7 @@ double target_density(const Scene& scene, const DensitySearch& s) {
 
 bool prepare_to_relative_density(Scene& scene, const std::shared_ptr<Device>& device,
                                  const std::filesystem::path& out_dir,
-                                 const std::function<void(const std::string&)>& log) {
+                                 const PrepLog& log) {
   Specimen* specimen = scene.specimen();
   if (specimen && specimen->preparation.tamping_layers > 0) return prepare_by_tamping(scene, device, out_dir, log);
   if (!specimen) return false;

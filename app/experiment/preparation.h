@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "app/experiment/progress.h"
 #include "solver/apparatus/apparatus.h"
 #include "solver/apparatus/specimen/packing.h"
 #include "solver/core/cl_device.h"
@@ -44,7 +45,7 @@ struct Settled {
 // `progress`, when given, hears a line about every 10 s of wall time:
 // the simulated time settled so far and the steps.
 Settled settle_specimen(const Scene& scene, const std::shared_ptr<Device>& device,
-                        const std::function<void(const std::string&)>& progress = {});
+                        const PrepLog& progress = {});
 
 // One preparation of the search: its friction and what it gave.
 struct DensityTrial {
@@ -71,7 +72,7 @@ struct DensitySearch {
 // do as false.
 bool prepare_to_relative_density(Scene& scene, const std::shared_ptr<Device>& device,
                                  const std::filesystem::path& out_dir,
-                                 const std::function<void(const std::string&)>& log);
+                                 const PrepLog& log);
 
 // packing.txt: the packing, with D_r when the scene knows e_min and e_max.
 std::string packing_text(const Packing& p, const Preparation& prep);

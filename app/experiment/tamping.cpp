@@ -18,7 +18,7 @@
 namespace simsols {
 namespace {
 
-using Log = std::function<void(const std::string&)>;
+using Log = PrepLog;
 
 // A platen that reaches its target pushing less than this found the layer
 // already denser than aimed: tamping compacts, it cannot loosen.
@@ -131,6 +131,7 @@ void tamp(Simulation& sim, LoadingProgramme& test, double target, double area, T
           const Log& say) {
   Ticker ticker;
   const auto tell = [&](const char* what) {
+    say.check();
     if (!ticker.due()) return;
     char line[160];
     std::snprintf(line, sizeof line, "layer %d: %s, t = %.4f s, step %lld, %.0f s", out.layer, what,

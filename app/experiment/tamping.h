@@ -35,6 +35,7 @@
 #include <string>
 #include <vector>
 
+#include "app/experiment/progress.h"
 #include "solver/core/cl_device.h"
 #include "solver/scene/scene.h"
 
@@ -62,7 +63,7 @@ double layer_void_ratio(double e, double undercompaction, int j, int n);
 // when the scene asks for no tamping.
 bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double void_ratio,
                    const std::filesystem::path& out_dir,
-                   const std::function<void(const std::string&)>& log);
+                   const PrepLog& log);
 
 // tamping.csv: one row per layer.
 std::string tamping_csv(const std::vector<TampedLayer>& layers);

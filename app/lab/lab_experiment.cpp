@@ -35,7 +35,10 @@ LabExperiment::LabExperiment(std::shared_ptr<Device> device)
                         ("simsols-lab-preparation-" + std::to_string(::getpid())))
                            .string()) {}
 
+// A specimen still being prepared is stopped (PreparationStopped, between
+// chunks of steps) rather than waited for.
 LabExperiment::~LabExperiment() {
+  if (news_) news_->cancel = true;
   if (building_.valid()) building_.wait();
 }
 
@@ -109,10 +112,12 @@ std::string LabExperiment::prepare() {
   news_ = std::make_shared<BuildNews>();
   building_ = std::async(std::launch::async, [device, scene = scene_, news = news_,
                                               dir = preparation_dir_]() mutable {
-    const bool prepared = prepare_to_relative_density(scene, device, dir, [&](const std::string& l) {
+    const auto line = [&](const std::string& l) {
       const std::lock_guard lock(news->mutex);
       news->line = l;
-    });
+    };
+    const bool prepared = prepare_to_relative_density(
+        scene, device, dir, PrepLog(line, [&news] { return news->cancel.load(); }));
     {
       const std::lock_guard lock(news->mutex);
       news->prepared = prepared;

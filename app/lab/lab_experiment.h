@@ -129,6 +129,7 @@ class LabExperiment {
     mutable std::mutex mutex;
     std::string line;
     bool prepared = false;
+    std::atomic<bool> cancel{false};  // the lab closes: the preparation stops
   };
   std::future<std::unique_ptr<Simulation>> building_;
   std::shared_ptr<BuildNews> news_;

@@ -7,6 +7,7 @@
 //     scheduler may) and resumed ends with the same state hash and
 //     series.csv;
 //   - a second SIGINT exits at once;
+//   - SIGINT while the specimen is prepared stops the preparation;
 //   - kill -9 at random moments of a run that writes a checkpoint every
 //     step always leaves a checkpoint that verifies and loads.
 #include <algorithm>
@@ -316,6 +317,31 @@ TEST(Interrupt, PlainRunKillThenResumeGivesTheSameState) {
   EXPECT_FALSE(hash_of(read(d / "a.log")).empty()) << read(d / "a.log");
   EXPECT_EQ(hash_of(read(d / "c.log")), hash_of(read(d / "a.log")));
   EXPECT_EQ(read(a / "series.csv"), read(b / "series.csv"));
+}
+
+// Ctrl-C while the specimen is being prepared (tamped in three layers)
+// stops the preparation between chunks of steps: status 130, the reason
+// said, no checkpoint and no test files (a preparation has none to resume).
+TEST(Interrupt, CtrlCWhilePreparingStopsThePreparation) {
+  const fs::path d = fresh_dir("prepare");
+  std::string text = read(std::string(SIMSOLS_ASSETS_DIR) + "/tests/triaxial_small.toml");
+  const std::string table = "[numerics]";
+  ASSERT_NE(text.find(table), std::string::npos);
+  text.insert(text.find(table),
+              "[triaxial.specimen.preparation]\ntamping_layers = 3\nvoid_ratio = 0.6\n\n");
+  std::ofstream(d / "tamped.toml") << text;
+  Child c({"run", (d / "tamped.toml").string(), "--out", (d / "out").string()}, d / "log.txt");
+  ASSERT_TRUE(c.wait_for("[prepare] layer 1 of 3")) << c.output();
+  const auto sent = std::chrono::steady_clock::now();
+  kill(c.pid, SIGINT);
+  EXPECT_EQ(c.wait(), 130) << c.output();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+  std::printf("[measure] a preparation stopped %.2f s after Ctrl-C\n", seconds);
+  EXPECT_LT(seconds, 30) << c.output();  // a chunk of steps, not the rest of the tamping
+  EXPECT_NE(c.output().find("stopped while preparing the specimen"), std::string::npos) << c.output();
+  EXPECT_EQ(c.output().find("[prepare] layer 3 of 3"), std::string::npos) << c.output();
+  EXPECT_FALSE(fs::exists(d / "out" / "checkpoint.bin"));
+  EXPECT_FALSE(fs::exists(d / "out" / "triaxial.csv"));
 }
 
 // 24 000 beads writing a 16 MB checkpoint every step: the second signal,

@@ -103,6 +103,26 @@ TEST(Preparation, TheTestPoursTheSpecimenTheSearchChose) {
   std::filesystem::remove_all(dir);
 }
 
+// A preparation asks its caller whether to stop between chunks of steps:
+// told to, it throws PreparationStopped at once (here within the first
+// layer's settling), writes nothing and leaves the scene as it was.
+TEST(Preparation, AStopRequestEndsItWithNothingWritten) {
+  Scene scene = scene_with("tamping_layers = 3\nvoid_ratio = 0.85\n");
+  const size_t beads = scene.particles.size();
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "simsols_stop_prep_test";
+  std::filesystem::remove_all(dir);
+  int asked = 0;
+  const PrepLog log([](const std::string&) {}, [&] { return ++asked > 3; });
+  EXPECT_THROW(prepare_to_relative_density(scene, default_device(), dir, log), PreparationStopped);
+  EXPECT_EQ(asked, 4);
+  EXPECT_FALSE(std::filesystem::exists(dir / "tamping.csv"));
+  EXPECT_EQ(scene.particles.size(), beads);
+  EXPECT_EQ(scene.specimen()->preparation.tamping_layers, 3);
+  // the same preparation with a line function alone never stops
+  EXPECT_NO_THROW(PrepLog([](const std::string&) {}).check());
+  std::filesystem::remove_all(dir);
+}
+
 // Layered tamping (app/experiment/tamping.h): three layers tamped to
 // e = 0.85 (between the pour's 0.93 with its own friction and the
 // frictionless 0.78). Each layer's platen stops at its target top
