@@ -13,7 +13,7 @@
 #include "app/cli/interrupt.h"
 #include "app/experiment/campaign.h"
 #include "app/experiment/paper_tests.h"
-#include "app/experiment/preparation.h"
+#include "app/experiment/specimen_report.h"
 #include "app/experiment/triaxial_campaign.h"
 #include "solver/apparatus/registry.h"
 #include "solver/io/scene_toml.h"

@@ -31,7 +31,7 @@
 #include "solver/io/scene_toml.h"
 #include "app/experiment/apparatus_report.h"
 #include "app/experiment/apparatus_run.h"
-#include "app/experiment/preparation.h"
+#include "app/experiment/specimen_report.h"
 #include "solver/core/simulation.h"
 #include "solver/core/slots.h"
 

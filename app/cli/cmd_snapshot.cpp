@@ -18,7 +18,7 @@
 #include "solver/io/checkpoint.h"
 #include "solver/common/input_file.h"
 #include "app/cli/commands.h"
-#include "app/experiment/preparation.h"
+#include "app/experiment/specimen_report.h"
 #include "app/experiment/programme_run.h"
 #include "app/experiment/test_title.h"
 #include "solver/common/errors.h"

@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "app/experiment/apparatus_report.h"
-#include "app/experiment/preparation.h"
+#include "app/experiment/specimen_report.h"
 #include "app/experiment/test_title.h"
 #include "solver/io/output.h"
 

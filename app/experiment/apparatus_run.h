@@ -48,10 +48,10 @@ TestRun resume_test(std::unique_ptr<Simulation> sim, const std::string& extra,
 
 // The path every front end takes from a scene to its result: the specimen
 // prepared when the scene asks it (a relative density, tamping, radius
-// expansion: prepare_to_relative_density, preparation.h, its lines to
-// `log`), then run_test. With options.resume `scene` is not used. The
+// expansion: prepare_to_relative_density, specimen_report.h, its lines
+// to `log`), then run_test. With options.resume `scene` is not used. The
 // preparation asks options.stop_requested between chunks of steps and
-// throws PreparationStopped (progress.h) when it says so: a preparation
+// throws PreparationStopped (prep_log.h) when it says so: a preparation
 // has no checkpoint, nothing of the test is written yet, and the same
 // command prepares it again.
 TestRun run_scene_test(Scene scene, const ProgrammeRunOptions& options,

@@ -9,7 +9,7 @@
 #include <optional>
 
 #include "app/experiment/grading_plots.h"
-#include "app/experiment/preparation.h"
+#include "app/experiment/specimen_report.h"
 #include "app/experiment/progress.h"
 #include "app/experiment/run_cost.h"
 #include "solver/io/checkpoint.h"

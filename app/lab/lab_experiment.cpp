@@ -1,7 +1,7 @@
 #include "app/lab/lab_experiment.h"
 #include "app/experiment/test_title.h"
 
-#include "app/experiment/preparation.h"
+#include "app/experiment/specimen_report.h"
 
 #include <unistd.h>
 

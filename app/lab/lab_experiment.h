@@ -62,7 +62,8 @@ class LabExperiment {
   // Bench actions; each returns an error text or "" (e.g. "prepare first").
   // Starts the build in the background; poll() finishes it. A scene that
   // asks a preparation (a relative density, tamping, radius expansion:
-  // preparation.h) is prepared first, as `simsols run` prepares it (its
+  // solver/apparatus/specimen/preparation.h) is prepared first, as
+  // `simsols run` prepares it, and stopped when the lab closes (its
   // density.csv and friends in preparation_dir()); the prepared scene is
   // then the one Reset builds again, without searching.
   std::string prepare();

@@ -35,7 +35,7 @@
 
 #include "app/experiment/apparatus_run.h"
 #include "solver/apparatus/registry.h"
-#include "app/experiment/preparation.h"
+#include "app/experiment/specimen_report.h"
 #include "app/experiment/sensitivity.h"
 #include "app/experiment/shear_run.h"
 #include "solver/common/errors.h"

@@ -61,7 +61,7 @@ class Simulation {
   void nudge_particle(size_t slot, const Vec3& dx);
   // Scales every particle's radius by `factor` (and its mass by factor^3)
   // where it is, and rebuilds the lists: radius expansion
-  // (app/experiment/expansion.h). Spheres only; the scene's radii (and
+  // (solver/apparatus/specimen/expansion.h). Spheres only; the scene's radii (and
   // the grid's cells, sized from them) are not changed: grow no bead past
   // the radius its cell was sized for (Numerics::skin leaves the room).
   void scale_radii(double factor);

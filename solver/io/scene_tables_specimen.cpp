@@ -53,7 +53,7 @@ double read_grading(const Reader& sp, Specimen& s) {
   }
 }
 
-// Layered tamping (app/experiment/tamping.h): the layers, the target void
+// Layered tamping (solver/apparatus/specimen/tamping.h): the layers, the target void
 // ratio (or relative_density) and the under-compaction.
 void read_tamping(const Reader& r, const Specimen& s, Preparation& p) {
   if (!r.has("tamping_layers")) {
@@ -79,7 +79,7 @@ void read_tamping(const Reader& r, const Specimen& s, Preparation& p) {
     r.fail("missing_field", "void_ratio", "tamping needs a target: void_ratio or relative_density");
 }
 
-// Radius expansion (app/experiment/expansion.h): spheres poured, grown in
+// Radius expansion (solver/apparatus/specimen/expansion.h): spheres poured, grown in
 // the closed cell to a target (void_ratio, relative_density) or with the
 // friction given.
 void read_expansion(const Reader& r, const Specimen& s, Preparation& p) {

@@ -1,16 +1,16 @@
-#include "app/experiment/tamping.h"
+#include "solver/apparatus/specimen/tamping.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
-#include "app/experiment/preparation.h"
-#include "app/experiment/progress.h"
+#include "solver/apparatus/specimen/preparation.h"
+#include "solver/apparatus/specimen/prep_log.h"
 #include "solver/common/errors.h"
 #include "solver/common/line_fit.h"
 #include "solver/common/number_text.h"
-#include "solver/io/output.h"
+#include "solver/common/atomic_file.h"
 #include "solver/apparatus/registry.h"
 #include "solver/apparatus/cell/stage_checks.h"
 #include "solver/scene/clump.h"

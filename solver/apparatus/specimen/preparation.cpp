@@ -1,4 +1,4 @@
-#include "app/experiment/preparation.h"
+#include "solver/apparatus/specimen/preparation.h"
 
 #include <algorithm>
 #include <chrono>
@@ -7,13 +7,12 @@
 #include <cstring>
 #include <sstream>
 
-#include "app/experiment/expansion.h"
-#include "app/experiment/progress.h"
-#include "app/experiment/tamping.h"
-#include "render/plot/chart.h"
+#include "solver/apparatus/specimen/expansion.h"
+#include "solver/apparatus/specimen/prep_log.h"
+#include "solver/apparatus/specimen/tamping.h"
 #include "solver/apparatus/registry.h"
 #include "solver/common/number_text.h"
-#include "solver/io/output.h"
+#include "solver/common/atomic_file.h"
 #include "solver/scene/clump.h"
 
 namespace simsols {
@@ -119,42 +118,6 @@ void search(const Scene& scene, const std::shared_ptr<Device>& device, DensitySe
   }
 }
 
-// density.png: the void ratio each preparation reached against its
-// friction, between the index void ratios, with the target and the choice.
-void density_chart(const DensitySearch& s, const std::string& title, const std::string& path) {
-  plot::Chart c;
-  c.title = title + ": void ratio against preparation friction";
-  c.x_label = "Friction while settling mu_prep";
-  c.y_label = "Void ratio e";
-  plot::Series trials;
-  trials.label = "preparations";
-  trials.line = false;
-  trials.markers = true;
-  for (const DensityTrial& t : s.trials) {
-    trials.x.push_back(t.friction);
-    trials.y.push_back(t.result.packing.void_ratio);
-  }
-  c.series.push_back(trials);
-  const double e_target = s.e_max - s.target * (s.e_max - s.e_min);
-  const auto level = [&](const std::string& label, double e) {
-    plot::Series l;
-    l.label = label;
-    l.dashed = true;
-    l.x = {0, kLooseFriction};
-    l.y = {e, e};
-    c.series.push_back(l);
-  };
-  level("e_max", s.e_max);
-  level("target e (D_r " + shortest_number(s.target) + ")", e_target);
-  level("e_min", s.e_min);
-  for (const DensityTrial& t : s.trials)
-    if (t.friction == s.friction)
-      c.markers.push_back({t.friction, t.result.packing.void_ratio, "chosen"});
-  c.x_min = 0;
-  c.x_max = kLooseFriction;
-  plot::write_chart_png(c, path);
-}
-
 }  // namespace
 
 Packing measure_specimen(Simulation& sim) {
@@ -246,9 +209,9 @@ double target_density(const Scene& scene, const DensitySearch& s) {
 
 }  // namespace
 
-bool prepare_to_relative_density(Scene& scene, const std::shared_ptr<Device>& device,
-                                 const std::filesystem::path& out_dir,
-                                 const PrepLog& log) {
+bool prepare_specimen(Scene& scene, const std::shared_ptr<Device>& device,
+                      const std::filesystem::path& out_dir, const PrepLog& log,
+                      DensitySearch* searched) {
   Specimen* specimen = scene.specimen();
   if (specimen && specimen->preparation.tamping_layers > 0) return prepare_by_tamping(scene, device, out_dir, log);
   if (!specimen) return false;
@@ -279,7 +242,7 @@ bool prepare_to_relative_density(Scene& scene, const std::shared_ptr<Device>& de
   chosen.void_ratio.reset();
   std::filesystem::create_directories(out_dir);
   write_file_atomic((out_dir / "density.csv").string(), search_csv(s));
-  density_chart(s, scene.name, (out_dir / "density.png").string());
+  if (searched) *searched = s;
   char line[160];
   std::snprintf(line, sizeof line, "D_r %.3f asked, %.3f reached with friction %.4f (e_min %.4f, e_max %.4f)",
                 s.target, s.achieved, s.friction, s.e_min, s.e_max);

@@ -35,7 +35,7 @@
 #include <string>
 #include <vector>
 
-#include "app/experiment/progress.h"
+#include "solver/apparatus/specimen/prep_log.h"
 #include "solver/core/cl_device.h"
 #include "solver/scene/scene.h"
 

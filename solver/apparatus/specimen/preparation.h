@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "app/experiment/progress.h"
+#include "solver/apparatus/specimen/prep_log.h"
 #include "solver/apparatus/apparatus.h"
 #include "solver/apparatus/specimen/packing.h"
 #include "solver/core/cl_device.h"
@@ -61,18 +61,23 @@ struct DensitySearch {
   std::vector<DensityTrial> trials;
 };
 
-// When the scene asks a relative density: finds e_min and e_max (unless
-// given), then the friction that gives the target, and writes it into the
-// scene's preparation (the target itself is then cleared: the scene holds
-// what the test runs). Writes density.csv and density.png in `out_dir`.
-// Layered tamping (tamping.h) and radius expansion (expansion.h) build the
-// specimen instead and leave it in the scene, `given`; an expansion to a
-// void ratio or relative density searches the friction the same way, each
-// trial grown. `log` receives one line per preparation. Returns nothing to
-// do as false.
-bool prepare_to_relative_density(Scene& scene, const std::shared_ptr<Device>& device,
-                                 const std::filesystem::path& out_dir,
-                                 const PrepLog& log);
+// The specimen prepared as the scene asks, the one step between a scene
+// and its test (app/experiment/apparatus_run.h):
+// - a relative density or void ratio: finds e_min and e_max (unless
+//   given), then the friction that gives the target, and writes it into
+//   the scene's preparation (the target itself is then cleared: the scene
+//   holds what the test runs); density.csv in `out_dir`, and the search in
+//   `*searched` when given (app/experiment/specimen_report.h draws it);
+// - layered tamping (tamping.h) and radius expansion (expansion.h) build
+//   the specimen instead and leave it in the scene, `given`; an expansion
+//   to a void ratio or relative density searches the friction the same
+//   way, each trial grown.
+// `log` receives one line per preparation and is asked between chunks of
+// steps whether to stop (PreparationStopped, prep_log.h). Returns nothing
+// to do as false.
+bool prepare_specimen(Scene& scene, const std::shared_ptr<Device>& device,
+                      const std::filesystem::path& out_dir, const PrepLog& log,
+                      DensitySearch* searched = nullptr);
 
 // packing.txt: the packing, with D_r when the scene knows e_min and e_max.
 std::string packing_text(const Packing& p, const Preparation& prep);

@@ -26,7 +26,7 @@
 #include <memory>
 #include <string>
 
-#include "app/experiment/progress.h"
+#include "solver/apparatus/specimen/prep_log.h"
 #include "solver/core/cl_device.h"
 #include "solver/scene/scene.h"
 

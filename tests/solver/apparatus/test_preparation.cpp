@@ -1,4 +1,4 @@
-// Preparation to a target density (app/experiment/preparation.h): the
+// Preparation to a target density (solver/apparatus/specimen/preparation.h): the
 // friction a specimen settles with sets its density, the index void ratios
 // come from the densest and loosest preparations, a target D_r is searched
 // between them, and the test then pours exactly the specimen the search
@@ -12,8 +12,8 @@
 #include <sstream>
 #include <string>
 
-#include "app/experiment/preparation.h"
-#include "app/experiment/tamping.h"
+#include "solver/apparatus/specimen/preparation.h"
+#include "solver/apparatus/specimen/tamping.h"
 #include "solver/apparatus/triaxial/triaxial_programme.h"
 #include "solver/io/output.h"
 #include "solver/io/scene_toml.h"
@@ -66,7 +66,7 @@ TEST(Preparation, TheTestPoursTheSpecimenTheSearchChose) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "simsols_prep_test";
   std::filesystem::remove_all(dir);
   int lines = 0;
-  ASSERT_TRUE(prepare_to_relative_density(scene, default_device(), dir,
+  ASSERT_TRUE(prepare_specimen(scene, default_device(), dir,
                                           [&](const std::string& l) {
                                             std::printf("%s\n", l.c_str());
                                             ++lines;
@@ -113,7 +113,7 @@ TEST(Preparation, AStopRequestEndsItWithNothingWritten) {
   std::filesystem::remove_all(dir);
   int asked = 0;
   const PrepLog log([](const std::string&) {}, [&] { return ++asked > 3; });
-  EXPECT_THROW(prepare_to_relative_density(scene, default_device(), dir, log), PreparationStopped);
+  EXPECT_THROW(prepare_specimen(scene, default_device(), dir, log), PreparationStopped);
   EXPECT_EQ(asked, 4);
   EXPECT_FALSE(std::filesystem::exists(dir / "tamping.csv"));
   EXPECT_EQ(scene.particles.size(), beads);
@@ -123,7 +123,7 @@ TEST(Preparation, AStopRequestEndsItWithNothingWritten) {
   std::filesystem::remove_all(dir);
 }
 
-// Layered tamping (app/experiment/tamping.h): three layers tamped to
+// Layered tamping (solver/apparatus/specimen/tamping.h): three layers tamped to
 // e = 0.85 (between the pour's 0.93 with its own friction and the
 // frictionless 0.78). Each layer's platen stops at its target top
 // (Ladd's under-compaction: the lower layers aim looser), and the built
@@ -134,7 +134,7 @@ TEST(Preparation, LayeredTampingReachesTheTargetVoidRatio) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "simsols_tamp_test";
   std::filesystem::remove_all(dir);
   std::vector<std::string> lines;
-  ASSERT_TRUE(prepare_to_relative_density(scene, default_device(), dir,
+  ASSERT_TRUE(prepare_specimen(scene, default_device(), dir,
                                           [&](const std::string& l) {
                                             std::printf("%s\n", l.c_str());
                                             lines.push_back(l);
@@ -172,7 +172,7 @@ TEST(Preparation, LayeredTampingReachesTheTargetVoidRatio) {
   std::filesystem::remove_all(dir);
 }
 
-// Radius expansion (app/experiment/expansion.h): the pour's beads grown in
+// Radius expansion (solver/apparatus/specimen/expansion.h): the pour's beads grown in
 // the closed cell from 75 % of their size, gravity off, under a lid. The
 // friction while they grow sets the density, as in a pour; the grown
 // specimen is the pour's beads, each at its own size, inside the cell.
@@ -184,7 +184,7 @@ TEST(Preparation, RadiusExpansionGrowsTheBeadsAndFrictionSetsTheDensity) {
     const Scene poured = scene_with(prep);
     Scene scene = poured;
     int lines = 0;
-    ASSERT_TRUE(prepare_to_relative_density(scene, default_device(), std::filesystem::temp_directory_path(),
+    ASSERT_TRUE(prepare_specimen(scene, default_device(), std::filesystem::temp_directory_path(),
                                             [&](const std::string& l) {
                                               std::printf("%s\n", l.c_str());
                                               ++lines;
@@ -214,7 +214,7 @@ TEST(Preparation, RadiusExpansionToAVoidRatioKeepsTheChosenTrialsSpecimen) {
   Scene scene = scene_with("expansion = true\nvoid_ratio = 0.85\ne_min = 0.773\ne_max = 1.005\n");
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "simsols_expand_test";
   std::filesystem::remove_all(dir);
-  ASSERT_TRUE(prepare_to_relative_density(scene, default_device(), dir,
+  ASSERT_TRUE(prepare_specimen(scene, default_device(), dir,
                                           [&](const std::string& l) { std::printf("%s\n", l.c_str()); }));
   const Specimen& s = scene.apparatus_as<Triaxial>()->specimen;
   EXPECT_EQ(s.method, Specimen::Method::Given);

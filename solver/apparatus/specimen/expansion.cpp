@@ -1,4 +1,4 @@
-#include "app/experiment/expansion.h"
+#include "solver/apparatus/specimen/expansion.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <random>
 #include <vector>
 
-#include "app/experiment/preparation.h"
-#include "app/experiment/progress.h"
+#include "solver/apparatus/specimen/preparation.h"
+#include "solver/apparatus/specimen/prep_log.h"
 #include "solver/apparatus/registry.h"
 #include "solver/apparatus/cell/stage_checks.h"
 #include "solver/common/errors.h"
