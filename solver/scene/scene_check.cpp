@@ -306,26 +306,51 @@ void check_outputs(const Scene& s, Found& found) {
   check_number(found, "output.checkpoint_interval", s.outputs.checkpoint_interval, kNonNegative);
 }
 
-// O(N): a hash grid with cells as large as the largest diameter. The
-// spheres of one clump overlap by design.
+// O(N): a grid over the particles' box (dense cell lists, sphere_grid.h),
+// cells one mean diameter wide, each sphere checked against those within
+// its radius plus the largest. The spheres of one clump overlap by design.
 void check_particle_overlaps(const Scene& s) {
+  // centre, radius and clump, packed: the particles themselves are too
+  // large for the cache at a million beads
+  struct Packed {
+    Vec3 c;
+    double r;
+    int clump;
+  };
+  std::vector<Packed> packed;
+  packed.reserve(s.particles.size());
   double r_max = 0;
-  for (const Particle& p : s.particles) r_max = std::max(r_max, p.radius);
-  SphereGrid grid(2 * r_max, s.particles.size());
-  for (size_t i = 0; i < s.particles.size(); ++i) {
-    const Particle& p = s.particles[i];
-    grid.for_each_near(p.position, [&](int j) {
-      const Particle& q = s.particles[j];
-      if (p.clump >= 0 && p.clump == q.clump) return;  // one rigid grain
-      const double overlap = p.radius + q.radius - norm(sub(p.position, q.position));
-      const double limit = kMaxOverlapFraction * std::min(p.radius, q.radius);
+  Vec3 lo{}, hi{};
+  for (const Particle& p : s.particles) {
+    r_max = std::max(r_max, p.radius);
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = packed.empty() ? p.position[k] : std::min(lo[k], p.position[k]);
+      hi[k] = packed.empty() ? p.position[k] : std::max(hi[k], p.position[k]);
+    }
+    packed.push_back({p.position, p.radius, p.clump});
+  }
+  // cells one mean diameter wide, each sphere's search as wide as it may touch
+  double r_mean = 0;
+  for (const Packed& p : packed) r_mean += p.r / double(packed.size());
+  SphereGrid grid(2 * r_mean, packed.size(), lo, hi);
+  for (size_t i = 0; i < packed.size(); ++i) {
+    const Packed& p = packed[i];
+    grid.any_within(p.c, p.r + r_max, [&](int j) {
+      const Packed& q = packed[static_cast<size_t>(j)];
+      const double dx = p.c[0] - q.c[0], dy = p.c[1] - q.c[1], dz = p.c[2] - q.c[2];
+      const double reach = p.r + q.r;
+      if (dx * dx + dy * dy + dz * dz >= reach * reach) return false;  // apart or touching
+      if (p.clump >= 0 && p.clump == q.clump) return false;  // one rigid grain
+      const double overlap = p.r + q.r - norm(sub(p.c, q.c));
+      const double limit = kMaxOverlapFraction * std::min(p.r, q.r);
       if (overlap > limit)
         fail("overlapping_particles", at("particles", i),
              "overlaps " + at("particles", j) + " by " + shortest_number(overlap) +
                  " m; allowed at most 1% of the smaller radius (" + shortest_number(limit) +
                  " m)");
+      return false;
     });
-    grid.insert(static_cast<int>(i), p.position);
+    grid.insert(static_cast<int>(i), p.c);
   }
 }
 

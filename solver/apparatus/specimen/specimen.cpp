@@ -5,6 +5,7 @@
 #include "solver/scene/clump.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <random>
@@ -120,8 +121,12 @@ void place_pour(Scene& scene, const Specimen& s, const Cell& b) {
   const double top = column_height(s, b, sizes), d_max = sizes.front();
   const Vec3 rain = rain_velocity(scene, s, b);
   Prng prng(static_cast<std::uint64_t>(s.seed));
-  SphereGrid grid(d_max, static_cast<size_t>(count));
-  const size_t first = scene.particles.size();
+  // cells one mean diameter wide, each bead's test as wide as it may touch
+  double d_mean = 0;
+  for (double d : sizes) d_mean += d / count;
+  SphereGrid grid(d_mean, static_cast<size_t>(count), {0, 0, 0}, {b.length, b.width, top});
+  std::vector<std::array<double, 4>> beads;  // centre and radius, packed for the tests
+  beads.reserve(static_cast<size_t>(count));
   const std::int64_t budget = 1000 + 2000LL * count;
   std::int64_t attempts = 0;
   for (int placed = 0; placed < count; ++placed) {
@@ -135,15 +140,14 @@ void place_pour(Scene& scene, const Specimen& s, const Cell& b) {
                  " beads in the pouring column; use fewer layers");
       p = {prng.uniform(r, b.length - r), prng.uniform(r, b.width - r),
            prng.uniform(r, top - r)};
-      hit = false;
-      grid.for_each_near(p, [&](int q) {
-        const Particle& o = scene.particles[first + q];
-        const double dx = p[0] - o.position[0], dy = p[1] - o.position[1],
-                     dz = p[2] - o.position[2], reach = r + o.radius;
-        hit = hit || dx * dx + dy * dy + dz * dz < reach * reach;
+      hit = grid.any_within(p, r + d_max / 2, [&](int q) {
+        const std::array<double, 4>& o = beads[static_cast<size_t>(q)];
+        const double dx = p[0] - o[0], dy = p[1] - o[1], dz = p[2] - o[2], reach = r + o[3];
+        return dx * dx + dy * dy + dz * dz < reach * reach;
       });
     }
     grid.insert(placed, p);
+    beads.push_back({p[0], p[1], p[2], r});
     scene.particles.push_back({s.material, r, p, rain, {}});
   }
 }
