@@ -5,9 +5,12 @@
 //     (within 10 %: the elastic and damped phases are short);
 //   - the rolling torque, recovered every step from the particle's torque
 //     less the tangential force's moment, never exceeds mu_r F_n;
-//   - it comes to rest (no creep, no chatter) and stays there.
+//   - it comes to rest (no creep, no chatter) and stays there;
+//   - a steady moment below the limit (a slope) holds it at rest, at any
+//     time step.
 // Float and double.
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "tests/support/test_support.h"
@@ -80,6 +83,53 @@ TEST_P(RollingSpring, RollingSphereStopsAndTorqueStaysBelowThePlasticLimit) {
   const ParticleSnapshot q = sim.snapshot();
   EXPECT_LT(std::fabs(q.position[0][0] - x0), 1e-6 * R);
   EXPECT_LT(std::fabs(q.angular_velocity[0][1]), 1e-4 * v0 / R);
+}
+
+// A steady moment below the limit: a sphere at rest on a slope of
+// tan(theta) = mu_r / (2 R) (gravity tilted over a level floor) carries
+// the moment m g sin(theta) R, half the plastic limit mu_r m g cos(theta).
+// Model C's elastic torque balances it: the sphere stays where it is, at
+// a quarter and at a tenth of the Rayleigh step alike. The constant
+// torque law returns at most I* w / dt below its limit, so there a steady
+// moment is balanced only by a rolling speed that scales with dt: its
+// creep is printed beside (issue of the rolling law's default,
+// docs/model.md), not asserted.
+TEST_P(RollingSpring, ASteadyMomentBelowTheLimitHoldsWhateverTheTimeStep) {
+  const double R = 0.05, mu_r = 1e-3, g = 9.81;
+  const double tan_theta = mu_r / (2 * R), theta = std::atan(tan_theta);
+  const Material m = soft(0.5, 0.5, mu_r);
+  for (const RollingModel model : {RollingModel::SpringDashpot, RollingModel::ConstantTorque}) {
+    for (const double dt_fraction : {0.25, 0.1}) {
+      Scene s = empty_scene(GetParam(), m);
+      s.effects.gravity = {g * std::sin(theta), 0, -g * std::cos(theta)};
+      s.effects.rolling = model;
+      s.numerics.dt_fraction = dt_fraction;
+      Particle p = sphere(R, {0, 0, R}, {0, 0, 0}, {0, 0, 0});
+      const double k = 4.0 / 3.0 * e_star(m) * std::sqrt(R);
+      p.position[2] = R - std::pow(mass(s, p) * g * std::cos(theta) / k, 2.0 / 3.0);
+      s.particles = {p};
+      s.walls = {plane("floor", {0, 0, 0}, {0, 0, 1})};
+      Simulation sim(default_device(), s);
+      // 1.5 s for the start to die out (the rolling spring's swing,
+      // damped), then 1 s measured, whatever the step
+      sim.advance(static_cast<std::int64_t>(std::ceil(1.5 / sim.dt())));
+      const double x0 = sim.snapshot().position[0][0], t0 = sim.time();
+      sim.advance(static_cast<std::int64_t>(std::ceil(1.0 / sim.dt())));
+      const double creep = (sim.snapshot().position[0][0] - x0) / (sim.time() - t0);  // m/s
+      std::printf("[measure] %s, dt %.2f of Rayleigh (%.3g s): creep under half the rolling "
+                  "limit %.3g m/s\n",
+                  model == RollingModel::SpringDashpot ? "spring_dashpot" : "constant_torque",
+                  dt_fraction, sim.dt(), creep);
+      // what it moves in the second measured: 1.4e-9 m in double (the
+      // start's last swing), 1.7e-8 m in float (rounding), where
+      // constant_torque rolls 1.0e-5 m at the smaller step, 2.6e-5 m at
+      // the larger
+      const double tolerance = (GetParam() == Precision::Float ? 5e-6 : 3e-7) * R;
+      if (model == RollingModel::SpringDashpot) {
+        EXPECT_LT(std::fabs(creep) * (sim.time() - t0), tolerance) << "dt fraction " << dt_fraction;
+      }
+    }
+  }
 }
 
 SIMSOLS_BOTH_PRECISIONS(RollingSpring);
