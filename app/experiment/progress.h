@@ -11,12 +11,9 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
-#include <exception>
 #include <functional>
 #include <optional>
 #include <string>
-#include <type_traits>
-#include <utility>
 
 #include "solver/apparatus/apparatus.h"
 #include "solver/apparatus/specimen/prep_log.h"  // Ticker

@@ -23,8 +23,9 @@ std::string KernelConfig::build_options() const {
   if (capillary) o += " -DHAS_CAPILLARY";
   if (fluid) o += " -DHAS_FLUID";
   o += " -DHIST_PLANES=" + std::to_string(history_planes());
+  int plane = 0;  // the compiled sub-models' planes, numbered in the table's order
   for (const HistoryPlane& h : history_plane_table())
-    if (h.compiled(*this)) o += std::string(" -D") + h.define + "=" + std::to_string(history_plane(*this, h.define));
+    if (h.compiled(*this)) o += std::string(" -D") + h.define + "=" + std::to_string(plane++);
   o += " -DPAIR_RECORD=" + std::to_string(pair_record());
   if (walls) o += " -DHAS_WALLS";
   if (servo) o += " -DHAS_SERVO";
@@ -50,16 +51,6 @@ constexpr HistoryPlane kHistoryPlanes[] = {
 }  // namespace
 
 std::span<const HistoryPlane> history_plane_table() { return kHistoryPlanes; }
-
-int history_plane(const KernelConfig& c, std::string_view define) {
-  int plane = 0;
-  for (const HistoryPlane& h : kHistoryPlanes) {
-    if (!h.compiled(c)) continue;
-    if (define == h.define) return plane;
-    ++plane;
-  }
-  return -1;
-}
 
 int KernelConfig::history_planes() const {
   int n = 0;

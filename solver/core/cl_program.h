@@ -78,8 +78,6 @@ struct HistoryPlane {
   bool (*compiled)(const KernelConfig& c);
 };
 std::span<const HistoryPlane> history_plane_table();
-// The plane of `define` under `c`, or -1 when that sub-model is not compiled.
-int history_plane(const KernelConfig& c, std::string_view define);
 
 // A kernel and the names of its parameters as the compiler reports them
 // (programs are built with -cl-kernel-arg-info). set_args (kernel_args.h)

@@ -49,9 +49,9 @@ std::string explain_effects(const Scene& s, const KernelConfig& c) {
   o << "per-contact history: " << c.history_planes() << " record(s) of 4 reals = "
     << c.history_bytes_per_contact() << " bytes per contact (list slot and wall slot; the "
     << "lists keep a previous copy for carrying it over)\n";
+  int plane = 0;
   for (const HistoryPlane& h : history_plane_table())
-    if (h.compiled(c))
-      o << "  plane " << history_plane(c, h.define) << " (" << h.define << "): " << h.slots << "\n";
+    if (h.compiled(c)) o << "  plane " << plane++ << " (" << h.define << "): " << h.slots << "\n";
   o << "pair coefficient record: " << c.pair_record() << " reals\n";
   o << "kernel build options: " << c.build_options() << "\n";
   return o.str();

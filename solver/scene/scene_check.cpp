@@ -319,10 +319,11 @@ void check_particle_overlaps(const Scene& s) {
   };
   std::vector<Packed> packed;
   packed.reserve(s.particles.size());
-  double r_max = 0;
+  double r_max = 0, r_sum = 0;
   Vec3 lo{}, hi{};
   for (const Particle& p : s.particles) {
     r_max = std::max(r_max, p.radius);
+    r_sum += p.radius;
     for (int k = 0; k < 3; ++k) {
       lo[k] = packed.empty() ? p.position[k] : std::min(lo[k], p.position[k]);
       hi[k] = packed.empty() ? p.position[k] : std::max(hi[k], p.position[k]);
@@ -330,18 +331,15 @@ void check_particle_overlaps(const Scene& s) {
     packed.push_back({p.position, p.radius, p.clump});
   }
   // cells one mean diameter wide, each sphere's search as wide as it may touch
-  double r_mean = 0;
-  for (const Packed& p : packed) r_mean += p.r / double(packed.size());
-  SphereGrid grid(2 * r_mean, packed.size(), lo, hi);
+  SphereGrid grid(2 * r_sum / double(packed.size()), packed.size(), lo, hi);
   for (size_t i = 0; i < packed.size(); ++i) {
     const Packed& p = packed[i];
     grid.any_within(p.c, p.r + r_max, [&](int j) {
       const Packed& q = packed[static_cast<size_t>(j)];
-      const double dx = p.c[0] - q.c[0], dy = p.c[1] - q.c[1], dz = p.c[2] - q.c[2];
-      const double reach = p.r + q.r;
-      if (dx * dx + dy * dy + dz * dz >= reach * reach) return false;  // apart or touching
+      const double d2 = dot(sub(p.c, q.c), sub(p.c, q.c)), reach = p.r + q.r;
+      if (d2 >= reach * reach) return false;  // apart or touching
       if (p.clump >= 0 && p.clump == q.clump) return false;  // one rigid grain
-      const double overlap = p.r + q.r - norm(sub(p.c, q.c));
+      const double overlap = reach - std::sqrt(d2);
       const double limit = kMaxOverlapFraction * std::min(p.r, q.r);
       if (overlap > limit)
         fail("overlapping_particles", at("particles", i),

@@ -21,8 +21,8 @@ namespace simsols {
 // cells are hashed; over a known box that holds every centre stored they
 // are a dense array of cell lists (the DEM's linked cells: no hashing, a
 // few times faster on a million spheres), where that takes at most
-// kDenseCellsPerSphere cells per expected sphere. Queries visit the 27
-// cells around a point; in what order is not part of the contract.
+// kDenseCellsPerSphere cells per expected sphere. In what order a query
+// visits the spheres is not part of the contract.
 class SphereGrid {
  public:
   static constexpr size_t kDenseCellsPerSphere = 8;
