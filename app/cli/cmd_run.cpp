@@ -127,7 +127,7 @@ void apply_precision(const RunOptions& opt, Scene& scene) {
 int explain(const RunOptions& opt) {
   if (opt.scene_path.empty())
     throw UsageError("missing_field", "", 0, "SCENE", "--explain needs a scene file");
-  Scene scene = load_scene(opt.scene_path);
+  Scene scene = read_scene(opt.scene_path);  // only reads: nothing is placed
   apply_precision(opt, scene);
   const KernelConfig config = make_kernel_config(scene, *open_command_device());
   std::printf("%s", explain_effects(scene, config).c_str());
@@ -255,11 +255,12 @@ void check_flags(const RunOptions& opt) {
     throw UsageError("out_of_range", "--duration", "must be a finite time > 0 s");
 }
 
-// The scene of a new run, with the command line's overrides, validated.
-Scene load_run_scene(const RunOptions& opt) {
+// The scene of a new run, read (not yet placed), with the command line's
+// overrides, validated.
+Scene read_run_scene(const RunOptions& opt) {
   if (opt.scene_path.empty())
     throw UsageError("missing_field", "", 0, "SCENE", "a scene file is required (or --resume)");
-  Scene scene = load_scene(opt.scene_path);
+  Scene scene = read_scene(opt.scene_path);
   apply_precision(opt, scene);
   if (opt.duration != 0) scene.numerics.duration = opt.duration;
   validate_scene(scene, scene.source_path);
@@ -320,7 +321,7 @@ int run_scene(const RunOptions& opt) {
     return 0;
   }
   std::optional<Scene> scene;
-  if (!opt.resume) scene = load_run_scene(opt);  // a bad scene before any device or GL work
+  if (!opt.resume) scene = read_run_scene(opt);  // a bad scene before any device or GL work
   // With --frames the exporter opens the device, sharing its GL context
   // where it can.
   const EngineOptions engine = engine_options_from_environment();
@@ -351,6 +352,7 @@ int run_scene(const RunOptions& opt) {
     throw UsageError("conflicting_keys", "--stop-at",
                      "the scene has no apparatus, so no stages to stop at (use --stop-after N)");
   if (!sim) {
+    place_scene(*scene);
     sim = std::make_unique<Simulation>(device, *scene);
     std::filesystem::create_directories(dir);
     write_file_atomic((dir / "scene.toml").string(), scene->source_text);

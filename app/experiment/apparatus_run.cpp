@@ -9,6 +9,7 @@
 #include "app/experiment/specimen_report.h"
 #include "app/experiment/test_title.h"
 #include "solver/io/output.h"
+#include "solver/io/scene_toml.h"
 
 namespace simsols {
 namespace {
@@ -99,6 +100,7 @@ TestRun run_scene_test(Scene scene, const ProgrammeRunOptions& opt,
                        const std::function<void(const std::string&)>& log) {
   if (!opt.resume) {
     check_stop_at(required_apparatus_kind(scene), opt.stop_at);  // before a long preparation
+    place_scene(scene);
     prepare_to_relative_density(scene, opt.device, opt.out_dir, PrepLog(log, opt.stop_requested));
   }
   return run_test(scene, opt);

@@ -13,6 +13,7 @@
 //                                     means the test finished)
 //   *.png                             the kind's plots (apparatus_report.h)
 //   density.csv, density.png, packing.txt   the specimen's preparation
+//   tamping.csv, tamping_state.txt          layered tamping; the state only while it runs
 //   paraview/                         the ParaView series (solver/io/paraview.h)
 //   checkpoint.bin                    latest state; `--resume` continues from it
 //   fault.txt, fault_checkpoint.bin   only when a step ran away (guard.h)
@@ -46,14 +47,16 @@ TestRun run_test(const Scene& scene, const ProgrammeRunOptions& options);
 TestRun resume_test(std::unique_ptr<Simulation> sim, const std::string& extra,
                     const ProgrammeRunOptions& options);
 
-// The path every front end takes from a scene to its result: the specimen
+// The path every front end takes from a scene to its result: the scene
+// placed when it was only read (place_scene, solver/io/scene_toml.h: its
+// generators' spheres, the apparatus' walls and specimen), the specimen
 // prepared when the scene asks it (a relative density, tamping, radius
 // expansion: prepare_to_relative_density, specimen_report.h, its lines
 // to `log`), then run_test. With options.resume `scene` is not used. The
 // preparation asks options.stop_requested between chunks of steps and
-// throws PreparationStopped (prep_log.h) when it says so: a preparation
-// has no checkpoint, nothing of the test is written yet, and the same
-// command prepares it again.
+// throws PreparationStopped (prep_log.h) when it says so: nothing of the
+// test is written yet, and the same command prepares it again (a layered
+// tamping from the last layer it finished, tamping_state.h).
 TestRun run_scene_test(Scene scene, const ProgrammeRunOptions& options,
                        const std::function<void(const std::string&)>& log);
 

@@ -50,7 +50,9 @@ bool LabApp::draw_effect_slots() {
   if (e.cohesion == CohesionModel::Capillary) {
     if (e.capillary.liquid_volume <= 0) {  // a default: 1e-3 of a bead's volume
       double r = 1e-3;
-      if (!exp_->scene().particles.empty()) r = exp_->scene().particles[0].radius;
+      const Scene& sc = exp_->scene();  // read, maybe not placed yet
+      if (!sc.particles.empty()) r = sc.particles[0].radius;
+      else if (const Specimen* s = sc.specimen(); s && s->diameter > 0) r = s->diameter / 2;
       e.capillary.liquid_volume = 1e-3 * 4.18879 * r * r * r;
       fx = true;
     }

@@ -69,7 +69,7 @@ std::string LabExperiment::load_default(const LabBench& bench) {
   if (!bench.default_scene_text) return load_preset(6.35, 160);
   const char* name = bench.default_scene_name;
   try {
-    Scene sc = parse_scene(bench.default_scene_text(), name);
+    Scene sc = read_scene_text(bench.default_scene_text(), name);
     sc.numerics.precision = scene_.numerics.precision;
     return adopt_scene(std::move(sc), name, name, true);
   } catch (const SceneError& e) {
@@ -81,7 +81,7 @@ std::string LabExperiment::load_default(const LabBench& bench) {
 
 std::string LabExperiment::load_scene_file(const std::string& path) {
   try {
-    Scene sc = load_scene(path);
+    Scene sc = read_scene(path);  // placed by prepare()
     if (lab_bench_index(sc) < 0)
       return path + ": the lab runs the tests of the apparatus " + lab_kind_names() +
              "; this scene has none of those tables";
@@ -116,6 +116,7 @@ std::string LabExperiment::prepare() {
       const std::lock_guard lock(news->mutex);
       news->line = l;
     };
+    place_scene(scene);
     const bool prepared = prepare_to_relative_density(
         scene, device, dir, PrepLog(line, [&news] { return news->cancel.load(); }));
     {

@@ -388,10 +388,18 @@ void register_exceptions(py::module_& m) {
 
 void define_scene(py::module_& m) {
   py::class_<Scene>(m, "Scene", "A scene: particles, walls, materials, settings (docs/scene-format.md)")
-      .def_property_readonly("particles", [](const Scene& s) { return s.particles.size(); })
-      .def("to_toml", [](const Scene& s) { return to_toml(s); }, "The scene as TOML text (what the loader reads)")
-      .def("to_dict", &scene_to_dict, "The scene as nested dicts and lists (to_toml read back)");
-  m.def("load_scene", &load_scene, py::arg("path"), "Reads and checks a scene file; SceneError names the problem");
+      .def_property_readonly("particles", [](const Scene& s) { return s.particles.size(); },
+                             "How many spheres it holds (those placed so far)")
+      .def_property_readonly("placed", &Scene::placed,
+                             "False for a scene read but not placed (read_scene): its generators' "
+                             "spheres and its apparatus' walls and specimen are still to place")
+      .def("place", [](Scene& s) { place_scene(s); },
+           "Places what a read scene describes (a run does it first); SceneError names the problem")
+      .def("to_toml", [](const Scene& s) { return to_toml(s); }, "The placed scene as TOML text (what the loader reads)")
+      .def("to_dict", &scene_to_dict, "The placed scene as nested dicts and lists (to_toml read back)");
+  m.def("read_scene", &read_scene, py::arg("path"),
+        "Reads and checks a scene file without placing it (fast); SceneError names the problem");
+  m.def("load_scene", &load_scene, py::arg("path"), "Reads, checks and places a scene file; SceneError names the problem");
   m.def("parse_scene", &parse_scene, py::arg("text"), py::arg("name") = "<string>",
         "A scene from TOML text; `name` stands for the file in messages");
   m.def("scene_from_dict", &scene_from_dict, py::arg("scene"), py::arg("name") = "<dict>",
@@ -405,7 +413,10 @@ void define_simulation(py::module_& m) {
       .def_property_readonly("is_gpu", &Device::is_gpu);
   py::class_<Simulation>(m, "Simulation", "A scene's model and state on one device")
       .def(py::init([](const Scene& scene, std::shared_ptr<Device> device) {
-             return std::make_unique<Simulation>(device_or_open(std::move(device)), scene);
+             if (scene.placed()) return std::make_unique<Simulation>(device_or_open(std::move(device)), scene);
+             Scene placed = scene;  // a read scene placed as a run places it
+             place_scene(placed);
+             return std::make_unique<Simulation>(device_or_open(std::move(device)), placed);
            }),
            py::arg("scene"), py::arg("device") = nullptr)
       .def("advance", &Simulation::advance, py::arg("steps") = 1, py::call_guard<py::gil_scoped_release>(),

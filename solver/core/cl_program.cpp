@@ -88,9 +88,13 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
   c.rolling_spring = c.rolling && e.rolling == RollingModel::SpringDashpot;
   c.capillary = e.cohesion == CohesionModel::Capillary;
   c.fluid = e.fluid == FluidModel::Drag;
-  c.walls = !scene.walls.empty();
+  // a scene read but not placed will have its apparatus' walls, a servo
+  // among them, and a specimen of clumps if it pours a grain (scene.h)
+  const bool pending = scene.apparatus_pending;
+  c.walls = !scene.walls.empty() || pending;
+  c.servo = pending;
   for (const Wall& w : scene.walls) c.servo = c.servo || w.servo.enabled;
-  c.clumps = !scene.clumps.empty();
+  c.clumps = !scene.clumps.empty() || (pending && scene.specimen()->grain >= 0);
   // CPUs: SIMD lanes, 8 floats or 4 doubles per work item (256-bit
   // registers; measured fastest with PoCL 3.1 on AVX-512, docs/performance.md).
   // GPUs already run one particle per SIMD lane.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <stdexcept>
 #include <vector>
 
 #include "solver/common/errors.h"
@@ -12,6 +13,9 @@ namespace simsols {
 Model::Model(std::shared_ptr<Device> device, const Scene& scene)
     : device_(std::move(device)), scene_(scene) {
   if (!device_) throw DeviceError("Model: no OpenCL device given (Device::open opens one)");
+  if (!scene_.placed())
+    throw std::logic_error("Model: the scene '" + scene_.name +
+                           "' is read but not placed (place_scene, solver/io/scene_toml.h)");
   if (scene_.particles.empty())
     throw SceneError("no_particles", scene_.source_path, 0, "particles", "the scene has no particles");
   program_ = std::make_unique<Program>(*device_, make_kernel_config(scene_, *device_));

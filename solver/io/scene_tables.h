@@ -4,7 +4,9 @@
 // into the Scene, noting what lets the reading go on and failing at what
 // does not (toml_reader.h). scene_toml.cpp calls them in the order the
 // format needs: materials before the particles, walls and apparatus that
-// name them; particles before the generators that avoid them. A new table
+// name them. Reading only reads: the generators' spheres and the
+// apparatus' walls and specimen are placed afterwards (place_scene,
+// scene_toml.h). A new table
 // (a new apparatus) is a new scene_tables_*.cpp and one line here.
 #pragma once
 
@@ -27,16 +29,15 @@ void read_walls(const Reader& root, Scene& scene);         // [[walls]]
 // particles (solver/scene/clump.h).
 void read_clumps(const Reader& root, Scene& scene);
 
-// scene_tables_generators.cpp: [[generators]], appended to the particles;
-// returns the generator of each generated particle.
-std::vector<size_t> read_generators(const Reader& root, Scene& scene);
+// scene_tables_generators.cpp: [[generators]], into Scene::generators
+// (placed by place_scene, scene_toml.h).
+void read_generators(const Reader& root, Scene& scene);
 
 // scene_tables_apparatus.cpp: the scene's apparatus table, whichever kind
 // of the registry (solver/apparatus/registry.h) it is, read into
-// Scene::apparatus and then built (walls and specimen) by the kind's
-// `build`; the first problem of the build, if any. Each kind's reader
-// only reads:
-std::optional<SceneIssue> read_apparatus(const Reader& root, Scene& scene);
+// Scene::apparatus (Scene::apparatus_pending: place_scene builds its walls
+// and specimen with the kind's `build`). Each kind's reader only reads:
+void read_apparatus(const Reader& root, Scene& scene);
 // True when `kind` (a registry name) has a table reader here.
 bool has_apparatus_reader(std::string_view kind);
 

@@ -1,7 +1,8 @@
-// The apparatus table of a scene: which reader reads it, then the
-// registry's build (scene_tables.h).
+// The apparatus table of a scene: which reader reads it (scene_tables.h);
+// place_scene builds it afterwards with the registry's `build`.
 #include <string_view>
 
+#include "solver/apparatus/cell/cell_walls.h"
 #include "solver/apparatus/registry.h"
 #include "solver/io/scene_tables.h"
 
@@ -27,17 +28,20 @@ const ApparatusReader* reader_of(std::string_view kind) {
 
 bool has_apparatus_reader(std::string_view kind) { return reader_of(kind) != nullptr; }
 
-std::optional<SceneIssue> read_apparatus(const Reader& root, Scene& scene) {
+void read_apparatus(const Reader& root, Scene& scene) {
   for (const ApparatusKind& kind : apparatus_kinds()) {
     if (!root.has(kind.name)) continue;
     const ApparatusReader* reader = reader_of(kind.name);
     if (!reader)
-      return SceneIssue{"unsupported", kind.name,
-                        std::string("no table reader for the apparatus '") + kind.name + "'"};
+      root.fail("unsupported", kind.name,
+                std::string("no table reader for the apparatus '") + kind.name + "'");
     reader->read(root, scene);
-    return kind.build(scene);
+    // the built-in steel is a material of the scene from the start (what
+    // the kernels compile depends on it), as in the file's order
+    resolve_wall_material(scene, scene.cell()->wall_material);
+    scene.apparatus_pending = true;
+    return;
   }
-  return std::nullopt;
 }
 
 }  // namespace simsols::scene_toml

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <stdexcept>
 #include <variant>
 
 #include "solver/apparatus/registry.h"
@@ -345,6 +346,11 @@ class Writer {
 
 }  // namespace
 
-std::string to_toml(const Scene& scene) { return Writer(scene).write(); }
+std::string to_toml(const Scene& scene) {
+  if (!scene.placed())  // its generators and apparatus would be lost
+    throw std::logic_error("to_toml: the scene '" + scene.name +
+                           "' is read but not placed (place_scene)");
+  return Writer(scene).write();
+}
 
 }  // namespace simsols

@@ -4,10 +4,11 @@
 // walls, the effects switched on, numerics and outputs. It never changes
 // while a simulation runs; everything that evolves lives in State (device
 // buffers, see state.h). A Scene is plain data in SI units (metres, seconds,
-// kilograms, pascals), built either in code (tests) or by load_scene()
-// (scene_toml.h) from a TOML file. validate_scene() checks the semantic rules
-// shared by both paths; contact_model.h derives the per-pair coefficients and
-// the stable time step from it.
+// kilograms, pascals), built either in code (tests) or read from a TOML file
+// by read_scene() and placed by place_scene() (scene_toml.h).
+// validate_scene() checks the semantic rules shared by both paths;
+// contact_model.h derives the per-pair coefficients and the stable time
+// step from it.
 #pragma once
 
 #include <array>
@@ -59,6 +60,25 @@ struct Particle {
   Vec3 velocity{};    // m/s
   Vec3 angular_velocity{};  // rad/s
   int clump = -1;     // the clump it belongs to (Scene::clumps), -1 for a free sphere
+};
+
+// A [[generators]] entry as read (docs/scene-format.md): spheres on a
+// lattice or at random without overlap, not yet placed. place_scene
+// (solver/io/scene_toml.h) expands it (generators.h), deterministic on
+// every platform.
+struct Generator {
+  enum class Type : std::uint8_t { Lattice, Random };
+  Type type = Type::Lattice;
+  int material = 0;
+  Vec3 min{}, max{};      // m, the box the spheres lie in
+  Vec3 velocity{};        // m/s, of every sphere
+  std::uint64_t seed = 1;
+  double radius_min = 0;  // m; a lattice's spheres, and an equal-size random fill, have
+  double radius_max = 0;  //    radius_min = radius_max
+  double spacing = 0;     // Lattice: m between nearest neighbours
+  bool hexagonal = false; // Lattice: FCC close-packed layers instead of cubic
+  double jitter = 0;      // Lattice: m, each coordinate moved by up to this
+  std::int64_t count = 0; // Random: how many; Lattice: at most this many, 0 = every site
 };
 
 // A grain shape made of overlapping spheres, in its own frame (a clump
@@ -400,6 +420,16 @@ struct Scene {
   // What each kind is and does is told by the registry
   // (solver/apparatus/registry.h), not by the code that holds a scene.
   Apparatus apparatus;
+
+  // What reading a file leaves to place_scene (solver/io/scene_toml.h):
+  // the generators still to expand, and the apparatus whose walls and
+  // specimen are still to build. A scene built in code, or placed, has
+  // neither; a Simulation takes only a placed scene. Every apparatus of the
+  // registry adds walls, one of them servo-controlled, and a specimen of
+  // clumps when its specimen pours a grain (make_kernel_config counts on it).
+  std::vector<Generator> generators;
+  bool apparatus_pending = false;
+  bool placed() const { return generators.empty() && !apparatus_pending; }
 
   // Where it came from (empty for scenes built in code).
   std::string source_path;

@@ -145,7 +145,7 @@ void check_pair_overrides(const Scene& s, Found& found) {
 }
 
 void check_particles(const Scene& s, Found& found) {
-  if (s.particles.empty())
+  if (s.particles.empty() && s.placed())
     fail("no_particles", "particles",
          "the scene has no particles; add [[particles]] or [[generators]]");
   for (size_t i = 0; i < s.particles.size(); ++i) {
@@ -243,7 +243,8 @@ void check_wall_pair(const Scene& s, size_t i, size_t j) {
   if (a.shape != WallShape::Plane || b.shape != WallShape::Plane) return;
   if (dot(a.normal, b.normal) > -1 + 1e-12) return;
   const double gap = dot(sub(b.point, a.point), a.normal);
-  const double diameter = 2 * smallest_radius(s);
+  // before placing, only that they do not cross (place_scene checks again)
+  const double diameter = s.placed() ? 2 * smallest_radius(s) : 0;
   if (gap < diameter)
     fail("overlapping_walls", f,
          "faces " + at("walls", i) + " ('" + a.name + "') with a gap of " +
@@ -402,7 +403,8 @@ std::vector<SceneIssue> find_scene_issues(const Scene& scene) {
     check_numerics(scene, found);
     check_effects(scene, found);
     check_outputs(scene, found);
-    if (!found.empty()) return found;  // the checks below need valid values
+    // the checks below need valid values, and every sphere and wall placed
+    if (!found.empty() || !scene.placed()) return found;
     check_particle_overlaps(scene);
     check_wall_overlaps(scene);
     check_time_step(scene);

@@ -24,6 +24,8 @@ struct SceneIssue {
 
 // The semantic problems of `scene`, empty when it is valid: every value out
 // of range or not finite, or the first other problem (the checks stop there).
+// A scene not yet placed (Scene::placed) is checked as far as it goes: its
+// values, not overlaps nor the time step, which need every sphere.
 std::vector<SceneIssue> find_scene_issues(const Scene& scene);
 // The first of them, or nullopt when the scene is valid.
 std::optional<SceneIssue> find_scene_issue(const Scene& scene);

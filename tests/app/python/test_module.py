@@ -113,6 +113,19 @@ def test_bad_values_are_refused_as_in_a_file():
         simsols.load_scene("no_such.toml")
 
 
+def test_a_scene_read_is_placed_before_it_runs():
+    """read_scene only reads; place() and Simulation place what it describes."""
+    path = os.path.join(ASSETS, "scenes", "default.toml")
+    read = simsols.read_scene(path)
+    assert not read.placed and read.particles == 0
+    placed = simsols.load_scene(path)
+    assert placed.placed and placed.particles > 0
+    assert simsols.Simulation(read).particles == placed.particles
+    assert not read.placed  # Simulation placed its own copy
+    read.place()
+    assert read.placed and read.to_toml() == placed.to_toml()
+
+
 def test_arrays_and_a_checkpoint_round_trip(tmp_path):
     scene = simsols.load_scene(os.path.join(ASSETS, "scenes", "shear_box.toml"))
     sim = simsols.Simulation(scene)
@@ -136,7 +149,9 @@ def test_arrays_and_a_checkpoint_round_trip(tmp_path):
 def test_a_shear_test_from_python_equals_simsols_run(tmp_path):
     """run_test gives the summary and rows `simsols run` writes for the same scene."""
     path = os.path.join(ASSETS, "tests", "shear_small.toml")
-    r = simsols.run_test(simsols.load_scene(path), str(tmp_path / "py"))
+    scene = simsols.read_scene(path)  # only read: the run places it, as the command does
+    assert not scene.placed and scene.particles == 0
+    r = simsols.run_test(scene, str(tmp_path / "py"))
     assert r["apparatus"] == "shear_box" and r["finished"]
     exe = os.environ["SIMSOLS_EXE"]
     cli = tmp_path / "cli"

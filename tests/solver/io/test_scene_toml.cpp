@@ -17,6 +17,8 @@
 #include "solver/common/number_text.h"
 #include "solver/scene/contact_model.h"
 #include "solver/common/errors.h"
+#include "solver/core/cl_program.h"
+#include "solver/core/simulation.h"
 #include "solver/io/scene_toml.h"
 #include "tests/solver/io/scene_fixtures.h"
 
@@ -419,6 +421,79 @@ TEST(SceneToml, EveryShippedSceneLoads) {
     ++scenes;
   }
   EXPECT_GE(scenes, 11);
+}
+
+// Reading only reads: a shipped scene read keeps its generators and its
+// apparatus as descriptions (no sphere generated, no apparatus wall), and
+// is checked as far as that goes; placed, it is the scene load_scene gives,
+// bit for bit, and it compiles the same kernels as when it was only read
+// (what `simsols run --explain` prints). The GPU-sized scenes are read only.
+TEST(SceneToml, ReadingOnlyReadsAndPlacingGivesTheLoadedScene) {
+  const auto device = Device::open(EngineOptions{});
+  int scenes = 0;
+  for (const auto& entry : fs::directory_iterator(assets_dir() / "scenes")) {
+    if (entry.path().extension() != ".toml") continue;
+    const std::string name = entry.path().filename().string();
+    SCOPED_TRACE(name);
+    const auto t0 = std::chrono::steady_clock::now();
+    Scene read = read_scene(entry.path().string());
+    const double read_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("[measure] %s: read in %.3f s, %zu explicit spheres, %zu generators\n",
+                name.c_str(), read_s, read.particles.size(), read.generators.size());
+    EXPECT_EQ(read.placed(), read.generators.empty() && !read.has_apparatus());
+    if (const ApparatusCell* cell = read.cell()) {
+      EXPECT_TRUE(read.apparatus_pending);
+      for (const Wall& w : read.walls) EXPECT_FALSE(w.servo.enabled) << w.name;
+    }
+    if (name.find("_large") != std::string::npos) continue;  // placing it is a GPU-sized job
+    const std::string read_options = make_kernel_config(read, *device).build_options();
+    const size_t explicit_spheres = read.particles.size();
+    place_scene(read);
+    EXPECT_TRUE(read.placed());
+    EXPECT_GE(read.particles.size(), explicit_spheres);
+    EXPECT_EQ(make_kernel_config(read, *device).build_options(), read_options);
+    EXPECT_EQ(to_toml(read), to_toml(load_scene(entry.path().string())));
+    ++scenes;
+  }
+  EXPECT_GE(scenes, 11);
+}
+
+// A scene read but not placed cannot be written nor simulated: what it
+// would lose (its generators, its apparatus) is refused, not dropped.
+TEST(SceneToml, AReadSceneIsPlacedBeforeItIsWrittenOrSimulated) {
+  Scene read = read_scene((assets_dir() / "scenes" / "default.toml").string());
+  ASSERT_FALSE(read.placed());
+  EXPECT_THROW(to_toml(read), std::logic_error);
+  EXPECT_THROW(Simulation(Device::open(EngineOptions{}), read), std::logic_error);
+  place_scene(read);
+  const std::string once = to_toml(read);
+  place_scene(read);  // nothing left to place
+  EXPECT_EQ(to_toml(read), once);
+}
+
+// A generator that cannot be met is found when the scene is placed, and
+// named at its line in the file as it was when reading placed it.
+TEST(SceneToml, APlacementProblemIsAtItsGeneratorsLine) {
+  const std::string text =
+      "[[materials]]\nname = \"glass\"\nyoung_modulus = 1e9\npoisson_ratio = 0.2\n"
+      "density = 2500\nrestitution = 0.9\n\n"
+      "[[generators]]\ntype = \"random\"\nmaterial = \"glass\"\nradius = 0.1\n"
+      "min = [0, 0, 0]\nmax = [1, 1, 1]\ncount = 10\n\n"
+      "[[generators]]\ntype = \"random\"\nmaterial = \"glass\"\nradius = 0.1\n"
+      "min = [0, 0, 0]\nmax = [1, 1, 1]\ncount = 80\nseed = 3\n\n"
+      "[numerics]\nduration = 0.1\n";
+  Scene read = read_scene_text(text, "crowded.toml");  // 90 spheres fill 0.38 of the box: allowed
+  EXPECT_EQ(read.generators.size(), 2u);
+  EXPECT_TRUE(read.particles.empty());
+  try {
+    place_scene(read);
+    ADD_FAILURE() << "90 spheres of 0.1 m placed at random in a 1 m box";
+  } catch (const SceneError& e) {
+    ASSERT_EQ(e.problems.size(), 1u);
+    EXPECT_EQ(e.field, "generators[1].count");
+    EXPECT_EQ(e.line, 22);
+    EXPECT_NE(std::string(e.what()).find("crowded.toml:22"), std::string::npos) << e.what();
+  }
 }
 
 // ---------------------------------------------------------------------------
