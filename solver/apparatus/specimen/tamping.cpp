@@ -1,4 +1,5 @@
 #include "solver/apparatus/specimen/tamping.h"
+#include "solver/apparatus/specimen/tamping_state.h"
 
 #include <algorithm>
 #include <cmath>
@@ -225,10 +226,23 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
   Scene built = empty;
   std::vector<GrainBody> bodies;  // the unit bodies, once per grain (add_clump scales them)
   for (const Grain& g : scene.grains) bodies.push_back(grain_body(g));
-  std::vector<TampedLayer> layers;
-  double floor = 0, solid_total = 0;
-  std::vector<double> seconds;  // wall time per layer
-  for (int k = 1; k <= n; ++k) {
+  // a tamping stopped between layers goes on from the last one done
+  const std::filesystem::path state_file = out_dir / kTampingStateFile;
+  TampingState st;
+  st.key = tamping_key(scene, void_ratio);
+  const bool keep = !out_dir.empty();
+  if (std::optional<TampingState> was = keep ? load_tamping_state(state_file, st.key) : std::nullopt) {
+    st = std::move(*was);
+    for (const Clump& c : st.clumps) add_clump(built, c, bodies[c.grain]);
+    built.particles.insert(built.particles.end(), st.spheres.begin(), st.spheres.end());
+    log("going on after layer " + std::to_string(st.layers.size()) + " of " + std::to_string(n) +
+        " (" + state_file.string() + ")");
+  }
+  std::vector<TampedLayer>& layers = st.layers;
+  double& floor = st.floor;
+  double& solid_total = st.solid_total;
+  std::vector<double>& seconds = st.seconds;  // wall time per layer
+  for (int k = static_cast<int>(layers.size()) + 1; k <= n; ++k) {
     const Ticker clock;
     const size_t from = grains.size() * (k - 1) / n, to = grains.size() * k / n;
     TampedLayer l;
@@ -252,6 +266,14 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
                   k, n, l.grains, l.target_void_ratio, 1e3 * l.platen_stop, 1e3 * l.target_top,
                   l.stress / 1e3, l.void_ratio);
     seconds.push_back(clock.elapsed());
+    st.clumps = built.clumps;
+    st.spheres.clear();
+    for (const Particle& p : built.particles)
+      if (p.clump < 0) st.spheres.push_back(p);
+    if (keep) {
+      std::filesystem::create_directories(out_dir);
+      save_tamping_state(state_file, st);
+    }
     log(std::string(line) + (l.stress < kLooseLayerStress ? kLooseLayerNote : "") +
         layers_time(n, seconds));
   }
@@ -273,6 +295,7 @@ bool tamp_specimen(Scene& scene, const std::shared_ptr<Device>& device, double v
   scene = built;
   std::filesystem::create_directories(out_dir);
   write_file_atomic((out_dir / "tamping.csv").string(), tamping_csv(layers));
+  if (keep) std::filesystem::remove(state_file);
   return true;
 }
 

@@ -321,7 +321,8 @@ TEST(Interrupt, PlainRunKillThenResumeGivesTheSameState) {
 
 // Ctrl-C while the specimen is being prepared (tamped in three layers)
 // stops the preparation between chunks of steps: status 130, the reason
-// said, no checkpoint and no test files (a preparation has none to resume).
+// said, no checkpoint and no test files yet. The same command then goes on
+// from the last layer it finished (tamping_state.txt).
 TEST(Interrupt, CtrlCWhilePreparingStopsThePreparation) {
   const fs::path d = fresh_dir("prepare");
   std::string text = read(std::string(SIMSOLS_ASSETS_DIR) + "/tests/triaxial_small.toml");
@@ -342,6 +343,16 @@ TEST(Interrupt, CtrlCWhilePreparingStopsThePreparation) {
   EXPECT_EQ(c.output().find("[prepare] layer 3 of 3"), std::string::npos) << c.output();
   EXPECT_FALSE(fs::exists(d / "out" / "checkpoint.bin"));
   EXPECT_FALSE(fs::exists(d / "out" / "triaxial.csv"));
+  // the same command goes on from the last layer done (here the first;
+  // that it ends as a straight run does: Preparation.LayeredTampingReaches...)
+  EXPECT_TRUE(fs::exists(d / "out" / "tamping_state.txt"));
+  Child again({"run", (d / "tamped.toml").string(), "--out", (d / "out").string()}, d / "log2.txt");
+  ASSERT_TRUE(again.wait_for("[prepare] going on after layer 1 of 3")) << again.output();
+  kill(again.pid, SIGINT);
+  EXPECT_EQ(again.wait(), 130) << again.output();
+  EXPECT_EQ(again.output().find("[prepare] layer 1 of 3"), std::string::npos) << again.output();
+  EXPECT_TRUE(fs::exists(d / "out" / "tamping_state.txt"));
+  EXPECT_FALSE(fs::exists(d / "out" / "tamping.csv"));
 }
 
 // 24 000 beads writing a 16 MB checkpoint every step: the second signal,

@@ -9,11 +9,14 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include "solver/apparatus/specimen/preparation.h"
 #include "solver/apparatus/specimen/tamping.h"
+#include "solver/apparatus/specimen/tamping_state.h"
 #include "solver/apparatus/triaxial/triaxial_programme.h"
 #include "solver/io/output.h"
 #include "solver/io/scene_toml.h"
@@ -166,10 +169,80 @@ TEST(Preparation, LayeredTampingReachesTheTargetVoidRatio) {
   EXPECT_NEAR(std::stod(last[4]), std::stod(last[3]), 2e-4);
   EXPECT_GT(std::stod(last[6]), 0.84);
   EXPECT_LT(std::stod(last[6]), 1.1);
+  EXPECT_FALSE(std::filesystem::exists(dir / kTampingStateFile));  // removed at the end
   const Settled run = settle_specimen(scene, default_device());
   std::printf("tamped to e = 0.85: the test settles at e = %.4f\n", run.packing.void_ratio);
   EXPECT_NEAR(run.packing.void_ratio, 0.85, 0.1);  // 0.796 measured (the slab, settled under gravity)
+
+  // Stopped in its third layer, the same tamping goes on from the second
+  // (tamping_state.txt) and ends with the same specimen, bit for bit.
+  const std::filesystem::path again = dir.string() + "_stopped";
+  std::filesystem::remove_all(again);
+  Scene stopped = scene_with("tamping_layers = 3\nvoid_ratio = 0.85\nundercompaction = 0.05\n");
+  bool second_done = false;
+  const PrepLog stop_in_third([&](const std::string& l) { second_done |= l.rfind("layer 2 of 3", 0) == 0; },
+                              [&] { return second_done; });
+  EXPECT_THROW(prepare_specimen(stopped, default_device(), again, stop_in_third), PreparationStopped);
+  EXPECT_TRUE(std::filesystem::exists(again / kTampingStateFile));
+  EXPECT_FALSE(std::filesystem::exists(again / "tamping.csv"));
+  std::vector<std::string> resumed_lines;
+  ASSERT_TRUE(prepare_specimen(stopped, default_device(), again,
+                               [&](const std::string& l) { resumed_lines.push_back(l); }));
+  ASSERT_EQ(resumed_lines.size(), 3u);  // going on, the third layer, the tamped specimen
+  EXPECT_EQ(resumed_lines[0].rfind("going on after layer 2 of 3", 0), 0u) << resumed_lines[0];
+  ASSERT_EQ(stopped.particles.size(), scene.particles.size());
+  for (size_t i = 0; i < scene.particles.size(); ++i)
+    ASSERT_EQ(stopped.particles[i].position, scene.particles[i].position) << "bead " << i;
+  const auto text = [](const std::filesystem::path& f) {
+    std::ifstream in(f);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(text(again / "tamping.csv"), text(dir / "tamping.csv"));
+  EXPECT_FALSE(std::filesystem::exists(again / kTampingStateFile));
   std::filesystem::remove_all(dir);
+  std::filesystem::remove_all(again);
+}
+
+// A tamping state that is not one SimSols wrote is refused, naming the
+// file; one of another tamping is not used.
+TEST(Preparation, ATampingStateIsReadBackOrRefused) {
+  const std::filesystem::path file = std::filesystem::temp_directory_path() / "simsols_tamping_state.txt";
+  TampingState st;
+  st.key = 42;
+  st.floor = 0.1 / 3;
+  st.solid_total = 1e-7 / 3;
+  st.layers.push_back({1, 50, 0.9 + 1e-16, 0.01 / 3, 0.0099, 12345.678, 0.88});
+  st.seconds.push_back(2.5);
+  Clump c;
+  c.grain = 1;
+  c.scale = 1.0 / 3;
+  c.position = {0.1 / 7, 0.2 / 7, 0.3 / 7};
+  c.orientation = {0.5, -0.5, 0.5, std::sqrt(0.25)};
+  st.clumps.push_back(c);
+  st.spheres.push_back({0, 1e-3 / 3, {1.0 / 3, 2.0 / 3, 1e-300}, {}, {}});
+  save_tamping_state(file, st);
+  const std::optional<TampingState> back = load_tamping_state(file, 42);
+  ASSERT_TRUE(back);
+  EXPECT_EQ(back->floor, st.floor);
+  EXPECT_EQ(back->solid_total, st.solid_total);
+  EXPECT_EQ(back->layers[0].target_void_ratio, st.layers[0].target_void_ratio);
+  EXPECT_EQ(back->layers[0].stress, st.layers[0].stress);
+  EXPECT_EQ(back->clumps[0].position, c.position);
+  EXPECT_EQ(back->clumps[0].orientation, c.orientation);
+  EXPECT_EQ(back->spheres[0].position, st.spheres[0].position);
+  EXPECT_EQ(back->spheres[0].radius, st.spheres[0].radius);
+  EXPECT_FALSE(load_tamping_state(file, 43));  // another tamping's
+  EXPECT_FALSE(load_tamping_state(file.string() + "_absent", 42));
+  std::ofstream(file) << "simsols tamping state 1\nkey 42\nlayer 1 two\n";
+  try {
+    load_tamping_state(file, 42);
+    ADD_FAILURE() << "a malformed state was read";
+  } catch (const ReadError& e) {
+    EXPECT_NE(std::string(e.what()).find(file.string() + ":3"), std::string::npos) << e.what();
+  }
+  std::ofstream(file) << "simsols tamping state 1\nkey 42\nfloor 0.1\n";  // cut short
+  EXPECT_THROW(load_tamping_state(file, 42), ReadError);
+  std::filesystem::remove(file);
 }
 
 // Radius expansion (solver/apparatus/specimen/expansion.h): the pour's beads grown in
