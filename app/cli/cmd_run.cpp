@@ -374,8 +374,10 @@ namespace {
 
 // --stop-at's help: each kind's stages, from the registry.
 std::string stop_at_help() {
-  std::string text = "Stop at the end of this stage of the test, with a checkpoint (resume with "
-                     "--resume); the stages of";
+  std::string text = std::string("Stop at the end of this stage of the test, with a checkpoint "
+                                 "(resume with --resume): ") +
+                     kPreparedStage + " (every test: its specimen prepared, nothing loaded), or "
+                     "the stages of";
   for (const ApparatusKind& k : apparatus_kinds()) {
     text += std::string(&k == apparatus_kinds().data() ? " " : "; ") + k.test_noun + ": " + k.stages;
   }

@@ -46,7 +46,8 @@ void check_stop_at(const ApparatusKind& kind, const std::string& stop_at) {
   if (stop_at.empty() || has_stage(kind, stop_at)) return;
   throw UsageError("out_of_range", "--stop-at",
                    "'" + stop_at + "' is not a stage of " + kind.test_noun + "; allowed: " +
-                       kind.stages + " (it stops at the end of that stage)");
+                       kPreparedStage + "," + kind.stages +
+                       " (it stops at the end of that stage; prepared: before any loading)");
 }
 
 TestRun drive(std::unique_ptr<Simulation> sim, const ProgrammeRunOptions& opt,
@@ -81,6 +82,9 @@ TestRun resume_test(std::unique_ptr<Simulation> sim, const std::string& extra,
                      "--resume", "the checkpoint is not a test of an apparatus (" +
                                      apparatus_names(", ") + ")");
   check_stop_at(*apparatus_kind(sim->scene()), opt.stop_at);
+  if (opt.stop_at == kPreparedStage)
+    throw UsageError("not_applicable", "--stop-at",
+                     "a resumed test is past its preparation: name a stage of its own");
   return drive(std::move(sim), opt, &extra);
 }
 

@@ -12,6 +12,7 @@
 #include "app/experiment/specimen_report.h"
 #include "app/experiment/progress.h"
 #include "app/experiment/run_cost.h"
+#include "solver/apparatus/registry.h"
 #include "solver/io/checkpoint.h"
 #include "solver/io/output.h"
 #include "solver/io/paraview.h"
@@ -91,7 +92,9 @@ ProgrammeRunState drive_programme(Simulation& sim, ProgrammeOutputs& out,
   if (o.dump_vtk) paraview.emplace(dir / "paraview", opt.resume ? sim.steps() : -1);
   const long long dump_every = o.dump_interval > 0 ? std::max(1LL, std::llround(o.dump_interval / sim.dt())) : 0;
   long long next_dump = dump_every > 0 ? (sim.steps() / dump_every + (opt.resume ? 1 : 0)) * dump_every : -1;
-  while (!test.done()) {
+  // --stop-at prepared: the prepared specimen checkpointed, nothing loaded
+  if (opt.stop_at == kPreparedStage && !opt.resume) state.stopped_after = kPreparedStage;
+  while (!test.done() && state.stopped_after.empty()) {
     if (paraview && next_dump >= 0 && sim.steps() >= next_dump) {
       paraview->write(sim);
       next_dump = (sim.steps() / dump_every + 1) * dump_every;

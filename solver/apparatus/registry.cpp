@@ -76,6 +76,7 @@ std::string apparatus_names(std::string_view separator) {
 }
 
 bool has_stage(const ApparatusKind& kind, std::string_view stage) {
+  if (stage == kPreparedStage) return true;
   std::string_view rest = kind.stages;
   while (!rest.empty()) {
     const size_t comma = rest.find(',');

@@ -58,7 +58,10 @@ const ApparatusKind* apparatus_kind(const Scene& scene);
 const ApparatusKind* find_apparatus_kind(std::string_view name);
 // The kinds' names joined by `separator`: "shear_box|oedometer|triaxial".
 std::string apparatus_names(std::string_view separator);
-// True when `stage` is one of the kind's stages.
+// Where every test can stop before its own stages: its specimen placed
+// and prepared, nothing loaded yet (`--stop-at prepared`).
+inline constexpr const char* kPreparedStage = "prepared";
+// True when `stage` is one of the kind's stages, or kPreparedStage.
 bool has_stage(const ApparatusKind& kind, std::string_view stage);
 
 // The kind of the scene's apparatus; SceneError (no_apparatus) naming the

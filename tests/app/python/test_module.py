@@ -200,6 +200,11 @@ def test_a_test_stopped_at_the_end_of_a_stage_hands_its_apparatus_over(tmp_path)
     assert platen[0]["force"][2] == pytest.approx(load, rel=0.05)
     with pytest.raises(simsols.SceneError, match="not a stage"):
         simsols.run_test(simsols.load_scene(path), str(tmp_path / "bad"), stop_at="consolidated")
+    # stop_at="prepared": the specimen placed and prepared, nothing loaded yet
+    p = simsols.run_test(simsols.read_scene(path), str(tmp_path / "prepared"), stop_at="prepared")
+    assert not p["finished"] and p["stopped_after"] == "prepared"
+    assert p["steps"] == 0 and p["stage"] == "settle"
+    assert simsols.load_checkpoint(p["checkpoint"]).particles == simsols.load_scene(path).particles
     exe = os.environ["SIMSOLS_EXE"]
     assert os.system(f"'{exe}' run --resume --out '{tmp_path / 'py'}' -q > /dev/null") == 0
     straight = tmp_path / "straight"
