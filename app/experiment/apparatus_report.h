@@ -1,8 +1,10 @@
 // What a run shows of each kind of apparatus: its plots (PNG, drawn with
-// render/plot) and the lines `simsols run` prints at the end. One entry per
-// kind of the registry (solver/apparatus/registry.h), in a table of its own
-// because plots live above the solver; a test checks that every kind has
-// one.
+// render/plot) and the lines `simsols run` prints at the end. At most one
+// entry per kind of the registry (solver/apparatus/registry.h), in a table
+// of its own because plots live above the solver. The entry is optional: a
+// kind without one still writes its rows and summary.txt, draws no plots
+// and ends with a plain line (beads, steps, its rows file); a test checks
+// that the three kinds of today have one.
 #pragma once
 
 #include <string>
@@ -13,7 +15,7 @@
 namespace simsols {
 
 // The plots of `test` into `dir` (shear_plots.h, oedometer_plots.h,
-// triaxial_plots.h), titled `title`.
+// triaxial_plots.h), titled `title`; none for a kind without a report.
 void write_test_plots(const std::string& dir, const std::string& title, const ApparatusKind& kind,
                       const ApparatusProgramme& test);
 

@@ -8,11 +8,12 @@
 // rule. Front ends see a kind only through its entry; what a test does is
 // behind ApparatusProgramme (apparatus.h).
 //
-// A new apparatus (docs/architecture.md, "A new apparatus"): its
-// description struct in scene.h and the Apparatus variant, a folder of its
-// own beside shear_box/ (geometry, loading programme, analysis), one entry
-// here, its table reader in solver/io, its plots in app/experiment
-// (apparatus_plots.cpp) and its bench in the lab (lab_apparatus.cpp).
+// A new apparatus (docs/architecture.md, "How to add … An apparatus"):
+// its description struct in scene.h and the Apparatus variant, a folder of
+// its own beside shear_box/ (geometry, loading programme, analysis), one
+// entry here, its table (reader and writer, one file) in solver/io; its
+// plots (app/experiment/apparatus_report.cpp) and its bench in the lab
+// (app/lab/lab_apparatus.cpp) are optional.
 #pragma once
 
 #include <memory>

@@ -11,6 +11,9 @@
 #pragma once
 
 #include <optional>
+#include <sstream>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "solver/io/toml_reader.h"
@@ -33,17 +36,47 @@ void read_clumps(const Reader& root, Scene& scene);
 // (placed by place_scene, scene_toml.h).
 void read_generators(const Reader& root, Scene& scene);
 
+// Writes a scene's tables back as TOML (scene_writer.cpp), every double in
+// its shortest round-trip form; the apparatus' writers below use it too.
+class TableWriter {
+ public:
+  TableWriter(const Scene& scene, std::ostringstream& out) : scene_(scene), out_(out) {}
+  const Scene& scene() const { return scene_; }
+  void header(std::string_view h);
+  void line(std::string_view key, const std::string& toml_value);
+  void line(std::string_view key, double value);
+  void line(std::string_view key, bool value);
+  void line(std::string_view key, const Vec3& value);
+  void line(std::string_view key, const std::vector<double>& values);
+  void text(std::string_view key, std::string_view value);  // a quoted string
+  // A material by name (SceneError naming `field` for a bad index).
+  void material(std::string_view key, int index, const std::string& field);
+  // [<table>.specimen], placed: "given" (the particles are written
+  // explicitly) with its preparation's settling friction and index voids.
+  void given_specimen(const std::string& table, const Preparation& p);
+
+ private:
+  const Scene& scene_;
+  std::ostringstream& out_;
+};
+
 // scene_tables_apparatus.cpp: the scene's apparatus table, whichever kind
 // of the registry (solver/apparatus/registry.h) it is, read into
 // Scene::apparatus (Scene::apparatus_pending: place_scene builds its walls
-// and specimen with the kind's `build`). Each kind's reader only reads:
+// and specimen with the kind's `build`), and written back. Each kind's
+// reader only reads; its writer writes the resolved values (the walls are
+// rebuilt from them, the specimen is the explicit particles):
 void read_apparatus(const Reader& root, Scene& scene);
-// True when `kind` (a registry name) has a table reader here.
+void write_apparatus(TableWriter& out);
+// True when `kind` (a registry name) has a table reader and writer here.
 bool has_apparatus_reader(std::string_view kind);
 
 void read_shear_box(const Reader& table, Scene& scene);  // scene_tables_shear_box.cpp
+void write_shear_box(TableWriter& out);
 void read_oedometer(const Reader& table, Scene& scene);  // scene_tables_oedometer.cpp
+void write_oedometer(TableWriter& out);
 void read_triaxial(const Reader& table, Scene& scene);   // scene_tables_triaxial.cpp
+void write_triaxial(TableWriter& out);
 
 // The [<apparatus>.specimen] sub-table of an apparatus table
 // (scene_tables_specimen.cpp).

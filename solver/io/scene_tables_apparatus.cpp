@@ -1,5 +1,6 @@
 // The apparatus table of a scene: which reader reads it (scene_tables.h);
 // place_scene builds it afterwards with the registry's `build`.
+#include <stdexcept>
 #include <string_view>
 
 #include "solver/apparatus/cell/cell_walls.h"
@@ -12,12 +13,13 @@ namespace {
 struct ApparatusReader {
   std::string_view kind;  // the registry's name, the table's name
   void (*read)(const Reader& root, Scene& scene);
+  void (*write)(TableWriter& out);
 };
 
 constexpr ApparatusReader kReaders[] = {
-    {"shear_box", read_shear_box},
-    {"oedometer", read_oedometer},
-    {"triaxial", read_triaxial},
+    {"shear_box", read_shear_box, write_shear_box},
+    {"oedometer", read_oedometer, write_oedometer},
+    {"triaxial", read_triaxial, write_triaxial},
 };
 
 const ApparatusReader* reader_of(std::string_view kind) {
@@ -42,6 +44,14 @@ void read_apparatus(const Reader& root, Scene& scene) {
     scene.apparatus_pending = true;
     return;
   }
+}
+
+void write_apparatus(TableWriter& out) {
+  const ApparatusKind* kind = apparatus_kind(out.scene());
+  if (!kind) return;
+  const ApparatusReader* table = reader_of(kind->name);
+  if (!table) throw std::logic_error(std::string("no table writer for the apparatus ") + kind->name);
+  table->write(out);
 }
 
 }  // namespace simsols::scene_toml

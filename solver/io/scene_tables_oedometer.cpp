@@ -28,4 +28,21 @@ void read_oedometer(const Reader& root, Scene& scene) {
   scene.apparatus = o;
 }
 
+// Its resolved values (scene_tables.h: the walls are rebuilt from them).
+void write_oedometer(TableWriter& w) {
+  const Oedometer& o = *w.scene().apparatus_as<Oedometer>();
+  w.header("[oedometer]");
+  w.line("length", o.length);
+  w.line("width", o.width);
+  w.material("wall_material", o.wall_material, "oedometer.wall_material");
+  w.line("load_steps", o.load_steps);
+  w.line("step_time", o.step_time);
+  w.line("settle_time", o.settle_time);
+  w.line("servo_gain", o.servo_gain);
+  w.line("servo_max_speed", o.servo_max_speed);
+  w.line("servo_integral_time", o.servo_integral_time);
+  w.line("friction_angle", o.friction_angle);
+  w.given_specimen("oedometer", o.specimen.preparation);
+}
+
 }  // namespace simsols::scene_toml

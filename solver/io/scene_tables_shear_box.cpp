@@ -43,4 +43,28 @@ void read_shear_box(const Reader& root, Scene& scene) {
   scene.apparatus = b;
 }
 
+// Its resolved values (scene_tables.h: the walls are rebuilt from them).
+void write_shear_box(TableWriter& w) {
+  const ShearBox& b = *w.scene().apparatus_as<ShearBox>();
+  w.header("[shear_box]");
+  w.line("length", b.length);
+  w.line("width", b.width);
+  w.line("split_height", b.split_height);
+  w.line("gap", b.gap);
+  w.material("wall_material", b.wall_material, "shear_box.wall_material");
+  w.line("normal_stress", b.normal_stress);
+  w.line("shear_speed", b.shear_speed);
+  w.line("inertial_number", b.inertial_number);
+  w.line("shear_displacement", b.shear_displacement);
+  w.text("loading", choice_name(b.loading));
+  w.line("platen_mass", b.platen_mass);
+  w.line("servo_gain", b.servo_gain);
+  w.line("servo_max_speed", b.servo_max_speed);
+  w.line("servo_integral_time", b.servo_integral_time);
+  w.line("settle_time", b.settle_time);
+  w.line("consolidate_time", b.consolidate_time);
+  w.line("rows", std::to_string(b.rows));
+  w.given_specimen("shear_box", b.specimen.preparation);
+}
+
 }  // namespace simsols::scene_toml

@@ -39,4 +39,26 @@ void read_triaxial(const Reader& root, Scene& scene) {
   scene.apparatus = t;
 }
 
+// Its resolved values (scene_tables.h: the walls are rebuilt from them).
+void write_triaxial(TableWriter& w) {
+  const Triaxial& t = *w.scene().apparatus_as<Triaxial>();
+  w.header("[triaxial]");
+  w.line("length", t.length);
+  w.line("width", t.width);
+  w.material("wall_material", t.wall_material, "triaxial.wall_material");
+  w.line("confining_stress", t.confining_stress);
+  w.text("path", choice_name(t.path));
+  if (t.path == Triaxial::Path::TrueTriaxial) w.line("b_value", t.b_value);
+  w.line("axial_strain", t.axial_strain);
+  w.line("strain_rate", t.strain_rate);
+  w.line("inertial_number", t.inertial_number);
+  w.line("settle_time", t.settle_time);
+  w.line("consolidate_time", t.consolidate_time);
+  w.line("servo_gain", t.servo_gain);
+  w.line("servo_max_speed", t.servo_max_speed);
+  w.line("servo_integral_time", t.servo_integral_time);
+  w.line("rows", std::to_string(t.rows));
+  w.given_specimen("triaxial", t.specimen.preparation);
+}
+
 }  // namespace simsols::scene_toml

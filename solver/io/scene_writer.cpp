@@ -9,6 +9,7 @@
 
 #include "solver/apparatus/registry.h"
 #include "solver/io/scene_toml.h"
+#include "solver/io/scene_tables.h"
 #include "solver/io/toml_reader.h"
 
 namespace simsols {
@@ -72,9 +73,50 @@ const std::string& material_name(const Scene& s, int index, const std::string& f
   return s.materials[index].name;
 }
 
+}  // namespace
+
+namespace scene_toml {
+
+void TableWriter::header(std::string_view h) { out_ << "\n" << h << "\n"; }
+void TableWriter::line(std::string_view key, const std::string& toml_value) {
+  out_ << key << " = " << toml_value << "\n";
+}
+void TableWriter::line(std::string_view key, double value) { line(key, toml_float(value)); }
+void TableWriter::line(std::string_view key, bool value) {
+  line(key, std::string(value ? "true" : "false"));
+}
+void TableWriter::line(std::string_view key, const Vec3& value) { line(key, toml_vec3(value)); }
+void TableWriter::line(std::string_view key, const std::vector<double>& values) {
+  std::string a = "[";
+  for (size_t i = 0; i < values.size(); ++i) a += (i ? ", " : "") + toml_float(values[i]);
+  line(key, a + "]");
+}
+void TableWriter::text(std::string_view key, std::string_view value) { line(key, toml_string(value)); }
+void TableWriter::material(std::string_view key, int index, const std::string& field) {
+  text(key, material_name(scene_, index, field));
+}
+
+// The settling friction and index void ratios (a target relative density
+// is written as the friction found for it); the pour's rain is in the
+// particles' positions and velocities.
+void TableWriter::given_specimen(const std::string& table, const Preparation& p) {
+  header("[" + table + ".specimen]");
+  text("method", choice_name(Specimen::Method::Given));
+  if (!p.friction && !p.rolling_friction && !p.e_min) return;
+  header("[" + table + ".specimen.preparation]");
+  if (p.friction) line("friction", *p.friction);
+  if (p.rolling_friction) line("rolling_friction", *p.rolling_friction);
+  if (p.e_min) line("e_min", *p.e_min);
+  if (p.e_max) line("e_max", *p.e_max);
+}
+
+}  // namespace scene_toml
+
+namespace {
+
 class Writer {
  public:
-  explicit Writer(const Scene& s) : s_(s) {}
+  explicit Writer(const Scene& s) : s_(s), w_(s, out_) {}
 
   std::string write() {
     out_ << "# SimSols scene (written by to_toml; all particles explicit)\n";
@@ -85,7 +127,7 @@ class Writer {
     for (size_t i = 0; i < s_.pair_overrides.size(); ++i) write(s_.pair_overrides[i], i);
     for (size_t i = 0; i < s_.walls.size(); ++i)
       if (!is_box_wall(i)) write(s_.walls[i], i);
-    std::visit([this](const auto& a) { write_apparatus(a); }, s_.apparatus);
+    scene_toml::write_apparatus(w_);
     write_effects();
     write_numerics();
     write_outputs();
@@ -97,13 +139,11 @@ class Writer {
   }
 
  private:
-  void header(std::string_view h) { out_ << "\n" << h << "\n"; }
-  void line(std::string_view key, const std::string& value) {
-    out_ << key << " = " << value << "\n";
+  void header(std::string_view h) { w_.header(h); }
+  template <class V>
+  void line(std::string_view key, const V& value) {
+    w_.line(key, value);
   }
-  void line(std::string_view key, double value) { line(key, toml_float(value)); }
-  void line(std::string_view key, bool value) { line(key, std::string(value ? "true" : "false")); }
-  void line(std::string_view key, const Vec3& value) { line(key, toml_vec3(value)); }
 
   void write(const Material& m) {
     header("[[materials]]");
@@ -159,87 +199,6 @@ class Writer {
     const ApparatusKind* kind = apparatus_kind(s_);
     const int k = static_cast<int>(i), first = kind ? s_.cell()->first_wall : 0;
     return kind && k >= first && k < first + kind->walls;
-  }
-
-  // The apparatus with its resolved values; its specimen is the explicit
-  // particles below, so reading it back rebuilds the same walls.
-  void write_apparatus(std::monostate) {}
-  void write_apparatus(const ShearBox& b) {
-    header("[shear_box]");
-    line("length", b.length);
-    line("width", b.width);
-    line("split_height", b.split_height);
-    line("gap", b.gap);
-    line("wall_material", toml_string(material_name(s_, b.wall_material, "shear_box.wall_material")));
-    line("normal_stress", b.normal_stress);
-    line("shear_speed", b.shear_speed);
-    line("inertial_number", b.inertial_number);
-    line("shear_displacement", b.shear_displacement);
-    line("loading", toml_string(choice_name(b.loading)));
-    line("platen_mass", b.platen_mass);
-    line("servo_gain", b.servo_gain);
-    line("servo_max_speed", b.servo_max_speed);
-    line("servo_integral_time", b.servo_integral_time);
-    line("settle_time", b.settle_time);
-    line("consolidate_time", b.consolidate_time);
-    line("rows", std::to_string(b.rows));
-    header("[shear_box.specimen]");
-    line("method", toml_string(choice_name(Specimen::Method::Given)));
-    write_preparation("shear_box", b.specimen.preparation);
-  }
-
-  // The settling friction and index void ratios (a target relative density
-  // is written as the friction found for it); the pour's rain is in the
-  // particles' positions and velocities.
-  void write_preparation(const std::string& table, const Preparation& p) {
-    if (!p.friction && !p.rolling_friction && !p.e_min) return;
-    header("[" + table + ".specimen.preparation]");
-    if (p.friction) line("friction", *p.friction);
-    if (p.rolling_friction) line("rolling_friction", *p.rolling_friction);
-    if (p.e_min) line("e_min", *p.e_min);
-    if (p.e_max) line("e_max", *p.e_max);
-  }
-
-  void write_apparatus(const Oedometer& o) {
-    header("[oedometer]");
-    line("length", o.length);
-    line("width", o.width);
-    line("wall_material", toml_string(material_name(s_, o.wall_material, "oedometer.wall_material")));
-    std::string steps = "[";
-    for (size_t i = 0; i < o.load_steps.size(); ++i)
-      steps += (i ? ", " : "") + toml_float(o.load_steps[i]);
-    line("load_steps", steps + "]");
-    line("step_time", o.step_time);
-    line("settle_time", o.settle_time);
-    line("servo_gain", o.servo_gain);
-    line("servo_max_speed", o.servo_max_speed);
-    line("servo_integral_time", o.servo_integral_time);
-    line("friction_angle", o.friction_angle);
-    header("[oedometer.specimen]");
-    line("method", toml_string(choice_name(Specimen::Method::Given)));
-    write_preparation("oedometer", o.specimen.preparation);
-  }
-
-  void write_apparatus(const Triaxial& t) {
-    header("[triaxial]");
-    line("length", t.length);
-    line("width", t.width);
-    line("wall_material", toml_string(material_name(s_, t.wall_material, "triaxial.wall_material")));
-    line("confining_stress", t.confining_stress);
-    line("path", toml_string(choice_name(t.path)));
-    if (t.path == Triaxial::Path::TrueTriaxial) line("b_value", t.b_value);
-    line("axial_strain", t.axial_strain);
-    line("strain_rate", t.strain_rate);
-    line("inertial_number", t.inertial_number);
-    line("settle_time", t.settle_time);
-    line("consolidate_time", t.consolidate_time);
-    line("servo_gain", t.servo_gain);
-    line("servo_max_speed", t.servo_max_speed);
-    line("servo_integral_time", t.servo_integral_time);
-    line("rows", std::to_string(t.rows));
-    header("[triaxial.specimen]");
-    line("method", toml_string(choice_name(Specimen::Method::Given)));
-    write_preparation("triaxial", t.specimen.preparation);
   }
 
   void write_effects() {
@@ -342,6 +301,7 @@ class Writer {
 
   const Scene& s_;
   std::ostringstream out_;
+  scene_toml::TableWriter w_;
 };
 
 }  // namespace
