@@ -2,6 +2,7 @@
 // "Grains"). A grain is listed as spheres or made from a template
 // (grain_templates.h: a named shape); clumps place grains.
 #include <cmath>
+#include <limits>
 #include <filesystem>
 #include <stdexcept>
 
@@ -121,7 +122,10 @@ Clump read_clump(const Reader& r, const Scene& scene) {
   const std::vector<double> q = r.numbers("orientation", {1, 0, 0, 0});
   const double norm2 = q.size() == 4 ? q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3] : 0;
   if (!(norm2 > 1e-12)) r.fail("bad_vector", "orientation", "expected a quaternion [w, x, y, z], not zero");
-  const double inv = 1 / std::sqrt(norm2);
+  // unit within rounding is kept as written (a scene written by to_toml
+  // reads back bit for bit), as normalized() does for vectors
+  const double n = std::sqrt(norm2);
+  const double inv = std::abs(n - 1) <= 4 * std::numeric_limits<double>::epsilon() ? 1 : 1 / n;
   c.orientation = {q[0] * inv, q[1] * inv, q[2] * inv, q[3] * inv};
   c.velocity = r.vec3("velocity", {});
   c.angular_velocity = r.vec3("angular_velocity", {});
