@@ -124,11 +124,10 @@ class Loader {
 
 // The issues of placing `scene`: the generators' and the apparatus' own,
 // else the semantic checks of the whole.
-std::vector<SceneIssue> placement_issues(Scene& scene, Locator& where) {
-  std::vector<size_t> generator_of;
-  size_t first = 0;
+// `generator_of` and `first` tell which particles the generators made.
+std::vector<SceneIssue> placement_issues(Scene& scene, std::vector<size_t>& generator_of,
+                                         size_t& first) {
   if (auto issue = expand_generators(scene, &generator_of, &first)) return {std::move(*issue)};
-  where.generated(first, std::move(generator_of));
   if (scene.apparatus_pending) {
     scene.apparatus_pending = false;
     if (auto issue = required_apparatus_kind(scene).build(scene)) return {std::move(*issue)};
@@ -154,6 +153,16 @@ Scene read_scene_text(std::string_view text, const std::string& path_for_message
 
 void place_scene(Scene& scene) {
   if (scene.placed()) return;
+  // placed in a copy (a read scene holds few spheres), so one that cannot
+  // be placed is left as it was read
+  Scene placed = scene;
+  std::vector<size_t> generator_of;
+  size_t first = 0;
+  std::vector<SceneIssue> issues = placement_issues(placed, generator_of, first);
+  if (issues.empty()) {
+    scene = std::move(placed);
+    return;
+  }
   // the document again, only to point at lines (it was read without error)
   std::optional<toml::table> root;
   if (!scene.source_text.empty()) {
@@ -166,7 +175,8 @@ void place_scene(Scene& scene) {
   Context ctx;
   ctx.file = scene.source_path.empty() ? scene.name : scene.source_path;
   Locator where(root ? &*root : nullptr, ctx);
-  for (SceneIssue& issue : placement_issues(scene, where)) where.note(scene, std::move(issue));
+  where.generated(first, std::move(generator_of));
+  for (SceneIssue& issue : issues) where.note(placed, std::move(issue));
   ctx.throw_if_any();
 }
 

@@ -506,6 +506,9 @@ TEST(SceneToml, APlacementProblemIsAtItsGeneratorsLine) {
     EXPECT_EQ(e.line, 22);
     EXPECT_NE(std::string(e.what()).find("crowded.toml:22"), std::string::npos) << e.what();
   }
+  EXPECT_FALSE(read.placed());  // left as it was read
+  EXPECT_EQ(read.generators.size(), 2u);
+  EXPECT_TRUE(read.particles.empty());
 }
 
 // ---------------------------------------------------------------------------
