@@ -78,6 +78,11 @@ void write_oedometer(TableWriter& out);
 void read_triaxial(const Reader& table, Scene& scene);   // scene_tables_triaxial.cpp
 void write_triaxial(TableWriter& out);
 
+// An apparatus table's wall_material (scene_tables_apparatus.cpp): the
+// material it names, or `fallback` when it names none or the built-in
+// "steel" (default_box_steel) that the scene does not define itself.
+int read_wall_material(const Reader& table, const Scene& scene, int fallback);
+
 // The [<apparatus>.specimen] sub-table of an apparatus table
 // (scene_tables_specimen.cpp).
 Specimen read_specimen(const Reader& apparatus, const Scene& scene);

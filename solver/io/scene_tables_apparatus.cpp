@@ -30,6 +30,13 @@ const ApparatusReader* reader_of(std::string_view kind) {
 
 bool has_apparatus_reader(std::string_view kind) { return reader_of(kind) != nullptr; }
 
+int read_wall_material(const Reader& table, const Scene& scene, int fallback) {
+  if (!table.has("wall_material")) return fallback;
+  const std::string name = table.string("wall_material");
+  if (name == "steel" && scene.material_index(name) < 0) return fallback;
+  return table.material("wall_material", scene);
+}
+
 void read_apparatus(const Reader& root, Scene& scene) {
   for (const ApparatusKind& kind : apparatus_kinds()) {
     if (!root.has(kind.name)) continue;

@@ -11,12 +11,7 @@ void read_oedometer(const Reader& root, Scene& scene) {
   Oedometer o;
   o.length = r.number("length", o.length);
   o.width = r.number("width", o.width);
-  if (r.has("wall_material")) {
-    const std::string name = r.string("wall_material");
-    // "steel" is built in (default_box_steel) unless the scene defines it
-    if (name != "steel" || scene.material_index(name) >= 0)
-      o.wall_material = r.material("wall_material", scene);
-  }
+  o.wall_material = read_wall_material(r, scene, o.wall_material);
   o.load_steps = r.numbers("load_steps", o.load_steps);
   o.step_time = r.number("step_time", o.step_time);
   o.settle_time = r.number("settle_time", o.settle_time);

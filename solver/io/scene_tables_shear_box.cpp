@@ -16,12 +16,7 @@ void read_shear_box(const Reader& root, Scene& scene) {
   b.width = r.number("width", b.width);
   b.split_height = r.number("split_height", b.split_height);
   b.gap = r.number("gap", b.gap);
-  if (r.has("wall_material")) {
-    const std::string name = r.string("wall_material");
-    // "steel" is built in (default_box_steel) unless the scene defines it
-    if (name != "steel" || scene.material_index(name) >= 0)
-      b.wall_material = r.material("wall_material", scene);
-  }
+  b.wall_material = read_wall_material(r, scene, b.wall_material);
   b.normal_stress = r.number("normal_stress", b.normal_stress);
   b.shear_speed = r.number("shear_speed", b.shear_speed);
   b.inertial_number = r.number("inertial_number", b.inertial_number);

@@ -13,11 +13,7 @@ void read_triaxial(const Reader& root, Scene& scene) {
   Triaxial t;
   t.length = r.number("length", t.length);
   t.width = r.number("width", t.width);
-  if (r.has("wall_material")) {
-    const std::string name = r.string("wall_material");
-    if (name != "steel" || scene.material_index(name) >= 0)
-      t.wall_material = r.material("wall_material", scene);
-  }
+  t.wall_material = read_wall_material(r, scene, t.wall_material);
   t.confining_stress = r.number("confining_stress", t.confining_stress);
   t.path = r.choice("path", t.path);
   if (t.path != Triaxial::Path::TrueTriaxial)
