@@ -114,7 +114,8 @@ std::uint64_t tamping_key(const Scene& scene, double void_ratio) {
     for (const double v : {double(p.material), p.radius, p.position[0], p.position[1], p.position[2]})
       f.num(v);
   for (const Clump& c : scene.clumps)
-    for (const double v : {double(c.grain), c.scale, c.orientation[0], c.orientation[1]})
+    for (const double v : {double(c.grain), c.scale, c.position[0], c.position[1], c.position[2],
+                           c.orientation[0], c.orientation[1], c.orientation[2], c.orientation[3]})
       f.num(v);
   const Preparation& prep = scene.specimen()->preparation;
   f.num(prep.tamping_layers);
