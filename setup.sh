@@ -46,7 +46,7 @@ PACKAGES=(
   # X11/Xlib.h and X11/extensions/Xrandr.h; libglfw3-dev only recommends these.
   libx11-dev
   libxrandr-dev
-  # Boost.Math, header-only: Student's t quantiles (app/experiment/study_stats.cpp)
+  # Boost.Math, header-only: Student's t quantiles (app/experiment/shear_box/study_stats.cpp)
   libboost-math-dev
   # Assimp: grain surface meshes, STL/OBJ (solver/scene/mesh_body.cpp)
   libassimp-dev

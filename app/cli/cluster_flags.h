@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "app/cli/commands.h"
-#include "app/experiment/campaign.h"
+#include "app/experiment/campaign_loop.h"
 #include "app/experiment/cluster.h"
 
 namespace simsols {

@@ -22,7 +22,7 @@
 #include "app/cli/commands.h"
 #include "solver/common/errors.h"
 #include "solver/io/output.h"
-#include "app/experiment/shear_plots.h"
+#include "app/experiment/shear_box/shear_plots.h"
 
 namespace simsols {
 namespace {

@@ -27,11 +27,11 @@
 #include "app/cli/interrupt.h"
 #include "solver/io/output.h"
 #include "app/experiment/run_cost.h"
-#include "app/experiment/sensitivity.h"
+#include "app/experiment/shear_box/sensitivity.h"
 #include "app/experiment/shape_study.h"
-#include "app/experiment/study.h"
-#include "app/experiment/study_ensemble.h"
-#include "app/experiment/study_run.h"
+#include "app/experiment/shear_box/study.h"
+#include "app/experiment/shear_box/study_ensemble.h"
+#include "app/experiment/shear_box/study_run.h"
 
 namespace simsols {
 namespace {

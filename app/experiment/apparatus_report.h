@@ -14,6 +14,31 @@
 
 namespace simsols {
 
+// One kind's report: its plots of the programme's rows and summary, and
+// its result lines. Each kind's is in its folder (shear_box/
+// shear_report.cpp, ...), listed in apparatus_report.cpp's table.
+struct TestReport {
+  std::string_view kind;  // the registry's name
+  void (*plots)(const std::string& dir, const std::string& title, const ApparatusProgramme& t);
+  std::string (*text)(const TestRun& run);
+};
+const TestReport& shear_box_report();
+const TestReport& oedometer_report();
+const TestReport& triaxial_report();
+
+// A kind's plots from its programme's rows and summary: write(dir, title,
+// rows, summary), for TestReport::plots.
+template <class Programme, auto write>
+void programme_plots(const std::string& dir, const std::string& title,
+                     const ApparatusProgramme& p) {
+  const auto& programme = dynamic_cast<const Programme&>(p);
+  write(dir, title, programme.rows(), programme.summary());
+}
+// printf into a string, for the result lines.
+std::string report_printf(const char* format, ...) __attribute__((format(printf, 1, 2)));
+// "finished", "interrupted" or "stopped".
+const char* run_state_word(const ProgrammeRunState& s);
+
 // The plots of `test` into `dir` (shear_plots.h, oedometer_plots.h,
 // triaxial_plots.h), titled `title`; none for a kind without a report.
 void write_test_plots(const std::string& dir, const std::string& title, const ApparatusKind& kind,

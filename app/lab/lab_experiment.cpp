@@ -11,7 +11,7 @@
 #include <filesystem>
 
 #include "app/experiment/default_scenes.h"
-#include "app/experiment/paper_tests.h"
+#include "app/experiment/shear_box/paper_tests.h"
 #include "solver/common/errors.h"
 #include "solver/io/checkpoint.h"
 #include "solver/io/output.h"

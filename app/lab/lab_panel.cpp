@@ -9,10 +9,10 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "app/experiment/accuracy_table.h"
+#include "app/experiment/shear_box/accuracy_table.h"
 #include "app/lab/lab_app.h"
 #include "app/lab/lab_plots.h"
-#include "app/experiment/paper_tests.h"
+#include "app/experiment/shear_box/paper_tests.h"
 #include "solver/core/slots.h"
 
 namespace simsols {

@@ -9,7 +9,7 @@
 
 #include "app/lab/lab_script.h"
 #include "solver/io/output.h"
-#include "app/experiment/paper_tests.h"
+#include "app/experiment/shear_box/paper_tests.h"
 #include "solver/core/slots.h"
 #include "solver/scene/choices.h"
 

@@ -36,8 +36,8 @@
 #include "app/experiment/apparatus_run.h"
 #include "solver/apparatus/registry.h"
 #include "app/experiment/specimen_report.h"
-#include "app/experiment/sensitivity.h"
-#include "app/experiment/shear_run.h"
+#include "app/experiment/shear_box/sensitivity.h"
+#include "app/experiment/shear_box/shear_run.h"
 #include "solver/common/errors.h"
 #include "solver/core/engine_options.h"
 #include "solver/core/guard.h"
@@ -283,7 +283,7 @@ py::dict run_test(const Scene& scene, const std::string& out, bool quiet, std::s
   return r;
 }
 
-// The sensitivity study (app/experiment/sensitivity.h), as `simsols study
+// The sensitivity study (app/experiment/shear_box/sensitivity.h), as `simsols study
 // sensitivity --out OUT --preset PRESET` runs it (resumable the same way):
 // its tests, the effects, and the seeds' noise.
 py::dict factor_effects(const SensitivityAnalysis& a, int i) {

@@ -2,13 +2,6 @@
 
 namespace simsols {
 
-#define SIMSOLS_CHOICES(E, ...)                         \
-  template <>                                           \
-  std::span<const Named<E>> choices() {                 \
-    static const Named<E> table[] = {__VA_ARGS__};      \
-    return table;                                       \
-  }
-
 // [effects] slots: the default model first, then the others, "none" last
 // where "none" is not the default.
 SIMSOLS_CHOICES(DampingModel, {DampingModel::Viscous, "viscous"}, {DampingModel::None, "none"})
@@ -21,9 +14,7 @@ SIMSOLS_CHOICES(FluidModel, {FluidModel::None, "none"}, {FluidModel::Drag, "drag
 // [numerics] precision, [[walls]] type
 SIMSOLS_CHOICES(Precision, {Precision::Float, "float"}, {Precision::Double, "double"})
 SIMSOLS_CHOICES(WallShape, {WallShape::Plane, "plane"}, {WallShape::Rectangle, "rectangle"})
-// [shear_box] loading, [shear_box.specimen] method and clearance
-SIMSOLS_CHOICES(ShearBox::Loading, {ShearBox::Loading::DeadWeight, "dead_weight"},
-                {ShearBox::Loading::Servo, "servo"})
+// [<apparatus>.specimen] method and clearance
 SIMSOLS_CHOICES(Specimen::Method, {Specimen::Method::Layers, "layers"},
                 {Specimen::Method::Pour, "pour"}, {Specimen::Method::Given, "given"})
 SIMSOLS_CHOICES(Specimen::Clearance, {Specimen::Clearance::Shift, "shift"},
@@ -33,14 +24,8 @@ SIMSOLS_CHOICES(Grading::Law, {Grading::Law::Single, "single"}, {Grading::Law::U
                 {Grading::Law::LogNormal, "lognormal"}, {Grading::Law::Fuller, "fuller"},
                 {Grading::Law::Sieve, "sieve"})
 
-// [triaxial] path
-SIMSOLS_CHOICES(Triaxial::Path, {Triaxial::Path::ConstantSigma3, "constant_sigma3"},
-                {Triaxial::Path::ConstantP, "constant_p"},
-                {Triaxial::Path::TrueTriaxial, "true_triaxial"})
 // [[grains]] shape
 SIMSOLS_CHOICES(GrainForm, {GrainForm::Elongated, "elongated"}, {GrainForm::Flat, "flat"},
                 {GrainForm::Tetrahedral, "tetrahedral"}, {GrainForm::Sand, "sand"})
-
-#undef SIMSOLS_CHOICES
 
 }  // namespace simsols

@@ -9,26 +9,14 @@
 // model is one line here and every reader and writer knows it.
 #pragma once
 
-#include <optional>
-#include <span>
-#include <string>
-#include <string_view>
-#include <vector>
-
+#include "solver/scene/choice_table.h"
 #include "solver/scene/grain_templates.h"
 #include "solver/scene/scene.h"
 
 namespace simsols {
 
-template <class E>
-struct Named {
-  E value;
-  const char* name;
-};
-
-// One table per enumeration (choices.cpp).
-template <class E>
-std::span<const Named<E>> choices();
+// One table per enumeration of the scene (choices.cpp; an apparatus kind's
+// own enumerations are declared with its description, apparatus/kinds.h).
 template <> std::span<const Named<DampingModel>> choices();
 template <> std::span<const Named<TangentialModel>> choices();
 template <> std::span<const Named<RollingModel>> choices();
@@ -36,35 +24,9 @@ template <> std::span<const Named<CohesionModel>> choices();
 template <> std::span<const Named<FluidModel>> choices();
 template <> std::span<const Named<Precision>> choices();
 template <> std::span<const Named<WallShape>> choices();
-template <> std::span<const Named<ShearBox::Loading>> choices();
 template <> std::span<const Named<Specimen::Method>> choices();
 template <> std::span<const Named<Specimen::Clearance>> choices();
 template <> std::span<const Named<Grading::Law>> choices();
-template <> std::span<const Named<Triaxial::Path>> choices();
 template <> std::span<const Named<GrainForm>> choices();
-
-// The name of `value` ("?" for a value outside the table).
-template <class E>
-const char* choice_name(E value) {
-  for (const Named<E>& c : choices<E>())
-    if (c.value == value) return c.name;
-  return "?";
-}
-
-// The value named `name`, or nullopt.
-template <class E>
-std::optional<E> parse_choice(std::string_view name) {
-  for (const Named<E>& c : choices<E>())
-    if (name == c.name) return c.value;
-  return std::nullopt;
-}
-
-// Every allowed name, in the table's order.
-template <class E>
-std::vector<std::string> choice_names() {
-  std::vector<std::string> names;
-  for (const Named<E>& c : choices<E>()) names.emplace_back(c.name);
-  return names;
-}
 
 }  // namespace simsols

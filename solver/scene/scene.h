@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "solver/common/vec3.h"
+#include "solver/scene/apparatus/kinds.h"
 
 namespace simsols {
 
@@ -240,168 +241,8 @@ struct Outputs {
   bool dump_vtk = true;
 };
 
-// The specimen of an apparatus with a rectangular cell: how its beads are
-// placed (apparatus/specimen.h).
-// A grading curve: the mass fraction of a specimen passing each size, as a
-// sieve analysis gives it (docs/specimens.md; solver/apparatus/specimen/grading.h).
-struct Grading {
-  enum class Law : std::uint8_t { Single, Uniform, LogNormal, Fuller, Sieve };
-  Law law = Law::Single;       // Single: every bead of specimen.diameter
-  double d_min = 0, d_max = 0; // m, the cut-offs (0 = the law's default where it has one)
-  double sigma = 0.25;         // LogNormal: standard deviation of ln d, by mass (D50 = diameter)
-  double exponent = 0.5;       // Fuller: P = (d^n - d_min^n) / (d_max^n - d_min^n)
-  std::vector<double> sizes;   // Sieve: m, increasing
-  std::vector<double> passing; // Sieve: % by mass, from 0 to 100, non-decreasing
-};
-
-// How a specimen is brought to its density (docs/specimens.md). The
-// friction applies while the specimen settles (lubricated or rough
-// preparation), then the materials' own friction takes over; the pour's
-// drop height and intensity shape its rain.
-struct Preparation {
-  std::optional<double> friction;          // mu_s of every pair while settling; unset: the materials'
-  std::optional<double> rolling_friction;  // mu_r (m) while settling; unset: the materials'
-  double drop_height = 0;  // m, Pour: the beads start at the speed of a free fall from this height
-  double intensity = 0;    // Pour: solid fraction of the raining column, (0, 0.35]; 0: 3 specimen heights tall
-  std::optional<double> relative_density;  // target D_r: the friction is searched (docs/specimens.md)
-  std::optional<double> e_min, e_max;      // the material's index void ratios, when known
-  int tamping_layers = 0;                  // Pour: built in this many tamped layers (0: poured at once)
-  std::optional<double> void_ratio;        // target e of tamping or expansion (or from relative_density)
-  double undercompaction = 0.05;           // Ladd's U_1: the bottom layer's shortfall of dry density
-  bool expansion = false;                  // Pour of spheres: grown in the closed cell (radius expansion)
-  bool settles_differently() const { return friction || rolling_friction; }
-};
-
-struct Specimen {
-  enum class Method : std::uint8_t { Layers, Pour, Given };
-  enum class Clearance : std::uint8_t { Shift, Spread };
-  Method method = Method::Layers;  // Table 1 layers / random pour / the scene's particles
-  int material = 0;                // the beads' material
-  double diameter = 0;             // m (Layers, Pour)
-  int layers = 0;                  // Layers: layers; Pour: beads for that many layers
-  Clearance clearance = Clearance::Shift;  // Layers: how the row-wall clearance is used
-  std::int64_t seed = 1;
-  Grading grading;                 // Pour: the sizes' distribution
-  int grain = -1;                  // Pour: clumps of this grain (Scene::grains) instead of beads
-  Preparation preparation;         // how it settles (every method)
-};
-
-// What every apparatus is: a cell on a floor at z = 0, x in [0, length],
-// y in [0, width], holding a specimen, its walls Scene::walls[first_wall..]
-// (in the apparatus' own order). The builders (the registry's `build`,
-// solver/apparatus/registry.h) place the specimen and add the walls.
-struct ApparatusCell {
-  double length = 0;           // m, inside, along x
-  double width = 0;            // m, inside, along y
-  int wall_material = -1;      // the walls' material; -1 = "steel" (added when absent)
-  double settle_time = 0.01;   // s, longest settling under gravity
-  Specimen specimen;
-  int first_wall = 0;          // set by the builder
-};
-
-
-// The direct shear apparatus of the reference paper (its section 5) and its
-// loading program. The box is x in [0, length] (the shear direction),
-// y in [0, width], floor at z = 0, split at z = split_height into a lower and
-// an upper half with `gap` between them. The lower half (floor and four side
-// plates) moves in +x at the shear speed; the upper half and the platen are
-// held horizontally; the platen is servo-controlled to the normal stress.
-// build_shear_box() (shear_box.h) turns this into twelve walls (and particles) and
-// resolves the automatic values (0 below) into numbers.
-struct ShearBox : ApparatusCell {
-  ShearBox() { length = 60.23e-3; width = 60.07e-3; }  // inside: x the shear direction
-  double split_height = 0;         // m; 0 = mid-height of the specimen (see shear_box.h)
-  double gap = 0;                  // m between the halves; 0 = 0.2 x smallest diameter
-  double normal_stress = 160e3;    // Pa, the platen's target
-  double shear_speed = 0;          // m/s; 0 = from inertial_number
-  double inertial_number = 8e-4;   // target I = (v/H) d sqrt(rho/sigma) for the automatic speed
-  double shear_displacement = 6e-3;  // m of horizontal displacement to shear
-  // How the platen carries the normal load (docs/shear-box.md): a dead
-  // weight (a rigid platen of platen_mass under the constant force
-  // sigma x area, as a hanger loads a real box) or a servo (PI on the
-  // reaction, servo_* below). Consolidation is servo-controlled in both.
-  enum class Loading : std::uint8_t { DeadWeight, Servo };
-  Loading loading = Loading::DeadWeight;
-  double platen_mass = 0;          // kg; 0 = automatic (a quarter layer of beads, pi rho d A / 24)
-  double servo_gain = 0;           // m/(s N); 0 = automatic (from the Hertz stiffness)
-  double servo_max_speed = 0.5;    // m/s, the platen's speed cap
-  double servo_integral_time = 0;  // s; 0 = automatic
-  double consolidate_time = 0.1;   // s, longest consolidation under the platen
-  int rows = 400;                  // output rows over the shear displacement
-};
-
-// The apparatus walls, in this order from ShearBox::first_wall: the lower
-// half [kFloor, kLowerLast], the upper half and platen [kUpperX0, kPlaten].
-// The frames are the top face of the lower half's x0 wall and the bottom
-// face of the upper half's x1 wall (see shear_box.h).
-enum ShearBoxWall : int {
-  kFloor = 0, kLowerX0, kLowerX1, kLowerY0, kLowerY1, kLowerFrame,
-  kUpperX0, kUpperX1, kUpperY0, kUpperY1, kUpperFrame, kPlaten, kShearBoxWalls,
-  kLowerLast = kLowerFrame
-};
-
-// The oedometer (one-dimensional compression, docs/oedometer.md): a rigid
-// square ring x in [0, length], y in [0, width] on a floor at z = 0, and a
-// top platen servo-controlled to each vertical stress of `load_steps` in
-// turn, each held until the specimen is in equilibrium under it (or for
-// step_time at most). The steps up to the largest are the loading branch,
-// those after it the unloading branch. build_oedometer() (apparatus/
-// oedometer.h) turns this into six walls (and particles) and resolves the
-// automatic values (0 below).
-struct Oedometer : ApparatusCell {
-  Oedometer() { length = 60e-3; width = 60e-3; }  // inside
-  std::vector<double> load_steps = {25e3, 50e3, 100e3, 200e3, 400e3, 800e3, 200e3, 50e3, 25e3};  // Pa
-  double step_time = 0.1;          // s, longest hold of one load step
-  double servo_gain = 0;           // m/(s N); 0 = automatic (from the Hertz stiffness)
-  double servo_max_speed = 0.5;    // m/s, the platen's speed cap
-  double servo_integral_time = 0;  // s; 0 = automatic
-  double friction_angle = 0;       // deg, phi' for Jaky's K0 = 1 - sin phi'; 0 = none given
-};
-
-// The oedometer's walls, in this order from Oedometer::first_wall.
-enum OedometerWall : int {
-  kOedFloor = 0, kOedX0, kOedX1, kOedY0, kOedY1, kOedPlaten, kOedometerWalls
-};
-
-// The triaxial test (docs/triaxial.md): a cuboid specimen between six
-// rigid plates, x in [0, length], y in [0, width] on a floor at z = 0. The
-// floor is fixed; the top platen and the four sides are servo-controlled.
-// Stages: isotropic consolidation to confining_stress on all five, then
-// drained axial compression, the platen moved down at a constant strain
-// rate while the sides hold the lateral stresses of the stress path:
-//   constant_sigma3  both lateral stresses at confining_stress (the
-//                    conventional test);
-//   constant_p       the lateral stresses follow sigma3 = (3 p0 - sigma1)/2
-//                    so the mean stress p' stays at confining_stress (never
-//                    below 5 % of it: the sides keep the specimen closed);
-//   true_triaxial    sigma3 (x) at confining_stress, sigma2 (y) at
-//                    sigma3 + b (sigma1 - sigma3).
-// build_triaxial() (apparatus/triaxial.h) turns this into six walls (and
-// particles) and resolves the automatic values (0 below).
-struct Triaxial : ApparatusCell {
-  Triaxial() { length = 30e-3; width = 30e-3; settle_time = 0.02; }  // inside at the start
-  enum class Path : std::uint8_t { ConstantSigma3, ConstantP, TrueTriaxial };
-  double confining_stress = 100e3; // Pa, p'0 and sigma3
-  Path path = Path::ConstantSigma3;
-  double b_value = 0.5;            // true_triaxial: (sigma2 - sigma3) / (sigma1 - sigma3), [0, 1]
-  double axial_strain = 0.15;      // to compress to
-  double strain_rate = 0;          // 1/s; 0 = from inertial_number
-  double inertial_number = 5e-4;   // target I = strain_rate d sqrt(rho / p0)
-  double consolidate_time = 0.1;   // s, longest isotropic consolidation
-  double servo_gain = 0;           // m/(s N); 0 = automatic (from the Hertz stiffness)
-  double servo_max_speed = 0.5;    // m/s, the plates' speed cap
-  double servo_integral_time = 0;  // s; 0 = automatic
-  int rows = 200;                  // rows over the axial strain
-};
-
-// The triaxial cell's walls, in this order from Triaxial::first_wall.
-enum TriaxialWall : int {
-  kTriFloor = 0, kTriX0, kTriX1, kTriY0, kTriY1, kTriPlaten, kTriaxialWalls
-};
-
-// A scene's apparatus: none, or one of the kinds in the registry's order
-// (solver/apparatus/registry.h: a new kind is added there and here).
-using Apparatus = std::variant<std::monostate, ShearBox, Oedometer, Triaxial>;
+// The specimen and the apparatus cell every apparatus shares (specimen.h),
+// the kinds' descriptions and the Apparatus variant (apparatus/kinds.h).
 
 struct Scene {
   std::string name = "unnamed";
@@ -439,7 +280,7 @@ struct Scene {
   double mass(const Particle& p) const;  // kg, a solid sphere of its material
   double total_mass() const;             // kg, of every particle
   bool has_gravity() const;
-  // The apparatus when it is an A (ShearBox, Oedometer, Triaxial), else nullptr.
+  // The apparatus when it is an A (one of apparatus/kinds.h), else nullptr.
   template <class A>
   const A* apparatus_as() const { return std::get_if<A>(&apparatus); }
   template <class A>

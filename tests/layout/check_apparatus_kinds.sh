@@ -10,9 +10,9 @@
 #   tests/layout/check_apparatus_kinds.sh [REPO_ROOT]
 set -euo pipefail
 cd "${1:-$(dirname "$0")/../..}"
-kinds=$(grep -oE 'std::variant<std::monostate(, [A-Za-z]+)+>' solver/scene/scene.h |
+kinds=$(grep -oE 'std::variant<std::monostate(, [A-Za-z]+)+>' solver/scene/apparatus/kinds.h |
         sed -E 's/std::variant<std::monostate, //; s/>//; s/, / /g')
-[[ -n $kinds ]] || { echo "check_apparatus_kinds: no Apparatus variant in solver/scene/scene.h"; exit 1; }
+[[ -n $kinds ]] || { echo "check_apparatus_kinds: no Apparatus variant in solver/scene/apparatus/kinds.h"; exit 1; }
 bad=0 files=0
 while IFS= read -r -d '' f; do
   case $f in

@@ -1,4 +1,4 @@
-// The paper's programme (app/experiment/paper_tests.h): sizes as the docs and the lab's
+// The paper's programme (app/experiment/shear_box/paper_tests.h): sizes as the docs and the lab's
 // panel print them (rounded to 0.01 mm) name the exact Table 1 sizes, which
 // are 3/32, 1/8, 5/32, 3/16 and 1/4 inch; other sizes are refused with the
 // list of the accepted ones, naming the base scene but no other file.
@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "solver/common/errors.h"
-#include "app/experiment/paper_tests.h"
+#include "app/experiment/shear_box/paper_tests.h"
 #include "solver/io/scene_toml.h"
 
 namespace simsols {

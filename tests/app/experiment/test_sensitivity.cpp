@@ -1,4 +1,4 @@
-// The sensitivity study (app/experiment/sensitivity.h): its Morris design,
+// The sensitivity study (app/experiment/shear_box/sensitivity.h): its Morris design,
 // its analysis on responses whose effects are known, the study's plan and
 // the cluster files of cluster.h. The ci preset's run end to end is the
 // ctest `sensitivity_ci`; the paper's figures are in docs/sensitivity.md.
@@ -10,7 +10,7 @@
 #include <set>
 
 #include "app/experiment/cluster.h"
-#include "app/experiment/sensitivity.h"
+#include "app/experiment/shear_box/sensitivity.h"
 #include "solver/io/output.h"
 
 namespace simsols {

@@ -1,4 +1,4 @@
-// The accuracy study's ensembles (app/experiment/study_ensemble.h): a setting's
+// The accuracy study's ensembles (app/experiment/shear_box/study_ensemble.h): a setting's
 // members are summarised as means with intervals, its error against the
 // reference is significant only when the interval excludes zero, round-off
 // twins are no setting, and two curves separate where they first differ by
@@ -10,9 +10,9 @@
 #include <sstream>
 
 #include "solver/common/errors.h"
-#include "app/experiment/accuracy_table.h"
+#include "app/experiment/shear_box/accuracy_table.h"
 #include "solver/io/output.h"
-#include "app/experiment/study_ensemble.h"
+#include "app/experiment/shear_box/study_ensemble.h"
 
 using namespace simsols;
 

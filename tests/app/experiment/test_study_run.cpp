@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "app/experiment/study_run.h"
+#include "app/experiment/shear_box/study_run.h"
 #include "solver/common/errors.h"
 #include "tests/support/test_support.h"
 

@@ -1,4 +1,4 @@
-// The accuracy study's ensemble statistics (app/experiment/study_stats.h): Student's
+// The accuracy study's ensemble statistics (app/experiment/shear_box/study_stats.h): Student's
 // interval of a mean and Welch's interval of a difference, against table
 // values, and the coverage of the 95 % interval over many samples.
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "app/experiment/study_stats.h"
+#include "app/experiment/shear_box/study_stats.h"
 
 using namespace simsols;
 

@@ -1,5 +1,5 @@
 """The sensitivity study from Python and from the command line
-(app/experiment/sensitivity.h), on its ci preset: a small poured box and
+(app/experiment/shear_box/sensitivity.h), on its ci preset: a small poured box and
 0.3 mm of shear, so it checks that the study runs and reports, not the
 paper's figures (docs/sensitivity.md has those).
 

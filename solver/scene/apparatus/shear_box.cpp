@@ -1,0 +1,9 @@
+#include "solver/scene/apparatus/shear_box.h"
+
+namespace simsols {
+
+// [shear_box] loading
+SIMSOLS_CHOICES(ShearBox::Loading, {ShearBox::Loading::DeadWeight, "dead_weight"},
+                {ShearBox::Loading::Servo, "servo"})
+
+}  // namespace simsols
