@@ -16,7 +16,7 @@
 //            positions (normal_force() below, docs/model.md)
 //   tangent  xi  <- xi rotated into the tangent plane, + v_t dt
 //            F_t = -k_t xi - gamma sqrt(m* k_t) v_t,  k_t = 8 G* sqrt(R* d)
-//            |F_t| > mu_s F_n  =>  F_t scaled to mu_s F_n, xi made consistent
+//            |F_t| > mu_s F_n  =>  F_t scaled to mu_s F_n, xi = -F_t / k_t
 //   rolling  constant_torque (HAS_ROLLING):
 //            M   = -min(mu_r F_n, I* |w_r| / dt) w_r / |w_r|,
 //            w_r = wrel without its component along n
@@ -247,9 +247,13 @@ INLINE v3 tangential_force(v3 n, v3 vt, lane fn, lane kt, lane ct, lane mu_s, re
 #endif
   const lane ftmax = mu_s * fn;
   const lane ft2 = v_dot(ft, ft);
-  const lmask sliding = ft2 > ftmax * ftmax;  // Coulomb limit: scale, make the spring consistent
+  // Coulomb limit: F_t scaled to mu_s F_n, and the spring alone made to
+  // carry it (the dashpot's share is dissipated, not stored): an early
+  // strongly damped step would otherwise store C_t v_t against the motion
+  // and push forwards once k_t outgrows C_t (docs/model.md).
+  const lmask sliding = ft2 > ftmax * ftmax;
   ft = v_mul(SEL(sliding, ftmax * rsqrt(fmax(ft2, tiny)), (lane)1), ft);
-  xi = v_sel(sliding, v_mul(-1 / kt, v_add(ft, v_mul(ct, vt))), xi);
+  xi = v_sel(sliding, v_mul(-1 / kt, ft), xi);
   *spring = xi;
   return ft;
 }
