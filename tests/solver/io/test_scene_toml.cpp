@@ -3,6 +3,7 @@
 // case per file, each starting with "# expect: <code> [<field>]".
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include <bit>
@@ -11,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <sstream>
 
@@ -682,6 +684,51 @@ duration = 0.01
   EXPECT_EQ(b.walls[0].servo.target_force, 2.5);
   EXPECT_EQ(b.walls[0].servo.gain, 0.01);
   EXPECT_EQ(b.walls[0].servo.max_speed, 0.02);
+}
+
+// The measured glass scene is the default experiment with only the beads'
+// material changed, to the medians of the shipped VSSUQ measurements
+// (assets/materials/glass_beads_vssuq.csv) rounded to three digits.
+TEST(SceneToml, MeasuredGlassIsTheDefaultWithTheMeasuredMedians) {
+  std::map<std::string, std::vector<double>> values;
+  std::ifstream in(assets_dir() / "materials" / "glass_beads_vssuq.csv");
+  std::string line, header;
+  while (std::getline(in, line)) {
+    if (line.rfind("#", 0) == 0) { header += line; continue; }
+    std::stringstream ss(line);
+    std::string quantity, index, value;
+    if (std::getline(ss, quantity, ',') && std::getline(ss, index, ',') &&
+        std::getline(ss, value) && quantity != "quantity")
+      values[quantity].push_back(std::stod(value));
+  }
+  const auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  };
+  ASSERT_EQ(values["mupp_glass-glass"].size(), 78u);
+  ASSERT_EQ(values["epp_glass-glass"].size(), 24u);
+  const Scene m = load_scene((assets_dir() / "scenes" / "shear_box_glass_measured.toml").string());
+  const Scene p = load_scene((assets_dir() / "scenes" / "shear_box.toml").string());
+  const Material& glass = m.materials[m.material_index("glass")];
+  EXPECT_NEAR(glass.sliding_friction, median(values["mupp_glass-glass"]), 5e-4);
+  EXPECT_NEAR(glass.restitution, median(values["epp_glass-glass"]), 5e-4);
+  EXPECT_NE(header.find("median 2508"), std::string::npos) << "the density the CSV quotes";
+  EXPECT_EQ(glass.density, 2508);
+  // the rest is the paper's: E, nu, mu_r, the steel, the box, the specimen
+  const Material& paper = p.materials[p.material_index("glass")];
+  EXPECT_EQ(glass.young_modulus, paper.young_modulus);
+  EXPECT_EQ(glass.poisson_ratio, paper.poisson_ratio);
+  EXPECT_EQ(glass.rolling_friction, paper.rolling_friction);
+  const Material& steel = m.materials[m.material_index("steel")];
+  const Material& paper_steel = p.materials[p.material_index("steel")];
+  EXPECT_EQ(steel.sliding_friction, paper_steel.sliding_friction);
+  EXPECT_EQ(steel.restitution, paper_steel.restitution);
+  EXPECT_EQ(steel.young_modulus, paper_steel.young_modulus);
+  ASSERT_EQ(m.particles.size(), p.particles.size());
+  for (size_t i = 0; i < m.particles.size(); ++i)
+    ASSERT_EQ(m.particles[i].position, p.particles[i].position) << "bead " << i;
+  EXPECT_EQ(m.walls.size(), p.walls.size());
 }
 
 }  // namespace
