@@ -17,7 +17,7 @@
 //   tangent  xi  <- xi rotated into the tangent plane, + v_t dt
 //            F_t = -k_t xi - gamma sqrt(m* k_t) v_t,  k_t = 8 G* sqrt(R* d)
 //            |F_t| > mu_s F_n  =>  F_t scaled to mu_s F_n, xi = -F_t / k_t
-//   rolling  constant_torque (HAS_ROLLING):
+//   rolling  constant_torque (HAS_ROLLING), on the elastic F_n = K_n d^{3/2}:
 //            M   = -min(mu_r F_n, I* |w_r| / dt) w_r / |w_r|,
 //            w_r = wrel without its component along n
 //            spring_dashpot (HAS_ROLLING_SPRING, Ai et al. 2011 model C):
@@ -333,7 +333,9 @@ INLINE ContactResult contact_law_h(lane delta, v3 n, v3 vrel, v3 wrel, lane rsta
 
 #ifdef HAS_ROLLING
   const v3 wr = v_sub(wrel, v_mul(v_dot(wrel, n), n));
-  out.rolling = rolling_torque(n, wr, fn, istar, c, sqrt_r, sd, dt, roll_spring, rolling_damping);
+  // its limit on the elastic normal force, as the paper's eq. (1): the
+  // dashpot's share neither raises it on loading nor lowers it on unloading
+  out.rolling = rolling_torque(n, wr, fel, istar, c, sqrt_r, sd, dt, roll_spring, rolling_damping);
 #endif
   return out;
 }
