@@ -6,6 +6,7 @@
 // 6.35 mm with E = 1 GPa (the glass' density and friction).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -293,7 +294,7 @@ TEST(Preparation, RadiusExpansionToAVoidRatioKeepsTheChosenTrialsSpecimen) {
   EXPECT_EQ(s.method, Specimen::Method::Given);
   ASSERT_TRUE(s.preparation.friction);
   EXPECT_FALSE(s.preparation.void_ratio);
-  double chosen_e = -1;
+  double chosen_e = -1, closest = 1e9;
   std::ifstream csv(dir / "density.csv");
   std::string row;
   std::getline(csv, row);
@@ -304,12 +305,18 @@ TEST(Preparation, RadiusExpansionToAVoidRatioKeepsTheChosenTrialsSpecimen) {
     std::getline(in, f, ',');
     std::getline(in, e, ',');
     if (std::stod(f) == *s.preparation.friction) chosen_e = std::stod(e);
+    closest = std::min(closest, std::fabs(std::stod(e) - 0.85));
   }
   ASSERT_GT(chosen_e, 0);
   const Settled run = settle_specimen(scene, default_device());
   EXPECT_NEAR(run.packing.void_ratio, chosen_e, 1e-9 * chosen_e);
   std::printf("asked e = 0.85, reached %.4f with friction %.4f\n", run.packing.void_ratio, *s.preparation.friction);
-  EXPECT_NEAR(run.packing.void_ratio, 0.85, 0.02);  // 0.848 measured; the search is content within D_r 0.05 (e 0.012)
+  // The search stops within D_r 0.05 (e 0.012) of the target, or after its
+  // trials with the closest: on this 150-bead cell e jumps with the
+  // friction (0.819 at 0.089, 0.879 at 0.099 in one run), so the target
+  // may fall in a gap no trial reaches.
+  EXPECT_NEAR(std::fabs(chosen_e - 0.85), closest, 1e-12) << "the closest trial is kept";
+  EXPECT_NEAR(run.packing.void_ratio, 0.85, 0.06);
   std::filesystem::remove_all(dir);
 }
 
