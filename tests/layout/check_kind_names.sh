@@ -25,17 +25,22 @@ kTables=" solver/apparatus/registry.h solver/apparatus/registry.cpp solver/scene
   app/lab/lab_apparatus.h app/lab/lab_apparatus.cpp
   app/cli/cmd_campaign.cpp app/cli/campaign/campaign_command.h "
 snake() { sed -E 's/([a-z0-9])([A-Z])/\1_\2/g' <<<"$1" | tr '[:upper:]' '[:lower:]'; }
+declare -A snake_of
+for t in $types; do snake_of[$t]=$(snake "$t"); done
+any=""  # every kind's names, to skip the files that name none
+for t in $types; do any+="${any:+|}$t|${snake_of[$t]}"; done
 bad=0 files=0
 while IFS= read -r -d '' f; do
   files=$((files + 1))
-  grep -qwF "$f" <<<"$kTables" && continue
+  [[ " ${kTables//$'\n'/ } " == *" $f "* ]] && continue
   # the code only: no #include lines, // comments or string literals
   code=$(sed -E '/^[[:space:]]*#[[:space:]]*include/d; s/"([^"\\]|\\.)*"/""/g; s@//.*$@@' "$f")
+  grep -qE "$any" <<<"$code" || continue
   own=""
-  for t in $types; do [[ $f == *"$(snake "$t")"* ]] && own=$t; done
+  for t in $types; do [[ $f == *"${snake_of[$t]}"* ]] && own=$t; done
   for t in $types; do
     [[ $t == "$own" ]] && continue
-    s=$(snake "$t")
+    s=${snake_of[$t]}
     hits=$(grep -nE "(^|[^A-Za-z0-9])($t|$s)([^a-z0-9]|$)|(^|[^A-Za-z0-9_])${t}[A-Z][a-z]" <<<"$code" || true)
     if [[ -n $hits ]]; then
       while IFS= read -r h; do echo "$f:${h%%:*}: names the apparatus kind $t outside its folders:${h#*:}"; done <<<"$hits"
