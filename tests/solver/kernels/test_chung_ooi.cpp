@@ -18,6 +18,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -29,7 +30,7 @@
 namespace simsols::testing {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 struct Row {
   int test = 0;
@@ -115,11 +116,8 @@ struct Impulse {
   bool slides = false;
 };
 
-Vec3 cross(Vec3 a, Vec3 b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
+// a + s b (solver/common/vec3.h has the rest)
 Vec3 add(Vec3 a, Vec3 b, double s = 1) { return {a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]}; }
-double dot(Vec3 a, Vec3 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 // The law applies F_t at R - delta/2 from each centre (docs/model.md):
 // over a Hertz impact the force-weighted mean overlap is
@@ -138,7 +136,7 @@ Impulse sliding_theory(Body b1, double m1, double R1, double r1, Body b2, double
                      add(b2.v, cross(b2.w, {-r2 * n[0], -r2 * n[1], -r2 * n[2]})), -1);
   const double un = dot(u, n);
   const Vec3 ut = add(u, n, -un);
-  const double slip = std::sqrt(dot(ut, ut));
+  const double slip = norm(ut);
   const double jn = (1 + e) * un / (inv1 + inv2), jt = mu * jn;
   const Vec3 t = slip > 0 ? Vec3{ut[0] / slip, ut[1] / slip, ut[2] / slip} : Vec3{};
   const Vec3 p = add(Vec3{jn * n[0], jn * n[1], jn * n[2]}, t, jt);  // the impulse on body 2
@@ -330,6 +328,16 @@ class Sweep {
   std::map<std::string, Line> lines_;
 };
 
+// Coulomb in impulse form, sliding or not: body 1's change of velocity
+// across n (from body 1 to its partner) is at most mu times its change
+// against n.
+void expect_coulomb(const Body& before, const Body& after, Vec3 n, double mu,
+                    const std::string& label) {
+  const Vec3 dv = sub(after.v, before.v);
+  const double dn = -dot(dv, n);
+  EXPECT_LE(norm(add(dv, n, dn)), mu * dn * (1 + 1e-3)) << label;
+}
+
 // What one impact gave: the bodies after, the sliding theory, and the
 // worst error of the changes against it (-1 when it does not slide
 // throughout: then only printed).
@@ -355,11 +363,9 @@ Outcome oblique_on_plane(const Scene& s, const Row& r, double e, const std::stri
   std::printf("[measure] %s: v_t' = %.6g m/s (theory %.6g), w'R = %.6g m/s (theory %.6g), "
               "v_n' = %.6g m/s%s\n", label.c_str(), vt, th.b1.v[0], wr, th.b1.w[1] * r.radius, vn,
               th.slides ? "" : " (sticks for a while: no theory)");
-  // Coulomb in impulse form, sliding or not: |J_t| <= mu J_n
-  const double dvt = std::hypot(vt - p.velocity[0], o.after[0].v[1] - p.velocity[1]);
-  EXPECT_LE(dvt, r.friction * (vn - p.velocity[2]) * (1 + 1e-3)) << label;
-  const double scale = std::sqrt(dot(p.velocity, p.velocity));
-  if (th.slides) o.error = worst_change_error(before, o.after, th, scale, scale / r.radius);
+  expect_coulomb(before[0], o.after[0], {0, 0, -1}, r.friction, label);
+  const double speed = norm(p.velocity);
+  if (th.slides) o.error = worst_change_error(before, o.after, th, speed, speed / r.radius);
   return o;
 }
 
@@ -462,45 +468,47 @@ Outcome two_spheres(Precision p, const Row& r, double ratio, double v2, Vec3 w1,
               "v_t' = %.6g (%.6g), w' = %.6g (%.6g)%s\n", label.c_str(), after[0].v[0],
               th.b1.v[0], after[0].w[1], th.b1.w[1], after[1].v[0], th.b2.v[0], after[1].w[1],
               th.b2.w[1], th.slides ? "" : " (sticks for a while: no theory)");
-  // Coulomb in impulse form, sliding or not: |J_t| <= mu J_n (sphere 1's)
-  const double dvt = std::hypot(after[0].v[0] - before[0].v[0], after[0].v[1] - before[0].v[1]);
-  EXPECT_LE(dvt, r.friction * (before[0].v[2] - after[0].v[2]) * (1 + 1e-3)) << label;
+  expect_coulomb(before[0], after[0], {0, 0, 1}, r.friction, label);
   if (th.slides) o.error = worst_change_error(before, after, th, r.speed, r.speed / r.radius);
   return o;
 }
 
-// Test 7: two equal spheres at +-0.2 m/s, both spinning at w0 about y (their
-// contact points slip at 2 w0 R), w0 = 0.5 ... 22 rad/s: the rebound spin.
-TEST_P(ChungOoi, Test7TwoEqualSpheresSweepOfSpins) {
-  Sweep fig("chung_ooi_test7_spin", "Chung & Ooi test 7: two equal spheres, rebound spin",
-            "w0 (rad/s)", "w' (rad/s)");
+// Tests 7 and 8: sphere 1 of test `test`'s rows at 0.2 m/s with spin w0
+// about y, w0 = 0.5 ... 22 rad/s, onto sphere 2 of `ratio` times its radius
+// closing at v2 (with the same spin when `both_spin`): sphere 1's rebound
+// spin, drawn into `fig`; the worst error over the sliding cases.
+Worst spin_sweep(Precision p, int test, double ratio, bool both_spin, double v2_of_speed,
+                 Sweep& fig) {
   Worst worst;
-  for (const Row& r : rows_of(7))
+  for (const Row& r : rows_of(test))
     for (double w0 : {0.5, 1.0, 2.0, 5.0, 10.0, 22.0}) {
-      const Outcome o = two_spheres(GetParam(), r, 1, r.speed, {0, w0, 0}, {0, w0, 0},
-                                    "test 7 " + r.material + " w0 " + shortest_number(w0));
+      const Vec3 w{0, w0, 0};
+      const Outcome o = two_spheres(p, r, ratio, v2_of_speed * r.speed, w, both_spin ? w : Vec3{},
+                                    "test " + std::to_string(test) + " " + r.material + " w0 " +
+                                        shortest_number(w0));
       worst.add(o);
       fig.add(r.material, w0, o.after[0].w[1], o.theory, o.theory.b1.w[1]);
     }
-  worst.print("test 7");
+  worst.print(("test " + std::to_string(test)).c_str());
+  return worst;
+}
+
+// Test 7: two equal spheres at +-0.2 m/s, both spinning at w0 about y (their
+// contact points slip at 2 w0 R).
+TEST_P(ChungOoi, Test7TwoEqualSpheresSweepOfSpins) {
+  Sweep fig("chung_ooi_test7_spin", "Chung & Ooi test 7: two equal spheres, rebound spin",
+            "w0 (rad/s)", "w' (rad/s)");
+  const Worst worst = spin_sweep(GetParam(), 7, 1, true, 1, fig);
   EXPECT_GE(worst.sliding, 6);
   EXPECT_LT(worst.error, 0.003);  // ten times the largest error measured
 }
 
 // Test 8: a spinning sphere at 0.2 m/s onto a sphere of 5 times its radius
-// at rest, w0 = 0.5 ... 22 rad/s: the small sphere's rebound spin.
+// at rest.
 TEST_P(ChungOoi, Test8SpheresOfDifferentSizesSweepOfSpins) {
   Sweep fig("chung_ooi_test8_spin", "Chung & Ooi test 8: spheres of radii 1:5, rebound spin",
             "w0 (rad/s)", "w' (rad/s)");
-  Worst worst;
-  for (const Row& r : rows_of(8))
-    for (double w0 : {0.5, 1.0, 2.0, 5.0, 10.0, 22.0}) {
-      const Outcome o = two_spheres(GetParam(), r, 5, 0, {0, w0, 0}, {},
-                                    "test 8 " + r.material + " w0 " + shortest_number(w0));
-      worst.add(o);
-      fig.add(r.material, w0, o.after[0].w[1], o.theory, o.theory.b1.w[1]);
-    }
-  worst.print("test 8");
+  const Worst worst = spin_sweep(GetParam(), 8, 5, false, 0, fig);
   EXPECT_GE(worst.sliding, 6);
   EXPECT_LT(worst.error, 0.002);  // ten times the largest error measured
 }
