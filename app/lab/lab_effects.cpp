@@ -41,7 +41,9 @@ bool LabApp::draw_effect_slots() {
   bool fx = false;
   bool gravity = e.gravity[2] != 0;
   fx |= slot_combo("damping", e.damping, {DampingModel::Viscous, DampingModel::None});
-  fx |= slot_combo("tangential", e.tangential, {TangentialModel::Mindlin, TangentialModel::None});
+  fx |= slot_combo("tangential", e.tangential,
+                   {TangentialModel::Mindlin, TangentialModel::MindlinDeresiewicz,
+                    TangentialModel::None});
   fx |= slot_combo("rolling", e.rolling,
                    {RollingModel::ConstantTorque, RollingModel::SpringDashpot, RollingModel::None});
   if (e.rolling == RollingModel::SpringDashpot)

@@ -18,6 +18,7 @@ std::string KernelConfig::build_options() const {
   if (gravity) o += " -DHAS_GRAVITY";
   if (damping) o += " -DHAS_DAMPING";
   if (friction) o += " -DHAS_FRICTION";
+  if (friction && micro_slip) o += " -DHAS_MD_TANGENTIAL";
   if (rolling) o += " -DHAS_ROLLING";
   if (rolling && rolling_spring) o += " -DHAS_ROLLING_SPRING";
   if (capillary) o += " -DHAS_CAPILLARY";
@@ -46,6 +47,8 @@ constexpr HistoryPlane kHistoryPlanes[] = {
      [](const KernelConfig& c) { return c.contact_record(); }},
     {"HIST_ROLL", "rolling = spring_dashpot (the elastic rolling torque)",
      [](const KernelConfig& c) { return c.rolling && c.rolling_spring; }},
+    {"HIST_TURN", "tangential = mindlin_deresiewicz (the force at the last turning point, the branch)",
+     [](const KernelConfig& c) { return c.friction && c.micro_slip; }},
 };
 
 }  // namespace
@@ -83,7 +86,8 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
   }
   const Effects& e = scene.effects;
   c.damping = e.damping == DampingModel::Viscous && any_damping;
-  c.friction = e.tangential == TangentialModel::Mindlin && any_friction;
+  c.friction = e.tangential != TangentialModel::None && any_friction;
+  c.micro_slip = c.friction && e.tangential == TangentialModel::MindlinDeresiewicz;
   c.rolling = e.rolling != RollingModel::None && any_rolling;
   c.rolling_spring = c.rolling && e.rolling == RollingModel::SpringDashpot;
   c.capillary = e.cohesion == CohesionModel::Capillary;

@@ -28,7 +28,8 @@ struct KernelConfig {
   bool double_precision = true;
   bool gravity = true;
   bool damping = true;        // slot damping = viscous
-  bool friction = true;       // slot tangential = mindlin
+  bool friction = true;       // slot tangential = mindlin or mindlin_deresiewicz
+  bool micro_slip = false;    // tangential = mindlin_deresiewicz (else mindlin)
   bool rolling = true;        // slot rolling = constant_torque or spring_dashpot
   bool rolling_spring = false;  // rolling = spring_dashpot (else constant torque)
   bool capillary = false;     // slot cohesion = capillary

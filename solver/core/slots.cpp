@@ -16,7 +16,7 @@ std::vector<SlotReport> slot_reports(const Scene& s, const KernelConfig& c) {
   r.push_back({"tangential", choice_name(e.tangential), c.friction,
                e.tangential != TangentialModel::None && !c.friction ? "every sliding_friction is 0"
                                                                     : "",
-               c.friction ? 3 : 0});
+               c.friction ? (c.micro_slip ? 7 : 3) : 0});
   r.push_back({"rolling", choice_name(e.rolling), c.rolling,
                e.rolling != RollingModel::None && !c.rolling ? "every rolling_friction is 0" : "",
                c.rolling_spring ? 3 : 0});

@@ -59,6 +59,27 @@ INLINE ContactSums no_contacts() {
   return s;
 }
 
+// A contact's history, as the sub-models compiled in keep it (the planes
+// that carry it: "Per-contact history" below).
+typedef struct {
+  v3 sp;        // tangential: mindlin's spring xi, or mindlin_deresiewicz's elastic F_t
+  lane dash;    // normal dashpot's record
+  v3 rsp;       // elastic rolling torque
+  v3 turn;      // mindlin_deresiewicz: F_t at the last turning point
+  lane branch;  // mindlin_deresiewicz: 0 virgin loading, 1 a Masing branch
+} History;
+
+// A contact that has just begun.
+INLINE History no_history() {
+  History h;
+  h.sp = v_zero();
+  h.dash = (lane)0;
+  h.rsp = v_zero();
+  h.turn = v_zero();
+  h.branch = (lane)0;
+  return h;
+}
+
 // Coefficients of each lane's material pair (kt_ratio = sqrt(6 G*/E*)).
 typedef struct {
   lane estar, gstar, gamma, mu_s, mu_r, kt_ratio;
@@ -233,11 +254,45 @@ INLINE v3 into_tangent_plane(v3 x, v3 n) {
 }
 
 #ifdef HAS_FRICTION
-// The tangential force F_t on i from the tangential velocity vt, with the
-// spring xi (*spring) carried into this step; kt the spring's stiffness,
-// ct its dashpot's coefficient (0 without damping).
-INLINE v3 tangential_force(v3 n, v3 vt, lane fn, lane kt, lane ct, lane mu_s, real dt,
-                           v3* spring) {
+#ifdef HAS_MD_TANGENTIAL
+// Mindlin & Deresiewicz (1953) micro-slip under a constant normal force P,
+// followed step by step (Thornton 1991's branches): from F_t = 0 the virgin
+// curve, then after each reversal a Masing branch from the turning point
+// F_T, twice the virgin curve's size (Johnson 1985, section 7.2):
+//   |F - F_T| = S [1 - (1 - s / s_max)^{3/2}],  s_max = 3 S / (2 k_t),
+//   S = mu_s F_n (virgin) or 2 mu_s F_n (Masing), s the displacement along
+// the branch. Each step converts |F - F_T| into s with the current S and
+// k_t, adds |v_t| dt and returns to a force, so a branch is followed exactly
+// whatever the step; the increment points along -v_t (F = -k xi). A step
+// whose increment points back towards F_T is a reversal: F_T <- F.
+// Returns the elastic force (*elastic: the history's F_t).
+INLINE v3 md_elastic_force(v3 n, v3 vt, lane fn, lane kt, lane mu_s, real dt, v3* elastic,
+                           v3* turn, lane* branch) {
+  const real tiny = (real)1e-30;
+  v3 f = into_tangent_plane(*elastic, n);
+  v3 t = into_tangent_plane(*turn, n);
+  const v3 push = v_mul(-(lane)dt, vt);  // direction of the force's increment
+  const lmask reverse = v_dot(push, v_sub(f, t)) < (real)0;
+  t = v_sel(reverse, f, t);
+  *branch = SEL(reverse, (lane)1, *branch);
+  const v3 r = v_sub(f, t);
+  const lane big_s = fmax(SEL(*branch > (real)0.5, (lane)2, (lane)1) * mu_s * fn, (lane)tiny);
+  const lane s_max = (real)1.5 * big_s / fmax(kt, (lane)tiny);
+  const lane r_len = sqrt(v_dot(r, r));
+  const lane u = fmin(fmax((lane)1 - r_len / big_s, (lane)0), (lane)1);
+  const lane s = s_max * ((lane)1 - cbrt(u * u));
+  const lane ds = sqrt(v_dot(push, push));
+  const lane w = fmax((lane)1 - fmin(s + ds, s_max) / s_max, (lane)0);
+  const lane grow = fmax(big_s * ((lane)1 - w * sqrt(w)) - r_len, (lane)0);
+  f = v_add(f, v_mul(grow / fmax(ds, (lane)tiny), push));
+  *turn = t;
+  return f;
+}
+#endif
+
+// mindlin: the spring xi (*spring) carried into this step, F_t = -k_t xi
+// less the dashpot's force.
+INLINE v3 spring_force(v3 n, v3 vt, lane fn, lane kt, lane ct, lane mu_s, real dt, v3* spring) {
   const real tiny = (real)1e-30;
   v3 xi = into_tangent_plane(*spring, n);
   xi = v_add(xi, v_mul((lane)dt, vt));
@@ -256,6 +311,30 @@ INLINE v3 tangential_force(v3 n, v3 vt, lane fn, lane kt, lane ct, lane mu_s, re
   xi = v_sel(sliding, v_mul(-1 / kt, ft), xi);
   *spring = xi;
   return ft;
+}
+
+// The tangential force F_t on i from the tangential velocity vt and the
+// contact's history h; kt the spring's stiffness k_t = 8 G* a, ct its
+// dashpot's coefficient (0 without damping). Under mindlin_deresiewicz
+// F_t is the elastic force less the dashpot's, with the same Coulomb rule.
+INLINE v3 tangential_force(v3 n, v3 vt, lane fn, lane kt, lane ct, lane mu_s, real dt,
+                           History* h) {
+#ifdef HAS_MD_TANGENTIAL
+  h->sp = md_elastic_force(n, vt, fn, kt, mu_s, dt, &h->sp, &h->turn, &h->branch);
+  v3 ft = h->sp;
+#ifdef HAS_DAMPING
+  ft = v_sub(ft, v_mul(ct, vt));
+#endif
+  const real tiny = (real)1e-30;
+  const lane ftmax = mu_s * fn;
+  const lane ft2 = v_dot(ft, ft);
+  ft = v_mul(SEL(ft2 > ftmax * ftmax, ftmax * rsqrt(fmax(ft2, tiny)), (lane)1), ft);
+  // while it slides the elastic force is the friction force, as below
+  h->sp = v_sel(ft2 > ftmax * ftmax, ft, h->sp);
+  return ft;
+#else
+  return spring_force(n, vt, fn, kt, ct, mu_s, dt, &h->sp);
+#endif
 }
 #endif
 
@@ -298,8 +377,8 @@ INLINE v3 rolling_torque(v3 n, v3 wr, lane fn, lane istar, PairLanes c, lane sqr
 #endif
 
 INLINE ContactResult contact_law_h(lane delta, v3 n, v3 vrel, v3 wrel, lane rstar,
-                                   lane mstar, lane istar, PairLanes c, real dt, v3* spring,
-                                   lane* dashpot, v3* roll_spring, real rolling_damping) {
+                                   lane mstar, lane istar, PairLanes c, real dt, History* h,
+                                   real rolling_damping) {
   ContactResult out;
   const lane sd = sqrt(delta);
   const lane sqrt_r = sqrt(rstar);
@@ -310,7 +389,7 @@ INLINE ContactResult contact_law_h(lane delta, v3 n, v3 vrel, v3 wrel, lane rsta
 #ifdef HAS_DAMPING
   const lane qd = sqrt(sd);              // d^{1/4}
   const lane cn = c.gamma * sqrt(mstar * kn);
-  const lane fn = normal_force(fel, delta, qd, vn, cn, mstar, dt, dashpot);
+  const lane fn = normal_force(fel, delta, qd, vn, cn, mstar, dt, &h->dash);
 #else
   const lane fn = fel;
 #endif
@@ -326,7 +405,7 @@ INLINE ContactResult contact_law_h(lane delta, v3 n, v3 vrel, v3 wrel, lane rsta
 #else
   const lane ct = (lane)0;
 #endif
-  const v3 ft = tangential_force(n, v_sub(vrel, v_mul(vn, n)), fn, kt, ct, c.mu_s, dt, spring);
+  const v3 ft = tangential_force(n, v_sub(vrel, v_mul(vn, n)), fn, kt, ct, c.mu_s, dt, h);
   out.force = v_add(out.force, ft);
   out.n_cross_ft = v_cross(n, ft);
 #endif
@@ -335,7 +414,7 @@ INLINE ContactResult contact_law_h(lane delta, v3 n, v3 vrel, v3 wrel, lane rsta
   const v3 wr = v_sub(wrel, v_mul(v_dot(wrel, n), n));
   // its limit on the elastic normal force, as the paper's eq. (1): the
   // dashpot's share neither raises it on loading nor lowers it on unloading
-  out.rolling = rolling_torque(n, wr, fel, istar, c, sqrt_r, sd, dt, roll_spring, rolling_damping);
+  out.rolling = rolling_torque(n, wr, fel, istar, c, sqrt_r, sd, dt, &h->rsp, rolling_damping);
 #endif
   return out;
 }
@@ -345,9 +424,14 @@ INLINE ContactResult contact_law_h(lane delta, v3 n, v3 vrel, v3 wrel, lane rsta
 // rolling it starts from an unloaded rolling spring.
 INLINE ContactResult contact_law(lane delta, v3 n, v3 vrel, v3 wrel, lane rstar, lane mstar,
                                  lane istar, PairLanes c, real dt, v3* spring, lane* dashpot) {
-  v3 roll = v_zero();
-  return contact_law_h(delta, n, vrel, wrel, rstar, mstar, istar, c, dt, spring, dashpot, &roll,
-                       (real)0.3);
+  History h = no_history();
+  h.sp = *spring;
+  h.dash = *dashpot;
+  const ContactResult r = contact_law_h(delta, n, vrel, wrel, rstar, mstar, istar, c, dt, &h,
+                                        (real)0.3);
+  *spring = h.sp;
+  *dashpot = h.dash;
+  return r;
 }
 
 // ---- Per-contact history ---------------------------------------------------
@@ -360,6 +444,11 @@ INLINE ContactResult contact_law(lane delta, v3 n, v3 vrel, v3 wrel, lane rstar,
 //                                      dashpot's record in w
 //   HIST_ROLL    (HAS_ROLLING_SPRING)  rolling = spring_dashpot: the elastic
 //                                      rolling torque M_k in xyz
+//   HIST_TURN    (HAS_MD_TANGENTIAL)   tangential = mindlin_deresiewicz: F_t
+//                                      at the last turning point in xyz, the
+//                                      branch (0 virgin, 1 Masing) in w; the
+//                                      contact record's xyz then holds the
+//                                      elastic F_t instead of xi
 // The lists and the wall slots carry all HIST_PLANES planes without knowing
 // what they hold (neighbors.cl, walls.cl); the loops that run the law load
 // the records, turn them into a History and back with the two functions
@@ -367,30 +456,28 @@ INLINE ContactResult contact_law(lane delta, v3 n, v3 vrel, v3 wrel, lane rstar,
 #if defined(HAS_CONTACT_RECORD) && !defined(HIST_CONTACT)
 #error "HIST_CONTACT: the contact record has no plane (cl_program.cpp, kHistoryPlanes)"
 #endif
+#if defined(HAS_MD_TANGENTIAL) && !defined(HIST_TURN)
+#error "HIST_TURN: the turning point has no plane (cl_program.cpp, kHistoryPlanes)"
+#endif
 #if defined(HAS_ROLLING_SPRING) && !defined(HIST_ROLL)
 #error "HIST_ROLL: the rolling spring has no plane (cl_program.cpp, kHistoryPlanes)"
 #endif
-typedef struct {
-  v3 sp;      // tangential spring
-  lane dash;  // normal dashpot's record
-  v3 rsp;     // elastic rolling torque
-} History;
-
 // Records of every plane, at least one (a private array may not be empty).
 #define HIST_RECORDS (HIST_PLANES > 0 ? HIST_PLANES : 1)
 
 // The history in the planes' records as loaded (rec[p]: plane p's).
 INLINE History history_from_planes(const Lane4* rec) {
-  History h;
-  h.sp = v_zero();
-  h.dash = (lane)0;
-  h.rsp = v_zero();
+  History h = no_history();
 #ifdef HAS_CONTACT_RECORD
   h.sp = rec[HIST_CONTACT].xyz;
   h.dash = rec[HIST_CONTACT].w;
 #endif
 #ifdef HAS_ROLLING_SPRING
   h.rsp = rec[HIST_ROLL].xyz;
+#endif
+#ifdef HAS_MD_TANGENTIAL
+  h.turn = rec[HIST_TURN].xyz;
+  h.branch = rec[HIST_TURN].w;
 #endif
   return h;
 }
@@ -405,5 +492,9 @@ INLINE void history_planes_of(History h, lmask on, Lane4* rec) {
 #ifdef HAS_ROLLING_SPRING
   rec[HIST_ROLL].xyz = v_sel(on, h.rsp, v_zero());
   rec[HIST_ROLL].w = (lane)0;
+#endif
+#ifdef HAS_MD_TANGENTIAL
+  rec[HIST_TURN].xyz = v_sel(on, h.turn, v_zero());
+  rec[HIST_TURN].w = SEL(on, h.branch, (lane)0);
 #endif
 }

@@ -285,7 +285,7 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
     const ContactResult c = contact_law_h(
         k.delta, k.nv, contact_velocity(&own, vmj.xyz, wmj.xyz, k), v_sub(own.w, wmj.xyz), rstar,
         own.m * mj / (own.m + mj), pair_istar(&own, vmj.w, g.rj, contacts_last, jj), coef,
-        dt, &h.sp, &h.dash, &h.rsp, rolling_damping);
+        dt, &h, rolling_damping);
     store_history(spring, at, plane, g.on, h);
 #ifdef HAS_CAPILLARY
     const v3 fi = v_add(v_sel(g.on, c.force, v_zero()), bridge_force(g, listed, rstar, coef));

@@ -275,8 +275,7 @@ INLINE ContactResult wall_law(const Owner* o, WallContact k, v3 vw, lane roll_in
   const lane wall_vn = o->m * v_dot(vw, k.nv);
   h->dash = SEL(h->dash != (real)0, h->dash - wall_vn, (lane)0);
   const ContactResult c = contact_law_h(k.delta, k.nv, vrel, o->w, o->r, o->m, roll_inertia,
-                                        gather_pairs(pairs, pair, nmat), dt, &h->sp, &h->dash,
-                                        &h->rsp, rolling_damping);
+                                        gather_pairs(pairs, pair, nmat), dt, h, rolling_damping);
   h->dash += wall_vn;
   return c;
 }

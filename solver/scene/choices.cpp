@@ -6,6 +6,7 @@ namespace simsols {
 // where "none" is not the default.
 SIMSOLS_CHOICES(DampingModel, {DampingModel::Viscous, "viscous"}, {DampingModel::None, "none"})
 SIMSOLS_CHOICES(TangentialModel, {TangentialModel::Mindlin, "mindlin"},
+                {TangentialModel::MindlinDeresiewicz, "mindlin_deresiewicz"},
                 {TangentialModel::None, "none"})
 SIMSOLS_CHOICES(RollingModel, {RollingModel::ConstantTorque, "constant_torque"},
                 {RollingModel::SpringDashpot, "spring_dashpot"}, {RollingModel::None, "none"})

@@ -158,7 +158,7 @@ double wall_distance(const Wall& w, const Vec3& point, const Vec3& x);
 // build option (cl_program.h): a slot set to none leaves no code and no
 // per-contact memory in the kernels. The normal law (Hertz) is always on.
 enum class DampingModel : std::uint8_t { None, Viscous };
-enum class TangentialModel : std::uint8_t { None, Mindlin };
+enum class TangentialModel : std::uint8_t { None, Mindlin, MindlinDeresiewicz };
 enum class RollingModel : std::uint8_t { None, ConstantTorque, SpringDashpot };
 enum class CohesionModel : std::uint8_t { None, Capillary };
 enum class FluidModel : std::uint8_t { None, Drag };
@@ -184,6 +184,7 @@ struct Effects {
   Vec3 gravity{0, 0, -9.81};     // m/s^2; all zero switches gravity off
   DampingModel damping = DampingModel::Viscous;          // normal + tangential dashpots
   TangentialModel tangential = TangentialModel::Mindlin; // spring with history + Coulomb
+                                                       // (mindlin_deresiewicz: micro-slip)
   RollingModel rolling = RollingModel::ConstantTorque;
   double rolling_damping = 0.3;  // spring_dashpot: eta_r, fraction of critical, [0, 1]
   CohesionModel cohesion = CohesionModel::None;

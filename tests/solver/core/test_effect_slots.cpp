@@ -72,7 +72,8 @@ TEST_P(EffectSlots, RollingNoneEqualsZeroRollingFriction) {
 
 TEST_P(EffectSlots, HistoryMemoryFollowsTheSlots) {
   // plane 0, the contact record: the tangential spring and/or the normal
-  // dashpot's record; plane 1 the elastic rolling torque
+  // dashpot's record; then the elastic rolling torque, then
+  // mindlin_deresiewicz's turning point
   struct Case { TangentialModel t; RollingModel r; DampingModel d; int planes; };
   const auto viscous = DampingModel::Viscous, undamped = DampingModel::None;
   const Case cases[] = {{TangentialModel::Mindlin, RollingModel::ConstantTorque, viscous, 1},
@@ -82,7 +83,9 @@ TEST_P(EffectSlots, HistoryMemoryFollowsTheSlots) {
                         {TangentialModel::None, RollingModel::SpringDashpot, undamped, 1},
                         {TangentialModel::None, RollingModel::ConstantTorque, viscous, 1},
                         {TangentialModel::None, RollingModel::ConstantTorque, undamped, 0},
-                        {TangentialModel::None, RollingModel::None, undamped, 0}};
+                        {TangentialModel::None, RollingModel::None, undamped, 0},
+                        {TangentialModel::MindlinDeresiewicz, RollingModel::ConstantTorque, viscous, 2},
+                        {TangentialModel::MindlinDeresiewicz, RollingModel::SpringDashpot, undamped, 3}};
   const size_t real = GetParam() == Precision::Double ? 8 : 4;
   for (const Case& c : cases) {
     Scene s = tumbling_pile(GetParam());
@@ -102,6 +105,9 @@ TEST_P(EffectSlots, HistoryMemoryFollowsTheSlots) {
     EXPECT_EQ(o.find(" -DHIST_CONTACT=0 ") != std::string::npos, record) << o;
     EXPECT_EQ(o.find(record ? " -DHIST_ROLL=1 " : " -DHIST_ROLL=0 ") != std::string::npos, roll) << o;
     EXPECT_EQ(o.find("-DHIST_ROLL=") != std::string::npos, roll) << o;
+    const bool turn = c.t == TangentialModel::MindlinDeresiewicz;
+    EXPECT_EQ(o.find(" -DHIST_TURN=" + std::to_string(c.planes - 1) + " ") != std::string::npos, turn)
+        << o;
     EXPECT_EQ(k.shared_rolling_cap(), c.r == RollingModel::ConstantTorque);
     sim.advance(300);  // builds and runs with that layout
     EXPECT_GT(st.up_slots, 0);

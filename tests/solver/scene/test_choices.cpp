@@ -30,7 +30,7 @@ void expect_round_trip(size_t count) {
 
 TEST(Choices, EveryValueHasOneNameThatReadsBack) {
   expect_round_trip<DampingModel>(2);
-  expect_round_trip<TangentialModel>(2);
+  expect_round_trip<TangentialModel>(3);
   expect_round_trip<RollingModel>(3);
   expect_round_trip<CohesionModel>(2);
   expect_round_trip<FluidModel>(2);
