@@ -444,7 +444,7 @@ TEST(SceneToml, ReadingOnlyReadsAndPlacingGivesTheLoadedScene) {
     std::printf("[measure] %s: read in %.3f s, %zu explicit spheres, %zu generators\n",
                 name.c_str(), read_s, read.particles.size(), read.generators.size());
     EXPECT_EQ(read.placed(), read.generators.empty() && !read.has_apparatus());
-    if (const ApparatusCell* cell = read.cell()) {
+    if (read.cell() != nullptr) {
       EXPECT_TRUE(read.apparatus_pending);
       for (const Wall& w : read.walls) EXPECT_FALSE(w.servo.enabled) << w.name;
     }
@@ -729,6 +729,10 @@ TEST(SceneToml, MeasuredGlassIsTheDefaultWithTheMeasuredMedians) {
   for (size_t i = 0; i < m.particles.size(); ++i)
     ASSERT_EQ(m.particles[i].position, p.particles[i].position) << "bead " << i;
   EXPECT_EQ(m.walls.size(), p.walls.size());
+  // the rolling law: Ai et al.'s model C for the real material, the
+  // paper's constant torque (its eq. 1) for the reproduction
+  EXPECT_EQ(m.effects.rolling, RollingModel::SpringDashpot);
+  EXPECT_EQ(p.effects.rolling, RollingModel::ConstantTorque);
 }
 
 }  // namespace
