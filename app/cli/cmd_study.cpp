@@ -134,7 +134,7 @@ int run_accuracy_study(const StudyOptions& opt, const StudyPreset& preset,
   return 0;
 }
 
-// `simsols study shape --out DIR [--preset quick|ci]`: the shape study
+// `simsols study shape --out DIR [--preset quick|rolling|ci]`: the shape study
 // (shape_study.h), its results rewritten after each case; a stop (Ctrl-C)
 // ends it after the running case's stage, keeping the finished cases.
 int shape_study(const StudyOptions& opt) {
@@ -250,7 +250,7 @@ CommandRunner add_study_command(CLI::App& app) {
   CLI::Option* preset =
       cmd->add_option("--preset", opt->preset,
                       "quick (3 mm of shear, default), full (6 mm), ci (reduced); shape: quick, "
-                      "ci; sensitivity: paper (default), ci");
+                      "rolling, ci; sensitivity: paper (default), ci");
   cmd->add_option("--knob", opt->knobs,
                   "Only these knobs (with the reference): time step, precision, stiffness, "
                   "inertial number, skin, effects, combination, baseline");

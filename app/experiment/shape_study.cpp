@@ -29,10 +29,10 @@ std::string material_and_grain(const ShapeCase& c, double d) {
   std::ostringstream o;
   o.precision(17);
   o << "[[materials]]\nname = \"grain\"\nyoung_modulus = 3e8\npoisson_ratio = 0.2\n"
-       "density = 2650\nrestitution = 0.5\nsliding_friction = 0.5\nrolling_friction = 0\n\n"
-       "[[grains]]\nname = \"g\"\n"
-    << c.grain_keys << "\n";
+       "density = 2650\nrestitution = 0.5\nsliding_friction = 0.5\nrolling_friction = "
+    << c.rolling_friction << "\n\n[[grains]]\nname = \"g\"\n" << c.grain_keys << "\n";
   if (c.grain_keys.rfind("spheres = ", 0) != 0) o << "diameter = " << d << "\n";
+  if (!c.rolling.empty()) o << "\n[effects]\nrolling = \"" << c.rolling << "\"\n";
   o << "\n[numerics]\nprecision = \"float\"\nduration = 100\n";
   return o.str();
 }
@@ -153,6 +153,13 @@ ReposeResult run_repose(const ShapePreset& p, const Scene& scene, const std::sha
   const int gate = static_cast<int>(scene.walls.size()) - 1;
   sim.set_wall_point(gate, {10.0, 0, 0});  // taken away: far beyond any run-out
   r.collapse_time = until_heap_rests(sim, p.diameter, log, r);
+  if (p.hold > 0) {  // the rested heap, watched longer: does it slump?
+    ReposeResult later;
+    sim.advance(std::llround(p.hold / sim.dt()));
+    heap_profile(sim, p.diameter, later);
+    r.height_later = later.height;
+    r.angle_later = later.angle;
+  }
   return r;
 }
 

@@ -28,6 +28,7 @@
 // is then its neighbours, and what a shape adds shows undiluted.
 #pragma once
 
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -43,11 +44,16 @@ namespace simsols {
 struct ShapeCase {
   std::string label;      // "tetrahedral, angularity 0.5"
   std::string grain_keys;  // the [[grains]] table's keys, one per line
+  double rolling_friction = 0;  // m, the material's mu_r (none in the shape presets)
+  std::string rolling;          // [effects] rolling; empty: the built-in default
 };
 
 // quick: a sphere, an elongated and a flat grain, the tetrahedral form at
 // three angularities and the sand form; ci: the sphere and one
-// tetrahedron, smaller and shorter (a check that it runs, not figures).
+// tetrahedron, smaller and shorter (a check that it runs, not figures);
+// rolling: spheres with rolling resistance, mu_r = 0.05, 0.1 and 0.2 R
+// under each rolling law (and none), heaps only, each watched 1 s after
+// it rests (Ai et al. 2011's comparison of the laws on a pile).
 struct ShapePreset {
   std::string name;
   std::vector<ShapeCase> cases;
@@ -56,6 +62,7 @@ struct ShapePreset {
   int shear_layers = 6;     // the shear box' solid, in layers of 10 x 10 beads
   double shear_fraction = 0.15;  // of the box' length
   bool shear = true;
+  double hold = 0;  // s: the rested heap watched this much longer (its slump)
 };
 ShapePreset shape_preset(const std::string& name);  // throws UsageError for an unknown one
 
@@ -74,6 +81,7 @@ struct ReposeResult {
   double angle = 0;      // degrees
   double fit_rms = 0;    // m
   double height = 0;     // m, the heap's highest top
+  double height_later = std::nan(""), angle_later = std::nan("");  // after the hold
   double runout = 0;     // m, from the back wall to the farthest grain
   double fill_time = 0, collapse_time = 0;  // s, simulated
   std::vector<double> x, top;  // the profile (m)

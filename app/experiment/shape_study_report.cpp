@@ -11,9 +11,9 @@
 namespace simsols {
 namespace {
 
-const ShapeCase kSphere{"sphere", "spheres = [[0, 0, 0, 1.5e-3]]"};  // the preset's 3 mm
+const ShapeCase kSphere{"sphere", "spheres = [[0, 0, 0, 1.5e-3]]", 0, ""};  // the preset's 3 mm
 ShapeCase form(const std::string& label, const std::string& keys, int spheres) {
-  return {label, keys + "\nmax_spheres = " + std::to_string(spheres)};
+  return {label, keys + "\nmax_spheres = " + std::to_string(spheres), 0, ""};
 }
 
 std::string number(double v, int digits) {
@@ -38,24 +38,40 @@ ShapePreset shape_preset(const std::string& name) {
                form("sand 1.4, angularity 0.6", "shape = \"sand\"\naspect_ratio = 1.4\nangularity = 0.6", 8)};
     return p;
   }
+  if (name == "rolling") {
+    p.cases = {{"sphere, no rolling resistance", kSphere.grain_keys, 0, "none"}};
+    for (const char* law : {"constant_torque", "spring_dashpot"})
+      for (const double ratio : {0.05, 0.1, 0.2}) {
+        char label[96];
+        std::snprintf(label, sizeof label, "sphere, %s, mu_r = %.2f R", law, ratio);
+        p.cases.push_back({label, kSphere.grain_keys, ratio * 1.5e-3, law});
+      }
+    p.shear = false;
+    p.hold = 1.0;
+    return p;
+  }
   if (name == "ci") {
     p.cases = {kSphere, form("tetrahedral, angularity 1", "shape = \"tetrahedral\"\nangularity = 1", 4)};
     p.column_layers = 6;
     p.shear = false;
     return p;
   }
-  throw UsageError("bad_enum", "--preset", "'" + name + "' is not a shape study preset: quick, ci");
+  throw UsageError("bad_enum", "--preset",
+                   "'" + name + "' is not a shape study preset: quick, rolling, ci");
 }
 
 std::string shape_table(const std::vector<ShapeResult>& results) {
   std::ostringstream o;
-  o << "| grain | spheres | angle of repose (°) | fit RMS (mm) | φ′ peak (°) | φ′ residual (°) | "
-       "ψ max (°) | wall time (s) |\n|---|---|---|---|---|---|---|---|\n";
+  o << "| grain | spheres | angle of repose (°) | fit RMS (mm) | heap height (mm), then after the "
+       "hold | φ′ peak (°) | φ′ residual (°) | ψ max (°) | wall time (s) |\n"
+       "|---|---|---|---|---|---|---|---|---|\n";
   for (const ShapeResult& r : results) {
     const int per = r.repose.grains > 0 ? r.repose.spheres / r.repose.grains : 0;
     const bool shear = !r.shear_mm.empty();
     o << "| " << r.shape.label << " | " << per << " | " << number(r.repose.angle, 1) << " | "
-      << number(r.repose.fit_rms * 1e3, 2) << " | " << (shear ? number(r.shear.peak_angle, 1) : "–")
+      << number(r.repose.fit_rms * 1e3, 2) << " | " << number(r.repose.height * 1e3, 2) << ", "
+      << number(r.repose.height_later * 1e3, 2) << " | "
+      << (shear ? number(r.shear.peak_angle, 1) : "–")
       << " | " << (shear ? number(r.shear.residual_angle, 1) : "–") << " | "
       << (shear ? number(r.shear.max_dilatancy_angle, 1) : "–") << " | " << number(r.wall_seconds, 0)
       << " |\n";
@@ -67,13 +83,16 @@ void write_shape_results(const std::vector<ShapeResult>& results, const ShapePre
                          const std::filesystem::path& dir) {
   std::filesystem::create_directories(dir);
   std::ostringstream csv;
-  csv << "grain,spheres_per_grain,grains_in_column,repose_angle_deg,fit_rms_m,heap_height_m,runout_m,"
-         "fill_s,collapse_s,peak_angle_deg,residual_angle_deg,max_dilatancy_deg,wall_s\n";
+  csv << "grain,rolling,rolling_friction_m,spheres_per_grain,grains_in_column,repose_angle_deg,"
+         "fit_rms_m,heap_height_m,runout_m,fill_s,collapse_s,hold_s,heap_height_after_hold_m,"
+         "repose_angle_after_hold_deg,peak_angle_deg,residual_angle_deg,max_dilatancy_deg,wall_s\n";
   for (const ShapeResult& r : results) {
     const ReposeResult& q = r.repose;
-    csv << '"' << r.shape.label << "\"," << (q.grains ? q.spheres / q.grains : 0) << ',' << q.grains << ','
-        << q.angle << ',' << q.fit_rms << ',' << q.height << ',' << q.runout << ',' << q.fill_time << ','
-        << q.collapse_time << ',' << r.shear.peak_angle << ',' << r.shear.residual_angle << ','
+    csv << '"' << r.shape.label << "\"," << (r.shape.rolling.empty() ? "default" : r.shape.rolling)
+        << ',' << r.shape.rolling_friction << ',' << (q.grains ? q.spheres / q.grains : 0) << ','
+        << q.grains << ',' << q.angle << ',' << q.fit_rms << ',' << q.height << ',' << q.runout << ','
+        << q.fill_time << ',' << q.collapse_time << ',' << preset.hold << ',' << q.height_later << ','
+        << q.angle_later << ',' << r.shear.peak_angle << ',' << r.shear.residual_angle << ','
         << r.shear.max_dilatancy_angle << ',' << r.wall_seconds << '\n';
   }
   write_file_atomic((dir / "shapes.csv").string(), csv.str());
