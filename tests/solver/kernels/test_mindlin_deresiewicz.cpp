@@ -26,6 +26,7 @@
 #include "solver/core/cl_program.h"
 #include "solver/core/real_packer.h"
 #include "solver/kernels/kernel_source.h"
+#include "tests/support/law_driver.h"
 #include "tests/support/test_support.h"
 
 namespace simsols::testing {
@@ -35,20 +36,9 @@ const char* kLoopKernel = R"CL(
 __kernel void md_loop(__global const real* dxi, __global const real* coeff,
                       __global real* force_out, real delta, real rstar, real mstar,
                       real istar, real dt, int steps, int m) {
-  const int base = get_global_id(0) * LANES;
-  if (base >= m) return;
   int idx[LANES], keep[LANES];
-  for (int l = 0; l < LANES; ++l) {
-    keep[l] = base + l < m;
-    idx[l] = keep[l] ? base + l : m - 1;
-  }
-  PairLanes c;
-  c.estar = (lane)coeff[0];
-  c.gstar = (lane)coeff[1];
-  c.gamma = (lane)coeff[2];
-  c.mu_s = (lane)coeff[3];
-  c.mu_r = (lane)coeff[4];
-  c.kt_ratio = (lane)coeff[5];
+  if (!driver_lanes(m, idx, keep)) return;
+  const PairLanes c = driver_pair(coeff);
   History h = no_history();
   v3 n;
   n.x = (lane)1;
@@ -114,19 +104,16 @@ std::vector<double> drive(const Scene& scene, const std::vector<Path>& paths, do
   Device& dev = *default_device();
   const bool dbl = scene.numerics.precision == Precision::Double;
   const KernelConfig config = make_kernel_config(scene, dev);
-  std::vector<KernelFile> files = {kernel_file("layout.h"), kernel_file("common.cl"),
-                                   kernel_file("contact_law.cl"), {"md_loop.cl", kLoopKernel}};
-  const Program program(dev, config, files);
+  const Program program(dev, config, law_driver_files({"md_loop.cl", kLoopKernel}));
   const Kernel kernel = program.kernel("md_loop");
   const int m = static_cast<int>(paths.size());
   const int steps = static_cast<int>(paths[0].d.size());
   RealPacker dxi(dbl), coeff(dbl);
   for (int s = 0; s < steps; ++s)
     for (const Path& p : paths) dxi.put4(0, p.d[s] - (s ? p.d[s - 1] : 0), 0, 0);
-  const PairTable table = make_pair_table(scene);
-  const PairCoefficients& pc = table.at(0, 0);
-  coeff.put4(pc.e_star, pc.g_star, pc.gamma_n, pc.sliding_friction);
-  coeff.put4(pc.rolling_friction, std::sqrt(6 * pc.g_star / pc.e_star), 0, 0);
+  const std::vector<double> k = driver_coefficients(scene);
+  coeff.put4(k[0], k[1], k[2], k[3]);
+  coeff.put4(k[4], k[5], k[6], k[7]);
   const size_t out_bytes = size_t(steps) * m * 4 * (dbl ? 8 : 4);
   ClMem dbuf = dev.alloc(dxi.size(), dxi.data()), cbuf = dev.alloc(coeff.size(), coeff.data());
   ClMem fout = dev.alloc(out_bytes);

@@ -20,6 +20,7 @@
 #include "solver/core/real_packer.h"
 #include "solver/kernels/kernel_source.h"
 #include "solver/io/scene_toml.h"
+#include "tests/support/law_driver.h"
 #include "tests/support/test_support.h"
 
 namespace simsols::testing {
@@ -385,20 +386,9 @@ __kernel void rigid_pair(__global const real* normals, __global const real* spri
                          __global const real* coeff, __global real* force_out,
                          __global real* spring_out, real delta, real rstar, real mstar,
                          real istar, real dt, int steps, int m) {
-  const int base = get_global_id(0) * LANES;
-  if (base >= m) return;
   int idx[LANES], keep[LANES];
-  for (int l = 0; l < LANES; ++l) {
-    keep[l] = base + l < m;
-    idx[l] = keep[l] ? base + l : m - 1;
-  }
-  PairLanes c;
-  c.estar = (lane)coeff[0];
-  c.gstar = (lane)coeff[1];
-  c.gamma = (lane)coeff[2];
-  c.mu_s = (lane)coeff[3];
-  c.mu_r = (lane)coeff[4];
-  c.kt_ratio = (lane)coeff[5];
+  if (!driver_lanes(m, idx, keep)) return;
+  const PairLanes c = driver_pair(coeff);
   v3 sp = gather3(spring0, idx);
   lane dash = (lane)0;  // no record: a contact that began overlapped, in equilibrium
   for (int s = 0; s < steps; ++s) {
@@ -429,9 +419,7 @@ TEST_P(RigidPairRotation, TangentialForceStaysInPlaneAndKeepsItsSize) {
   Scene scene = empty_scene(prec, glass(0.87, 0.3, 5e-5));  // friction, damping, rolling on
   scene.particles = {sphere(kR, {0, 0, 0}), sphere(kR, {2 * kR, 0, 0})};
   const KernelConfig config = make_kernel_config(scene, dev);
-  std::vector<KernelFile> files = {kernel_file("layout.h"), kernel_file("common.cl"), kernel_file("contact_law.cl"),
-                                   {"rigid_pair.cl", kRigidPairKernel}};
-  const Program program(dev, config, files);
+  const Program program(dev, config, law_driver_files({"rigid_pair.cl", kRigidPairKernel}));
   const Kernel kernel = program.kernel("rigid_pair");
 
   const Vec3 n0{1, 0, 0};
@@ -457,8 +445,6 @@ TEST_P(RigidPairRotation, TangentialForceStaysInPlaneAndKeepsItsSize) {
   const double fn = 4.0 / 3.0 * estar * std::sqrt(rstar) * delta * std::sqrt(delta);
   const double kt = 8 * gstar * std::sqrt(rstar * delta);
   const double ft0 = 0.5 * g.sliding_friction * fn;  // half the Coulomb limit
-  const PairTable table = make_pair_table(scene);
-  const PairCoefficients& pc = table.at(0, 0);
 
   RealPacker normals(dbl), springs(dbl), coeff(dbl);
   for (int s = 0; s < steps; ++s)
@@ -470,8 +456,9 @@ TEST_P(RigidPairRotation, TangentialForceStaysInPlaneAndKeepsItsSize) {
     const Vec3 xi = scale(-ft0 / kt, unit(c.spring_dir));  // F_t = -k_t xi
     springs.put4(xi[0], xi[1], xi[2], 0);
   }
-  coeff.put4(pc.e_star, pc.g_star, pc.gamma_n, pc.sliding_friction);
-  coeff.put4(pc.rolling_friction, std::sqrt(6 * pc.g_star / pc.e_star), 0, 0);
+  const std::vector<double> k = driver_coefficients(scene);
+  coeff.put4(k[0], k[1], k[2], k[3]);
+  coeff.put4(k[4], k[5], k[6], k[7]);
   const size_t out_bytes = size_t(steps) * m * 4 * (dbl ? 8 : 4);
   ClMem nbuf = dev.alloc(normals.size(), normals.data());
   ClMem sbuf = dev.alloc(springs.size(), springs.data());
