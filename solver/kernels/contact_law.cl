@@ -17,6 +17,8 @@
 //   tangent  xi  <- xi rotated into the tangent plane, + v_t dt
 //            F_t = -k_t xi - gamma sqrt(m* k_t) v_t,  k_t = 8 G* sqrt(R* d)
 //            |F_t| > mu_s F_n  =>  F_t scaled to mu_s F_n, xi = -F_t / k_t
+//            mindlin_deresiewicz (HAS_MD_TANGENTIAL): the elastic force on
+//            Mindlin & Deresiewicz's branches instead (md_elastic_force)
 //   rolling  constant_torque (HAS_ROLLING), on the elastic F_n = K_n d^{3/2}:
 //            M   = -min(mu_r F_n, I* |w_r| / dt) w_r / |w_r|,
 //            w_r = wrel without its component along n
