@@ -267,11 +267,11 @@ INLINE v3 into_tangent_plane(v3 x, v3 n) {
 // k_t, adds |v_t| dt and returns to a force, so a branch is followed exactly
 // whatever the step; the increment points along -v_t (F = -k xi). A step
 // whose increment points back towards F_T is a reversal: F_T <- F.
-// Returns the elastic force (*elastic: the history's F_t).
-INLINE v3 md_elastic_force(v3 n, v3 vt, lane fn, lane kt, lane mu_s, real dt, v3* elastic,
+// Returns the elastic force from the history's, `elastic`.
+INLINE v3 md_elastic_force(v3 n, v3 vt, lane fn, lane kt, lane mu_s, real dt, v3 elastic,
                            v3* turn, lane* branch) {
   const real tiny = (real)1e-30;
-  v3 f = into_tangent_plane(*elastic, n);
+  v3 f = into_tangent_plane(elastic, n);
   v3 t = into_tangent_plane(*turn, n);
   const v3 push = v_mul(-(lane)dt, vt);  // direction of the force's increment
   const lmask reverse = v_dot(push, v_sub(f, t)) < (real)0;
@@ -292,51 +292,45 @@ INLINE v3 md_elastic_force(v3 n, v3 vt, lane fn, lane kt, lane mu_s, real dt, v3
 }
 #endif
 
-// mindlin: the spring xi (*spring) carried into this step, F_t = -k_t xi
-// less the dashpot's force.
-INLINE v3 spring_force(v3 n, v3 vt, lane fn, lane kt, lane ct, lane mu_s, real dt, v3* spring) {
+// Coulomb's limit on the trial force: F_t scaled to mu_s F_n (ftmax) where
+// it exceeds it; *sliding says where.
+INLINE v3 coulomb_limit(v3 ft, lane ftmax, lmask* sliding) {
   const real tiny = (real)1e-30;
-  v3 xi = into_tangent_plane(*spring, n);
-  xi = v_add(xi, v_mul((lane)dt, vt));
-  v3 ft = v_mul(-kt, xi);
-#ifdef HAS_DAMPING
-  ft = v_sub(ft, v_mul(ct, vt));
-#endif
-  const lane ftmax = mu_s * fn;
   const lane ft2 = v_dot(ft, ft);
-  // Coulomb limit: F_t scaled to mu_s F_n, and the spring alone made to
-  // carry it (the dashpot's share is dissipated, not stored): an early
-  // strongly damped step would otherwise store C_t v_t against the motion
-  // and push forwards once k_t outgrows C_t (docs/model.md).
-  const lmask sliding = ft2 > ftmax * ftmax;
-  ft = v_mul(SEL(sliding, ftmax * rsqrt(fmax(ft2, tiny)), (lane)1), ft);
-  xi = v_sel(sliding, v_mul(-1 / kt, ft), xi);
-  *spring = xi;
-  return ft;
+  *sliding = ft2 > ftmax * ftmax;
+  return v_mul(SEL(*sliding, ftmax * rsqrt(fmax(ft2, tiny)), (lane)1), ft);
 }
 
 // The tangential force F_t on i from the tangential velocity vt and the
 // contact's history h; kt the spring's stiffness k_t = 8 G* a, ct its
-// dashpot's coefficient (0 without damping). Under mindlin_deresiewicz
-// F_t is the elastic force less the dashpot's, with the same Coulomb rule.
+// dashpot's coefficient (0 without damping). The elastic force is -k_t xi
+// (mindlin: the spring xi carried into this step) or Mindlin &
+// Deresiewicz's (mindlin_deresiewicz: the history holds that force);
+// F_t is it less the dashpot's force, within Coulomb's limit. While the
+// contact slides the elastic part alone is made to carry the friction
+// force (the dashpot's share is dissipated, not stored): an early strongly
+// damped step would otherwise store C_t v_t against the motion and push
+// forwards once k_t outgrows C_t (docs/model.md).
 INLINE v3 tangential_force(v3 n, v3 vt, lane fn, lane kt, lane ct, lane mu_s, real dt,
                            History* h) {
 #ifdef HAS_MD_TANGENTIAL
-  h->sp = md_elastic_force(n, vt, fn, kt, mu_s, dt, &h->sp, &h->turn, &h->branch);
-  v3 ft = h->sp;
+  const v3 fel = md_elastic_force(n, vt, fn, kt, mu_s, dt, h->sp, &h->turn, &h->branch);
+#else
+  const v3 xi = v_add(into_tangent_plane(h->sp, n), v_mul((lane)dt, vt));
+  const v3 fel = v_mul(-kt, xi);
+#endif
+  v3 ft = fel;
 #ifdef HAS_DAMPING
   ft = v_sub(ft, v_mul(ct, vt));
 #endif
-  const real tiny = (real)1e-30;
-  const lane ftmax = mu_s * fn;
-  const lane ft2 = v_dot(ft, ft);
-  ft = v_mul(SEL(ft2 > ftmax * ftmax, ftmax * rsqrt(fmax(ft2, tiny)), (lane)1), ft);
-  // while it slides the elastic force is the friction force, as below
-  h->sp = v_sel(ft2 > ftmax * ftmax, ft, h->sp);
-  return ft;
+  lmask sliding;
+  ft = coulomb_limit(ft, mu_s * fn, &sliding);
+#ifdef HAS_MD_TANGENTIAL
+  h->sp = v_sel(sliding, ft, fel);
 #else
-  return spring_force(n, vt, fn, kt, ct, mu_s, dt, &h->sp);
+  h->sp = v_sel(sliding, v_mul(-1 / kt, ft), xi);
 #endif
+  return ft;
 }
 #endif
 
