@@ -4,12 +4,17 @@
 // the solver's sources with their own kernel after them. This holds what
 // every such kernel shares: the lanes a work item owns and the pair's
 // coefficients, in OpenCL C (kLawDriverCl, placed before the test's kernel),
-// and the host's packing of those coefficients.
+// the host's packing of those coefficients, and LawDriver, which passes a
+// kernel its arguments, runs it and reads its results back.
 #pragma once
 
+#include <CL/cl.h>
+
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
+#include "solver/core/cl_device.h"
 #include "solver/core/cl_program.h"
 #include "solver/kernels/kernel_source.h"
 #include "solver/scene/contact_model.h"
@@ -56,5 +61,48 @@ inline std::vector<double> driver_coefficients(const Scene& scene) {
   return {pc.e_star, pc.g_star, pc.gamma_n, pc.sliding_friction, pc.rolling_friction,
           std::sqrt(6 * pc.g_star / pc.e_star), 0, 0};
 }
+
+// A driver kernel's arguments in their order (buffers, reals in the
+// program's precision, ints), its run over m cases (LANES per work item),
+// and a buffer of reals read back as doubles.
+class LawDriver {
+ public:
+  LawDriver(Device& device, const KernelConfig& config, const Kernel& kernel)
+      : device_(device), config_(config), kernel_(kernel) {}
+  LawDriver& mem(const ClMem& b) {
+    const cl_mem h = b.get();
+    return set(sizeof h, &h);
+  }
+  LawDriver& real(double v) {
+    const float f = static_cast<float>(v);
+    return config_.double_precision ? set(sizeof v, &v) : set(sizeof f, &f);
+  }
+  LawDriver& integer(int v) { return set(sizeof v, &v); }
+  void run(int m) {
+    enqueue_kernel(device_, kernel_, (m + config_.lanes - 1) / config_.lanes, 0);
+    device_.finish();
+  }
+  std::vector<double> read(const ClMem& b, size_t count) const {
+    std::vector<double> v(count);
+    if (config_.double_precision) {
+      device_.read(b.get(), count * sizeof(double), v.data());
+    } else {
+      std::vector<float> f(count);
+      device_.read(b.get(), count * sizeof(float), f.data());
+      std::copy(f.begin(), f.end(), v.begin());
+    }
+    return v;
+  }
+
+ private:
+  LawDriver& set(size_t size, const void* value) {
+    check(clSetKernelArg(kernel_.get(), arg_++, size, value), "law driver kernel argument");
+    return *this;
+  }
+  Device& device_;
+  const KernelConfig& config_;
+  const Kernel& kernel_;
+  cl_uint arg_ = 0;
+};
 
 }  // namespace simsols::testing

@@ -117,28 +117,11 @@ std::vector<double> drive(const Scene& scene, const std::vector<Path>& paths, do
   const size_t out_bytes = size_t(steps) * m * 4 * (dbl ? 8 : 4);
   ClMem dbuf = dev.alloc(dxi.size(), dxi.data()), cbuf = dev.alloc(coeff.size(), coeff.data());
   ClMem fout = dev.alloc(out_bytes);
-  cl_uint arg = 0;
-  for (const ClMem* b : {&dbuf, &cbuf, &fout}) {
-    cl_mem h = b->get();
-    check(clSetKernelArg(kernel.get(), arg++, sizeof h, &h), "md_loop arg");
-  }
-  for (double v : {delta, rstar, mstar, istar, dt}) {
-    const float f = static_cast<float>(v);
-    check(dbl ? clSetKernelArg(kernel.get(), arg++, sizeof v, &v)
-              : clSetKernelArg(kernel.get(), arg++, sizeof f, &f),
-          "md_loop arg");
-  }
-  for (int v : {steps, m}) check(clSetKernelArg(kernel.get(), arg++, sizeof v, &v), "md_loop arg");
-  enqueue_kernel(dev, kernel, (m + config.lanes - 1) / config.lanes, 0);
-  dev.finish();
-  std::vector<double> f(size_t(steps) * m * 4);
-  if (dbl) {
-    dev.read(fout.get(), out_bytes, f.data());
-  } else {
-    std::vector<float> g(f.size());
-    dev.read(fout.get(), out_bytes, g.data());
-    std::copy(g.begin(), g.end(), f.begin());
-  }
+  LawDriver driver(dev, config, kernel);
+  driver.mem(dbuf).mem(cbuf).mem(fout);
+  for (double v : {delta, rstar, mstar, istar, dt}) driver.real(v);
+  driver.integer(steps).integer(m).run(m);
+  const std::vector<double> f = driver.read(fout, size_t(steps) * m * 4);
   std::vector<double> fy(size_t(steps) * m);
   for (size_t k = 0; k < fy.size(); ++k) fy[k] = f[4 * k + 1];
   return fy;

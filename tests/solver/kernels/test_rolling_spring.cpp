@@ -13,23 +13,11 @@
 #include <cstdio>
 #include <vector>
 
+#include "solver/core/observe.h"
 #include "tests/support/test_support.h"
 
 namespace simsols::testing {
 namespace {
-
-std::vector<double> read_real4(Simulation& sim, const Buffer& b, int n) {
-  const bool dbl = sim.model().config().double_precision;
-  std::vector<double> out(size_t(4) * n);
-  if (dbl) {
-    sim.model().device().read(b.get(), out.size() * 8, out.data());
-  } else {
-    std::vector<float> f(out.size());
-    sim.model().device().read(b.get(), f.size() * 4, f.data());
-    for (size_t k = 0; k < f.size(); ++k) out[k] = f[k];
-  }
-  return out;
-}
 
 class RollingSpring : public PrecisionTest {};
 
@@ -56,7 +44,7 @@ TEST_P(RollingSpring, RollingSphereStopsAndTorqueStaysBelowThePlasticLimit) {
     sim.advance(1);
     if (sim.steps() % 7 != 0) continue;  // every 7th step (each one read is slow)
     const ParticleSnapshot q = sim.snapshot();
-    const std::vector<double> t = read_real4(sim, sim.state().torque, 1);
+    const std::vector<double> t = read_reals(sim.model(), sim.state().torque, 4);
     const Vec3& f = q.force[0];
     if (f[2] <= 0) continue;
     const double lever = R - 0.5 * (R - q.position[0][2]);

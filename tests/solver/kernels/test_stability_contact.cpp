@@ -464,36 +464,12 @@ TEST_P(RigidPairRotation, TangentialForceStaysInPlaneAndKeepsItsSize) {
   ClMem sbuf = dev.alloc(springs.size(), springs.data());
   ClMem cbuf = dev.alloc(coeff.size(), coeff.data());
   ClMem fout = dev.alloc(out_bytes), sout = dev.alloc(out_bytes);
-  cl_uint arg = 0;
-  auto set_mem = [&](const ClMem& b) {
-    cl_mem h = b.get();
-    check(clSetKernelArg(kernel.get(), arg++, sizeof h, &h), "rigid_pair arg");
-  };
-  auto set_real = [&](double v) {
-    const float f = static_cast<float>(v);
-    if (dbl)
-      check(clSetKernelArg(kernel.get(), arg++, sizeof v, &v), "rigid_pair arg");
-    else
-      check(clSetKernelArg(kernel.get(), arg++, sizeof f, &f), "rigid_pair arg");
-  };
-  for (const ClMem* b : {&nbuf, &sbuf, &cbuf, &fout, &sout}) set_mem(*b);
-  for (double v : {delta, rstar, mstar, istar, 1e-7}) set_real(v);
-  for (int v : {steps, m}) check(clSetKernelArg(kernel.get(), arg++, sizeof v, &v), "rigid_pair arg");
-  const size_t global = (m + config.lanes - 1) / config.lanes;
-  enqueue_kernel(dev, kernel, global, 0);
-  dev.finish();
-  auto read = [&](const ClMem& b) {
-    std::vector<double> v(size_t(steps) * m * 4);
-    if (dbl) {
-      dev.read(b.get(), out_bytes, v.data());
-    } else {
-      std::vector<float> f(v.size());
-      dev.read(b.get(), out_bytes, f.data());
-      std::copy(f.begin(), f.end(), v.begin());
-    }
-    return v;
-  };
-  const std::vector<double> F = read(fout), XI = read(sout);
+  LawDriver driver(dev, config, kernel);
+  for (const ClMem* b : {&nbuf, &sbuf, &cbuf, &fout, &sout}) driver.mem(*b);
+  for (double v : {delta, rstar, mstar, istar, 1e-7}) driver.real(v);
+  driver.integer(steps).integer(m).run(m);
+  const size_t count = size_t(steps) * m * 4;
+  const std::vector<double> F = driver.read(fout, count), XI = driver.read(sout, count);
 
   double worst_plane = 0, worst_spring_plane = 0, worst_grow = 0, worst_decay = 0, worst_dir = 0;
   for (int c = 0; c < m; ++c) {
