@@ -102,6 +102,18 @@ def measures(rows, height, target, diameter_mm, lo, hi):
     return out
 
 
+def folder_measures(folder, lo, hi, target=None, diameter_mm=None):
+    """The measures of a run.sh folder (liggghts_shear.csv) or of a SimSols
+    test folder (shear.csv); the normal stress and bead diameter from its
+    summary.txt unless given."""
+    s = read_summary(os.path.join(folder, "summary.txt"))
+    lig = os.path.exists(os.path.join(folder, "liggghts_shear.csv"))
+    rows = read_csv(os.path.join(folder, "liggghts_shear.csv" if lig else "shear.csv"))
+    target = target if target is not None else float(s.get("normal_stress_kPa", 160))
+    d = diameter_mm if diameter_mm is not None else float(s.get("bead_diameter_mm", 2.38125))
+    return measures(rows, float(s["specimen_height_mm"]), target, d, lo, hi)
+
+
 def main():
     if len(sys.argv) not in (3, 5):
         sys.exit(__doc__)
@@ -110,10 +122,8 @@ def main():
     lsum, ssum = read_summary(os.path.join(lg, "summary.txt")), read_summary(os.path.join(ss, "summary.txt"))
     target = float(ssum.get("normal_stress_kPa", lsum.get("normal_stress_kPa", 160)))
     d = float(ssum.get("bead_diameter_mm", lsum.get("bead_diameter_mm", 2.38125)))
-    a = measures(read_csv(os.path.join(lg, "liggghts_shear.csv")),
-                 float(lsum["specimen_height_mm"]), target, d, lo, hi)
-    b = measures(read_csv(os.path.join(ss, "shear.csv")),
-                 float(ssum["specimen_height_mm"]), target, d, lo, hi)
+    a = folder_measures(lg, lo, hi, target, d)
+    b = folder_measures(ss, lo, hi, target, d)
     print("%-22s %14s %14s" % ("", "LIGGGHTS", "SimSols"))
     for k in a:
         print("%-22s %14.5g %14.5g" % (k, a[k], b[k]))

@@ -22,22 +22,13 @@ COLUMNS = ["height_mm", "first_peak", "first_peak_at_mm", "window_mean", "dilati
            "dilation_min_mm", "collapse_fall_mm"]
 
 
-def measure(folder):
-    lig = os.path.exists(os.path.join(folder, "liggghts_shear.csv"))
-    s = compare.read_summary(os.path.join(folder, "summary.txt"))
-    rows = compare.read_csv(os.path.join(folder, "liggghts_shear.csv" if lig else "shear.csv"))
-    target = float(s.get("normal_stress_kPa", 160))
-    d = float(s.get("bead_diameter_mm", 2.38125))
-    return compare.measures(rows, float(s["specimen_height_mm"]), target, d, 2.3, 6.0)
-
-
 def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
     out = []
     for arg in sys.argv[2:]:
         seed, label, folder = arg.split(":", 2)
-        m = measure(folder)
+        m = compare.folder_measures(folder, 2.3, 6.0)
         out.append({"seed": int(seed), "run": label, **{k: m[k] for k in COLUMNS}})
     tmp = sys.argv[1] + ".tmp"
     with open(tmp, "w", newline="") as f:
