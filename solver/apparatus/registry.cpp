@@ -7,6 +7,8 @@
 
 #include "solver/apparatus/oedometer/oedometer.h"
 #include "solver/apparatus/oedometer/oedometer_programme.h"
+#include "solver/apparatus/periodic_cell/cell_programme.h"
+#include "solver/apparatus/periodic_cell/periodic_cell.h"
 #include "solver/apparatus/shear_box/shear_box.h"
 #include "solver/apparatus/shear_box/shear_programme.h"
 #include "solver/apparatus/triaxial/triaxial.h"
@@ -32,6 +34,9 @@ std::string shear_box_stress(const Scene& s) {
 std::string triaxial_stress(const Scene& s) {
   return kpa("σ₃", s.apparatus_as<Triaxial>()->confining_stress);
 }
+std::string cell_stress(const Scene& s) {
+  return kpa("p", s.apparatus_as<PeriodicCell>()->pressure);
+}
 std::string no_stress(const Scene&) { return {}; }
 
 const ApparatusKind kKinds[] = {
@@ -43,12 +48,15 @@ const ApparatusKind kKinds[] = {
     {"triaxial", "Triaxial", "a triaxial test", "triaxial", kTriaxialWalls,
      "settle,consolidate,compress", build_triaxial, make<TriaxialProgramme>, triaxial_stress,
      nullptr},
+    {"periodic_cell", "Periodic cell", "a periodic-cell test", "cell", 0, "compress,test",
+     build_periodic_cell, make<CellProgramme>, cell_stress, nullptr},
 };
 static_assert(std::size(kKinds) + 1 == std::variant_size_v<Apparatus>,
               "one registry entry per alternative of Scene::apparatus");
 static_assert(std::is_same_v<std::variant_alternative_t<1, Apparatus>, ShearBox> &&
                   std::is_same_v<std::variant_alternative_t<2, Apparatus>, Oedometer> &&
-                  std::is_same_v<std::variant_alternative_t<3, Apparatus>, Triaxial>,
+                  std::is_same_v<std::variant_alternative_t<3, Apparatus>, Triaxial> &&
+                  std::is_same_v<std::variant_alternative_t<4, Apparatus>, PeriodicCell>,
               "the registry's order is the variant's");
 
 }  // namespace

@@ -33,6 +33,7 @@ std::string KernelConfig::build_options() const {
   if (servo_in_finish()) o += " -DSERVO_IN_FINISH";
   if (prefetch_shares) o += " -DPREFETCH_SHARES";
   if (clumps) o += " -DHAS_CLUMPS";
+  if (periodic) o += " -DHAS_PERIODIC";
   o += " -DSLICE=" + std::to_string(slice);
   o += " -DLANES=" + std::to_string(lanes);
   if (!extra_options.empty()) o += " " + extra_options;
@@ -61,6 +62,23 @@ int KernelConfig::history_planes() const {
   return n;
 }
 
+namespace {
+
+// What a periodic cell cannot hold (periodic.cl): a SceneError naming the field.
+void check_periodic(const Scene& scene, const KernelConfig& c) {
+  const std::string file = scene.source_path.empty() ? scene.name : scene.source_path;
+  const auto refuse = [&](const char* field, const char* why) {
+    throw SceneError("out_of_range", file, 0, field, why);
+  };
+  if (!c.double_precision)
+    refuse("numerics.precision", "a periodic cell runs in double precision (\"double\")");
+  if (c.walls) refuse("walls", "a periodic cell has no walls");
+  if (c.clumps) refuse("clumps", "clumps in a periodic cell are not supported");
+  if (c.gravity) refuse("effects.gravity", "a periodic cell has no gravity (set it to [0, 0, 0])");
+}
+
+}  // namespace
+
 KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
   KernelConfig c;
   c.double_precision = scene.numerics.precision == Precision::Double;
@@ -84,6 +102,7 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
     any_friction = any_friction || s->preparation.friction.value_or(0) > 0;
     any_rolling = any_rolling || s->preparation.rolling_friction.value_or(0) > 0;
   }
+  if (scene.periodic) any_friction = any_friction || scene.periodic->preparation_friction > 0;
   const Effects& e = scene.effects;
   c.damping = e.damping == DampingModel::Viscous && any_damping;
   c.friction = e.tangential != TangentialModel::None && any_friction;
@@ -98,7 +117,9 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
   c.walls = !scene.walls.empty() || pending;
   c.servo = pending;
   for (const Wall& w : scene.walls) c.servo = c.servo || w.servo.enabled;
-  c.clumps = !scene.clumps.empty() || (pending && scene.specimen()->grain >= 0);
+  c.clumps = !scene.clumps.empty() || (pending && scene.specimen() && scene.specimen()->grain >= 0);
+  c.periodic = scene.periodic.has_value();
+  if (c.periodic) check_periodic(scene, c);
   // CPUs: SIMD lanes, 8 floats or 4 doubles per work item (256-bit
   // registers; measured fastest with PoCL 3.1 on AVX-512, docs/performance.md).
   // GPUs already run one particle per SIMD lane.

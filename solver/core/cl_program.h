@@ -37,6 +37,7 @@ struct KernelConfig {
   bool walls = true;
   bool servo = false;  // some wall is servo-controlled
   bool clumps = false;  // the scene has clumps (clumps.cl)
+  bool periodic = false;  // a periodic cell (periodic.cl)
   int lanes = 1;                   // particles per work item in the contact kernels
   int slice = 32;                  // particles per slice of the neighbour lists (neighbors.cl)
   // finish_particles asks for the shares two work items on will collect

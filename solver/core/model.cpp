@@ -22,6 +22,7 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
   const Program& p = *program_;
   kernels_.grid_clear = p.kernel("grid_clear");
   kernels_.grid_count = p.kernel("grid_count");
+  kernels_.wrap_positions = p.kernel("wrap_positions");
   kernels_.scan_chunks = p.kernel("scan_chunks");
   kernels_.scan_totals = p.kernel("scan_totals");
   kernels_.scan_apply = p.kernel("scan_apply");

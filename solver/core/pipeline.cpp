@@ -24,8 +24,8 @@ void build_grid(const Model& m, State& s) {
   set_args(m, k.grid_clear, arg("count", s.cell_count), arg("table", s.table));
   launch_exact(m, k.grid_clear, s.table);
   set_args(m, k.grid_count, arg("pos", s.pos), arg("bucket", s.bucket), arg("slot", s.slot),
-           arg("count", s.cell_count), arg("inv_cell", inv_cell), arg("table", s.table),
-           arg("n", s.n));
+           arg("count", s.cell_count), arg("cell", s.cell), arg("inv_cell", inv_cell),
+           arg("table", s.table), arg("n", s.n));
   launch(m, k.grid_count, s.n);
   set_args(m, k.scan_chunks, arg("count", s.cell_count), arg("chunk_sum", s.chunk_sum),
            arg("table", s.table), arg("chunk_len", s.chunk_len));
@@ -70,8 +70,8 @@ std::array<std::uint32_t, 2> size_lists(const Model& m, State& s) {
   set_args(m, k.count_neighbors, arg("pos", s.pos), arg("pos_lo", s.pos_lo),
            arg("count", s.cell_count), arg("start", s.cell_start), arg("sorted", s.sorted),
            arg("nbr_count", s.nbr_count), arg("nbr_upper", s.nbr_upper), arg("flags", s.flags),
-           arg("body", m.body_buffer()), arg("inv_cell", Real{1.0 / m.cell_size()}),
-           arg("skin", Real{m.skin()}),
+           arg("body", m.body_buffer()), arg("cell", s.cell),
+           arg("inv_cell", Real{1.0 / m.cell_size()}), arg("skin", Real{m.skin()}),
            arg("table", s.table), arg("n", s.n));
   launch(m, k.count_neighbors, s.n);
   int flags[FLAG_LONGEST_LIST + 1] = {};
@@ -111,7 +111,8 @@ void build_lists(const Model& m, State& s) {
            arg("up_off", s.up_off), arg("lo_off", s.lo_off), arg("nbr_upper", s.nbr_upper),
            arg("nbr", s.nbr), arg("mirror", s.mirror), arg("spring", s.spring),
            arg("stride", s.up_slots), arg("pos_build", s.pos_build), arg("body", m.body_buffer()),
-           arg("inv_cell", Real{1.0 / m.cell_size()}), arg("skin", Real{m.skin()}),
+           arg("cell", s.cell), arg("inv_cell", Real{1.0 / m.cell_size()}),
+           arg("skin", Real{m.skin()}),
            arg("table", s.table), arg("n", s.n));
   launch(m, k.build_neighbors, s.n);
   old = {};  // the views go before share may be replaced
@@ -157,6 +158,14 @@ void build_wall_slots(const Model& m, State& s) {
   launch_exact(m, k.reset_wall_travel, m.walls());
 }
 
+// A periodic cell's particles back inside it (periodic.cl), before the grid.
+void wrap_into_cell(const Model& m, State& s) {
+  if (!m.config().periodic) return;
+  const Kernels& k = m.kernels();
+  set_args(m, k.wrap_positions, arg("pos", s.pos), arg("cell", s.cell), arg("n", s.n));
+  launch(m, k.wrap_positions, s.n);
+}
+
 // Steps until the next look at the flags: the fastest particle, at twice
 // its speed, must not cover the skin/4 that separates the rebuild trigger
 // (skin/4) from the validity limit (skin/2).
@@ -190,12 +199,14 @@ void detect_contacts(const Model& m, State& s) {
     m.device().write(s.flags.get(), sizeof zero, zero);
   if (!flags[FLAG_REBUILD]) return;
 
+  wrap_into_cell(m, s);
   build_grid(m, s);
   // The offsets in use become the "old" ones the springs are carried from
   // (the rest of the previous lists: build_lists).
   s.up_off.mem.swap(s.old_up_off.mem);
   build_lists(m, s);
   build_wall_slots(m, s);
+  cell_rebuilt(m, s);
   ++s.list_builds;
 }
 
@@ -206,7 +217,8 @@ void contact_forces(const Model& m, State& s) {
            arg("nbr_upper", s.nbr_upper), arg("spring", s.spring), arg("pairs", m.pair_buffer()),
            arg("share", s.share), arg("force", s.force), arg("torque", s.torque),
            arg("body_offset", m.body_offset_buffer()), arg("contacts_last", s.touching),
-           arg("dt", Real{m.dt()}), arg("rolling_damping", Real{m.scene().effects.rolling_damping}),
+           arg("cell", s.cell), arg("dt", Real{m.dt()}),
+           arg("rolling_damping", Real{m.scene().effects.rolling_damping}),
            arg("stride", s.up_slots), arg("n", s.n), arg("nmat", m.pairs().n));
   launch(m, k.pair_forces, lane_groups(m, s.n));
 }
@@ -227,7 +239,7 @@ void finish_particles(const Model& m, State& s) {
            arg("wall_touch", s.wall_touch), arg("wall_near", s.wall_near), arg("servo", s.servo),
            arg("wall_partial", s.wall_partial), arg("wall_reaction", s.wall_reaction),
            arg("wall_mean", s.wall_mean), arg("body_offset", m.body_offset_buffer()),
-           arg("gravity", gravity_arg(m)),
+           arg("cell", s.cell), arg("gravity", gravity_arg(m)),
            arg("fluid", fluid_arg(m)), arg("fluid_viscosity", Real{e.fluid_params.viscosity}),
            arg("dt", Real{m.dt()}), arg("rolling_damping", Real{e.rolling_damping}),
            arg("skin", Real{m.skin()}), arg("stride", s.up_slots), arg("n", s.n),
@@ -286,6 +298,7 @@ size_t reduce_wall_forces(const Model& m, State& s) {
 }
 
 void derive_state(const Model& m, State& s) {
+  read_cell(m, s);
   if (!m.config().shared_rolling_cap()) return;  // `touching` unused
   const std::vector<double> f = read_reals(m, s.force, size_t(s.n) * 4);
   std::vector<int> count(s.n);
@@ -299,6 +312,7 @@ void step(const Model& m, State& s) {
   finish_particles(m, s);
   move_clumps(m, s);
   move_walls(m, s);
+  move_cell(m, s);
   ++s.step;
   s.time = s.step * m.dt();
 }

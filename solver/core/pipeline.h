@@ -2,7 +2,8 @@
 //
 //   detect_contacts   rebuild grid + neighbour lists when a particle or a
 //                     wall has moved more than skin/4 (springs carried
-//                     over; the walls near each particle kept with them)
+//                     over; the walls near each particle kept with them;
+//                     a periodic cell's particles first wrapped into it)
 //                                               grid.cl, neighbors.cl, walls.cl
 //   contact_forces    particle-particle forces and torques, each pair once
 //                                                                  forces.cl
@@ -18,8 +19,11 @@
 //                     scene has no walls, and on CPUs, where the last work
 //                     group of finish_particles does it
 //                     (KernelConfig::servo_in_finish)       reduce.cl, walls.cl
+//   move_cell         a periodic cell deforms with its velocity gradient
+//                     (host only: the record the kernels read); returns
+//                     early without one          periodic_box.h, periodic.cl
 //
-// step() runs the five in this order: two kernel launches per step on CPUs,
+// step() runs the six in this order: two kernel launches per step on CPUs,
 // three or four on GPUs, one more with clumps (plus a list build now and
 // then).
 // Stages only enqueue kernels on the device's in-order queue;
@@ -28,6 +32,7 @@
 #pragma once
 
 #include "solver/core/model.h"
+#include "solver/core/periodic_box.h"
 #include "solver/core/state.h"
 
 namespace simsols {

@@ -51,6 +51,9 @@ class Simulation {
   // Moves a wall at once (no sweep: the caller makes sure it lands clear of
   // the particles, e.g. a platen lowered onto a specimen).
   void set_wall_point(int wall, const Vec3& point);
+  // A periodic cell's velocity gradient L (upper triangular) from the next
+  // step on (periodic_box.h); the cell as it stands is state().cell_now.
+  void set_cell_gradient(const Mat3& grad) { set_velocity_gradient(*model_, *state_, grad); }
   // Settles a specimen with other friction than its materials' (a
   // preparation, scene.h); std::nullopt restores the materials' (model.h).
   void override_friction(const std::optional<Model::FrictionOverride>& friction) {

@@ -52,6 +52,18 @@ State::State(const Model& model) {
   make_flags(model, v2_start);
   make_step_scratch(model);
   make_clumps(model);
+  make_cell(model);
+}
+
+void State::make_cell(const Model& model) {
+  cell = make(model.device(), CELL_REALS * model.real_size());
+  model.device().fill_zero(cell.get(), cell.bytes);
+  const std::optional<PeriodicBox>& box = model.scene().periodic;
+  if (!box) return;
+  cell_now.h = box->edges;
+  cell_now.since_build = identity3();
+  cell_now.corner = sub(box->corner, model.origin());
+  write_cell(model, *this);
 }
 
 void State::make_clumps(const Model& model) {
@@ -252,7 +264,8 @@ std::vector<std::pair<std::string, const Buffer*>> State::all_buffers() const {
           {"clump_pos_lo", &clump_pos_lo},
           {"clump_quat", &clump_quat},
           {"clump_vel", &clump_vel},
-          {"clump_mom", &clump_mom}};
+          {"clump_mom", &clump_mom},
+          {"cell", &cell}};
 }
 
 size_t State::device_bytes() const {
@@ -273,6 +286,7 @@ std::vector<std::pair<std::string, Buffer*>> State::dynamic_buffers() {
           {"wall_spring", &wall_spring}, {"wall_force", &wall_force},
           {"wall_touch", &wall_touch}, {"wall_reaction", &wall_reaction}, {"wall_mean", &wall_mean}, {"servo", &servo},
           {"flags", &flags}};
+  if (cell_now.h[0] != 0) all.emplace_back("cell", &cell);  // periodic scenes only
   if (clumps > 0)  // scenes without clumps keep their checkpoints' buffer list
     for (auto [name, b] : std::initializer_list<std::pair<std::string, Buffer*>>{
              {"clump_pos", &clump_pos}, {"clump_pos_lo", &clump_pos_lo},

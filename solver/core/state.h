@@ -23,6 +23,7 @@
 
 #include "solver/core/cl_device.h"
 #include "solver/core/model.h"
+#include "solver/core/periodic_box.h"
 
 namespace simsols {
 
@@ -91,6 +92,10 @@ class State {
   // angular momentum (scene frame, half-step); one-record stand-ins
   // without clumps.
   Buffer clump_pos, clump_pos_lo, clump_quat, clump_vel, clump_mom;
+  // the periodic cell's record (layout.h CELL_*, periodic.cl; zeros and
+  // unread without one) and the host's mirror of it (periodic_box.h)
+  Buffer cell;
+  CellNow cell_now;
 
   int n = 0;             // particles
   int clumps = 0;        // rigid clumps of particles
@@ -177,6 +182,8 @@ class State {
   void make_step_scratch(const Model& model);
   // The clumps' bodies from the scene.
   void make_clumps(const Model& model);
+  // The periodic cell's record from the scene's (zeros without one).
+  void make_cell(const Model& model);
 };
 
 // Slot k of particle i's list given its slice offsets: SLOT in common.cl.

@@ -75,6 +75,8 @@ void read_shear_box(const Reader& table, Scene& scene);  // scene_tables_shear_b
 void write_shear_box(TableWriter& out);
 void read_oedometer(const Reader& table, Scene& scene);  // scene_tables_oedometer.cpp
 void write_oedometer(TableWriter& out);
+void read_periodic_cell(const Reader& table, Scene& scene);  // scene_tables_periodic_cell.cpp
+void write_periodic_cell(TableWriter& out);
 void read_triaxial(const Reader& table, Scene& scene);   // scene_tables_triaxial.cpp
 void write_triaxial(TableWriter& out);
 

@@ -20,6 +20,7 @@ constexpr ApparatusReader kReaders[] = {
     {"shear_box", read_shear_box, write_shear_box},
     {"oedometer", read_oedometer, write_oedometer},
     {"triaxial", read_triaxial, write_triaxial},
+    {"periodic_cell", read_periodic_cell, write_periodic_cell},
 };
 
 const ApparatusReader* reader_of(std::string_view kind) {
@@ -47,7 +48,7 @@ void read_apparatus(const Reader& root, Scene& scene) {
     reader->read(root, scene);
     // the built-in steel is a material of the scene from the start (what
     // the kernels compile depends on it), as in the file's order
-    resolve_wall_material(scene, scene.cell()->wall_material);
+    if (ApparatusCell* cell = scene.cell()) resolve_wall_material(scene, cell->wall_material);
     scene.apparatus_pending = true;
     return;
   }

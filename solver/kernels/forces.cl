@@ -129,7 +129,7 @@ typedef struct {
 } PairGap;
 
 INLINE PairGap pair_gap(__global const real* restrict pos POS_LO_SARG_FN, const Owner* o,
-                        const int* jj, const int* listed) {
+                        const int* jj, const int* listed, __global const real* restrict cell) {
   const Lane4 pr = gather4(pos, jj);
   LanePos pj;
   pj.hi = pr.xyz;
@@ -140,6 +140,9 @@ INLINE PairGap pair_gap(__global const real* restrict pos POS_LO_SARG_FN, const 
 #endif
   PairGap g;
   g.d = separation(o->p, pj);
+#ifdef HAS_PERIODIC
+  g.d = lane_min_image(cell, g.d);  // the nearest image of the partner (periodic.cl)
+#endif
   g.rj = pr.w;
   g.rsum = o->r + g.rj;
   g.d2 = v_dot(g.d, g.d);
@@ -252,8 +255,9 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
                           __global const real* restrict pairs, __global real* restrict share,
                           __global real* restrict force, __global real* restrict torque,
                           __global const real* restrict body_offset,
-                          __global const int* restrict contacts_last, real dt,
-                          real rolling_damping, int stride, int n, int nmat) {
+                          __global const int* restrict contacts_last,
+                          __global const real* restrict cell, real dt, real rolling_damping,
+                          int stride, int n, int nmat) {
   const int base = get_global_id(0) * LANES;
   if (base >= n) return;
   int ii[LANES], valid[LANES], len[LANES];
@@ -269,7 +273,7 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
     const int slot = first + q * SLICE;  // lane l's: SLOT(up_off, base + l, q) = slot + l
     const size_t at = SLOT_REAL(slot, 0);  // its records' components (load_slots)
     list_partners(q, slot, len, ii, nbr, listed, jj);
-    const PairGap g = pair_gap(pos POS_LO_PASS, &own, jj, listed);
+    const PairGap g = pair_gap(pos POS_LO_PASS, &own, jj, listed, cell);
 #ifndef HAS_CAPILLARY
     if (!mask_any(g.on)) {  // no lane touches: what the law would leave, without it
       apart(spring, share, slot, at, plane, &sum);
@@ -277,7 +281,13 @@ __kernel void pair_forces(__global const real* restrict pos POS_LO_SARG,
     }
 #endif
     const PairContact k = pair_contact(g, own.r);
-    const Lane4 vmj = gather4(vel, jj), wmj = gather4(omega, jj);
+    Lane4 vmj = gather4(vel, jj);
+    const Lane4 wmj = gather4(omega, jj);
+#ifdef HAS_PERIODIC
+    // velocities are relative to the cell's flow (periodic.cl): the
+    // partner's image at d moves at L d relative to the flow at i
+    vmj.xyz = v_add(vmj.xyz, lane_apply(cell, CELL_GRAD, g.d));
+#endif
     pair_rows(&own, wmj.w, nmat, pair);
     const PairLanes coef = gather_pairs(pairs, pair, nmat);
     const lane rstar = own.r * g.rj / g.rsum, mj = body_mass(body_offset, jj, vmj.w);

@@ -21,16 +21,34 @@ INLINE uint hash_cell(int3 c, uint table) {
   return h & (table - 1u);
 }
 
+// In a periodic cell (periodic.cl) the grid is laid over the cell's
+// fractional coordinates and wraps: grid_cell and grid_bucket are cell_of
+// and hash_cell of either kind of scene.
+INLINE int3 grid_cell(real3 x, real inv_cell, __global const real* cell) {
+#ifdef HAS_PERIODIC
+  return periodic_cell_of(cell, x);
+#else
+  return cell_of(x, inv_cell);
+#endif
+}
+INLINE uint grid_bucket(int3 c, uint table, __global const real* cell) {
+#ifdef HAS_PERIODIC
+  c = wrap_grid_cell(cell, c);
+#endif
+  return hash_cell(c, table);
+}
+
 __kernel void grid_clear(__global uint* count, uint table) {
   const uint b = get_global_id(0);
   if (b < table) count[b] = 0u;
 }
 
 __kernel void grid_count(__global const real4* pos, __global uint* bucket, __global uint* slot,
-                         __global uint* count, real inv_cell, uint table, int n) {
+                         __global uint* count, __global const real* cell, real inv_cell,
+                         uint table, int n) {
   const int i = get_global_id(0);
   if (i >= n) return;
-  const uint b = hash_cell(cell_of(pos[i].xyz, inv_cell), table);
+  const uint b = grid_bucket(grid_cell(pos[i].xyz, inv_cell, cell), table, cell);
   bucket[i] = b;
   slot[i] = atomic_inc(&count[b]);
 }

@@ -27,8 +27,8 @@ INLINE void integrate_one(int i, __global real4* pos, __global float4* pos_lo,
                           __global real4* vel, __global real4* omega,
                           __global const real4* force, __global const real4* torque,
                           __global const float4* pos_build, __global volatile int* flags,
-                          __global int* contacts_last, real4 gravity, real4 fluid,
-                          real fluid_viscosity, real dt, real skin) {
+                          __global int* contacts_last, __global const real* cell, real4 gravity,
+                          real4 fluid, real fluid_viscosity, real dt, real skin) {
   real4 v = vel[i];
   real4 w = omega[i];
   real4 x = pos[i];
@@ -55,9 +55,16 @@ INLINE void integrate_one(int i, __global real4* pos, __global float4* pos_lo,
 #else
   const real3 tq = torque[i].xyz;
 #endif
+#ifdef HAS_PERIODIC
+  a -= cell_apply(cell, CELL_GRAD, v.xyz);  // du/dt = F/m - L u (periodic.cl)
+#endif
   v.xyz += a * dt;
   w.xyz += tq * (dt / ((real)0.4 * m * x.w * x.w));
+#ifdef HAS_PERIODIC
+  DRIFT(&x, pos_lo, i, (v.xyz + cell_apply(cell, CELL_GRAD, x.xyz - cell_corner(cell))) * dt);
+#else
   DRIFT(&x, pos_lo, i, v.xyz * dt);
+#endif
   vel[i] = v;
   omega[i] = w;
   pos[i] = x;
@@ -74,7 +81,15 @@ INLINE void integrate_one(int i, __global real4* pos, __global float4* pos_lo,
   }
   // pos_build is float in every precision: it only measures a path against
   // the skin (~0.1 d), far above a float's rounding
+#ifdef HAS_PERIODIC
+  // the travel through the cell's flow: from where the flow alone would
+  // have carried the particle since the build
+  const real3 built = to_real3(pos_build[i].xyz);
+  const real3 moved =
+      x.xyz - built - cell_apply(cell, CELL_STRETCH, built - cell_corner(cell));
+#else
   const real3 moved = x.xyz - to_real3(pos_build[i].xyz);
+#endif
   const real moved2 = dot(moved, moved);
   mark_travel(flags, moved2, skin);
   // |v|^2 >= 0, so its float bits order like ints; only a new maximum pays
@@ -114,7 +129,8 @@ __kernel void finish_particles(
     int wall_stride, __global const real* pairs,
     __global int* wall_touch, __global const int* wall_near, __global const real* servo,
     __global real* wall_partial, __global real* wall_reaction, __global real* wall_mean,
-    __global const real* body_offset, real4 gravity, real4 fluid, real fluid_viscosity, real dt, real rolling_damping, real skin,
+    __global const real* body_offset, __global const real* cell, real4 gravity, real4 fluid,
+    real fluid_viscosity, real dt, real rolling_damping, real skin,
     int stride, int n, int nwalls, int nmat, int wall_chunk, int wall_groups) {
   const int base = get_global_id(0) * LANES;
   if (base < n) {  // no early return: every work item reaches the barrier below
@@ -132,8 +148,8 @@ __kernel void finish_particles(
     for (int l = 0; l < count; ++l)
       integrate_one(base + l, (__global real4*)pos, (__global float4*)pos_lo,
                     (__global real4*)vel, (__global real4*)omega, (__global const real4*)force,
-                    (__global const real4*)torque, pos_build, flags, contacts_last, gravity,
-                    fluid, fluid_viscosity, dt, skin);
+                    (__global const real4*)torque, pos_build, flags, contacts_last, cell,
+                    gravity, fluid, fluid_viscosity, dt, skin);
   }
 #ifdef SERVO_IN_FINISH
   barrier(CLK_GLOBAL_MEM_FENCE);

@@ -43,6 +43,20 @@ enum PairSlot {
   PAIR_RECORD_CAPILLARY = 12   // and with them
 };
 
+// State::cell, CELL_REALS reals: the periodic cell as the kernels read it
+// (periodic.cl; written by the host each step, solver/core/periodic_box.h).
+// 3x3 matrices row-major. Zeros in scenes without a periodic cell.
+enum CellSlot {
+  CELL_H = 0,         // the cell's edges as columns, m
+  CELL_HINV = 9,      // H^-1, 1/m
+  CELL_GRAD = 18,     // the velocity gradient L (dv_a/dx_b at [a][b]), 1/s
+  CELL_STRETCH = 27,  // the affine map since the last list build, minus I, after this step
+  CELL_CORNER = 36,   // c0, the cell's lowest corner (device frame), m
+  CELL_GRID = 39,     // the grid's cell counts along a, b, c
+  CELL_SINCE_BUILD = 42,  // the affine map since the last list build (host only)
+  CELL_REALS = 51
+};
+
 #ifdef __cplusplus
 }  // namespace simsols
 #endif

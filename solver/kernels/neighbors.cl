@@ -35,12 +35,13 @@
 // MAX_CAP of them; returns how many there are).
 INLINE int find_neighbors(int i, real4 pi POS_LO_CARG_FN, __global const uint* count,
                           __global const uint* start, __global const int* sorted,
-                          __global const real4* pos, __global const int* body, real inv_cell,
-                          real skin, uint table, int* list) {
+                          __global const real4* pos, __global const int* body,
+                          __global const real* cell, real inv_cell, real skin, uint table,
+                          int* list) {
 #ifdef HAS_CLUMPS
   const int own = body[i];  // a clump's members never touch each other (clumps.cl)
 #endif
-  const int3 ci = cell_of(pi.xyz, inv_cell);
+  const int3 ci = grid_cell(pi.xyz, inv_cell, cell);
   int len = 0;
   int wanted = 0;
   uint seen[27];
@@ -48,7 +49,7 @@ INLINE int find_neighbors(int i, real4 pi POS_LO_CARG_FN, __global const uint* c
   for (int dz = -1; dz <= 1; ++dz)
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx) {
-        const uint b = hash_cell(ci + (int3)(dx, dy, dz), table);
+        const uint b = grid_bucket(ci + (int3)(dx, dy, dz), table, cell);
         bool dup = false;
         for (int s = 0; s < nseen; ++s) dup = dup || (seen[s] == b);
         if (dup) continue;
@@ -62,7 +63,11 @@ INLINE int find_neighbors(int i, real4 pi POS_LO_CARG_FN, __global const uint* c
           if (own >= 0 && body[j] == own) continue;
 #endif
           const real4 pj = pos[j];
+#ifdef HAS_PERIODIC
+          const real3 d = min_image(cell, rel_pos(pi, pj LO(i) LO(j)));
+#else
           const real3 d = rel_pos(pi, pj LO(i) LO(j));
+#endif
           const real cut = pi.w + pj.w + skin;
           if (dot(d, d) >= cut * cut) continue;
           ++wanted;
@@ -87,13 +92,13 @@ __kernel void count_neighbors(__global const real4* pos POS_LO_CARG,
                               __global const uint* count, __global const uint* start,
                               __global const int* sorted, __global int* nbr_count,
                               __global int* nbr_upper, __global volatile int* flags,
-                              __global const int* body, real inv_cell, real skin, uint table,
-                              int n) {
+                              __global const int* body, __global const real* cell,
+                              real inv_cell, real skin, uint table, int n) {
   const int i = get_global_id(0);
   if (i >= n) return;
   int list[MAX_CAP];
   const int wanted = find_neighbors(i, pos[i] POS_LO_PASS, count, start, sorted, pos, body,
-                                    inv_cell, skin, table, list);
+                                    cell, inv_cell, skin, table, list);
   if (wanted > MAX_CAP) atomic_max(&flags[FLAG_LONGEST_LIST], wanted);
   const int len = min(wanted, MAX_CAP);
   nbr_count[i] = len;
@@ -127,13 +132,14 @@ __kernel void build_neighbors(__global const real4* pos POS_LO_CARG,
                               __global const int* nbr_upper, __global int* nbr,
                               __global int* mirror, __global real* spring, int stride,
                               __global float4* pos_build, __global const int* body,
-                              real inv_cell, real skin, uint table, int n) {
+                              __global const real* cell, real inv_cell, real skin, uint table,
+                              int n) {
   const int i = get_global_id(0);
   if (i >= n) return;
   const real4 pi = pos[i];
   int list[MAX_CAP];
   const int len = min(MAX_CAP, find_neighbors(i, pi POS_LO_PASS, count, start, sorted, pos, body,
-                                              inv_cell, skin, table, list));
+                                              cell, inv_cell, skin, table, list));
   const int upper = nbr_upper[i];
   const int lower = len - upper;
   const int old_up = old_upper[i];

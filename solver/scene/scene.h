@@ -210,6 +210,17 @@ struct Numerics {
   int neighbor_capacity = 0;   // neighbours per particle; 0 = automatic
 };
 
+// A periodic cell (solver/core/periodic_box.h, docs/periodic-cell.md): the
+// scene's space repeats along the cell's edges, the columns of `edges`
+// (row-major, upper triangular), from `corner`. The periodic_cell
+// apparatus sets it; a scene with one has no walls, no gravity, no clumps
+// and runs in double precision.
+struct PeriodicBox {
+  std::array<double, 9> edges{};  // m
+  Vec3 corner{};                  // m
+  double preparation_friction = 0;  // mu_s while the specimen is made (compiled in when > 0)
+};
+
 // Walls per scene (each particle keeps a bitmask of the walls it touches).
 inline constexpr size_t kMaxWalls = 32;
 
@@ -254,6 +265,7 @@ struct Scene {
   std::vector<Grain> grains;
   std::vector<Clump> clumps;  // rigid bodies of member particles
   std::vector<Wall> walls;
+  std::optional<PeriodicBox> periodic;
   Effects effects;
   Numerics numerics;
   Outputs outputs;

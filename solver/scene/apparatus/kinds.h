@@ -9,12 +9,13 @@
 #include <variant>
 
 #include "solver/scene/apparatus/oedometer.h"
+#include "solver/scene/apparatus/periodic_cell.h"
 #include "solver/scene/apparatus/shear_box.h"
 #include "solver/scene/apparatus/triaxial.h"
 
 namespace simsols {
 
 // A scene's apparatus: none, or one of the kinds.
-using Apparatus = std::variant<std::monostate, ShearBox, Oedometer, Triaxial>;
+using Apparatus = std::variant<std::monostate, ShearBox, Oedometer, Triaxial, PeriodicCell>;
 
 }  // namespace simsols

@@ -1,0 +1,112 @@
+// CellProgramme: the periodic cell's loading programme and measurements.
+//
+// A Simulation of a scene with a [periodic_cell] is the apparatus; the
+// programme sets the cell's velocity gradient L between steps (periodic_box.h)
+// and operates it in named stages:
+//   compress  every normal stress servo-controlled to the pressure, with
+//             the preparation friction, until the specimen holds it: three
+//             checks in a row with every normal stress within 1 % of it and
+//             the particles' kinetic energy below 1e-6 of the elastic scale
+//             p V (or the particles' rattling at inertial number below 1e-4);
+//   test      the materials' own friction; simple shear (L_xz = gamma_dot,
+//             L_xx = L_yy = 0, sigma_zz servo-controlled), a triaxial path
+//             (L_zz = -epsilon_dot, the lateral stresses servo-controlled to
+//             sigma_3 or to keep p) or nothing more (isotropic);
+//   done.
+// The stress servo (each controlled normal component on its own) sets
+//   L_aa = beta (sigma_aa - target) / (M dt_c),  |L_aa| <= rate_max
+// every control (kControlSteps steps, dt_c apart), with M the affine
+// (Voigt) estimate of the packing's stiffness from its Hertz contacts and
+// beta = 0.5: a measured error halves per control at most; rate_max is the
+// strain rate of compression_inertial_number. Stresses are Love-Weber
+// averages over the cell (periodic_cell.h); a row is the mean of the
+// controls since the previous one, every row_strain of the test's strain.
+// The programme's own state is saved with the checkpoint.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "solver/apparatus/apparatus.h"
+#include "solver/apparatus/periodic_cell/periodic_cell.h"
+#include "solver/core/simulation.h"
+
+namespace simsols {
+
+// The rows' columns, in order (cell.csv): name and unit.
+struct CellColumn {
+  const char* name;
+  const char* unit;
+};
+enum CellCol : int {
+  kColStage, kColTime, kColStep, kColStrain, kColVolumetric, kColSxx, kColSyy, kColSzz, kColSxy,
+  kColSxz, kColSyz, kColP, kColQ, kColRatio, kColPhi, kColVoid, kColZ, kColZBackbone,
+  kColFabricAniso, kColFabricXz, kColInertial, kColKinetic, kCellColumns
+};
+const std::array<CellColumn, kCellColumns>& cell_columns();
+using CellRow = std::array<double, kCellColumns>;
+
+// A mean over the steady part of a test (rows at strain >= from) with its
+// 95 % interval from five batch means (Student's t, 4 degrees of freedom).
+struct SteadyValue {
+  double mean = 0, half_width = 0;
+  int rows = 0;
+};
+SteadyValue steady_value(const std::vector<CellRow>& rows, int column, double from);
+
+class CellProgramme : public ApparatusProgramme {
+ public:
+  enum class Stage : int { Compress = 0, Test = 1, Done = 2 };
+  static constexpr int kControlSteps = 20;
+
+  explicit CellProgramme(Simulation& sim);
+
+  bool advance(std::int64_t max_steps) override;
+  bool done() const override { return stage_ == Stage::Done; }
+  const char* stage_name() const override;
+  bool measuring() const override { return stage_ == Stage::Test; }
+  StepCount step_count() const override;
+  std::string status() const override;
+  std::string caption() const override;
+  std::string save_state() const override;
+  void restore_state(const std::string& text) override;
+
+  const char* rows_file() const override { return "cell.csv"; }
+  std::string rows_csv() const override;
+  std::size_t row_count() const override { return rows_.size(); }
+  std::string summary_text(double wall_seconds) const override;
+  std::string describe() const override;
+  std::string measuring_line() const override;
+
+  const std::vector<CellRow>& rows() const { return rows_; }
+  Stage stage() const { return stage_; }
+  double strain() const { return strain_; }
+  double test_rate() const;  // 1/s, gamma_dot or epsilon_dot
+  double end_strain() const;
+
+ private:
+  void control();                 // one control: measure, servo, maybe a row
+  void servo(const CellMeasure& m, Mat3& grad) const;
+  bool compressed(const CellMeasure& m);
+  void start_test();
+  void apply_friction();
+  void add_row();
+  double stiffness(const CellMeasure& m) const;  // M, Pa
+  double target(int axis, const CellMeasure& m) const;
+
+  Simulation& sim_;
+  const PeriodicCell& cell_;
+  double diameter_ = 0, density_ = 0, e_star_ = 0;
+  Stage stage_ = Stage::Compress;
+  double strain_ = 0, volumetric_ = 0, volume0_ = 0, next_row_ = 0;
+  int quiet_ = 0, controls_ = 0;
+  std::int64_t since_control_ = 0;  // steps since the last control
+  std::int64_t compress_steps_ = 0;
+  CellRow sum_{};  // the controls' sums since the last row
+  int summed_ = 0;
+  std::vector<CellRow> rows_;
+};
+
+}  // namespace simsols
