@@ -104,6 +104,7 @@ void Guard::apply_logged(size_t* next) {
     const Logged& l = log_[(*next)++];
     if (!l.buffer) request_rebuild(model_, state_);
     else model_.device().write((state_.*l.buffer).get(), l.data.size(), l.data.data(), l.offset);
+    if (l.buffer == &State::cell) read_cell(model_, state_);  // the host's mirror of it
   }
 }
 

@@ -92,7 +92,11 @@ bool upper_triangular(const Mat3& m) { return m[3] == 0 && m[6] == 0 && m[7] == 
 
 void write_cell(const Model& m, State& s) {
   if (!m.config().periodic) return;
-  const CellNow& c = s.cell_now;
+  const std::vector<double> rec = cell_record(m, s.cell_now);
+  m.device().write(s.cell.get(), rec.size() * sizeof(double), rec.data());
+}
+
+std::vector<double> cell_record(const Model& m, const CellNow& c) {
   std::vector<double> rec(CELL_REALS, 0.0);
   put(rec, CELL_H, c.h);
   put(rec, CELL_HINV, inverse3(c.h));
@@ -104,7 +108,7 @@ void write_cell(const Model& m, State& s) {
   const std::array<int, 3> n = grid_counts(c.h, m.cell_size());
   for (int a = 0; a < 3; ++a) rec[CELL_GRID + a] = n[a];
   put(rec, CELL_SINCE_BUILD, c.since_build);
-  m.device().write(s.cell.get(), rec.size() * sizeof(double), rec.data());
+  return rec;
 }
 
 void read_cell(const Model& m, State& s) {
@@ -135,13 +139,6 @@ void move_cell(const Model& m, State& s) {
   // has the rest of the skin: integrate.cl)
   M drift = eig(mul3(step, c.since_build)) - M::Identity();
   if (drift.norm() * m.cell_size() > m.skin() / 8) request_rebuild(m, s);
-  write_cell(m, s);
-}
-
-void set_velocity_gradient(const Model& m, State& s, const Mat3& grad) {
-  if (!upper_triangular(grad))
-    throw std::invalid_argument("the periodic cell's velocity gradient must be upper triangular");
-  s.cell_now.grad = grad;
   write_cell(m, s);
 }
 

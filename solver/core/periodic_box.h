@@ -23,6 +23,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "solver/common/vec3.h"
 
@@ -61,10 +62,11 @@ bool upper_triangular(const Mat3& m);
 // The stages' part (pipeline.cpp): nothing in scenes without a cell.
 void cell_rebuilt(const Model& model, State& state);
 void move_cell(const Model& model, State& state);
-// The host's mirror written to the device / re-read from it.
+// The device record of `cell` (CELL_REALS doubles, layout.h).
+std::vector<double> cell_record(const Model& model, const CellNow& cell);
+// The host's mirror written to the device / re-read from it (after the
+// state was written wholesale, or a logged write replayed: guard.h).
 void write_cell(const Model& model, State& state);
 void read_cell(const Model& model, State& state);
-// Sets L (upper triangular, else std::invalid_argument) from the next step on.
-void set_velocity_gradient(const Model& model, State& state, const Mat3& grad);
 
 }  // namespace simsols

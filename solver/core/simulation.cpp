@@ -47,6 +47,17 @@ void Simulation::write_real4(Buffer State::*buffer, size_t index, double a, doub
   guard_->write(buffer, index * p.size(), p.data(), p.size());
 }
 
+void Simulation::set_cell_gradient(const Mat3& grad) {
+  if (!model_->config().periodic) throw std::logic_error("set_cell_gradient: the scene has no periodic cell");
+  if (!upper_triangular(grad))
+    throw std::invalid_argument("the periodic cell's velocity gradient must be upper triangular");
+  CellNow c = state_->cell_now;
+  c.grad = grad;
+  const std::vector<double> rec = cell_record(*model_, c);
+  guard_->write(&State::cell, 0, rec.data(), rec.size() * sizeof(double));  // then the mirror
+  state_->cell_now = c;
+}
+
 void Simulation::set_wall_velocity(int wall, const Vec3& v) {
   check_wall(*model_, wall, "set_wall_velocity");
   write_real4(&State::wall_vel, wall, v[0], v[1], v[2], 0);

@@ -53,7 +53,9 @@ class Simulation {
   void set_wall_point(int wall, const Vec3& point);
   // A periodic cell's velocity gradient L (upper triangular) from the next
   // step on (periodic_box.h); the cell as it stands is state().cell_now.
-  void set_cell_gradient(const Mat3& grad) { set_velocity_gradient(*model_, *state_, grad); }
+  // Throws std::invalid_argument for a gradient that is not upper
+  // triangular, std::logic_error without a periodic cell.
+  void set_cell_gradient(const Mat3& grad);
   // Settles a specimen with other friction than its materials' (a
   // preparation, scene.h); std::nullopt restores the materials' (model.h).
   void override_friction(const std::optional<Model::FrictionOverride>& friction) {

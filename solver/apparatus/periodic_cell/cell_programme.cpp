@@ -12,11 +12,12 @@
 namespace simsols {
 namespace {
 
-constexpr double kBeta = 0.5;             // the servo's share of an error corrected per control
+constexpr double kBeta = 1;               // the servo's share of an error corrected per control, at most
 constexpr double kStressTolerance = 0.01;  // compressed: every normal stress within 1 %
 constexpr double kQuietInertial = 1e-4;    // compressed: rattling below this inertial number
 constexpr int kQuietControls = 10;         // ... for this many controls in a row
 constexpr int kCompressRowControls = 25;   // a compression row every so many controls
+constexpr double kIntegralControls = 10;   // the servo's integral time, in controls
 
 constexpr std::array<CellColumn, kCellColumns> kColumns = {{
     {"stage", "-"}, {"time", "s"}, {"step", "-"}, {"strain", "-"},
@@ -105,8 +106,11 @@ double CellProgramme::end_strain() const {
   return cell_.test == PeriodicCell::Test::SimpleShear ? cell_.shear_strain : cell_.axial_strain;
 }
 
-// The affine (Voigt) stiffness of a Hertz packing at its mean contact force:
-// 3 K with K = phi Z k_n / (12 pi R), k_n = 2 E* sqrt(R* delta).
+// The affine (Voigt) stiffness of a Hertz packing at its mean contact force
+// under an isotropic strain, 3 K = phi Z k_n / (2 pi R), k_n = 2 E* sqrt(R*
+// delta): an upper bound of what any normal stress answers to its strain
+// (one axis strained alone: 3 phi Z k_n / (10 pi R) from the normal springs;
+// the packing's non-affine motion softens both).
 double CellProgramme::stiffness(const CellMeasure& m) const {
   const double r = 0.5 * diameter_, p = m.pressure(), z = m.coordination;
   if (!(p > 0) || z < 1) return 0;
@@ -114,7 +118,7 @@ double CellProgramme::stiffness(const CellMeasure& m) const {
   const double r_star = 0.5 * r;
   const double delta = std::pow(3 * force / (4 * e_star_ * std::sqrt(r_star)), 2.0 / 3.0);
   const double k_n = 2 * e_star_ * std::sqrt(r_star * delta);
-  return 3 * m.solid_fraction * z * k_n / (12 * std::numbers::pi * r);
+  return m.solid_fraction * z * k_n / (2 * std::numbers::pi * r);
 }
 
 double CellProgramme::target(int axis, const CellMeasure& m) const {
@@ -124,7 +128,7 @@ double CellProgramme::target(int axis, const CellMeasure& m) const {
   return cell_.pressure;
 }
 
-void CellProgramme::servo(const CellMeasure& m, Mat3& grad) const {
+void CellProgramme::servo(const CellMeasure& m, Mat3& grad) {
   const double rate_max = cell_.compression_inertial_number *
                           std::sqrt(cell_.pressure / density_) / diameter_;
   const double dt_c = kControlSteps * sim_.dt();
@@ -134,10 +138,18 @@ void CellProgramme::servo(const CellMeasure& m, Mat3& grad) const {
     controlled[0] = controlled[1] = false;
   if (stage_ == Stage::Test && cell_.test == PeriodicCell::Test::Triaxial) controlled[2] = false;
   for (int a = 0; a < 3; ++a) {
-    if (!controlled[a]) continue;
+    if (!controlled[a]) {
+      integral_[a] = 0;
+      continue;
+    }
     const double err = m.stress[4 * a] - target(a, m);
-    const double rate = stiff > 0 ? kBeta * err / (stiff * dt_c) : (err > 0 ? rate_max : -rate_max);
-    grad[4 * a] = std::clamp(rate, -rate_max, rate_max);
+    if (!(stiff > 0)) {  // a gas: no contacts to answer yet
+      grad[4 * a] = err > 0 ? rate_max : -rate_max;
+      continue;
+    }
+    const double proportional = kBeta * err / (stiff * dt_c);
+    integral_[a] = std::clamp(integral_[a] + proportional / kIntegralControls, -rate_max, rate_max);
+    grad[4 * a] = std::clamp(proportional + integral_[a], -rate_max, rate_max);
   }
 }
 
@@ -289,10 +301,10 @@ std::string CellProgramme::caption() const {
 std::string CellProgramme::save_state() const {
   std::ostringstream o;
   o.precision(17);
-  o << "cell_test 1\n"
+  o << "cell_test 2\n"
     << static_cast<int>(stage_) << ' ' << strain_ << ' ' << volume0_ << ' ' << next_row_ << ' '
     << quiet_ << ' ' << controls_ << ' ' << compress_steps_ << ' ' << since_control_ << ' '
-    << summed_ << '\n';
+    << summed_ << ' ' << integral_[0] << ' ' << integral_[1] << ' ' << integral_[2] << '\n';
   for (double x : sum_) o << x << ' ';
   o << '\n' << rows_.size() << '\n';
   for (const CellRow& r : rows_) {
@@ -308,9 +320,9 @@ void CellProgramme::restore_state(const std::string& text) {
   int version = 0, stage = 0;
   size_t count = 0;
   in >> tag >> version;
-  if (tag != "cell_test" || version != 1) throw ReadError("the checkpoint holds no periodic-cell state");
+  if (tag != "cell_test" || version != 2) throw ReadError("the checkpoint holds no periodic-cell state");
   in >> stage >> strain_ >> volume0_ >> next_row_ >> quiet_ >> controls_ >> compress_steps_ >>
-      since_control_ >> summed_;
+      since_control_ >> summed_ >> integral_[0] >> integral_[1] >> integral_[2];
   for (double& x : sum_) in >> x;
   in >> count;
   if (!in || stage < 0 || stage > 2 || count > 10000000 || since_control_ < 0 ||

@@ -14,11 +14,14 @@
 //             sigma_3 or to keep p) or nothing more (isotropic);
 //   done.
 // The stress servo (each controlled normal component on its own) sets
-//   L_aa = beta (sigma_aa - target) / (M dt_c),  |L_aa| <= rate_max
+//   L_aa = P + I,  P = beta (sigma_aa - target) / (M dt_c),
+//   I += P / 10 (the integral part, which follows a steady dilatancy),
+//   |I|, |L_aa| <= rate_max
 // every control (kControlSteps steps, dt_c apart), with M the affine
-// (Voigt) estimate of the packing's stiffness from its Hertz contacts and
-// beta = 0.5: a measured error halves per control at most; rate_max is the
-// strain rate of compression_inertial_number. Stresses are Love-Weber
+// (Voigt) stiffness of the packing's Hertz contacts under isotropic strain,
+// an upper bound of the stiffness each stress answers with, and beta = 1:
+// a control corrects at most the error it measured; rate_max is the strain
+// rate of compression_inertial_number. Stresses are Love-Weber
 // averages over the cell (periodic_cell.h); a row is the mean of the
 // controls since the previous one, every row_strain of the test's strain.
 // The programme's own state is saved with the checkpoint.
@@ -88,7 +91,7 @@ class CellProgramme : public ApparatusProgramme {
 
  private:
   void control();                 // one control: measure, servo, maybe a row
-  void servo(const CellMeasure& m, Mat3& grad) const;
+  void servo(const CellMeasure& m, Mat3& grad);
   bool compressed(const CellMeasure& m);
   void start_test();
   void apply_friction();
@@ -104,6 +107,7 @@ class CellProgramme : public ApparatusProgramme {
   int quiet_ = 0, controls_ = 0;
   std::int64_t since_control_ = 0;  // steps since the last control
   std::int64_t compress_steps_ = 0;
+  std::array<double, 3> integral_{};  // the servo's integral part per axis, 1/s
   CellRow sum_{};  // the controls' sums since the last row
   int summed_ = 0;
   std::vector<CellRow> rows_;
