@@ -24,7 +24,8 @@ struct CampaignKind {
   int (*run)(const CampaignOptions& opt, const Scene& base, const std::string& base_name);
 };
 constexpr CampaignKind kCampaigns[] = {{"shear_box", shear_box_campaign},
-                                       {"triaxial", triaxial_campaign}};
+                                       {"triaxial", triaxial_campaign},
+                                       {"periodic_cell", periodic_cell_campaign}};
 
 int campaign(const CampaignOptions& opt) {
   // Everything is checked and every scene built before anything runs.
@@ -46,8 +47,9 @@ CommandRunner add_campaign_command(CLI::App& app) {
   auto opt = std::make_shared<CampaignOptions>();
   CLI::App* cmd = app.add_subcommand(
       "campaign",
-      "Run the paper's direct shear programme (5 sizes x 4 stresses), or a triaxial test at "
-      "several confining stresses; resumable");
+      "Run the paper's direct shear programme (5 sizes x 4 stresses), a triaxial test at "
+      "several confining stresses, or a periodic cell at several pressures and inertial numbers; "
+      "resumable");
   cmd->add_option("base", opt->base,
                   "Base scene: a shear box (default: the built-in shear_box.toml) or a triaxial "
                   "cell");
@@ -57,8 +59,9 @@ CommandRunner add_campaign_command(CLI::App& app) {
           ->delimiter(',');
   CLI::Option* stresses =
       cmd->add_option("--stresses", opt->stresses_kpa,
-                      "Normal stresses in kPa (default 50,160,280,400), or a triaxial "
-                      "campaign's confining stresses (default 50,100,200)")
+                      "Normal stresses in kPa (default 50,160,280,400), a triaxial "
+                      "campaign's confining stresses (default 50,100,200) or a periodic cell's "
+                      "pressures (default: the base scene's)")
           ->delimiter(',');
   CLI::Option* layers =
       cmd->add_option("--layers", opt->layers, "Layers for every size (default: Table 1)");
@@ -66,6 +69,12 @@ CommandRunner add_campaign_command(CLI::App& app) {
   CLI::Option* displacement =
       cmd->add_option("--displacement", opt->displacement_mm,
                       "Horizontal displacement to shear, mm (default: the base scene's)");
+  CLI::Option* inertial =
+      cmd->add_option("--inertial-numbers", opt->inertial_numbers,
+                      "A periodic cell's inertial numbers (default: the base scene's)")
+          ->delimiter(',');
+  CLI::Option* seeds = cmd->add_option(
+      "--seeds", opt->seeds, "A periodic cell's specimens per point: the base's seed and the next (default 3)");
   cmd->add_flag("--quiet,-q", opt->quiet, "No progress lines");
   add_cluster_flags(cmd, opt->cluster);
   return [=] {
@@ -77,6 +86,8 @@ CommandRunner add_campaign_command(CLI::App& app) {
     opt->stresses_given = stresses->count() > 0;
     opt->layers_given = layers->count() > 0;
     opt->displacement_given = displacement->count() > 0;
+    opt->inertial_given = inertial->count() > 0;
+    opt->seeds_given = seeds->count() > 0;
     opt->command_line = given_args(cmd, {"base", "--out"});
     return campaign(*opt);
   };

@@ -23,7 +23,7 @@ namespace {
 
 // The reports, one per kind that has one, each in its kind's folder.
 constexpr const TestReport& (*kReports[])() = {shear_box_report, oedometer_report,
-                                                 triaxial_report};
+                                                 triaxial_report, periodic_cell_report};
 
 const TestReport* report_of(std::string_view kind) {
   for (const auto& report : kReports)

@@ -25,6 +25,7 @@ struct TestReport {
 const TestReport& shear_box_report();
 const TestReport& oedometer_report();
 const TestReport& triaxial_report();
+const TestReport& periodic_cell_report();
 
 // A kind's plots from its programme's rows and summary: write(dir, title,
 // rows, summary), for TestReport::plots.

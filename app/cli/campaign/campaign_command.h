@@ -24,11 +24,13 @@ struct CampaignOptions {
   int layers = 0;  // 0 = Table 1
   std::string precision;
   double displacement_mm = 0;  // 0 = the base scene's
+  std::vector<double> inertial_numbers;  // a periodic cell's; empty = the base scene's
+  int seeds = 3;                         // a periodic cell's specimens per point
   bool quiet = false;
   // Flags given on the command line (the triaxial campaign refuses the
   // shear box's and has its own default stresses).
   bool sizes_given = false, stresses_given = false, layers_given = false,
-       displacement_given = false;
+       displacement_given = false, inertial_given = false, seeds_given = false;
   ClusterFlags cluster;
   std::vector<std::string> command_line;  // plans the same tests again (given_args)
 };
@@ -45,5 +47,6 @@ int report_interrupted(size_t k, size_t count, const std::string& name,
 // as a cluster's array) and reported; the command's exit status.
 int shear_box_campaign(const CampaignOptions& opt, const Scene& base, const std::string& base_name);
 int triaxial_campaign(const CampaignOptions& opt, const Scene& base, const std::string& base_name);
+int periodic_cell_campaign(const CampaignOptions& opt, const Scene& base, const std::string& base_name);
 
 }  // namespace simsols

@@ -9,6 +9,11 @@ namespace simsols {
 
 // The paper's programme (Table 1's sizes x the stresses) in a shear box.
 int shear_box_campaign(const CampaignOptions& opt, const Scene& base, const std::string& base_name) {
+  for (const auto& [given, flag] : {std::pair{opt.inertial_given, "--inertial-numbers"},
+                                    {opt.seeds_given, "--seeds"}})
+    if (given)
+      throw UsageError("not_applicable", flag,
+                       "is a periodic cell's flag; a shear campaign varies --sizes and --stresses");
   const Preparation& prep = base.specimen()->preparation;
   const auto refuse = [&](const char* field, const char* how) {
     throw SceneError("not_applicable", base_name, 0,

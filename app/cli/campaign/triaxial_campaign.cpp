@@ -13,10 +13,12 @@ int triaxial_campaign(const CampaignOptions& opt, const Scene& given, const std:
   Scene base = given;
   for (const auto& [given, flag] : {std::pair{opt.sizes_given, "--sizes"},
                                     {opt.layers_given, "--layers"},
-                                    {opt.displacement_given, "--displacement"}})
+                                    {opt.displacement_given, "--displacement"},
+                                    {opt.inertial_given, "--inertial-numbers"},
+                                    {opt.seeds_given, "--seeds"}})
     if (given)
       throw UsageError("not_applicable", flag,
-                       "is a shear-box flag; a triaxial campaign varies --stresses (sigma_3)");
+                       "is not a triaxial campaign's flag; a triaxial campaign varies --stresses (sigma_3)");
   TriaxialCampaignSpec spec;
   if (opt.stresses_given) spec.stresses_kpa = opt.stresses_kpa;
   spec.precision = precision_flag(opt.precision);

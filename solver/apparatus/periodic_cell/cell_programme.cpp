@@ -19,15 +19,6 @@ constexpr int kQuietControls = 10;         // ... for this many controls in a ro
 constexpr int kCompressRowControls = 25;   // a compression row every so many controls
 constexpr double kIntegralControls = 10;   // the servo's integral time, in controls
 
-constexpr std::array<CellColumn, kCellColumns> kColumns = {{
-    {"stage", "-"}, {"time", "s"}, {"step", "-"}, {"strain", "-"},
-    {"volumetric_strain", "-"}, {"sigma_xx", "kPa"}, {"sigma_yy", "kPa"}, {"sigma_zz", "kPa"},
-    {"sigma_xy", "kPa"}, {"sigma_xz", "kPa"}, {"sigma_yz", "kPa"}, {"p", "kPa"}, {"q", "kPa"},
-    {"stress_ratio", "-"}, {"solid_fraction", "-"}, {"void_ratio", "-"}, {"coordination", "-"},
-    {"coordination_backbone", "-"}, {"fabric_zz_minus_xx", "-"}, {"fabric_xz", "-"},
-    {"inertial_number", "-"}, {"kinetic_energy", "J"},
-}};
-
 const PeriodicCell& cell_of(const Simulation& sim) {
   const PeriodicCell* c = sim.scene().apparatus_as<PeriodicCell>();
   if (!c) throw std::invalid_argument("CellProgramme: the scene has no periodic cell");
@@ -47,30 +38,6 @@ double deviator(const Mat3& s) {
 }
 
 }  // namespace
-
-const std::array<CellColumn, kCellColumns>& cell_columns() { return kColumns; }
-
-SteadyValue steady_value(const std::vector<CellRow>& rows, int column, double from) {
-  std::vector<double> v;
-  for (const CellRow& r : rows)
-    if (r[kColStage] == 1 && r[kColStrain] >= from) v.push_back(r[column]);
-  SteadyValue out;
-  out.rows = static_cast<int>(v.size());
-  if (v.empty()) return out;
-  for (double x : v) out.mean += x / v.size();
-  constexpr int kBatches = 5;
-  if (v.size() < 2 * kBatches) return out;
-  std::array<double, kBatches> batch{};
-  const size_t per = v.size() / kBatches;
-  for (int b = 0; b < kBatches; ++b) {
-    for (size_t k = 0; k < per; ++k) batch[b] += v[b * per + k] / per;
-  }
-  double mean = 0, var = 0;
-  for (double b : batch) mean += b / kBatches;
-  for (double b : batch) var += (b - mean) * (b - mean) / (kBatches - 1);
-  out.half_width = 2.776 * std::sqrt(var / kBatches);  // t(0.975, 4)
-  return out;
-}
 
 CellProgramme::CellProgramme(Simulation& sim) : sim_(sim), cell_(cell_of(sim)) {
   const Material& m = sim.scene().materials.at(cell_.material);
@@ -336,41 +303,24 @@ void CellProgramme::restore_state(const std::string& text) {
   apply_friction();
 }
 
-std::string CellProgramme::rows_csv() const {
-  std::ostringstream o;
-  o.precision(9);
-  for (int k = 0; k < kCellColumns; ++k) o << (k ? "," : "") << kColumns[k].name << " (" << kColumns[k].unit << ")";
-  o << '\n';
-  for (const CellRow& r : rows_) {
-    for (int k = 0; k < kCellColumns; ++k) o << (k ? "," : "") << r[k];
-    o << '\n';
-  }
-  return o.str();
+std::string CellProgramme::rows_csv() const { return cell_rows_csv(rows_); }
+
+CellSummary CellProgramme::summary() const {
+  const char* tests[] = {"simple_shear", "triaxial", "isotropic"};
+  CellSummary s = cell_summary(rows_, 0.5 * end_strain());
+  s.test = tests[static_cast<int>(cell_.test)];
+  s.particles = static_cast<int>(sim_.scene().particles.size());
+  s.pressure = cell_.pressure;
+  s.inertial_number = cell_.inertial_number;
+  s.compression_steps = compress_steps_;
+  s.steps = sim_.steps();
+  return s;
 }
 
 std::string CellProgramme::summary_text(double wall_seconds) const {
-  std::ostringstream o;
-  o.precision(6);
-  const double from = 0.5 * end_strain();
-  o << "test = " << (cell_.test == PeriodicCell::Test::SimpleShear ? "simple_shear"
-                     : cell_.test == PeriodicCell::Test::Triaxial  ? "triaxial"
-                                                                   : "isotropic")
-    << "\nparticles = " << sim_.scene().particles.size() << "\npressure_kPa = " << cell_.pressure * 1e-3
-    << "\ninertial_number = " << cell_.inertial_number << "\nstrain = " << strain_
-    << "\nsteady_from_strain = " << from << '\n';
-  const std::pair<const char*, int> values[] = {{"stress_ratio", kColRatio}, {"solid_fraction", kColPhi},
-                                                {"coordination", kColZ}, {"p_kPa", kColP},
-                                                {"volumetric_strain", kColVolumetric}};
-  for (const auto& [name, col] : values) {
-    const SteadyValue v = steady_value(rows_, col, from);
-    o << name << " = " << v.mean << '\n' << name << "_ci95 = " << v.half_width << '\n';
-  }
-  if (!rows_.empty() && cell_.test == PeriodicCell::Test::Isotropic) {
-    o << "solid_fraction = " << rows_.back()[kColPhi] << "\ncoordination = " << rows_.back()[kColZ] << '\n';
-  }
-  o << "compression_steps = " << compress_steps_ << "\nsteps = " << sim_.steps()
-    << "\nwall_seconds = " << wall_seconds << '\n';
-  return o.str();
+  CellSummary s = summary();
+  s.wall_seconds = wall_seconds;
+  return cell_summary_text(s);
 }
 
 std::string CellProgramme::describe() const {

@@ -33,31 +33,11 @@
 #include <vector>
 
 #include "solver/apparatus/apparatus.h"
+#include "solver/apparatus/periodic_cell/cell_analysis.h"
 #include "solver/apparatus/periodic_cell/periodic_cell.h"
 #include "solver/core/simulation.h"
 
 namespace simsols {
-
-// The rows' columns, in order (cell.csv): name and unit.
-struct CellColumn {
-  const char* name;
-  const char* unit;
-};
-enum CellCol : int {
-  kColStage, kColTime, kColStep, kColStrain, kColVolumetric, kColSxx, kColSyy, kColSzz, kColSxy,
-  kColSxz, kColSyz, kColP, kColQ, kColRatio, kColPhi, kColVoid, kColZ, kColZBackbone,
-  kColFabricAniso, kColFabricXz, kColInertial, kColKinetic, kCellColumns
-};
-const std::array<CellColumn, kCellColumns>& cell_columns();
-using CellRow = std::array<double, kCellColumns>;
-
-// A mean over the steady part of a test (rows at strain >= from) with its
-// 95 % interval from five batch means (Student's t, 4 degrees of freedom).
-struct SteadyValue {
-  double mean = 0, half_width = 0;
-  int rows = 0;
-};
-SteadyValue steady_value(const std::vector<CellRow>& rows, int column, double from);
 
 class CellProgramme : public ApparatusProgramme {
  public:
@@ -82,6 +62,7 @@ class CellProgramme : public ApparatusProgramme {
   std::string summary_text(double wall_seconds) const override;
   std::string describe() const override;
   std::string measuring_line() const override;
+  CellSummary summary() const;
 
   const std::vector<CellRow>& rows() const { return rows_; }
   Stage stage() const { return stage_; }
