@@ -27,6 +27,8 @@ const LabBench kBenches[] = {
      kDefaultOedometerSceneName},
     {"triaxial", "triaxial", make_lab_triaxial, default_triaxial_scene_text,
      kDefaultTriaxialSceneName},
+    {"periodic_cell", "periodic cell", make_lab_periodic_cell, default_cell_scene_text,
+     kDefaultCellSceneName},
 };
 
 }  // namespace

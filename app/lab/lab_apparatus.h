@@ -6,6 +6,7 @@
 //   lab_triaxial.cpp    TriaxialProgramme: settle and consolidate to sigma3, hold,
 //                       compress
 //   lab_oedometer.cpp   OedometerProgramme: settle, then the load steps by itself
+//   lab_periodic_cell.cpp  CellProgramme: compress, then the test, by itself
 //
 // The lab's stages (LabStage) are the bench's: Prepared (nothing run),
 // Loading (the stress is being applied: settling, consolidating), Loaded
@@ -109,6 +110,7 @@ std::string lab_kind_names();
 std::unique_ptr<LabApparatus> make_lab_shear_box(Simulation& sim);  // lab_shear_box.cpp
 std::unique_ptr<LabApparatus> make_lab_triaxial(Simulation& sim);   // lab_triaxial.cpp
 std::unique_ptr<LabApparatus> make_lab_oedometer(Simulation& sim);  // lab_oedometer.cpp
+std::unique_ptr<LabApparatus> make_lab_periodic_cell(Simulation& sim);  // lab_periodic_cell.cpp
 
 // The unknown-key message: "set_rate: the shear box has no 'rate'; its
 // settings: stress (kPa), speed (mm/s)".

@@ -147,9 +147,30 @@ FrameGeometry SimulationView::geometry() {
       g.walls.push_back(q);
     }
   }
+  if (scene.periodic) add_cell_faces(g, origin);
   g.lo = lo_;
   g.hi = hi_;
   return g;
+}
+
+// A periodic cell's six faces, drawn as the walls are (translucent): the
+// parallelogram faces of the cell as it stands, its images not drawn.
+void SimulationView::add_cell_faces(FrameGeometry& g, const glm::dvec3& origin) {
+  const CellNow& c = sim_.state().cell_now;
+  const glm::dvec3 a(c.h[0], c.h[3], c.h[6]), b(c.h[1], c.h[4], c.h[7]), e(c.h[2], c.h[5], c.h[8]);
+  const glm::dvec3 corner = to_glm(c.corner) + to_glm(sim_.model().origin()) - origin;
+  const glm::dvec3 centre = corner + 0.5 * (a + b + e);
+  const glm::dvec3 edges[3] = {a, b, e};
+  for (int k = 0; k < 3; ++k) {
+    const glm::dvec3 n = edges[k], u = edges[(k + 1) % 3], v = edges[(k + 2) % 3];
+    for (double side : {-0.5, 0.5}) {
+      WallQuad q;
+      q.centre = glm::vec3(centre + side * n);
+      q.axis_u = glm::vec3(0.5 * u);
+      q.axis_v = glm::vec3(0.5 * v);
+      g.walls.push_back(q);
+    }
+  }
 }
 
 }  // namespace simsols::render

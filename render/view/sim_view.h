@@ -56,6 +56,7 @@ class SimulationView {
   glm::dvec3 hi() const { return hi_; }
 
  private:
+  void add_cell_faces(FrameGeometry& g, const glm::dvec3& origin);
   Simulation& sim_;
   ViewPacker packer_;
   GeometryBuffers buffers_;

@@ -112,8 +112,9 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
   c.capillary = e.cohesion == CohesionModel::Capillary;
   c.fluid = e.fluid == FluidModel::Drag;
   // a scene read but not placed will have its apparatus' walls, a servo
-  // among them, and a specimen of clumps if it pours a grain (scene.h)
-  const bool pending = scene.apparatus_pending;
+  // among them, and a specimen of clumps if it pours a grain (scene.h);
+  // a periodic cell has none of them
+  const bool pending = scene.apparatus_pending && !scene.periodic;  // a periodic cell adds no walls
   c.walls = !scene.walls.empty() || pending;
   c.servo = pending;
   for (const Wall& w : scene.walls) c.servo = c.servo || w.servo.enabled;

@@ -52,6 +52,15 @@ void read_periodic_cell(const Reader& root, Scene& scene) {
     std::copy(e.begin(), e.end(), c.edges.begin());
   }
   scene.apparatus = c;
+  // a periodic cell has no gravity: off unless [effects] asked for another one
+  const Vec3 g = scene.effects.gravity, standard = Effects{}.gravity;
+  if (g != Vec3{0, 0, 0} && g != standard)
+    r.context().fail("out_of_range", 0, "effects.gravity",
+                     "a periodic cell has no gravity: leave it out or set [0, 0, 0]");
+  scene.effects.gravity = {0, 0, 0};
+  // the cell is known to be periodic from here on (the kernels' options do
+  // not change when it is placed); build_periodic_cell gives it its edges
+  scene.periodic = PeriodicBox{{}, {0, 0, 0}, c.preparation_friction};
 }
 
 // Its resolved values; the specimen as placed (the scene's particles and the

@@ -26,7 +26,7 @@ INLINE uint hash_cell(int3 c, uint table) {
 // and hash_cell of either kind of scene.
 INLINE int3 grid_cell(real3 x, real inv_cell, __global const real* cell) {
 #ifdef HAS_PERIODIC
-  return periodic_cell_of(cell, x);
+  return fractional_cell_of(cell, x);
 #else
   return cell_of(x, inv_cell);
 #endif

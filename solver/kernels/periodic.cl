@@ -62,7 +62,7 @@ INLINE int3 grid_counts(__global const real* cell) {
 }
 // The grid cell of position x: its fractional coordinates in [0, 1) cut
 // into the grid's counts.
-INLINE int3 periodic_cell_of(__global const real* cell, real3 x) {
+INLINE int3 fractional_cell_of(__global const real* cell, real3 x) {
   real3 s = cell_apply(cell, CELL_HINV, x - cell_corner(cell));
   s -= floor(s);
   const int3 n = grid_counts(cell);

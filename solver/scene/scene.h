@@ -279,8 +279,9 @@ struct Scene {
   // the generators still to expand, and the apparatus whose walls and
   // specimen are still to build. A scene built in code, or placed, has
   // neither; a Simulation takes only a placed scene. Every apparatus of the
-  // registry adds walls, one of them servo-controlled, and a specimen of
-  // clumps when its specimen pours a grain (make_kernel_config counts on it).
+  // registry but the periodic cell adds walls, one of them servo-controlled, and a
+  // specimen of clumps when its specimen pours a grain; a periodic cell's
+  // reader sets `periodic` at once (make_kernel_config counts on both).
   std::vector<Generator> generators;
   bool apparatus_pending = false;
   bool placed() const { return generators.empty() && !apparatus_pending; }

@@ -97,13 +97,13 @@ std::string tests_csv(const std::vector<CellCampaignTest>& tests) {
   o.precision(8);
   o << "p_kPa,inertial_number,seed,particles,stress_ratio,stress_ratio_ci95,solid_fraction,"
        "solid_fraction_ci95,coordination,coordination_ci95,volumetric_strain,solid_fraction_compressed,"
-       "coordination_compressed,wall_s\n";
+       "coordination_compressed,friction_angle_deg,friction_angle_ci95,wall_s\n";
   for (const CellCampaignTest& t : tests) {
     const CellSummary& s = t.result.summary;
     o << t.p_kpa << ',' << t.inertial << ',' << t.seed << ',' << t.scene.particles.size() << ','
       << s.ratio.mean << ',' << s.ratio.half_width << ',' << s.phi.mean << ',' << s.phi.half_width << ','
       << s.z.mean << ',' << s.z.half_width << ',' << s.volumetric.mean << ',' << s.phi_compressed << ','
-      << s.z_compressed << ',' << s.wall_seconds << '\n';
+      << s.z_compressed << ',' << s.angle.mean << ',' << s.angle.half_width << ',' << s.wall_seconds << '\n';
   }
   return o.str();
 }
@@ -139,16 +139,19 @@ std::vector<CellPoint> cell_points(const std::vector<CellCampaignTest>& tests) {
     p.p_kpa = key.first;
     p.inertial = key.second;
     p.specimens = static_cast<int>(group.size());
-    std::vector<double> mu, phi, z, ev;
+    std::vector<double> mu, phi, z, ev, angle;
     for (const CellCampaignTest* t : group) {
       mu.push_back(t->result.summary.ratio.mean);
       phi.push_back(t->result.summary.phi.mean);
       z.push_back(t->result.summary.z.mean);
       ev.push_back(t->result.summary.volumetric.mean);
+      angle.push_back(t->result.summary.angle.mean);
     }
     const Interval a = mean_ci95(mu), b = mean_ci95(phi), c = mean_ci95(z), d = mean_ci95(ev);
     p.mu = a.mean, p.mu_ci = a.half_width, p.phi = b.mean, p.phi_ci = b.half_width;
     p.z = c.mean, p.z_ci = c.half_width, p.ev = d.mean, p.ev_ci = d.half_width;
+    const Interval f = mean_ci95(angle);
+    p.angle = f.mean, p.angle_ci = f.half_width;
     out.push_back(p);
   }
   return out;
@@ -158,19 +161,22 @@ std::string cell_points_csv(const std::vector<CellPoint>& points) {
   std::ostringstream o;
   o.precision(6);
   o << "p_kPa,inertial_number,specimens,stress_ratio,stress_ratio_ci95,solid_fraction,solid_fraction_ci95,"
-       "coordination,coordination_ci95,volumetric_strain,volumetric_strain_ci95\n";
+       "coordination,coordination_ci95,volumetric_strain,volumetric_strain_ci95,friction_angle_deg,"
+       "friction_angle_ci95\n";
   for (const CellPoint& p : points)
     o << p.p_kpa << ',' << p.inertial << ',' << p.specimens << ',' << p.mu << ',' << p.mu_ci << ',' << p.phi
-      << ',' << p.phi_ci << ',' << p.z << ',' << p.z_ci << ',' << p.ev << ',' << p.ev_ci << '\n';
+      << ',' << p.phi_ci << ',' << p.z << ',' << p.z_ci << ',' << p.ev << ',' << p.ev_ci << ',' << p.angle << ','
+      << p.angle_ci << '\n';
   return o.str();
 }
 
 std::string cell_points_markdown(const std::vector<CellPoint>& points) {
   std::ostringstream o;
-  o << "| p (kPa) | I | specimens | τ/σ | Φ | Z | ε_v |\n|---|---|---|---|---|---|---|\n";
+  o << "| p (kPa) | I | specimens | τ/σ_zz | φ_mob (°) | Φ | Z | ε_v |\n|---|---|---|---|---|---|---|---|\n";
   for (const CellPoint& p : points)
     o << "| " << fmt("%g", p.p_kpa) << " | " << fmt("%g", p.inertial) << " | " << p.specimens << " | "
-      << fmt("%.4f", p.mu) << " ± " << fmt("%.4f", p.mu_ci) << " | " << fmt("%.4f", p.phi) << " ± "
+      << fmt("%.4f", p.mu) << " ± " << fmt("%.4f", p.mu_ci) << " | " << fmt("%.2f", p.angle) << " ± "
+      << fmt("%.2f", p.angle_ci) << " | " << fmt("%.4f", p.phi) << " ± "
       << fmt("%.4f", p.phi_ci) << " | " << fmt("%.3f", p.z) << " ± " << fmt("%.3f", p.z_ci) << " | "
       << fmt("%.4f", p.ev) << " ± " << fmt("%.4f", p.ev_ci) << " |\n";
   return o.str();

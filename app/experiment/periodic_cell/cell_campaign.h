@@ -58,6 +58,7 @@ struct CellPoint {
   double p_kpa = 0, inertial = 0;
   int specimens = 0;
   double mu = 0, mu_ci = 0, phi = 0, phi_ci = 0, z = 0, z_ci = 0, ev = 0, ev_ci = 0;
+  double angle = 0, angle_ci = 0;  // mobilised friction angle, deg
 };
 std::vector<CellPoint> cell_points(const std::vector<CellCampaignTest>& tests);
 std::string cell_points_csv(const std::vector<CellPoint>& points);

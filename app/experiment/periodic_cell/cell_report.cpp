@@ -19,10 +19,10 @@ std::string cell_text(const TestRun& run) {
                                 s.inertial_number, run.state.particles, run.state.steps);
   o += report_printf("  compressed: phi = %.4f, Z = %.3f\n", s.phi_compressed, s.z_compressed);
   if (s.ratio.rows == 0) return o;
-  o += report_printf("  steady (strain >= %.3g, %d rows): stress ratio %.4f +- %.4f, phi %.4f +- %.4f, "
-                     "Z %.3f +- %.3f (95 %% intervals of one specimen)\n",
-                     s.from, s.ratio.rows, s.ratio.mean, s.ratio.half_width, s.phi.mean, s.phi.half_width,
-                     s.z.mean, s.z.half_width);
+  o += report_printf("  steady (strain >= %.3g, %d rows): stress ratio %.4f +- %.4f, mobilised angle "
+                     "%.2f +- %.2f deg, phi %.4f +- %.4f, Z %.3f +- %.3f (95 %% intervals of one specimen)\n",
+                     s.from, s.ratio.rows, s.ratio.mean, s.ratio.half_width, s.angle.mean, s.angle.half_width,
+                     s.phi.mean, s.phi.half_width, s.z.mean, s.z.half_width);
   return o;
 }
 

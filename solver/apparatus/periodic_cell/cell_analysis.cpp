@@ -1,6 +1,8 @@
 #include "solver/apparatus/periodic_cell/cell_analysis.h"
 
+#include <Eigen/Dense>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 
 #include "solver/common/errors.h"
@@ -25,6 +27,25 @@ std::string header() {
     if (std::string(c.unit) != "-") h += std::string("_") + c.unit;
   }
   return h;
+}
+
+// The mean of v and its 95 % interval from five batch means.
+SteadyValue steady_of(const std::vector<double>& v) {
+  SteadyValue out;
+  out.rows = static_cast<int>(v.size());
+  if (v.empty()) return out;
+  for (double x : v) out.mean += x / v.size();
+  constexpr int kBatches = 5;
+  if (v.size() < 2 * kBatches) return out;
+  std::array<double, kBatches> batch{};
+  const size_t per = v.size() / kBatches;
+  for (int b = 0; b < kBatches; ++b)
+    for (size_t k = 0; k < per; ++k) batch[b] += v[b * per + k] / per;
+  double mean = 0, var = 0;
+  for (double b : batch) mean += b / kBatches;
+  for (double b : batch) var += (b - mean) * (b - mean) / (kBatches - 1);
+  out.half_width = 2.776 * std::sqrt(var / kBatches);  // t(0.975, 4)
+  return out;
 }
 
 }  // namespace
@@ -73,25 +94,26 @@ std::vector<CellRow> parse_cell_rows_csv(const std::string& text) {
   return rows;
 }
 
+double mobilised_angle(const CellRow& r) {
+  Eigen::Matrix3d s;
+  s << r[kColSxx], r[kColSxy], r[kColSxz], r[kColSxy], r[kColSyy], r[kColSyz], r[kColSxz], r[kColSyz], r[kColSzz];
+  const Eigen::Vector3d e = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(s, Eigen::EigenvaluesOnly).eigenvalues();
+  const double sum = e[2] + e[0];  // ascending: e[0] minor, e[2] major
+  return sum > 0 ? std::asin((e[2] - e[0]) / sum) * 180 / std::numbers::pi : 0;
+}
+
 SteadyValue steady_value(const std::vector<CellRow>& rows, int column, double from) {
   std::vector<double> v;
   for (const CellRow& r : rows)
     if (r[kColStage] == 1 && r[kColStrain] >= from) v.push_back(r[column]);
-  SteadyValue out;
-  out.rows = static_cast<int>(v.size());
-  if (v.empty()) return out;
-  for (double x : v) out.mean += x / v.size();
-  constexpr int kBatches = 5;
-  if (v.size() < 2 * kBatches) return out;
-  std::array<double, kBatches> batch{};
-  const size_t per = v.size() / kBatches;
-  for (int b = 0; b < kBatches; ++b)
-    for (size_t k = 0; k < per; ++k) batch[b] += v[b * per + k] / per;
-  double mean = 0, var = 0;
-  for (double b : batch) mean += b / kBatches;
-  for (double b : batch) var += (b - mean) * (b - mean) / (kBatches - 1);
-  out.half_width = 2.776 * std::sqrt(var / kBatches);  // t(0.975, 4)
-  return out;
+  return steady_of(v);
+}
+
+SteadyValue steady_value(const std::vector<CellRow>& rows, double (*value)(const CellRow&), double from) {
+  std::vector<double> v;
+  for (const CellRow& r : rows)
+    if (r[kColStage] == 1 && r[kColStrain] >= from) v.push_back(value(r));
+  return steady_of(v);
 }
 
 CellSummary cell_summary(const std::vector<CellRow>& rows, double from) {
@@ -103,6 +125,7 @@ CellSummary cell_summary(const std::vector<CellRow>& rows, double from) {
   s.z = steady_value(rows, kColZ, from);
   s.p = steady_value(rows, kColP, from);
   s.volumetric = steady_value(rows, kColVolumetric, from);
+  s.angle = steady_value(rows, mobilised_angle, from);
   for (const CellRow& r : rows)
     if (r[kColStage] == 0) s.phi_compressed = r[kColPhi], s.z_compressed = r[kColZ];
   return s;
@@ -117,7 +140,7 @@ std::string cell_summary_text(const CellSummary& s) {
     << "\ncoordination_compressed = " << s.z_compressed << '\n';
   const std::pair<const char*, const SteadyValue*> values[] = {
       {"stress_ratio", &s.ratio}, {"solid_fraction", &s.phi}, {"coordination", &s.z},
-      {"p_kPa", &s.p}, {"volumetric_strain", &s.volumetric}};
+      {"p_kPa", &s.p}, {"volumetric_strain", &s.volumetric}, {"friction_angle_deg", &s.angle}};
   for (const auto& [name, v] : values)
     o << name << " = " << v->mean << '\n' << name << "_ci95 = " << v->half_width << '\n';
   o << "compression_steps = " << s.compression_steps << "\nsteps = " << s.steps

@@ -40,6 +40,13 @@ struct SteadyValue {
   int rows = 0;
 };
 SteadyValue steady_value(const std::vector<CellRow>& rows, int column, double from);
+// The same of a value derived from each row.
+SteadyValue steady_value(const std::vector<CellRow>& rows, double (*value)(const CellRow&), double from);
+// The row's mobilised friction angle (deg), Mohr-Coulomb's from its major
+// and minor principal stresses: sin phi = (s1 - s3) / (s1 + s3). In simple
+// shear it is larger than atan(tau / sigma_zz), the angle on the plane of
+// shearing, since that plane is not the one of maximum obliquity.
+double mobilised_angle(const CellRow& row);
 
 struct CellSummary {
   std::string test;
@@ -47,6 +54,7 @@ struct CellSummary {
   double pressure = 0, inertial_number = 0;  // Pa, -
   double strain = 0, from = 0;               // the test's last strain, the steady part's start
   SteadyValue ratio, phi, z, p, volumetric;  // p in kPa
+  SteadyValue angle;                          // mobilised friction angle, deg
   double phi_compressed = 0, z_compressed = 0;  // at the end of the compression
   std::int64_t compression_steps = 0, steps = 0;
   double wall_seconds = 0;

@@ -89,7 +89,7 @@ double CellProgramme::stiffness(const CellMeasure& m) const {
 }
 
 double CellProgramme::target(int axis, const CellMeasure& m) const {
-  if (stage_ == Stage::Test && cell_.test == PeriodicCell::Test::Triaxial &&
+  if (stage_ == Stage::Test && cell_.test == PeriodicCell::Test::AxialCompression &&
       cell_.path == PeriodicCell::Path::ConstantP && axis < 2)
     return std::max(0.0, 0.5 * (3 * cell_.pressure - m.stress[8]));
   return cell_.pressure;
@@ -103,7 +103,7 @@ void CellProgramme::servo(const CellMeasure& m, Mat3& grad) {
   bool controlled[3] = {true, true, true};
   if (stage_ == Stage::Test && cell_.test == PeriodicCell::Test::SimpleShear)
     controlled[0] = controlled[1] = false;
-  if (stage_ == Stage::Test && cell_.test == PeriodicCell::Test::Triaxial) controlled[2] = false;
+  if (stage_ == Stage::Test && cell_.test == PeriodicCell::Test::AxialCompression) controlled[2] = false;
   for (int a = 0; a < 3; ++a) {
     if (!controlled[a]) {
       integral_[a] = 0;
@@ -179,7 +179,7 @@ void CellProgramme::control() {
   Mat3 grad = sim_.state().cell_now.grad;
   servo(m, grad);
   if (stage_ == Stage::Test && cell_.test == PeriodicCell::Test::SimpleShear) grad[2] = test_rate();
-  if (stage_ == Stage::Test && cell_.test == PeriodicCell::Test::Triaxial) grad[8] = -test_rate();
+  if (stage_ == Stage::Test && cell_.test == PeriodicCell::Test::AxialCompression) grad[8] = -test_rate();
   sim_.set_cell_gradient(grad);
   if (stage_ == Stage::Compress) {
     if (controls_ % kCompressRowControls == 0) add_row();

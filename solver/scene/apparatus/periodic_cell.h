@@ -21,7 +21,7 @@ namespace simsols {
 //   isotropic     the compression alone, its rows the test.
 // Rates are set by inertial numbers I = rate d sqrt(rho / P).
 struct PeriodicCell {
-  enum class Test : std::uint8_t { SimpleShear, Triaxial, Isotropic };
+  enum class Test : std::uint8_t { SimpleShear, AxialCompression, Isotropic };  // "triaxial" is AxialCompression
   enum class Path : std::uint8_t { ConstantSigma3, ConstantP };
   int particles = 1000;
   double diameter = 1e-3;          // m, mean

@@ -14,7 +14,7 @@ namespace {
 
 // Each bench is of a registry kind, at most one per kind, in the
 // registry's order (a kind without one, a headless apparatus, is refused by
-// the lab by name); the three of today have one each.
+// the lab by name); the four of today have one each.
 TEST(LabBenches, OnePerRegistryKindInItsOrder) {
   const auto kinds = apparatus_kinds();
   const auto benches = lab_benches();
@@ -28,9 +28,10 @@ TEST(LabBenches, OnePerRegistryKindInItsOrder) {
     const Scene s = parse_scene(benches[i].default_scene_text(), benches[i].default_scene_name);
     EXPECT_EQ(lab_bench_index(s), int(i)) << benches[i].kind;
   }
-  EXPECT_EQ(benches.size(), 3u);
-  EXPECT_EQ(lab_bench_index("periodic_cell"), -1);
-  EXPECT_EQ(lab_kind_names(), "shear_box|oedometer|triaxial");
+  EXPECT_EQ(benches.size(), 4u);
+  EXPECT_EQ(lab_bench_index("periodic_cell"), 3);
+  EXPECT_EQ(lab_bench_index("ring_shear"), -1);
+  EXPECT_EQ(lab_kind_names(), "shear_box|oedometer|triaxial|periodic_cell");
 }
 
 }  // namespace

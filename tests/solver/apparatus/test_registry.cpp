@@ -31,14 +31,16 @@ TEST(ApparatusRegistry, OneEntryPerAlternativeWithUniqueNames) {
     labels.insert(k.label);
     EXPECT_EQ(find_apparatus_kind(k.name), &k);
     EXPECT_TRUE(scene_toml::has_apparatus_reader(k.name)) << k.name;
-    EXPECT_GT(k.walls, 0) << k.name;
+    // every kind but the periodic cell (no walls: its space repeats) adds walls
+    if (std::string(k.name) != "periodic_cell") EXPECT_GT(k.walls, 0) << k.name;
+    else EXPECT_EQ(k.walls, 0);
     EXPECT_NE(k.build, nullptr);
     EXPECT_NE(k.make_programme, nullptr);
   }
   EXPECT_EQ(names.size(), kinds.size());
   EXPECT_EQ(labels.size(), kinds.size());
   EXPECT_EQ(find_apparatus_kind("shear box"), nullptr);
-  EXPECT_EQ(apparatus_names("|"), "shear_box|oedometer|triaxial");
+  EXPECT_EQ(apparatus_names("|"), "shear_box|oedometer|triaxial|periodic_cell");
 }
 
 TEST(ApparatusRegistry, EachBuiltInSceneIsItsKind) {
@@ -51,6 +53,13 @@ TEST(ApparatusRegistry, EachBuiltInSceneIsItsKind) {
     // its walls are the last ones added, as many as the registry says
     EXPECT_EQ(s.cell()->first_wall + apparatus_kind(s)->walls, int(s.walls.size())) << kind;
   }
+  // the periodic cell: no cell of walls, no specimen table; its space repeats
+  const Scene cell = load_scene(scene_file("periodic_cell.toml"));
+  ASSERT_NE(apparatus_kind(cell), nullptr);
+  EXPECT_STREQ(apparatus_kind(cell)->name, "periodic_cell");
+  EXPECT_EQ(cell.cell(), nullptr);
+  EXPECT_TRUE(cell.walls.empty());
+  EXPECT_TRUE(cell.periodic.has_value());
   Scene none = load_scene(scene_file("example_minimal.toml"));
   EXPECT_EQ(apparatus_kind(none), nullptr);
   EXPECT_EQ(none.cell(), nullptr);
@@ -60,7 +69,7 @@ TEST(ApparatusRegistry, EachBuiltInSceneIsItsKind) {
     FAIL() << "a scene without an apparatus has no kind";
   } catch (const SceneError& e) {
     EXPECT_EQ(e.code, "no_apparatus");
-    EXPECT_NE(std::string(e.what()).find("shear_box, oedometer, triaxial"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("shear_box, oedometer, triaxial, periodic_cell"), std::string::npos)
         << e.what();
   }
 }
