@@ -102,7 +102,10 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
     any_friction = any_friction || s->preparation.friction.value_or(0) > 0;
     any_rolling = any_rolling || s->preparation.rolling_friction.value_or(0) > 0;
   }
-  if (scene.periodic) any_friction = any_friction || scene.periodic->preparation_friction > 0;
+  if (scene.periodic) {
+    any_friction = any_friction || scene.periodic->preparation_friction > 0;
+    any_damping = any_damping || scene.periodic->preparation_restitution < 1;
+  }
   const Effects& e = scene.effects;
   c.damping = e.damping == DampingModel::Viscous && any_damping;
   c.friction = e.tangential != TangentialModel::None && any_friction;

@@ -144,7 +144,10 @@ std::vector<unsigned char> Model::pack_pairs() const {
                   PAIR_MU_R == 4 && PAIR_KT_RATIO == 5 && PAIR_RECORD_BASE == 8 &&
                   PAIR_CAP_TENSION == 8 && PAIR_CAP_VOLUME == 9 && PAIR_CAP_RUPTURE == 10 &&
                   PAIR_RECORD_CAPILLARY == 12, "the order put below");
-    pk.put4(c.e_star, c.g_star, c.gamma_n, mu_s);
+    const double gamma_n = friction_ && friction_->restitution
+                               ? damping_for_restitution(*friction_->restitution)
+                               : c.gamma_n;
+    pk.put4(c.e_star, c.g_star, gamma_n, mu_s);
     pk.put4(mu_r, std::sqrt(6 * c.g_star / c.e_star), 0, 0);
     if (config().capillary) pk.put4(c.capillary_tension, c.liquid_volume, c.rupture_distance, 0);
   }

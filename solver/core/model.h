@@ -74,10 +74,12 @@ class Model {
   // A specimen's preparation (scene.h, Preparation) may settle it with
   // other friction than its materials': while `friction` is set, every
   // pair slides with mu_s = friction->sliding and rolls with
-  // friction->rolling (each the materials' where unset). The only change of
-  // the model after construction; std::nullopt restores the scene's table.
+  // friction->rolling (each the materials' where unset), and collides with
+  // friction->restitution (a periodic cell's compression; the kernels must
+  // have damping compiled). The only change of the model after
+  // construction; std::nullopt restores the scene's table.
   struct FrictionOverride {
-    std::optional<double> sliding, rolling;
+    std::optional<double> sliding, rolling, restitution;
   };
   void override_friction(const std::optional<FrictionOverride>& friction);
   const std::optional<FrictionOverride>& friction_override() const { return friction_; }

@@ -23,7 +23,8 @@ E index_of(const std::vector<std::string>& names, const std::string& name) {
 void read_periodic_cell(const Reader& root, Scene& scene) {
   Reader r = root.sub("periodic_cell",
                       {"particles", "diameter", "size_spread", "material", "seed",
-                       "start_solid_fraction", "preparation_friction", "pressure", "test", "path",
+                       "start_solid_fraction", "preparation_friction", "preparation_restitution",
+                       "pressure", "test", "path",
                        "inertial_number", "compression_inertial_number", "shear_strain",
                        "axial_strain", "row_strain", "given", "edges"});
   PeriodicCell c;
@@ -37,6 +38,7 @@ void read_periodic_cell(const Reader& root, Scene& scene) {
   c.seed = r.optional_integer("seed").value_or(c.seed);
   c.start_solid_fraction = r.number("start_solid_fraction", c.start_solid_fraction);
   c.preparation_friction = r.number("preparation_friction", c.preparation_friction);
+  c.preparation_restitution = r.number("preparation_restitution", c.preparation_restitution);
   c.pressure = r.number("pressure", c.pressure);
   c.test = index_of<PeriodicCell::Test>(kTests, r.choice("test", kTests[0], kTests));
   c.path = index_of<PeriodicCell::Path>(kPaths, r.choice("path", kPaths[0], kPaths));
@@ -60,7 +62,7 @@ void read_periodic_cell(const Reader& root, Scene& scene) {
   scene.effects.gravity = {0, 0, 0};
   // the cell is known to be periodic from here on (the kernels' options do
   // not change when it is placed); build_periodic_cell gives it its edges
-  scene.periodic = PeriodicBox{{}, {0, 0, 0}, c.preparation_friction};
+  scene.periodic = PeriodicBox{{}, {0, 0, 0}, c.preparation_friction, c.preparation_restitution};
 }
 
 // Its resolved values; the specimen as placed (the scene's particles and the
@@ -75,6 +77,7 @@ void write_periodic_cell(TableWriter& w) {
   w.line("seed", std::to_string(c.seed));
   w.line("start_solid_fraction", c.start_solid_fraction);
   w.line("preparation_friction", c.preparation_friction);
+  w.line("preparation_restitution", c.preparation_restitution);
   w.line("pressure", c.pressure);
   w.text("test", kTests[static_cast<int>(c.test)]);
   w.text("path", kPaths[static_cast<int>(c.path)]);

@@ -219,6 +219,7 @@ struct PeriodicBox {
   std::array<double, 9> edges{};  // m
   Vec3 corner{};                  // m
   double preparation_friction = 0;  // mu_s while the specimen is made (compiled in when > 0)
+  double preparation_restitution = 1;  // restitution while it is made (damping compiled in when < 1)
 };
 
 // Walls per scene (each particle keeps a bitmask of the walls it touches).

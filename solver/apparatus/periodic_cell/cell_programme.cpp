@@ -48,10 +48,13 @@ CellProgramme::CellProgramme(Simulation& sim) : sim_(sim), cell_(cell_of(sim)) {
   apply_friction();
 }
 
-// The preparation friction while compressing, the materials' own after.
+// The preparation friction and restitution while compressing (a gas of
+// nearly elastic grains would not cool while the servo works on it), the
+// materials' own after.
 void CellProgramme::apply_friction() {
   if (stage_ == Stage::Compress)
-    sim_.override_friction(Model::FrictionOverride{cell_.preparation_friction, std::nullopt});
+    sim_.override_friction(
+        Model::FrictionOverride{cell_.preparation_friction, std::nullopt, cell_.preparation_restitution});
   else
     sim_.override_friction(std::nullopt);
 }

@@ -26,6 +26,8 @@ std::optional<SceneIssue> check(const PeriodicCell& c, const Scene& scene) {
   if (!(c.start_solid_fraction > 0 && c.start_solid_fraction <= 0.4))
     return issue("start_solid_fraction", c.start_solid_fraction, "(0, 0.4]");
   if (!(c.preparation_friction >= 0)) return issue("preparation_friction", c.preparation_friction, "[0, inf)");
+  if (!(c.preparation_restitution > 0 && c.preparation_restitution <= 1))
+    return issue("preparation_restitution", c.preparation_restitution, "(0, 1]");
   if (!(c.pressure > 0)) return issue("pressure", c.pressure, "(0, inf) Pa");
   if (!(c.inertial_number > 0 && c.inertial_number <= 1))
     return issue("inertial_number", c.inertial_number, "(0, 1]");
@@ -67,6 +69,7 @@ std::optional<SceneIssue> place_gas(Scene& scene, const PeriodicCell& c) {
   PeriodicBox box;
   box.edges = {cell, 0, 0, 0, cell, 0, 0, 0, cell};
   box.preparation_friction = c.preparation_friction;
+  box.preparation_restitution = c.preparation_restitution;
   scene.periodic = box;
   return std::nullopt;
 }
@@ -81,7 +84,7 @@ std::optional<SceneIssue> build_periodic_cell(Scene& scene) {
     if (!(det3(c.edges) > 0) || !upper_triangular(c.edges))
       return SceneIssue{"out_of_range", "periodic_cell.edges",
                         "the cell's edges must be upper triangular with a positive volume"};
-    scene.periodic = PeriodicBox{c.edges, {0, 0, 0}, c.preparation_friction};
+    scene.periodic = PeriodicBox{c.edges, {0, 0, 0}, c.preparation_friction, c.preparation_restitution};
     return std::nullopt;
   }
   return place_gas(scene, c);

@@ -30,6 +30,7 @@ struct PeriodicCell {
   std::int64_t seed = 1;
   double start_solid_fraction = 0.2;  // the gas, (0, 0.4]
   double preparation_friction = 0;    // mu_s while compressed
+  double preparation_restitution = 0.5;  // restitution while compressed: the gas cools
   double pressure = 100e3;            // Pa
   Test test = Test::SimpleShear;
   Path path = Path::ConstantSigma3;
