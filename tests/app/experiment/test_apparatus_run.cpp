@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 
 TEST(ApparatusReport, EveryKindHasOne) {
   for (const ApparatusKind& k : apparatus_kinds()) EXPECT_TRUE(has_test_report(k.name)) << k.name;
-  EXPECT_FALSE(has_test_report("periodic_cell"));
+  EXPECT_FALSE(has_test_report("ring_shear"));
 }
 
 ProgrammeRunOptions options(const fs::path& dir, long long stop_after) {
