@@ -72,6 +72,10 @@ double CellProgramme::test_rate() const {
   return cell_.inertial_number * std::sqrt(cell_.pressure / density_) / diameter_;
 }
 
+double CellProgramme::servo_rate_max() const {
+  return cell_.compression_inertial_number * std::sqrt(cell_.pressure / density_) / diameter_;
+}
+
 double CellProgramme::end_strain() const {
   return cell_.test == PeriodicCell::Test::SimpleShear ? cell_.shear_strain : cell_.axial_strain;
 }
@@ -99,8 +103,7 @@ double CellProgramme::target(int axis, const CellMeasure& m) const {
 }
 
 void CellProgramme::servo(const CellMeasure& m, Mat3& grad) {
-  const double rate_max = cell_.compression_inertial_number *
-                          std::sqrt(cell_.pressure / density_) / diameter_;
+  const double rate_max = servo_rate_max();
   const double dt_c = kControlSteps * sim_.dt();
   const double stiff = stiffness(m);
   bool controlled[3] = {true, true, true};
@@ -237,8 +240,7 @@ bool CellProgramme::advance(std::int64_t max_steps) {
 LoadingProgramme::StepCount CellProgramme::step_count() const {
   StepCount c;
   c.done = double(sim_.steps());
-  const double rate_max = cell_.compression_inertial_number *
-                          std::sqrt(cell_.pressure / density_) / diameter_;
+  const double rate_max = servo_rate_max();
   // the gas to about 0.6 at the servo's fastest rate, twice that for the end
   const double compress = stage_ == Stage::Compress
                               ? 2 * std::log(0.6 / cell_.start_solid_fraction) / 3 / rate_max / sim_.dt()
@@ -331,7 +333,7 @@ std::string CellProgramme::describe() const {
   std::snprintf(buf, sizeof buf,
                 "periodic cell, stress servo beta %.2g every %d steps, fastest strain rate %.4g 1/s",
                 kBeta, kControlSteps,
-                cell_.compression_inertial_number * std::sqrt(cell_.pressure / density_) / diameter_);
+                servo_rate_max());
   return buf;
 }
 

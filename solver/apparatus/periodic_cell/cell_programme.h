@@ -68,6 +68,7 @@ class CellProgramme : public ApparatusProgramme {
   Stage stage() const { return stage_; }
   double strain() const { return strain_; }
   double test_rate() const;  // 1/s, gamma_dot or epsilon_dot
+  double servo_rate_max() const;  // 1/s, the strain rate of compression_inertial_number
   double end_strain() const;
 
  private:
