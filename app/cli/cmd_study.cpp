@@ -1,5 +1,9 @@
 // simsols study accuracy: the accuracy study (study.h); simsols study
-// shape: the shape study (shape_study.h).
+// shape: the shape study (shape_study.h); simsols study size: an apparatus
+// at growing size against the bulk (size_study.h):
+//
+//   simsols study size --scene FILE --out DIR [--scales 1,1.5,2] [--fixed-height]
+//                      [--seeds N] [--bulk CELL_CAMPAIGN/summary.csv] [--precision P]
 //
 //   simsols study accuracy --out DIR [--preset quick|full|ci] [--ensemble N] [--knob NAME ...]
 //                                    [--specimen layered|poured] [--box-scale S]
@@ -29,6 +33,8 @@
 #include "app/experiment/run_cost.h"
 #include "app/experiment/shear_box/sensitivity.h"
 #include "app/experiment/shape_study.h"
+#include "app/experiment/size_study.h"
+#include "solver/io/scene_toml.h"
 #include "app/experiment/shear_box/study.h"
 #include "app/experiment/shear_box/study_ensemble.h"
 #include "app/experiment/shear_box/study_run.h"
@@ -52,6 +58,13 @@ struct StudyOptions {
   bool quiet = false;
   bool resume = false;
   bool preset_given = false;
+  // study size
+  std::string scene;
+  std::vector<double> scales{1, 1.5, 2};
+  bool fixed_height = false;
+  int seeds = 3;
+  std::string bulk;
+  std::string precision;
   ClusterFlags cluster;
   std::vector<std::string> command_line;  // plans the same tests again (given_args)
 };
@@ -190,12 +203,49 @@ int sensitivity_study(const StudyOptions& opt) {
   return 0;
 }
 
+// `simsols study size --scene FILE --out DIR` (size_study.h): its tests run
+// like a campaign's (resumable; on a cluster with the cluster flags), then
+// the report against the bulk value of --bulk.
+int size_study(const StudyOptions& opt) {
+  if (opt.scene.empty()) throw UsageError("missing_field", "--scene", "give the apparatus' scene to resize");
+  std::optional<BulkValue> bulk;
+  if (!opt.bulk.empty()) bulk = read_bulk_value(opt.bulk);
+  SizeStudySpec spec;
+  spec.scales = opt.scales;
+  spec.similar = !opt.fixed_height;
+  spec.seeds = opt.seeds;
+  spec.precision = precision_flag(opt.precision);
+  std::vector<SizeTest> tests = plan_size_study(read_scene(opt.scene), opt.scene, spec, opt.out);
+  InterruptScope interrupt;
+  CampaignRun run = campaign_run(opt.cluster, opt.out, interrupt.stop_function(), opt.quiet);
+  if (emit_or_check_plan(opt.cluster, "study", opt.command_line, opt.out, cluster_tests(tests)))
+    return 0;
+  if (!run.collect) run.device = open_command_device();
+  const CampaignOutcome outcome = run_size_study(tests, bulk, opt.out, run);
+  if (outcome.interrupted) {
+    std::printf("size study interrupted in test %zu/%zu (%s); resume with the same command\n",
+                outcome.interrupted_test + 1, tests.size(), tests[outcome.interrupted_test].scene.name.c_str());
+    return interrupt.exit_status();
+  }
+  if (run.only)
+    std::printf("size study task %zu of %zu done: %s\n", *run.only, tests.size(),
+                tests[*run.only].scene.name.c_str());
+  else
+    std::printf("size study: %zu tests; results in %s (summary.md, summary.csv, tests.csv, size_*.png)\n",
+                tests.size(), opt.out.c_str());
+  return 0;
+}
+
 int study(const StudyOptions& opt) {
   if (opt.what == "table") return print_table(opt);
-  if (opt.what != "sensitivity" &&
+  if (opt.what != "sensitivity" && opt.what != "size" &&
       (opt.cluster.emitting() || opt.cluster.task >= 0 || opt.cluster.collecting))
     throw UsageError("not_applicable", opt.cluster.emitting() ? "--emit" : "--task",
-                     "the cluster flags are for the sensitivity study (and simsols campaign)");
+                     "the cluster flags are for the sensitivity and size studies (and simsols campaign)");
+  if (opt.what == "size") {
+    if (opt.out.empty()) throw UsageError("missing_field", "--out", "give an output folder");
+    return size_study(opt);
+  }
   if (opt.what == "sensitivity") {
     if (opt.out.empty()) throw UsageError("missing_field", "--out", "give an output folder");
     return sensitivity_study(opt);
@@ -206,7 +256,7 @@ int study(const StudyOptions& opt) {
   }
   if (opt.what != "accuracy")
     throw UsageError("bad_enum", "STUDY",
-                     "'" + opt.what + "' is not one of: accuracy, sensitivity, shape, table");
+                     "'" + opt.what + "' is not one of: accuracy, sensitivity, shape, size, table");
   if (opt.out.empty()) throw UsageError("missing_field", "--out", "give an output folder");
   if (opt.ensemble < 0 || opt.ensemble > 50)
     throw UsageError("out_of_range", "--ensemble",
@@ -240,11 +290,12 @@ int study(const StudyOptions& opt) {
 
 CommandRunner add_study_command(CLI::App& app) {
   auto opt = std::make_shared<StudyOptions>();
-  CLI::App* cmd = app.add_subcommand("study", "Measured studies: what accuracy costs in time (accuracy), the strength's sensitivity to the model (sensitivity), the grains' shape (shape)");
+  CLI::App* cmd = app.add_subcommand("study", "Measured studies: what accuracy costs in time (accuracy), the strength's sensitivity to the model (sensitivity), the grains' shape (shape), the apparatus' size against the bulk (size)");
   cmd->add_option("study", opt->what,
                   "accuracy (run the study), sensitivity (the strength's response to the "
                   "contact coefficients, density and box size), shape (angle of repose and "
-                  "strength against the grains' shape), table (print a study's table)");
+                  "strength against the grains' shape), size (an apparatus at growing size "
+                  "against the periodic cell's bulk value), table (print a study's table)");
   cmd->add_option("--out,-o", opt->out, "Output folder (accuracy; table: its charts drawn again there)");
   cmd->add_option("--from", opt->from, "A finished study's ensemble.csv (table)");
   CLI::Option* preset =
@@ -267,6 +318,16 @@ CommandRunner add_study_command(CLI::App& app) {
                   "Cases at once, each on its own OpenCL context and queue (default 1; see "
                   "docs/accuracy.md for when more is faster)");
   cmd->add_flag("--no-shear", opt->no_shear, "Contact checks only");
+  cmd->add_option("--scene", opt->scene, "size: the apparatus' scene (shear box, oedometer or triaxial cell)");
+  cmd->add_option("--scales", opt->scales,
+                  "size: the apparatus' widths against the scene's, [0.5, 6] (default 1 1.5 2)")
+      ->delimiter(',');
+  cmd->add_flag("--fixed-height", opt->fixed_height,
+                "size: the specimen keeps its layers (default: its height grows with the box)");
+  cmd->add_option("--seeds", opt->seeds, "size: specimens per size, [1, 100] (default 3)");
+  cmd->add_option("--bulk", opt->bulk,
+                  "size: a periodic-cell campaign's summary.csv, the material's bulk value");
+  cmd->add_option("--precision", opt->precision, "size: float or double (default: the scene's)");
   cmd->add_flag("--resume", opt->resume,
                 "Continue the study in --out after its finished cases (same --preset, --knob, "
                 "--specimen, --box-scale)");
@@ -277,7 +338,7 @@ CommandRunner add_study_command(CLI::App& app) {
       return collect_from_manifest(opt->cluster, "study", add_study_command);
     if (opt->what.empty()) throw UsageError("missing_field", "STUDY", "name the study to run");
     opt->preset_given = preset->count() > 0;
-    opt->command_line = given_args(cmd, {"--out", "--from"});
+    opt->command_line = given_args(cmd, {"--out", "--from", "--scene", "--bulk"});
     return study(*opt);
   };
 }

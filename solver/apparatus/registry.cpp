@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <variant>
 
+#include "solver/apparatus/cell/cell_walls.h"
 #include "solver/apparatus/oedometer/oedometer.h"
 #include "solver/apparatus/oedometer/oedometer_programme.h"
 #include "solver/apparatus/periodic_cell/cell_programme.h"
@@ -39,17 +40,36 @@ std::string cell_stress(const Scene& s) {
 }
 std::string no_stress(const Scene&) { return {}; }
 
+constexpr HeadlineResult kShearHeadlines[] = {
+    {"peak_friction_angle_deg", "φ_peak (°)", BulkMatch::None},
+    {"residual_friction_angle_deg", "φ_res (°)", BulkMatch::PlaneAngle},
+    {"max_dilatancy_angle_deg", "ψ_max (°)", BulkMatch::None}};
+constexpr HeadlineResult kOedometerHeadlines[] = {
+    {"k0_normally_consolidated", "K0 (NC)", BulkMatch::None},
+    {"implied_friction_angle_deg", "φ' from K0, Jaky (°)", BulkMatch::MobilisedAngle},
+    {"side_friction_share", "side friction (share of the load)", BulkMatch::None},
+    {"compression_index_cc", "Cc", BulkMatch::None}};
+constexpr HeadlineResult kTriaxialHeadlines[] = {
+    {"peak_friction_angle_deg", "φ_peak (°)", BulkMatch::None},
+    {"critical_friction_angle_deg", "φ_cs (°)", BulkMatch::MobilisedAngle},
+    {"max_dilatancy_angle_deg", "ψ_max (°)", BulkMatch::None}};
+constexpr HeadlineResult kCellHeadlines[] = {
+    {"stress_ratio", "τ/σ", BulkMatch::None},
+    {"friction_angle_deg", "φ_mob (°)", BulkMatch::None},
+    {"solid_fraction", "Φ", BulkMatch::None}};
+
 const ApparatusKind kKinds[] = {
     {"shear_box", "Direct shear", "a direct shear test", "shear", kShearBoxWalls,
      "settle,consolidate,shear", build_shear_box, make<ShearProgramme>, shear_box_stress,
-     check_shear_box_specimen_top},
+     check_shear_box_specimen_top, resize_shear_box, kShearHeadlines},
     {"oedometer", "Oedometer", "an oedometer test", "oedometer", kOedometerWalls, "settle,load",
-     build_oedometer, make<OedometerProgramme>, no_stress, nullptr},
+     build_oedometer, make<OedometerProgramme>, no_stress, nullptr, resize_cell,
+     kOedometerHeadlines},
     {"triaxial", "Triaxial", "a triaxial test", "triaxial", kTriaxialWalls,
      "settle,consolidate,compress", build_triaxial, make<TriaxialProgramme>, triaxial_stress,
-     nullptr},
+     nullptr, resize_cell, kTriaxialHeadlines},
     {"periodic_cell", "Periodic cell", "a periodic-cell test", "cell", 0, "compress,test",
-     build_periodic_cell, make<CellProgramme>, cell_stress, nullptr},
+     build_periodic_cell, make<CellProgramme>, cell_stress, nullptr, nullptr, kCellHeadlines},
 };
 static_assert(std::size(kKinds) + 1 == std::variant_size_v<Apparatus>,
               "one registry entry per alternative of Scene::apparatus");

@@ -30,6 +30,18 @@
 
 namespace simsols {
 
+// A headline result of a kind's test: a key of its summary.txt (the size
+// study reads them back, app/experiment/size_study.h), and the periodic
+// cell's bulk value it is an estimate of: none, the stress ratio on the
+// horizontal plane as an angle atan(tau/sigma) (what a shear box reports),
+// or the mobilised angle asin((s1 - s3)/(s1 + s3)) (a triaxial cell's).
+enum class BulkMatch { None, PlaneAngle, MobilisedAngle };
+struct HeadlineResult {
+  const char* key;     // "residual_friction_angle_deg"
+  const char* symbol;  // "φ_res (°)"
+  BulkMatch bulk;
+};
+
 struct ApparatusKind {
   const char* name;       // its scene table and its key everywhere: "shear_box"
   const char* title;      // the test in a plot's title: "Direct shear"
@@ -48,6 +60,13 @@ struct ApparatusKind {
   // highest grain's top is at `top` (m): a problem, or nothing; nullptr
   // when the kind has nothing to check (the shear box: its shear plane).
   std::optional<SceneIssue> (*check_specimen_top)(const Scene& scene, double top);
+  // Scales the apparatus of a scene not yet placed for a size study: its
+  // lengths across by `across`, its specimen's height (layers) by
+  // `height`, and what the test travels with them; nullptr when the kind
+  // has no walls to move apart (the periodic cell: it is the bulk).
+  void (*resize)(Scene& scene, double across, double height);
+  // The results a study reports of its tests, in order.
+  std::span<const HeadlineResult> headlines;
 };
 
 // The kinds, in the order of the Apparatus variant's alternatives after

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solver/apparatus/specimen/grading.h"
+#include "solver/common/errors.h"
 #include "solver/common/number_text.h"
 
 namespace simsols {
@@ -97,6 +99,28 @@ SpecimenExtent measure_cell_specimen(const Scene& scene, double length, double w
                      "5 % of its radius)");
   }
   return e;
+}
+
+void resize_cell(Scene& scene, double across, double height) {
+  ApparatusCell* cell = scene.cell();
+  const std::string file = scene.source_path.empty() ? scene.name : scene.source_path;
+  if (!cell) throw SceneError("no_apparatus", file, 0, "apparatus", "no cell to resize");
+  for (double f : {across, height})
+    if (!(f > 0 && f <= 10))
+      throw SceneError("out_of_range", file, 0, "size factor",
+                       shortest_number(f) + " is out of range, allowed (0, 10]");
+  cell->length *= across;
+  cell->width *= across;
+  cell->specimen.layers = std::max(1, static_cast<int>(std::lround(cell->specimen.layers * height)));
+}
+
+double cell_size_ratio(const Scene& scene) {
+  const ApparatusCell* cell = scene.cell();
+  if (!cell || !(cell->specimen.diameter > 0)) return 0;
+  double d = cell->specimen.diameter;
+  if (cell->specimen.grading.law != Grading::Law::Single)
+    d = grading_curve(cell->specimen.grading, d).size.back();
+  return std::min(cell->length, cell->width) / d;
 }
 
 }  // namespace simsols

@@ -71,4 +71,15 @@ struct SpecimenExtent {
 SpecimenExtent measure_cell_specimen(const Scene& scene, double length, double width,
                                      const TableCheck& check, const std::string& cell);
 
+// A size study's change to a scene not yet placed (registry.h `resize`):
+// the cell's length and width times `across`, its specimen's layers times
+// `height` (rounded, at least one). SceneError (out_of_range) naming the
+// scene's cell when a factor is not in (0, 10].
+void resize_cell(Scene& scene, double across, double height);
+
+// The cell's narrowest inside width over its largest grain's diameter
+// (the specimen's diameter, or its grading's d_max): the size ratio L/d
+// ASTM D3080 and D7181 set a floor to.
+double cell_size_ratio(const Scene& scene);
+
 }  // namespace simsols

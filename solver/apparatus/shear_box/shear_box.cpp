@@ -169,4 +169,11 @@ double speed_for_inertial_number(double inertial_number, double height, double d
   return inertial_number * (height / d) * std::sqrt(sigma / density);
 }
 
+void resize_shear_box(Scene& scene, double across, double height) {
+  resize_cell(scene, across, height);
+  ShearBox& box = *scene.apparatus_as<ShearBox>();
+  box.shear_displacement *= across;
+  box.split_height *= height;
+}
+
 }  // namespace simsols

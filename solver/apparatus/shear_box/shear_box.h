@@ -39,6 +39,11 @@ std::optional<SceneIssue> build_shear_box(Scene& scene);
 // (m, from the floor): a problem when the shear plane is not below it.
 std::optional<SceneIssue> check_shear_box_specimen_top(const Scene& scene, double top);
 
+// A size study's box (registry.h `resize`): resize_cell (cell_walls.h),
+// the shear displacement times `across` (the halves travel the same share
+// of the box) and an explicit split height times `height`.
+void resize_shear_box(Scene& scene, double across, double height);
+
 // Inside area of the box (m^2) and its corrected value after a relative
 // displacement dx of the halves.
 double shear_area(const ShearBox& box);

@@ -153,13 +153,13 @@ TEST(Packing, ThePourRainsFromItsDropHeightAtItsIntensity) {
 TEST(Packing, PreparationFrictionIsSwitchedOnTheDeviceAndBack) {
   const Scene s = parse_scene(poured("friction = 0\n"), "lubricated.toml");
   Simulation a(default_device(), s), b(default_device(), s);
-  a.override_friction(Model::FrictionOverride{0.0, std::nullopt});
+  a.override_friction(Model::FrictionOverride{0.0, std::nullopt, std::nullopt});
   a.override_friction(std::nullopt);  // back to the materials'
   a.advance(20000);
   b.advance(20000);
   EXPECT_EQ(a.hash(), b.hash());
   Simulation c(default_device(), s);
-  c.override_friction(Model::FrictionOverride{0.0, 0.0});
+  c.override_friction(Model::FrictionOverride{0.0, 0.0, std::nullopt});
   c.advance(20000);
   EXPECT_NE(c.hash(), b.hash());  // the beads met with other friction
 }
