@@ -215,13 +215,14 @@ int size_study(const StudyOptions& opt) {
   spec.similar = !opt.fixed_height;
   spec.seeds = opt.seeds;
   spec.precision = precision_flag(opt.precision);
-  std::vector<SizeTest> tests = plan_size_study(read_scene(opt.scene), opt.scene, spec, opt.out);
+  const Scene base = read_scene(opt.scene);
+  std::vector<SizeTest> tests = plan_size_study(base, opt.scene, spec, opt.out);
   InterruptScope interrupt;
   CampaignRun run = campaign_run(opt.cluster, opt.out, interrupt.stop_function(), opt.quiet);
   if (emit_or_check_plan(opt.cluster, "study", opt.command_line, opt.out, cluster_tests(tests)))
     return 0;
   if (!run.collect) run.device = open_command_device();
-  const CampaignOutcome outcome = run_size_study(tests, bulk, opt.out, run);
+  const CampaignOutcome outcome = run_size_study(tests, bulk, size_study_title(base, spec), opt.out, run);
   if (outcome.interrupted) {
     std::printf("size study interrupted in test %zu/%zu (%s); resume with the same command\n",
                 outcome.interrupted_test + 1, tests.size(), tests[outcome.interrupted_test].scene.name.c_str());

@@ -119,10 +119,10 @@ std::string summary_csv(const ApparatusKind& kind, const std::vector<SizePoint>&
 
 std::string pm(const Interval& v, const char* f) { return fmt(f, v.mean) + " ± " + fmt(f, v.half_width); }
 
-void write_plot(const ApparatusKind& kind, size_t h, const std::vector<SizePoint>& points,
+void write_plot(const ApparatusKind& kind, const std::string& what, size_t h, const std::vector<SizePoint>& points,
                 const std::optional<BulkValue>& bulk, const std::string& path) {
   plot::Chart c;
-  c.title = std::string(kind.title) + ": size study (mean of specimens, 95 % interval)";
+  c.title = std::string(kind.title) + ", " + what + " (mean of specimens, 95 % interval)";
   c.x_label = "size ratio L / d";
   c.y_label = kind.headlines[h].symbol;
   plot::Series s;
@@ -179,6 +179,10 @@ BulkValue read_bulk_value(const std::string& path) {
   b.plane = {std::atan(mu) * kDeg, 0.5 * (std::atan(mu + mu_ci) - std::atan(mu - mu_ci)) * kDeg, b.specimens};
   b.mobilised = {column("friction_angle_deg"), std::fabs(column("friction_angle_ci95")), b.specimens};
   return b;
+}
+
+std::string size_study_title(const Scene& base, const SizeStudySpec& spec) {
+  return base.name + (spec.similar ? ", height grows with the box" : ", fixed height");
 }
 
 std::vector<SizeTest> plan_size_study(const Scene& base, const std::string& base_name,
@@ -255,7 +259,7 @@ std::string size_summary_markdown(const ApparatusKind& kind, const std::vector<S
 }
 
 CampaignOutcome run_size_study(std::vector<SizeTest>& tests, const std::optional<BulkValue>& bulk,
-                               const std::string& out_dir, const CampaignRun& run) {
+                               const std::string& what, const std::string& out_dir, const CampaignRun& run) {
   fs::create_directories(out_dir);
   if (tests.empty()) return {};
   const ApparatusKind& kind = required_apparatus_kind(tests.front().scene);
@@ -278,7 +282,7 @@ CampaignOutcome run_size_study(std::vector<SizeTest>& tests, const std::optional
   write_file_atomic((fs::path(out_dir) / "summary.csv").string(), summary_csv(kind, points));
   write_file_atomic((fs::path(out_dir) / "summary.md").string(), size_summary_markdown(kind, points, bulk));
   for (size_t h = 0; h < kind.headlines.size(); ++h)
-    write_plot(kind, h, points, bulk, (fs::path(out_dir) / ("size_" + std::string(kind.headlines[h].key) + ".png")).string());
+    write_plot(kind, what, h, points, bulk, (fs::path(out_dir) / ("size_" + std::string(kind.headlines[h].key) + ".png")).string());
   return outcome;
 }
 

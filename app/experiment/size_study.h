@@ -86,8 +86,12 @@ std::string size_summary_markdown(const ApparatusKind& kind, const std::vector<S
                                   const std::optional<BulkValue>& bulk);
 
 // Runs the tests not finished yet, then writes the report (unless
-// interrupted or one array task).
+// interrupted or one array task); `what` names the study in the plots'
+// titles ("shear_poured, height grows with the box").
 CampaignOutcome run_size_study(std::vector<SizeTest>& tests, const std::optional<BulkValue>& bulk,
-                               const std::string& out_dir, const CampaignRun& run);
+                               const std::string& what, const std::string& out_dir, const CampaignRun& run);
+
+// "<base scene's name>, height grows with the box" or "..., fixed height".
+std::string size_study_title(const Scene& base, const SizeStudySpec& spec);
 
 }  // namespace simsols

@@ -144,7 +144,7 @@ TEST(SizeStudy, ASmallStudyRunsAndIsKeptWhenRunAgain) {
   CampaignRun run;
   run.device = default_device();
   run.quiet = true;
-  ASSERT_FALSE(run_size_study(tests, std::nullopt, out.string(), run).interrupted);
+  ASSERT_FALSE(run_size_study(tests, std::nullopt, "thin", out.string(), run).interrupted);
   for (const char* f : {"tests.csv", "summary.csv", "summary.md", "size_residual_friction_angle_deg.png"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
   const double first = tests[1].results.at("residual_friction_angle_deg");
@@ -152,7 +152,7 @@ TEST(SizeStudy, ASmallStudyRunsAndIsKeptWhenRunAgain) {
               tests[0].results.at("residual_friction_angle_deg"), first);
   EXPECT_TRUE(std::isfinite(first));
   std::vector<SizeTest> again = plan_size_study(base, "thin.toml", spec, out.string());
-  const CampaignOutcome o = run_size_study(again, std::nullopt, out.string(), run);
+  const CampaignOutcome o = run_size_study(again, std::nullopt, "thin", out.string(), run);
   EXPECT_LT(o.seconds, 1.0);  // nothing run: both kept
   EXPECT_EQ(again[1].results.at("residual_friction_angle_deg"), first);
 }
