@@ -62,8 +62,7 @@ SizeTest plan_test(const Scene& base, const std::string& base_name, const SizeSt
   place_scene(t.scene);
   validate_scene(t.scene, base_name + " (" + t.scene.name + ")");
   t.dir = fs::path(out_dir) / ("x" + scale_text(scale) + "_s" + std::to_string(t.seed));
-  // Rough, for the ETA's weights only: beads times the travel's growth.
-  t.cost = double(t.scene.particles.size()) * scale;
+  t.cost = expected_particle_steps(t.scene);
   return t;
 }
 

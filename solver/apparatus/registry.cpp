@@ -14,6 +14,7 @@
 #include "solver/apparatus/shear_box/shear_programme.h"
 #include "solver/apparatus/triaxial/triaxial.h"
 #include "solver/apparatus/triaxial/triaxial_programme.h"
+#include "solver/scene/contact_model.h"
 
 namespace simsols {
 namespace {
@@ -61,15 +62,17 @@ constexpr HeadlineResult kCellHeadlines[] = {
 const ApparatusKind kKinds[] = {
     {"shear_box", "Direct shear", "a direct shear test", "shear", kShearBoxWalls,
      "settle,consolidate,shear", build_shear_box, make<ShearProgramme>, shear_box_stress,
-     check_shear_box_specimen_top, resize_shear_box, kShearHeadlines},
+     check_shear_box_specimen_top, resize_shear_box, kShearHeadlines, shear_box_expected_time},
     {"oedometer", "Oedometer", "an oedometer test", "oedometer", kOedometerWalls, "settle,load",
      build_oedometer, make<OedometerProgramme>, no_stress, nullptr, resize_cell,
-     kOedometerHeadlines},
+     kOedometerHeadlines, oedometer_expected_time},
     {"triaxial", "Triaxial", "a triaxial test", "triaxial", kTriaxialWalls,
      "settle,consolidate,compress", build_triaxial, make<TriaxialProgramme>, triaxial_stress,
-     nullptr, resize_cell, kTriaxialHeadlines},
+     nullptr, resize_cell, kTriaxialHeadlines,
+     triaxial_expected_time},
     {"periodic_cell", "Periodic cell", "a periodic-cell test", "cell", 0, "compress,test",
-     build_periodic_cell, make<CellProgramme>, cell_stress, nullptr, nullptr, kCellHeadlines},
+     build_periodic_cell, make<CellProgramme>, cell_stress, nullptr, nullptr, kCellHeadlines,
+     periodic_cell_expected_time},
 };
 static_assert(std::size(kKinds) + 1 == std::variant_size_v<Apparatus>,
               "one registry entry per alternative of Scene::apparatus");
@@ -123,6 +126,11 @@ const ApparatusKind& required_apparatus_kind(const Scene& scene) {
                      "the scene has no apparatus (one of the tables " + apparatus_names(", ") +
                          "): no test to run");
   return *kind;
+}
+
+double expected_particle_steps(const Scene& scene) {
+  return double(scene.particles.size()) * required_apparatus_kind(scene).expected_time(scene) /
+         effective_time_step(scene);
 }
 
 std::unique_ptr<ApparatusProgramme> make_programme(Simulation& sim) {

@@ -67,7 +67,16 @@ struct ApparatusKind {
   void (*resize)(Scene& scene, double across, double height);
   // The results a study reports of its tests, in order.
   std::span<const HeadlineResult> headlines;
+  // The time (s) its programme is expected to simulate on a placed scene:
+  // the stages' allowances or travel at their rates. Times the beads over
+  // the time step, the particle-steps campaigns weigh their ETAs and a
+  // cluster's time limits with.
+  double (*expected_time)(const Scene& scene);
 };
+
+// Particle-steps of the scene's test (placed): its beads times its kind's
+// expected_time over the effective time step.
+double expected_particle_steps(const Scene& scene);
 
 // The kinds, in the order of the Apparatus variant's alternatives after
 // std::monostate.

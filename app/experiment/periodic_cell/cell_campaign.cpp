@@ -27,17 +27,6 @@ double end_strain(const PeriodicCell& c) {
   return c.test == PeriodicCell::Test::SimpleShear ? c.shear_strain : c.axial_strain;
 }
 
-// Particle-steps: the compression (about ln(0.6 / phi_0) / 3 at the servo's
-// fastest rate, twice that to settle) and the test at its rate.
-double estimated_cost(const Scene& s) {
-  const PeriodicCell& c = cell_of(s);
-  const double rho = s.materials.at(c.material).density;
-  const double scale = std::sqrt(c.pressure / rho) / c.diameter;
-  double seconds = 2 * std::log(0.6 / c.start_solid_fraction) / 3 / (c.compression_inertial_number * scale);
-  if (c.test != PeriodicCell::Test::Isotropic) seconds += end_strain(c) / (c.inertial_number * scale);
-  return s.particles.size() * seconds / effective_time_step(s);
-}
-
 void check_spec(const Scene& base, const std::string& base_name, const CellCampaignSpec& spec) {
   if (!base.apparatus_as<PeriodicCell>())
     throw SceneError("missing_field", base_name, 0, "periodic_cell",
@@ -200,7 +189,7 @@ std::vector<CellCampaignTest> plan_cell_campaign(const Scene& base, const std::s
         if (spec.precision) t.scene.numerics.precision = *spec.precision;
         validate_scene(t.scene, base_name + " (" + t.scene.name + ")");
         t.dir = fs::path(out_dir) / ("p" + fmt("%g", p) + "kPa_I" + fmt("%g", i) + "_s" + std::to_string(t.seed));
-        t.cost = estimated_cost(t.scene);
+        t.cost = expected_particle_steps(t.scene);
         tests.push_back(std::move(t));
       }
   return tests;

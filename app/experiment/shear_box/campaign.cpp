@@ -10,6 +10,7 @@
 #include "app/experiment/run_cost.h"
 #include "app/experiment/shear_box/shear_plots.h"
 #include "solver/apparatus/shear_box/shear_box.h"
+#include "solver/apparatus/registry.h"
 #include "solver/common/errors.h"
 #include "solver/io/output.h"
 #include "solver/io/scene_toml.h"
@@ -38,20 +39,6 @@ ShearSummary reanalysed(const fs::path& dir, const std::string& name,
 }
 
 }  // namespace
-
-// Settling (its longest time), ~50 ms of consolidation and the shear at the
-// speed the inertial number sets (height ~ layers x 0.8 d).
-double shear_test_cost(const Scene& s) {
-  const ShearBox& b = *s.apparatus_as<ShearBox>();
-  const double dt = effective_time_step(s);
-  const double d = 2 * s.particles[0].radius;
-  const double rho = s.materials[s.particles[0].material].density;
-  const double height = 0.8 * d * std::max(1, b.specimen.layers);
-  const double v = b.shear_speed > 0 ? b.shear_speed
-                                     : speed_for_inertial_number(b.inertial_number, height, d, rho,
-                                                                 b.normal_stress);
-  return s.particles.size() * (b.settle_time + 0.05 + b.shear_displacement / v) / dt;
-}
 
 ShearRunResult finished_shear_test(const fs::path& dir, const std::string& title) {
   ShearRunResult r;
@@ -128,7 +115,7 @@ std::vector<CampaignTest> plan_campaign(const Scene& base, const std::string& ba
       validate_scene(sc, base_name + " (" + sc.name + ")");
       t.scene = std::move(sc);
       t.dir = fs::path(out_dir) / t.scene.name;
-      t.cost = shear_test_cost(t.scene);
+      t.cost = expected_particle_steps(t.scene);
       tests.push_back(std::move(t));
     }
   }

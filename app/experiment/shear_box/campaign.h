@@ -63,9 +63,6 @@ ShearRunResult finished_shear_test(const std::filesystem::path& dir, const std::
 ShearRunResult run_shear_test(const Scene& scene, const ProgrammeRunOptions& options,
                               const std::string& title);
 
-// Particle-steps a shear test of `scene` will take: settling, consolidation
-// and the shear at the speed its inertial number sets.
-double shear_test_cost(const Scene& scene);
 
 // Runs the tests not finished yet (keeping the results of those that are),
 // printing one line per test; then writes the report into `out_dir`

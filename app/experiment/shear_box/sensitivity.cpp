@@ -10,6 +10,7 @@
 
 #include "app/experiment/shear_box/paper_tests.h"
 #include "app/experiment/test_title.h"
+#include "solver/apparatus/registry.h"
 #include "solver/apparatus/shear_box/shear_analysis.h"
 #include "solver/common/errors.h"
 #include "solver/io/output.h"
@@ -200,7 +201,7 @@ std::vector<SensitivityTest> plan_sensitivity(const SensitivityPreset& preset,
     validate_scene(sc, "sensitivity study (" + pt.label + ")");
     SensitivityTest t;
     t.point = pt;
-    t.cost = shear_test_cost(sc);
+    t.cost = expected_particle_steps(sc);
     t.scene = std::move(sc);
     t.dir = fs::path(out_dir) / pt.label;
     tests.push_back(std::move(t));

@@ -18,18 +18,6 @@ namespace {
 namespace fs = std::filesystem;
 constexpr auto fmt = format_number;  // printf conversion of one number (output.h)
 
-// Particle-steps the test will take: a third of the settling and
-// consolidation allowances (they end at equilibrium, usually sooner) and
-// the compression at its strain rate.
-double estimated_cost(const Scene& s) {
-  const Triaxial& t = *s.apparatus_as<Triaxial>();
-  const SpecimenStats b = specimen_stats(s, t.wall_material);
-  const double rate = t.strain_rate > 0 ? t.strain_rate
-                                        : triaxial_strain_rate(t.inertial_number, b.diameter,
-                                                               b.density, t.confining_stress);
-  const double seconds = 0.3 * (t.settle_time + t.consolidate_time) + t.axial_strain / rate;
-  return s.particles.size() * seconds / effective_time_step(s);
-}
 
 void check_spec(const Scene& base, const std::string& base_name, const TriaxialCampaignSpec& spec) {
   if (!base.apparatus_as<Triaxial>())
@@ -115,7 +103,7 @@ std::vector<TriaxialCampaignTest> plan_triaxial_campaign(const Scene& base,
     t.scene.source_text.clear();  // scene.toml is then the resolved scene
     validate_scene(t.scene, base_name + " (" + t.scene.name + ")");
     t.dir = fs::path(out_dir) / ("s3_" + fmt("%g", s) + "kPa");
-    t.cost = estimated_cost(t.scene);
+    t.cost = expected_particle_steps(t.scene);
     tests.push_back(std::move(t));
   }
   return tests;

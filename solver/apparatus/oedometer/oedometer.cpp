@@ -76,4 +76,9 @@ int oedometer_peak_step(const Oedometer& o) {
   return static_cast<int>(std::max_element(s.begin(), s.end()) - s.begin());
 }
 
+
+double oedometer_expected_time(const Scene& s) {
+  const Oedometer& o = *s.apparatus_as<Oedometer>();
+  return 0.3 * (o.settle_time + double(o.load_steps.size()) * o.step_time);
+}
 }  // namespace simsols

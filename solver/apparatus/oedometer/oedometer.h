@@ -25,6 +25,11 @@ namespace simsols {
 // problem, with its field under "oedometer".
 std::optional<SceneIssue> build_oedometer(Scene& scene);
 
+// The time an oedometer test simulates (registry.h `expected_time`): a
+// third of its settling allowance and of every load step's longest hold
+// (each ends at equilibrium, usually sooner).
+double oedometer_expected_time(const Scene& scene);
+
 // Inside area of the ring (m^2).
 double oedometer_area(const Oedometer& o);
 

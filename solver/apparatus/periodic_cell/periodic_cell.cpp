@@ -132,4 +132,14 @@ CellMeasure measure_cell(Simulation& sim) {
   return out;
 }
 
+
+double periodic_cell_expected_time(const Scene& s) {
+  const PeriodicCell& c = *s.apparatus_as<PeriodicCell>();
+  const double rho = s.materials.at(c.material).density;
+  const double scale = std::sqrt(c.pressure / rho) / c.diameter;
+  double seconds = 2 * std::log(0.6 / c.start_solid_fraction) / 3 / (c.compression_inertial_number * scale);
+  if (c.test == PeriodicCell::Test::SimpleShear) seconds += c.shear_strain / (c.inertial_number * scale);
+  if (c.test == PeriodicCell::Test::AxialCompression) seconds += c.axial_strain / (c.inertial_number * scale);
+  return seconds;
+}
 }  // namespace simsols

@@ -25,6 +25,11 @@ namespace simsols {
 
 std::optional<SceneIssue> build_periodic_cell(Scene& scene);
 
+// The time a periodic-cell test simulates (registry.h `expected_time`):
+// the compression (about ln(0.6 / phi_0) / 3 of volumetric strain at the
+// servo's fastest rate, twice that to settle) and the test at its rate.
+double periodic_cell_expected_time(const Scene& scene);
+
 struct CellMeasure {
   Mat3 stress{};        // Pa, compression positive, [a][b] = -(1/V) sum f_a l_b
   Mat3 fabric{};        // <n_a n_b> over the contacts

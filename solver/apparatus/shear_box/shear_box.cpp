@@ -176,4 +176,14 @@ void resize_shear_box(Scene& scene, double across, double height) {
   box.split_height *= height;
 }
 
+
+double shear_box_expected_time(const Scene& s) {
+  const ShearBox& b = *s.apparatus_as<ShearBox>();
+  const double d = 2 * s.particles.at(0).radius;
+  const double rho = s.materials[s.particles[0].material].density;
+  const double height = 0.8 * d * std::max(1, b.specimen.layers);
+  const double v = b.shear_speed > 0 ? b.shear_speed
+                                     : speed_for_inertial_number(b.inertial_number, height, d, rho, b.normal_stress);
+  return b.settle_time + 0.05 + b.shear_displacement / v;
+}
 }  // namespace simsols

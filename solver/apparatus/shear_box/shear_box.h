@@ -44,6 +44,10 @@ std::optional<SceneIssue> check_shear_box_specimen_top(const Scene& scene, doubl
 // of the box) and an explicit split height times `height`.
 void resize_shear_box(Scene& scene, double across, double height);
 
+// The time a shear test simulates (registry.h `expected_time`): its
+// settling allowance, 0.05 s of consolidation and the travel at its speed.
+double shear_box_expected_time(const Scene& scene);
+
 // Inside area of the box (m^2) and its corrected value after a relative
 // displacement dx of the halves.
 double shear_area(const ShearBox& box);

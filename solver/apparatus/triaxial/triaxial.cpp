@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "solver/apparatus/cell/cell_walls.h"
+#include "solver/apparatus/cell/platen_servo.h"
 #include "solver/apparatus/specimen/specimen.h"
 
 namespace simsols {
@@ -83,4 +84,13 @@ double triaxial_strain_rate(double inertial_number, double d, double density, do
   return inertial_number / d * std::sqrt(p / density);
 }
 
+
+double triaxial_expected_time(const Scene& s) {
+  const Triaxial& t = *s.apparatus_as<Triaxial>();
+  const SpecimenStats b = specimen_stats(s, t.wall_material);
+  const double rate = t.strain_rate > 0 ? t.strain_rate
+                                        : triaxial_strain_rate(t.inertial_number, b.diameter, b.density,
+                                                               t.confining_stress);
+  return 0.3 * (t.settle_time + t.consolidate_time) + t.axial_strain / rate;
+}
 }  // namespace simsols

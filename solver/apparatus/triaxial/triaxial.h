@@ -25,4 +25,9 @@ std::optional<SceneIssue> build_triaxial(Scene& scene);
 double triaxial_inertial_number(double strain_rate, double d, double density, double p);
 double triaxial_strain_rate(double inertial_number, double d, double density, double p);
 
+// The time a triaxial test simulates (registry.h `expected_time`): a third
+// of the settling and consolidation allowances (they end at equilibrium,
+// usually sooner) and the compression at its strain rate.
+double triaxial_expected_time(const Scene& scene);
+
 }  // namespace simsols

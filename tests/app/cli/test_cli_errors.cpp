@@ -168,7 +168,8 @@ TEST(CliErrors, ClusterFlagsNameTheProblem) {
       {campaign + "--emit pbs", "--emit", "not one of: slurm"},
       {campaign + "--emit slurm --task 0", "--task", "give one"},
       {"campaign --collect nowhere", "--collect", "no manifest here"},
-      {"study shape --out s --task 0", "--task", "sensitivity study"},
+      {"study shape --out s --task 0", "--task", "sensitivity and size studies"},
+      {"study size --out s", "--scene", "give the apparatus' scene"},
       {"study sensitivity --out s --preset quick", "--preset", "paper, ci"},
   };
   for (const Case& c : cases) {
