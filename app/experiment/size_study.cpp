@@ -251,8 +251,15 @@ std::string size_summary_markdown(const ApparatusKind& kind, const std::vector<S
       o << "| " << fmt("%.1f", p.ratio) << " | " << fmt("%+.2f", v.mean - b->mean) << " ± " << fmt("%.2f", ci) << " |\n";
     }
     const double from = ratio_within(points, h, *b, 1.0);
-    o << "\n" << kind.headlines[h].symbol << ": within 1° of the bulk value "
-      << (std::isnan(from) ? "at none of these sizes" : "from L/d = " + fmt("%.1f", from) + " on") << ".\n\n";
+    o << "\n" << kind.headlines[h].symbol << ": the mean within 1° of the bulk value "
+      << (std::isnan(from) ? "at none of these sizes" : "from L/d = " + fmt("%.1f", from) + " on");
+    double widest = 0;  // of the differences' intervals from there on
+    for (const SizePoint& p : points)
+      if (p.ratio >= from) widest = std::max(widest, std::hypot(p.values[h].half_width, b->half_width));
+    if (!std::isnan(from) && !(widest <= 1))
+      o << " (but the difference's interval, up to ±" << fmt("%.2f", widest)
+        << "°, is wider than 1°: more specimens would tell)";
+    o << ".\n\n";
   }
   return o.str();
 }

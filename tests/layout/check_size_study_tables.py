@@ -4,7 +4,8 @@
 docs/img/size_NAME_summary.csv (scale, L/d, beads, specimens, each
 headline's mean ± interval, wall time per test) as `simsols study size`
 formats them (app/experiment/size_study.cpp), and that CSV's means and
-95 % Student intervals are those of docs/img/size_NAME_tests.csv's tests.
+95 % Student intervals are those of docs/img/size_NAME_tests.csv's tests;
+docs/accuracy.md's residuals of the fixed-thickness box are that study's.
   tests/layout/check_size_study_tables.py [REPO_ROOT]"""
 import csv
 import glob
@@ -78,6 +79,14 @@ for name in names:
                     n > 1 and abs(half - float(r[h + "_ci95"])) > 1e-4 * max(1, half)):
                 bad.append(f"size_{name} x{r['scale']} {h}: tests give {m:.6g} ± {half:.6g}, "
                            f"the summary {r[h]} ± {r[h + '_ci95']}")
+
+# docs/accuracy.md quotes the fixed-thickness residuals ("Why 1 296 beads")
+fixed = csv_rows(os.path.join(root, "docs/img/size_poured_fixed_summary.csv"))
+quote = ", ".join(f"{float(r['residual_friction_angle_deg']):.1f}" for r in fixed[:-1])
+quote += f" and {float(fixed[-1]['residual_friction_angle_deg']):.1f}°"
+accuracy = open(os.path.join(root, "docs/accuracy.md"), encoding="utf-8").read()
+if quote not in " ".join(accuracy.split()):
+    bad.append(f"docs/accuracy.md should quote the fixed-thickness residuals as '{quote}'")
 
 for b in bad:
     print(b)
