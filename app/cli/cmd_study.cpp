@@ -24,6 +24,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <utility>
 
 #include "app/cli/cluster_flags.h"
 #include "app/cli/commands.h"
@@ -247,6 +248,9 @@ int study(const StudyOptions& opt) {
     if (opt.out.empty()) throw UsageError("missing_field", "--out", "give an output folder");
     return size_study(opt);
   }
+  for (const auto& [given, flag] : {std::pair{!opt.scene.empty(), "--scene"}, {!opt.bulk.empty(), "--bulk"},
+                                    {opt.fixed_height, "--fixed-height"}})
+    if (given) throw UsageError("not_applicable", flag, "is a flag of the size study (simsols study size)");
   if (opt.what == "sensitivity") {
     if (opt.out.empty()) throw UsageError("missing_field", "--out", "give an output folder");
     return sensitivity_study(opt);

@@ -170,6 +170,7 @@ TEST(CliErrors, ClusterFlagsNameTheProblem) {
       {"campaign --collect nowhere", "--collect", "no manifest here"},
       {"study shape --out s --task 0", "--task", "sensitivity and size studies"},
       {"study size --out s", "--scene", "give the apparatus' scene"},
+      {"study shape --out s --bulk b.csv", "--bulk", "flag of the size study"},
       {"study sensitivity --out s --preset quick", "--preset", "paper, ci"},
   };
   for (const Case& c : cases) {
