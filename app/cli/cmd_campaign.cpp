@@ -74,7 +74,9 @@ CommandRunner add_campaign_command(CLI::App& app) {
                       "A periodic cell's inertial numbers (default: the base scene's)")
           ->delimiter(',');
   CLI::Option* seeds = cmd->add_option(
-      "--seeds", opt->seeds, "A periodic cell's specimens per point: the base's seed and the next (default 3)");
+      "--seeds", opt->seeds,
+      "Specimens per point: the base's seed and the next (a periodic cell: default 3; a shear "
+      "campaign: default 1, its strengths then an example, not an ensemble)");
   cmd->add_flag("--quiet,-q", opt->quiet, "No progress lines");
   add_cluster_flags(cmd, opt->cluster);
   return [=] {

@@ -7,7 +7,7 @@ namespace simsols::scene_toml {
 
 void read_shear_box(const Reader& root, Scene& scene) {
   Reader r = root.sub("shear_box",
-                      {"length", "width", "split_height", "gap", "wall_material", "normal_stress",
+                      {"length", "width", "split_height", "gap", "wall_material", "insert_material", "normal_stress",
                        "shear_speed", "inertial_number", "shear_displacement", "loading",
                        "platen_mass", "servo_gain", "servo_max_speed", "servo_integral_time",
                        "settle_time", "consolidate_time", "rows", "specimen"});
@@ -17,6 +17,7 @@ void read_shear_box(const Reader& root, Scene& scene) {
   b.split_height = r.number("split_height", b.split_height);
   b.gap = r.number("gap", b.gap);
   b.wall_material = read_wall_material(r, scene, b.wall_material);
+  if (r.has("insert_material")) b.insert_material = r.material("insert_material", scene);
   b.normal_stress = r.number("normal_stress", b.normal_stress);
   b.shear_speed = r.number("shear_speed", b.shear_speed);
   b.inertial_number = r.number("inertial_number", b.inertial_number);
@@ -47,6 +48,8 @@ void write_shear_box(TableWriter& w) {
   w.line("split_height", b.split_height);
   w.line("gap", b.gap);
   w.material("wall_material", b.wall_material, "shear_box.wall_material");
+  if (b.insert_material >= 0 && b.insert_material != b.wall_material)
+    w.material("insert_material", b.insert_material, "shear_box.insert_material");
   w.line("normal_stress", b.normal_stress);
   w.line("shear_speed", b.shear_speed);
   w.line("inertial_number", b.inertial_number);

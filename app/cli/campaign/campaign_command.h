@@ -25,7 +25,7 @@ struct CampaignOptions {
   std::string precision;
   double displacement_mm = 0;  // 0 = the base scene's
   std::vector<double> inertial_numbers;  // a periodic cell's; empty = the base scene's
-  int seeds = 3;                         // a periodic cell's specimens per point
+  int seeds = 3;  // specimens per point (a shear campaign: 1 unless given)
   bool quiet = false;
   // Flags given on the command line (the triaxial campaign refuses the
   // shear box's and has its own default stresses).

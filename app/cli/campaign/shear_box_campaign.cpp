@@ -9,11 +9,10 @@ namespace simsols {
 
 // The paper's programme (Table 1's sizes x the stresses) in a shear box.
 int shear_box_campaign(const CampaignOptions& opt, const Scene& base, const std::string& base_name) {
-  for (const auto& [given, flag] : {std::pair{opt.inertial_given, "--inertial-numbers"},
-                                    {opt.seeds_given, "--seeds"}})
-    if (given)
-      throw UsageError("not_applicable", flag,
-                       "is a periodic cell's flag; a shear campaign varies --sizes and --stresses");
+  if (opt.inertial_given)
+    throw UsageError("not_applicable", "--inertial-numbers",
+                     "is a periodic cell's flag; a shear campaign varies --sizes, --stresses and "
+                     "--seeds");
   const Preparation& prep = base.specimen()->preparation;
   const auto refuse = [&](const char* field, const char* how) {
     throw SceneError("not_applicable", base_name, 0,
@@ -35,6 +34,7 @@ int shear_box_campaign(const CampaignOptions& opt, const Scene& base, const std:
   spec.layers = opt.layers;
   spec.precision = precision_flag(opt.precision);
   spec.displacement_mm = opt.displacement_mm;
+  spec.seeds = opt.seeds_given ? opt.seeds : 1;
   std::vector<CampaignTest> tests = plan_campaign(base, base_name, spec, opt.out_dir);
 
   InterruptScope interrupt;

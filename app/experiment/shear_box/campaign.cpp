@@ -67,6 +67,9 @@ void check_spec(const Scene& base, const std::string& base_name, const CampaignS
                      std::to_string(spec.layers) + " is out of range, allowed [1, 200] (0 = Table 1)");
   if (spec.displacement_mm < 0)
     throw UsageError("out_of_range", "--displacement", "must be > 0 mm");
+  if (spec.seeds < 1 || spec.seeds > 100)
+    throw UsageError("out_of_range", "--seeds",
+                     std::to_string(spec.seeds) + " is out of range, allowed [1, 100]");
 }
 
 // A test finished earlier, read back.
@@ -85,7 +88,7 @@ void write_report(const std::vector<CampaignTest>& tests, const std::string& bas
                   const CampaignSpec& spec, const std::string& out_dir, double seconds) {
   std::vector<CampaignEntry> entries;
   for (const CampaignTest& t : tests)
-    entries.push_back({t.d_mm, t.s_kpa, t.scene.apparatus_as<ShearBox>()->specimen.layers,
+    entries.push_back({t.d_mm, t.s_kpa, t.seed, t.scene.apparatus_as<ShearBox>()->specimen.layers,
                        static_cast<int>(t.scene.particles.size()), t.result.rows,
                        t.result.summary});
   write_campaign_report(out_dir, base_name, spec.sizes_mm, entries, seconds);
@@ -104,20 +107,25 @@ std::vector<CampaignTest> plan_campaign(const Scene& base, const std::string& ba
                        fmt("%g", d) +
                            " mm is not a Table 1 size (2.38125, 3.175, 3.96875, 4.7625, 6.35); "
                            "give --layers for other sizes");
-    for (double s : spec.stresses_kpa) {
-      CampaignTest t;
-      t.d_mm = d;
-      t.s_kpa = s;
-      Scene sc = paper_test_scene(base, base_name, d, s, spec.layers, [&](Scene& x) {
-        if (spec.displacement_mm > 0) x.apparatus_as<ShearBox>()->shear_displacement = spec.displacement_mm * 1e-3;
-        if (spec.precision) x.numerics.precision = *spec.precision;
-      });
-      validate_scene(sc, base_name + " (" + sc.name + ")");
-      t.scene = std::move(sc);
-      t.dir = fs::path(out_dir) / t.scene.name;
-      t.cost = expected_particle_steps(t.scene);
-      tests.push_back(std::move(t));
-    }
+    for (int k = 0; k < spec.seeds; ++k)  // one specimen's envelope after another
+      for (double s : spec.stresses_kpa) {
+        CampaignTest t;
+        t.d_mm = d;
+        t.s_kpa = s;
+        Scene sc = paper_test_scene(base, base_name, d, s, spec.layers, [&](Scene& x) {
+          ShearBox& box = *x.apparatus_as<ShearBox>();
+          if (spec.displacement_mm > 0) box.shear_displacement = spec.displacement_mm * 1e-3;
+          if (spec.precision) x.numerics.precision = *spec.precision;
+          box.specimen.seed += k;
+          t.seed = box.specimen.seed;
+        });
+        if (k > 0) sc.name += "_s" + std::to_string(t.seed);
+        validate_scene(sc, base_name + " (" + sc.name + ")");
+        t.scene = std::move(sc);
+        t.dir = fs::path(out_dir) / t.scene.name;
+        t.cost = expected_particle_steps(t.scene);
+        tests.push_back(std::move(t));
+      }
   }
   return tests;
 }

@@ -16,6 +16,7 @@
 // programme.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -37,10 +38,14 @@ struct CampaignSpec {
   int layers = 0;                        // 0 = Table 1
   std::optional<Precision> precision;    // nullopt = the base scene's
   double displacement_mm = 0;            // 0 = the base scene's
+  // Specimens per size and stress: the base's seed and the next ones. The
+  // first keeps the test's plain folder name, the others add _s<seed>.
+  int seeds = 1;
 };
 
 struct CampaignTest {
   double d_mm = 0, s_kpa = 0;
+  std::int64_t seed = 0;  // its specimen's
   Scene scene;
   std::filesystem::path dir;
   double cost = 0;  // estimated particle-steps

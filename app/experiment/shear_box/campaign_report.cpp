@@ -3,10 +3,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <sstream>
 
-#include "solver/io/output.h"
 #include "app/experiment/shear_box/shear_plots.h"
+#include "app/experiment/shear_box/study_stats.h"
+#include "solver/io/output.h"
 
 namespace simsols {
 namespace {
@@ -16,26 +18,32 @@ constexpr auto fmt = format_number;  // printf conversion of one number (output.
 namespace fs = std::filesystem;
 
 std::string csv_header() {
-  return "diameter_mm,layers,normal_stress_kPa,peak_tau_kPa,peak_tau_over_sigma,"
+  return "diameter_mm,layers,normal_stress_kPa,seed,peak_tau_kPa,peak_tau_over_sigma,"
          "peak_friction_angle_deg,peak_displacement_mm,max_tau_over_sigma,"
          "max_friction_angle_deg,max_displacement_mm,residual_tau_kPa,"
-         "residual_friction_angle_deg,max_dilatancy_angle_deg,max_inertial_number,"
-         "sigma_band_min_percent,sigma_band_max_percent,sigma_rms_percent,valid,"
-         "start_tau_over_sigma,beads,wall_seconds\n";
+         "residual_friction_angle_deg,critical_state,residual_from_mm,residual_dilation_rate,"
+         "max_dilatancy_angle_deg,max_dilatancy_dynamic,dynamic_events,taylor_min_mu,"
+         "max_inertial_number,sigma_band_min_percent,sigma_band_max_percent,sigma_rms_percent,"
+         "valid,start_tau_over_sigma,beads,wall_seconds\n";
 }
+
+const char* yes_no(bool b) { return b ? "yes" : "no"; }
 
 std::string csv_row(const CampaignEntry& e) {
   const ShearSummary& s = e.summary;
   std::ostringstream o;
-  o << fmt("%g", e.d_mm) << ',' << e.layers << ',' << fmt("%g", e.s_kpa) << ','
+  o << fmt("%g", e.d_mm) << ',' << e.layers << ',' << fmt("%g", e.s_kpa) << ',' << e.seed << ','
     << fmt("%.6g", s.peak_tau * 1e-3) << ',' << fmt("%.6g", s.peak_ratio) << ','
     << fmt("%.4f", s.peak_angle) << ',' << fmt("%.6g", s.peak_displacement * 1e3) << ','
     << fmt("%.6g", s.max_ratio) << ',' << fmt("%.4f", s.max_angle) << ','
     << fmt("%.6g", s.max_displacement * 1e3) << ',' << fmt("%.6g", s.residual_tau * 1e-3) << ','
-    << fmt("%.4f", s.residual_angle) << ',' << fmt("%.4f", s.max_dilatancy_angle) << ','
+    << fmt("%.4f", s.residual_angle) << ',' << yes_no(s.critical_state) << ','
+    << fmt("%.6g", s.residual_from * 1e3) << ',' << fmt("%.4g", s.residual_dilation_rate) << ','
+    << fmt("%.4f", s.max_dilatancy_angle) << ',' << yes_no(s.max_dilatancy_dynamic) << ','
+    << s.dynamic_events << ',' << fmt("%.4g", s.taylor_min) << ','
     << fmt("%.4g", s.max_inertial_number) << ',' << fmt("%.3f", 100 * s.sigma_band_lo) << ','
     << fmt("%.3f", 100 * s.sigma_band_hi) << ',' << fmt("%.3f", 100 * s.sigma_rms) << ','
-    << (s.valid ? "yes" : "no") << ',' << fmt("%.4f", s.start_ratio) << ',' << e.beads << ','
+    << yes_no(s.valid) << ',' << fmt("%.4f", s.start_ratio) << ',' << e.beads << ','
     << fmt("%.1f", s.wall_seconds) << '\n';
   return o.str();
 }
@@ -43,57 +51,131 @@ std::string csv_row(const CampaignEntry& e) {
 std::string md_row(const CampaignEntry& e) {
   const ShearSummary& s = e.summary;
   std::ostringstream o;
-  o << "| " << fmt("%g", e.d_mm) << " | " << fmt("%g", e.s_kpa) << " | "
+  o << "| " << fmt("%g", e.d_mm) << " | " << fmt("%g", e.s_kpa) << " | " << e.seed << " | "
     << fmt("%.1f", s.peak_tau * 1e-3) << " | " << fmt("%.2f", s.peak_angle) << " at "
     << fmt("%.2f", s.peak_displacement * 1e3) << " mm | " << fmt("%.2f", s.max_angle) << " | "
-    << fmt("%.2f", s.residual_angle) << " | " << fmt("%.2f", s.max_dilatancy_angle) << " | "
-    << fmt("%+.2f", 100 * s.sigma_band_lo) << " / " << fmt("%+.2f", 100 * s.sigma_band_hi)
-    << " (" << fmt("%.2f", 100 * s.sigma_rms) << ")" << (s.valid ? "" : " **invalid**") << " | "
+    << fmt("%.2f", s.residual_angle)
+    << (s.critical_state ? " from " + fmt("%.1f", s.residual_from * 1e3) + " mm"
+                         : std::string(" (not reached)"))
+    << " | " << fmt("%.2f", s.max_dilatancy_angle) << (s.max_dilatancy_dynamic ? " (dynamic)" : "")
+    << " | " << s.dynamic_events << " | " << fmt("%+.2f", 100 * s.sigma_band_lo) << " / "
+    << fmt("%+.2f", 100 * s.sigma_band_hi) << (s.valid ? "" : " **invalid**") << " | "
     << fmt("%.3f", s.start_ratio) << " | " << fmt("%.2g", s.max_inertial_number) << " | "
     << fmt("%.0f", s.wall_seconds) << " |\n";
   return o.str();
 }
 
-std::string se_text(double value, double se, const char* f) {
-  return fmt(f, value) + (std::isfinite(se) ? " ± " + fmt(f, se) : "");
+// "12.34 ± 0.56" (half width or standard error), or the value alone.
+std::string pm(double value, double spread, const char* f) {
+  return fmt(f, value) + (std::isfinite(spread) ? " ± " + fmt(f, spread) : "");
 }
 
-// One size's envelope of one strength: the table row, the plot series.
+// One size and stress over its specimens.
+std::string ensemble_row(double d, double s_kpa, const std::vector<const CampaignEntry*>& tests,
+                         std::string& md) {
+  std::vector<double> peak, residual, peak_tau, res_tau, psi;
+  int critical = 0, dynamic = 0;
+  for (const CampaignEntry* t : tests) {
+    peak.push_back(t->summary.peak_angle);
+    residual.push_back(t->summary.residual_angle);
+    peak_tau.push_back(t->summary.peak_tau * 1e-3);
+    res_tau.push_back(t->summary.residual_tau * 1e-3);
+    psi.push_back(t->summary.max_dilatancy_angle);
+    critical += t->summary.critical_state;
+    dynamic += t->summary.dynamic_events > 0;
+  }
+  std::ostringstream o;
+  o << fmt("%g", d) << ',' << fmt("%g", s_kpa) << ',' << tests.size();
+  for (const auto* x : {&peak, &residual, &peak_tau, &res_tau, &psi}) {
+    const Interval i = mean_ci95(*x);
+    o << ',' << fmt("%.4f", i.mean) << ',' << fmt("%.4f", i.half_width);
+  }
+  o << ',' << critical << ',' << dynamic << '\n';
+  md += "| " + fmt("%g", d) + " | " + fmt("%g", s_kpa) + " | " + std::to_string(tests.size()) +
+        " | " + pm(mean_ci95(peak).mean, mean_ci95(peak).half_width, "%.2f") + " | " +
+        pm(mean_ci95(residual).mean, mean_ci95(residual).half_width, "%.2f") + " | " +
+        pm(mean_ci95(psi).mean, mean_ci95(psi).half_width, "%.1f") + " | " +
+        std::to_string(critical) + " | " + std::to_string(dynamic) + " |\n";
+  return o.str();
+}
+
+// One size's envelope of one strength: the table rows, the plot series.
 struct Envelope {
-  std::string table_row;
+  std::string csv_row, table_row;
   EnvelopeSeries series;
   bool fitted = false;
 };
 
+// Each specimen's fit over its stresses (two or more valid tests).
+std::vector<MohrCoulomb> specimen_fits(const std::vector<const CampaignEntry*>& tests,
+                                       bool residual, EnvelopeSeries& series) {
+  std::map<std::int64_t, std::pair<std::vector<double>, std::vector<double>>> by_seed;
+  for (const CampaignEntry* t : tests) {
+    const double tau = residual ? t->summary.residual_tau : t->summary.peak_tau;
+    by_seed[t->seed].first.push_back(t->summary.normal_stress_target);
+    by_seed[t->seed].second.push_back(tau);
+    series.sigma.push_back(t->summary.normal_stress_target);
+    series.tau.push_back(tau);
+  }
+  std::vector<MohrCoulomb> fits;
+  for (const auto& [seed, pts] : by_seed)
+    if (pts.first.size() >= 2) fits.push_back(fit_mohr_coulomb(pts.first, pts.second));
+  return fits;
+}
+
 Envelope fit_envelope(double d_mm, const std::vector<const CampaignEntry*>& tests, bool residual) {
   Envelope e;
   e.series.label = fmt("%g mm", d_mm);
-  for (const CampaignEntry* t : tests) {
-    e.series.sigma.push_back(t->summary.normal_stress_target);
-    e.series.tau.push_back(residual ? t->summary.residual_tau : t->summary.peak_tau);
-  }
   const std::string which = residual ? "residual" : "peak";
-  if (e.series.sigma.size() < 2) {
-    e.table_row = "| " + fmt("%g", d_mm) + " | " + which + " | – | – | " +
-                  std::to_string(e.series.sigma.size()) + " | needs two or more stresses |\n";
-    std::printf("Mohr-Coulomb d = %g mm (%s): needs two or more normal stresses\n", d_mm,
-                which.c_str());
+  const std::vector<MohrCoulomb> fits = specimen_fits(tests, residual, e.series);
+  const std::string head = fmt("%g", d_mm) + "," + which + "," + std::to_string(fits.size());
+  if (fits.empty()) {
+    e.table_row = "| " + fmt("%g", d_mm) + " | " + which +
+                  " | – | – | 0 | needs two or more stresses per specimen |\n";
+    e.csv_row = head + ",,,,,\n";
     return e;
   }
-  const MohrCoulomb mc = fit_mohr_coulomb(e.series.sigma, e.series.tau);
-  e.series.cohesion = mc.cohesion;
-  e.series.tan_phi = mc.tan_phi;
+  double phi = fits[0].phi_deg, phi_hw = fits[0].phi_se_deg, c = fits[0].cohesion * 1e-3,
+         c_hw = fits[0].cohesion_se * 1e-3;
+  std::string how = fits[0].exact ? "one specimen, two points: no error estimate"
+                                  : "one specimen: ± one standard error of its fit, R² = " +
+                                        fmt("%.4f", fits[0].r2);
+  if (fits.size() > 1) {
+    std::vector<double> phis, cs;
+    double r2 = 0;
+    for (const MohrCoulomb& f : fits) {
+      phis.push_back(f.phi_deg);
+      cs.push_back(f.cohesion * 1e-3);
+      r2 += f.r2 / static_cast<double>(fits.size());
+    }
+    const Interval ip = mean_ci95(phis), ic = mean_ci95(cs);
+    phi = ip.mean, phi_hw = ip.half_width, c = ic.mean, c_hw = ic.half_width;
+    how = "mean of the specimens' fits ± 95 % interval; their mean R² = " + fmt("%.4f", r2);
+  }
+  e.series.tan_phi = std::tan(phi * std::acos(-1.0) / 180);
+  e.series.cohesion = c * 1e3;
   e.fitted = true;
-  e.table_row = "| " + fmt("%g", d_mm) + " | " + which + " | " +
-                se_text(mc.phi_deg, mc.phi_se_deg, "%.2f") + " | " +
-                se_text(mc.cohesion * 1e-3, mc.cohesion_se * 1e-3, "%.2f") + " | " +
-                std::to_string(mc.points) + " | " +
-                (mc.exact ? std::string("two points: the line through them, no error estimate")
-                          : "R² = " + fmt("%.4f", mc.r2)) +
-                " |\n";
-  std::printf("Mohr-Coulomb d = %g mm (%s): %s\n", d_mm, which.c_str(), describe_fit(mc).c_str());
+  e.table_row = "| " + fmt("%g", d_mm) + " | " + which + " | " + pm(phi, phi_hw, "%.2f") + " | " +
+                pm(c, c_hw, "%.2f") + " | " + std::to_string(fits.size()) + " | " + how + " |\n";
+  e.csv_row = head + "," + fmt("%.4f", phi) + "," + fmt("%.4f", phi_hw) + "," + fmt("%.4f", c) +
+              "," + fmt("%.4f", c_hw) + "," + (fits.size() > 1 ? "ci95" : "se") + "\n";
+  std::printf("Mohr-Coulomb d = %g mm (%s): phi = %s deg, c = %s kPa (%zu specimen%s)\n", d_mm,
+              which.c_str(), pm(phi, phi_hw, "%.2f").c_str(), pm(c, c_hw, "%.2f").c_str(),
+              fits.size(), fits.size() > 1 ? "s, 95 % interval" : ", standard error");
   return e;
 }
+
+const char* kTestsIntro =
+    "Peak: the first peak of τ/σ smoothed over a quarter of a bead diameter; largest: the "
+    "largest τ/σ of a row; residual: the mean at the critical state, from where |dz/dx| stays "
+    "below 0.02 to the end (\"not reached\": the last 20 % of the travel, while the volume still "
+    "changes); ψ max: the steepest rise, \"(dynamic)\" when Taylor's energy balance could not "
+    "pay for it; events: stretches where τ/σ − dz/dx < 0 (a dynamic event). σ band: the row "
+    "means' deviation from the target; a test beyond ±10 % is invalid and left out of the "
+    "envelopes.\n\n"
+    "| d (mm) | σ (kPa) | seed | τ peak (kPa) | φ peak (°) | φ largest (°) | φ residual (°) | "
+    "ψ max (°) | events | σ band (%) | τ/σ at rest | I max | wall (s) |\n"
+    "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 
 }  // namespace
 
@@ -119,30 +201,36 @@ void write_campaign_report(const std::string& out_dir, const std::string& base_n
   std::string csv = csv_header();
   std::string md = "# Direct shear campaign\n\nBase scene: `" + base_name + "`; " +
                    std::to_string(entries.size()) + " tests; wall time of the tests run now: " +
-                   fmt("%.0f", wall_seconds) +
-                   " s. Peak: the first peak of τ/σ; largest: the largest τ/σ of the test; "
-                   "residual: the mean over the last 20 % of the shear; σ band: the row means' "
-                   "deviation from the target, with its RMS; a test beyond ±" +
-                   fmt("%.0f", 100 * kValidSigmaBand) +
-                   " % is invalid and left out of the envelopes.\n\n"
-                   "| d (mm) | σ (kPa) | τ peak (kPa) | φ peak (°) | φ largest (°) | "
-                   "φ residual (°) | ψ max (°) | σ band (RMS) (%) | τ/σ at rest | I max | "
-                   "wall (s) |\n"
-                   "|---|---|---|---|---|---|---|---|---|---|---|\n";
-  std::string fits = "\n## Mohr-Coulomb envelopes, τ = c + σ tan φ (± one standard error)\n\n"
-                     "| d (mm) | strength | φ (°) | c (kPa) | points | fit |\n"
+                   fmt("%.0f", wall_seconds) + " s.\n\n## Tests\n\n" + kTestsIntro;
+  std::string ens_csv =
+      "diameter_mm,normal_stress_kPa,specimens,peak_friction_angle_deg,peak_ci95,"
+      "residual_friction_angle_deg,residual_ci95,peak_tau_kPa,peak_tau_ci95,residual_tau_kPa,"
+      "residual_tau_ci95,max_dilatancy_angle_deg,max_dilatancy_ci95,critical_state_reached,"
+      "tests_with_dynamic_events\n";
+  std::string ens_md =
+      "\n## Over the specimens (mean ± 95 % Student interval)\n\n"
+      "| d (mm) | σ (kPa) | specimens | φ peak (°) | φ residual (°) | ψ max (°) | critical "
+      "state reached | with dynamic events |\n|---|---|---|---|---|---|---|---|\n";
+  std::string env_csv = "diameter_mm,strength,specimens,phi_deg,phi_spread_deg,c_kPa,c_spread_kPa,spread\n";
+  std::string fits = "\n## Mohr-Coulomb envelopes, τ = c + σ tan φ\n\n"
+                     "| d (mm) | strength | φ (°) | c (kPa) | specimens | fit |\n"
                      "|---|---|---|---|---|---|\n";
   std::vector<EnvelopeSeries> peaks, residuals;
   for (double d : sizes_mm) {
     std::vector<ShearCurve> curves;
     std::vector<const CampaignEntry*> tests;
+    std::map<double, std::vector<const CampaignEntry*>> by_stress;
+    std::int64_t first_seed = -1;
     for (const CampaignEntry& e : entries) {
       if (e.d_mm != d) continue;
+      if (first_seed < 0) first_seed = e.seed;
       csv += csv_row(e);
       md += md_row(e);
-      curves.push_back({fmt("%g kPa", e.s_kpa), e.rows, e.summary});
+      if (e.seed == first_seed) curves.push_back({fmt("%g kPa", e.s_kpa), e.rows, e.summary});
+      by_stress[e.s_kpa].push_back(&e);
       if (e.summary.valid) tests.push_back(&e);
     }
+    for (const auto& [s_kpa, at] : by_stress) ens_csv += ensemble_row(d, s_kpa, at, ens_md);
     const std::string stem = fmt("d%gmm", d);
     write_size_plots((out / (stem + "_stress.png")).string(),
                      (out / (stem + "_dilation.png")).string(), fmt("Glass beads d = %g mm", d),
@@ -150,13 +238,16 @@ void write_campaign_report(const std::string& out_dir, const std::string& base_n
     for (bool residual : {false, true}) {
       Envelope env = fit_envelope(d, tests, residual);
       fits += env.table_row;
+      env_csv += env.csv_row;
       if (env.fitted) (residual ? residuals : peaks).push_back(env.series);
     }
   }
   write_envelope_plot((out / "mohr_coulomb.png").string(), "peak", peaks);
   write_envelope_plot((out / "mohr_coulomb_residual.png").string(), "residual", residuals);
   write_file_atomic((out / "summary.csv").string(), csv);
-  write_file_atomic((out / "summary.md").string(), md + fits);
+  write_file_atomic((out / "ensemble.csv").string(), ens_csv);
+  write_file_atomic((out / "envelopes.csv").string(), env_csv);
+  write_file_atomic((out / "summary.md").string(), md + ens_md + fits);
 }
 
 }  // namespace simsols

@@ -1,17 +1,29 @@
 // What `simsols campaign` writes once its tests have run (see
 // cmd_campaign.cpp), in OUT:
-//   summary.csv, summary.md   one row per test: the peak (the first peak of
-//                             tau/sigma), the largest tau/sigma, the residual
-//                             (mean over the last 20 % of the shear), the
-//                             dilatancy, the normal-stress band (its RMS,
-//                             valid or not), tau/sigma at rest
+//   summary.csv, summary.md   one row per test (size, stress, seed): the
+//                             peak (the first peak of the smoothed tau/sigma),
+//                             the largest tau/sigma, the residual (at the
+//                             critical state, or the last 20 % flagged), the
+//                             dilatancy and Taylor's energy check, the
+//                             normal-stress band (valid or not), tau/sigma at rest
+//   ensemble.csv              per size and stress, over the specimens (seeds):
+//                             the means of the strengths with their 95 %
+//                             Student intervals
+//   envelopes.csv             per size, the Mohr-Coulomb envelopes
 //   d<size>mm_stress.png, d<size>mm_dilation.png   the curves of each size
+//                             (the first specimen's)
 //   mohr_coulomb.png, mohr_coulomb_residual.png    the envelopes
-// The envelopes are fitted per bead size for the peak and for the residual
-// strength over the valid tests (ShearSummary::valid), with c, phi, their standard errors and the number of points
-// (two points: the exact line, said so; fit_mohr_coulomb in shear_analysis.h).
+// The envelopes (fit_mohr_coulomb in shear_analysis.h) are fitted per bead
+// size for the peak and for the residual strength, over the valid tests
+// (ShearSummary::valid). With several specimens, each specimen's envelope
+// over its stresses is fitted, and phi and c are the means of those fits
+// with their 95 % Student intervals over the specimens: the stresses of one
+// seed start from the same placement, so their points are not independent,
+// while the specimens are. With one specimen: that specimen's fit, with the
+// standard errors of the least squares (an example, not a strength).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -21,6 +33,7 @@ namespace simsols {
 
 struct CampaignEntry {
   double d_mm = 0, s_kpa = 0;
+  std::int64_t seed = 0;  // its specimen's
   int layers = 0, beads = 0;
   std::vector<ShearRow> rows;
   ShearSummary summary;

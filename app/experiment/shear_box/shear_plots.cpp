@@ -66,7 +66,7 @@ void write_shear_plots(const std::string& dir, const std::string& title,
   const ShearRow* peak = peak_row(rows, s);
   const ShearRow* later = later_max_row(rows, s);
   if (peak)
-    tau.markers.push_back({peak->displacement * 1e3, peak->tau * 1e-3,
+    tau.markers.push_back({peak->displacement * 1e3, s.peak_tau * 1e-3,
                            "peak φ = " + fmt("%.1f", s.peak_angle) + "°"});
   if (later)
     tau.markers.push_back({later->displacement * 1e3, later->tau * 1e-3,
@@ -86,10 +86,11 @@ void write_shear_plots(const std::string& dir, const std::string& title,
     rat.markers.push_back({later->displacement * 1e3, s.max_ratio,
                            ratio_label("later maximum", s.max_ratio, s.max_angle)});
   plot::Series residual;
-  residual.label = ratio_label("residual", s.residual_ratio, s.residual_angle);
+  residual.label = ratio_label(s.critical_state ? "critical state" : "residual (volume still changing)",
+                               s.residual_ratio, s.residual_angle);
   if (!rows.empty()) {
     const double end = rows.back().displacement * 1e3;
-    residual.x = {0.8 * end, end};
+    residual.x = {s.residual_from * 1e3, end};
     residual.y = {s.residual_ratio, s.residual_ratio};
     residual.dashed = true;
     rat.series.push_back(residual);
@@ -117,7 +118,7 @@ void write_size_plots(const std::string& stress_png, const std::string& dilation
     tau.series.push_back(column(c.label, c.rows, tau_kpa));
     dil.series.push_back(column(c.label, c.rows, dilation_mm));
     if (const ShearRow* peak = peak_row(c.rows, c.summary))
-      tau.markers.push_back({peak->displacement * 1e3, peak->tau * 1e-3, ""});
+      tau.markers.push_back({peak->displacement * 1e3, c.summary.peak_tau * 1e-3, ""});
   }
   plot::write_chart_png(tau, stress_png);
   plot::write_chart_png(dil, dilation_png);

@@ -131,8 +131,7 @@ std::vector<LabPlot> LabShearBox::live_plots() const {
     dil.x.push_back(r.displacement * 1e3);
     dil.y.push_back(r.dilation * 1e3);
   }
-  const FirstPeak first = first_peak(test_.rows(), test_.normal_stress(),
-                                     kPeakRecoveryDiameters * test_.bead_diameter());
+  const FirstPeak first = peak_of(test_.rows(), test_.normal_stress(), test_.bead_diameter());
   if (first.row >= 0) ratio.peak = tau.peak = std::size_t(first.row);
   return {ratio, tau, sigma, dil};
 }

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <utility>
 #include <sstream>
 #include <stdexcept>
 
@@ -36,6 +37,22 @@ double slope(const std::vector<ShearRow>& r, size_t a, size_t b) {
   return den > 0 ? (n * sxy - sx * sy) / den : 0;
 }
 
+// Rows [a, b) whose displacement lies within w/2 of row i's.
+std::pair<size_t, size_t> window_around(const std::vector<ShearRow>& rows, size_t i, double w) {
+  size_t a = i, b = i + 1;
+  while (a > 0 && rows[a - 1].displacement >= rows[i].displacement - 0.5 * w) --a;
+  while (b < rows.size() && rows[b].displacement <= rows[i].displacement + 0.5 * w) ++b;
+  return {a, b};
+}
+
+// The median of `v` (reordered; the mean of the middle two when even).
+double median(std::vector<double>& v) {
+  const size_t m = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + m, v.end());
+  if (v.size() % 2) return v[m];
+  return 0.5 * (v[m] + *std::max_element(v.begin(), v.begin() + m));
+}
+
 // The row's target normal stress (rows read from older files have none).
 double target_of(const ShearRow& r, double test_target) {
   return r.sigma_target > 0 ? r.sigma_target : test_target;
@@ -53,16 +70,16 @@ std::string shear_rows_csv(const std::vector<ShearRow>& rows) {
   std::string out =
       "time_s,step,displacement_mm,shear_force_N,shear_force_upper_N,tau_kPa,tau_corrected_kPa,"
       "normal_force_N,sigma_kPa,dilation_mm,tau_over_sigma,friction_angle_deg,coordination,"
-      "kinetic_energy_J,inertial_number,outside,sigma_target_kPa\n";
+      "kinetic_energy_J,inertial_number,outside,sigma_target_kPa,sigma_plane_kPa\n";
   char buf[512];
   for (const ShearRow& r : rows) {
     std::snprintf(buf, sizeof buf,
-                  "%.9g,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%.9g\n",
+                  "%.9g,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%.9g,%.9g\n",
                   r.time, static_cast<long long>(r.step), r.displacement * 1e3, r.shear_force,
                   r.shear_force_upper, r.tau * 1e-3, r.tau_corrected * 1e-3, r.normal_force,
                   r.sigma * 1e-3, r.dilation * 1e3, r.sigma > 0 ? r.tau / r.sigma : 0,
                   r.friction_angle, r.coordination, r.kinetic_energy, r.inertial_number,
-                  r.outside, r.sigma_target * 1e-3);
+                  r.outside, r.sigma_target * 1e-3, r.sigma_plane * 1e-3);
     out += buf;
   }
   return out;
@@ -107,6 +124,7 @@ FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target, dou
       best.ratio = ratio;
       best.displacement = r.displacement;
       best.row = static_cast<int>(&r - rows.data());
+      best.tau = r.tau;
       fallen = false;
     } else if (!fallen && best.ratio >= floor && ratio < (1 - softening) * best.ratio) {
       fallen = true;
@@ -115,6 +133,96 @@ FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target, dou
     if (fallen && r.displacement - fell_at >= recovery) break;  // softened, not regained
   }
   return best;
+}
+
+std::vector<ShearRow> smoothed_rows(const std::vector<ShearRow>& rows, double window) {
+  std::vector<ShearRow> out = rows;
+  std::vector<double> ratio, spread;
+  const auto ratio_of = [](const ShearRow& r) { return r.sigma > 0 ? r.tau / r.sigma : 0; };
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const auto [a, b] = window_around(rows, i, window);
+    ratio.clear();
+    for (size_t j = a; j < b; ++j) ratio.push_back(ratio_of(rows[j]));
+    const double m = median(ratio);
+    spread.clear();
+    for (const double x : ratio) spread.push_back(std::fabs(x - m));
+    const double mad = median(spread);
+    if (std::fabs(ratio_of(rows[i]) - m) > kHampelThreshold * 1.4826 * mad)
+      out[i].tau = m * rows[i].sigma;  // an outlier: the window's median
+  }
+  return out;
+}
+
+FirstPeak peak_of(const std::vector<ShearRow>& rows, double sigma_target, double d) {
+  const double spacing =
+      rows.size() > 1 ? (rows.back().displacement - rows.front().displacement) / (rows.size() - 1) : 0;
+  const double window = std::max(kPeakSmoothingDiameters * d, 6.5 * spacing);  // seven rows or more
+  return first_peak(smoothed_rows(rows, window), sigma_target, kPeakRecoveryDiameters * d);
+}
+
+namespace {
+
+// Mean tau and tau/sigma over the loaded rows [a, b).
+Residual mean_strength(const std::vector<ShearRow>& rows, size_t a, size_t b, double target) {
+  Residual r;
+  int count = 0;
+  for (size_t i = a; i < b; ++i)
+    if (loaded(rows[i], target)) {
+      r.tau += rows[i].tau;
+      r.ratio += rows[i].tau / rows[i].sigma;
+      ++count;
+    }
+  if (count > 0) {
+    r.tau /= count;
+    r.ratio /= count;
+  }
+  return r;
+}
+
+}  // namespace
+
+CriticalState critical_state_of(const std::vector<ShearRow>& rows, double sigma_target, double d) {
+  CriticalState c;
+  if (rows.size() < 3) return c;
+  const double travel = rows.back().displacement;
+  const double w = std::max(kCriticalWindowDiameters * d, 0.1 * travel);
+  size_t start = rows.size();
+  while (start > 0 && rows[start - 1].displacement >= 0.5 * travel) {
+    const auto [a, b] = window_around(rows, start - 1, w);
+    if (b - a < 3 || std::fabs(slope(rows, a, b)) > kCriticalDilationRate) break;
+    --start;
+  }
+  c.reached = start < rows.size() && travel - rows[start].displacement >= w * (1 - 1e-7);
+  if (!c.reached) {
+    // the last 20 %, as residual_of
+    const double from = 0.8 * travel * (1 - 1e-7);
+    for (start = rows.size(); start > 0 && rows[start - 1].displacement >= from;) --start;
+  }
+  const Residual r = mean_strength(rows, start, rows.size(), sigma_target);
+  c.from = rows[start].displacement;
+  c.tau = r.tau;
+  c.ratio = r.ratio;
+  c.rate = rows.size() - start >= 2 ? slope(rows, start, rows.size()) : 0;
+  return c;
+}
+
+TaylorCheck taylor_check(const std::vector<ShearRow>& rows, double sigma_target, double from) {
+  TaylorCheck t;
+  const size_t w = std::max<size_t>(3, rows.size() / 40);
+  bool inside = false, first = true;
+  for (size_t a = 0; a + w <= rows.size(); ++a) {
+    if (rows[a].displacement < from) continue;
+    const Residual m = mean_strength(rows, a, a + w, sigma_target);
+    const double mu = m.ratio - slope(rows, a, a + w);
+    if (first || mu < t.min_mu) {
+      t.min_mu = mu;
+      t.at = rows[a + w / 2].displacement;
+      first = false;
+    }
+    if (mu < 0 && !inside) ++t.events;
+    inside = mu < 0;
+  }
+  return t;
 }
 
 namespace {
@@ -136,6 +244,32 @@ void sigma_band(const std::vector<ShearRow>& rows, ShearSummary& s) {
   }
   s.sigma_rms = std::sqrt(sum2 / static_cast<double>(rows.size()));
   s.valid = s.sigma_band_lo >= -kValidSigmaBand && s.sigma_band_hi <= kValidSigmaBand;
+}
+
+// The shear plane's normal stress of a row (older rows: the applied one).
+double plane_sigma(const ShearRow& r) { return r.sigma_plane > 0 ? r.sigma_plane : r.sigma; }
+
+// The wall-friction correction (ShearSummary::wall_load_percent and the
+// angles on the plane), once the peak row and the residual window are known.
+void plane_readings(const std::vector<ShearRow>& rows, int peak_row, ShearSummary& s) {
+  const double target = s.normal_stress_target;
+  double lost = 0, ratio = 0;
+  int n = 0, m = 0;
+  for (const ShearRow& r : rows) {
+    if (r.displacement <= 0 || !loaded(r, target)) continue;
+    lost += 1 - plane_sigma(r) / r.sigma;
+    ++n;
+    if (r.displacement >= s.residual_from) {
+      ratio += r.tau / plane_sigma(r);
+      ++m;
+    }
+  }
+  s.wall_load_percent = n > 0 ? 100 * lost / n : 0;
+  s.residual_angle_plane = m > 0 ? std::atan(ratio / m) * kRad : 0;
+  const double peak_scale = peak_row >= 0 && plane_sigma(rows[peak_row]) > 0
+                                ? rows[peak_row].sigma / plane_sigma(rows[peak_row])
+                                : 1;
+  s.peak_angle_plane = std::atan(s.peak_ratio * peak_scale) * kRad;
 }
 
 }  // namespace
@@ -169,21 +303,42 @@ void analyse_shear_rows(const std::vector<ShearRow>& rows, ShearSummary& out) {
   s.start_tau = rows[0].tau;
   s.start_ratio = rows[0].sigma > 0 ? rows[0].tau / rows[0].sigma : 0;
   s.max_angle = std::atan(s.max_ratio) * kRad;
-  const FirstPeak first = first_peak(rows, target, kPeakRecoveryDiameters * s.bead_diameter);
+  const FirstPeak first = peak_of(rows, target, s.bead_diameter);
   s.peak_ratio = first.ratio;
   s.peak_displacement = first.displacement;
   s.peak_angle = std::atan(first.ratio) * kRad;
-  s.peak_tau = first.row >= 0 ? rows[first.row].tau : 0;
-  const Residual res = residual_of(rows, target);
-  s.residual_tau = res.tau;
-  s.residual_ratio = res.ratio;
-  s.residual_angle = std::atan(res.ratio) * kRad;
+  s.peak_tau = first.tau;
+  const CriticalState cs = critical_state_of(rows, target, s.bead_diameter);
+  s.residual_tau = cs.tau;
+  s.residual_ratio = cs.ratio;
+  s.residual_angle = std::atan(cs.ratio) * kRad;
+  s.critical_state = cs.reached;
+  s.residual_from = cs.from;
+  s.residual_dilation_rate = cs.rate;
   // Dilatancy: least-squares slope of dz(dx) over a sliding window of
   // ~1/40 of the test (at least 3 rows), the steepest rise.
   const size_t w = std::max<size_t>(3, rows.size() / 40);
   double steepest = 0;
-  for (size_t a = 0; a + w <= rows.size(); ++a) steepest = std::max(steepest, slope(rows, a, a + w));
+  size_t at = 0;
+  for (size_t a = 0; a + w <= rows.size(); ++a)
+    if (const double k = slope(rows, a, a + w); k > steepest) {
+      steepest = k;
+      at = a;
+    }
   s.max_dilatancy_angle = std::atan(steepest) * kRad;
+  plane_readings(rows, first.row, s);
+  double mobilised = rows.back().displacement;  // tau/sigma reaches half the peak
+  for (const ShearRow& r : rows)
+    if (loaded(r, target) && r.tau / r.sigma >= 0.5 * s.peak_ratio) {
+      mobilised = r.displacement;
+      break;
+    }
+  const TaylorCheck taylor = taylor_check(rows, target, mobilised);
+  s.taylor_min = taylor.min_mu;
+  s.taylor_min_displacement = taylor.at;
+  s.dynamic_events = taylor.events;
+  s.max_dilatancy_dynamic =
+      rows.size() >= w && mean_strength(rows, at, at + w, target).ratio < steepest;
   out = s;
 }
 
@@ -211,7 +366,17 @@ std::string shear_summary_text(const ShearSummary& s) {
       s.max_inertial_number, s.quasi_static ? "yes" : "no", s.sigma_min * 1e-3, s.sigma_max * 1e-3, 100 * s.sigma_band_lo,
       100 * s.sigma_band_hi, 100 * s.sigma_rms, s.max_outside, s.settle_time,
       s.consolidate_time, s.wall_seconds);
-  return buf;
+  char more[512];
+  std::snprintf(more, sizeof more,
+                "critical_state = %s\nresidual_from_mm = %.6g\nresidual_dilation_rate = %.4g\n"
+                "taylor_min_mu = %.4g\ntaylor_min_displacement_mm = %.6g\ndynamic_events = %d\n"
+                "max_dilatancy_dynamic = %s\nwall_load_percent = %.3f\n"
+                "peak_friction_angle_plane_deg = %.4f\nresidual_friction_angle_plane_deg = %.4f\n",
+                s.critical_state ? "yes" : "no", s.residual_from * 1e3, s.residual_dilation_rate,
+                s.taylor_min, s.taylor_min_displacement * 1e3, s.dynamic_events,
+                s.max_dilatancy_dynamic ? "yes" : "no", s.wall_load_percent, s.peak_angle_plane,
+                s.residual_angle_plane);
+  return std::string(buf) + more;
 }
 
 namespace {
@@ -254,9 +419,10 @@ std::vector<ShearRow> parse_shear_rows_csv(const std::string& text) {
   while (std::getline(in, line)) {
     if (line.empty()) continue;
     const auto f = split(line, ',');
-    if (f.size() != 16 && f.size() != 17)  // 16: written before sigma_target_kPa
+    // 16: written before sigma_target_kPa, 17: before sigma_plane_kPa
+    if (f.size() < 16 || f.size() > 18)
       throw ReadError("shear.csv row " + std::to_string(rows.size() + 1) + " has " +
-                               std::to_string(f.size()) + " fields, expected 17");
+                               std::to_string(f.size()) + " fields, expected 18");
     const std::string where = "shear.csv row " + std::to_string(rows.size() + 1);
     std::vector<double> v;
     for (const std::string& x : f) v.push_back(to_double(x, where));
@@ -277,6 +443,7 @@ std::vector<ShearRow> parse_shear_rows_csv(const std::string& text) {
     r.inertial_number = v[14];
     r.outside = static_cast<int>(v[15]);
     if (v.size() > 16) r.sigma_target = v[16] * 1e3;
+    r.sigma_plane = v.size() > 17 ? v[17] * 1e3 : r.sigma;
     rows.push_back(r);
   }
   return rows;
@@ -361,7 +528,14 @@ ShearSummary parse_shear_summary(const std::string& text) {
                 {"platen_mass_kg", &s.platen_mass, 1},
                 {"settle_time_s", &s.settle_time, 1},
                 {"consolidate_time_s", &s.consolidate_time, 1},
-                {"wall_seconds", &s.wall_seconds, 1}};
+                {"wall_seconds", &s.wall_seconds, 1},
+                {"residual_from_mm", &s.residual_from, 1e-3},
+                {"residual_dilation_rate", &s.residual_dilation_rate, 1},
+                {"taylor_min_mu", &s.taylor_min, 1},
+                {"taylor_min_displacement_mm", &s.taylor_min_displacement, 1e-3},
+                {"wall_load_percent", &s.wall_load_percent, 1},
+                {"peak_friction_angle_plane_deg", &s.peak_angle_plane, 1},
+                {"residual_friction_angle_plane_deg", &s.residual_angle_plane, 1}};
   int seen = 0;
   for (const auto& f : fields)
     if (const auto it = kv.find(f.key); it != kv.end()) {
@@ -370,6 +544,11 @@ ShearSummary parse_shear_summary(const std::string& text) {
     }
   if (const auto it = kv.find("max_beads_outside"); it != kv.end())
     s.max_outside = static_cast<int>(to_double(it->second, it->first));
+  if (const auto it = kv.find("dynamic_events"); it != kv.end())
+    s.dynamic_events = static_cast<int>(to_double(it->second, it->first));
+  s.critical_state = kv.count("critical_state") && kv.at("critical_state") == "yes";
+  s.max_dilatancy_dynamic =
+      kv.count("max_dilatancy_dynamic") && kv.at("max_dilatancy_dynamic") == "yes";
   if (seen < 10) throw ReadError("not a shear-test summary (too few keys)");
   read_band(kv, s);
   return s;

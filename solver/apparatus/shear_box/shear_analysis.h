@@ -35,6 +35,12 @@ struct ShearRow {
   double inertial_number = 0;
   int outside = 0;               // bead centres outside the box (must stay 0)
   double sigma_target = 0;       // Pa, the target during the row (0: the test's)
+  // Pa, the normal stress on the shear plane: the platen's load less what
+  // the upper half's side plates and frame carry by friction,
+  // (N + sum F_z of the beads on them) / A (0 in rows read from older
+  // files: taken as sigma). The grains' own weight above the plane is not
+  // counted (0.2 kPa in the paper's box).
+  double sigma_plane = 0;
 };
 
 // A test whose normal stress leaves this band (a fraction of its target, in
@@ -60,8 +66,30 @@ struct ShearSummary {
   // max_displacement) and the largest tau: in a layered specimen this can be
   // a late jamming event, reported beside the peak but never as it.
   double max_tau = 0, max_ratio = 0, max_angle = 0, max_displacement = 0;
-  double residual_tau = 0, residual_ratio = 0, residual_angle = 0;  // mean over the last 20%
+  // The residual (critical-state) strength: mean tau and tau/sigma over
+  // the critical-state window (critical_state_of) from residual_from on;
+  // when the test never reached zero volume change, over the last 20 % of
+  // the travel with critical_state false. residual_dilation_rate: dz/dx
+  // over that window (least squares).
+  double residual_tau = 0, residual_ratio = 0, residual_angle = 0;
+  bool critical_state = false;
+  double residual_from = 0, residual_dilation_rate = 0;
   double max_dilatancy_angle = 0;   // deg, steepest rise of dz/dx (smoothed)
+  // Taylor's (1948) energy balance, tau/sigma = mu* + dz/dx with mu* >= 0
+  // (taylor_check): the smallest mu* of the test's windows, where it was,
+  // and how many separate stretches had mu* < 0 (the platen rose faster
+  // than the shear work could lift it: a dynamic event, not quasi-static
+  // shearing); max_dilatancy_dynamic when the steepest rise is one.
+  double taylor_min = 0, taylor_min_displacement = 0;
+  int dynamic_events = 0;
+  bool max_dilatancy_dynamic = false;
+  // The wall-friction correction (ShearRow::sigma_plane): the share of the
+  // platen's load the upper half's walls carried, mean over the shear
+  // (percent), and the peak and residual angles on the shear plane's
+  // normal stress, atan(tau / sigma_plane), beside those on the applied
+  // one (the laboratory's reading).
+  double wall_load_percent = 0;
+  double peak_angle_plane = 0, residual_angle_plane = 0;
   double max_inertial_number = 0;
   double sigma_min = 0, sigma_max = 0;  // Pa, band of the row means during shear
   // The same band as fractions of each row's target (sigma / target - 1)
@@ -95,6 +123,39 @@ struct Residual {
 };
 Residual residual_of(const std::vector<ShearRow>& rows, double sigma_target);
 
+// The critical state: the last stretch of the test, in the second half of
+// its travel, where the rate of volume change is near zero,
+// |dz/dx| <= kCriticalDilationRate, dz/dx a least-squares slope over a
+// window of max(kCriticalWindowDiameters d, 10 % of the travel) centred
+// on each row; reached when that stretch ends at the last row and is at
+// least one window long. Then tau and tau/sigma are its means; otherwise
+// `reached` is false and they are residual_of's (the last 20 %).
+// `rate` is dz/dx over the window read (least squares).
+constexpr double kCriticalDilationRate = 0.02;  // tan psi: |psi| <= 1.15 deg
+constexpr double kCriticalWindowDiameters = 1.0;
+struct CriticalState {
+  bool reached = false;
+  double from = 0;  // m, displacement where the window starts
+  double tau = 0, ratio = 0, rate = 0;
+};
+CriticalState critical_state_of(const std::vector<ShearRow>& rows, double sigma_target, double d);
+
+// Taylor's (1948) energy balance for direct shear: the shear work pays for
+// friction and for lifting the normal load, tau dx = mu* sigma dx + sigma dz,
+// so in quasi-static shearing mu* = tau/sigma - dz/dx >= 0. Read over
+// sliding windows of the dilatancy's width (ShearSummary::
+// max_dilatancy_angle) that start at `from` or later; a stretch of
+// windows with mu* < 0 is a dynamic event (elastic or kinetic energy
+// released, a collapse or a jump of a layer), counted once. The balance
+// holds for plastic flow: analyse_shear_rows checks from where tau/sigma
+// first reaches half its peak (before, the specimen's elastic thrust at
+// rest is released, and tau/sigma may still be negative).
+struct TaylorCheck {
+  double min_mu = 0, at = 0;  // the smallest mu* and the displacement of its window
+  int events = 0;
+};
+TaylorCheck taylor_check(const std::vector<ShearRow>& rows, double sigma_target, double from = 0);
+
 // The first peak of a test's rows (ShearSummary::peak_*): the running
 // maximum of tau/sigma at the first sustained softening, a fall of more
 // than `softening` below it that does not regain it within `recovery` of
@@ -109,10 +170,29 @@ Residual residual_of(const std::vector<ShearRow>& rows, double sigma_target);
 constexpr double kPeakRecoveryDiameters = 0.25;
 struct FirstPeak {
   double ratio = 0, displacement = 0;
-  int row = -1;  // its index in `rows`; -1 when there is none
+  double tau = 0;  // Pa, in that row
+  int row = -1;    // its index in `rows`; -1 when there is none
 };
 FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target, double recovery,
                      double softening = 0.05);
+
+// The rows with their outliers of tau/sigma replaced (the Hampel filter:
+// a row whose tau/sigma lies more than kHampelThreshold robust standard
+// deviations, 1.4826 x the median absolute deviation, from the median of
+// a centred window of `window` of displacement (m) gets that median as its
+// tau/sigma; the other rows are kept as they are). A peak is read on these
+// (peak_of): a spike of one rearrangement, a row or two far above its
+// neighbours, goes, while the curve's own maxima, plateaus and cusps keep
+// their height.
+constexpr double kHampelThreshold = 3;
+std::vector<ShearRow> smoothed_rows(const std::vector<ShearRow>& rows, double window);
+// The peak of a test (ShearSummary::peak_*): first_peak of the rows
+// filtered over kPeakSmoothingDiameters bead diameters of shear (and at
+// least seven rows), with a recovery of kPeakRecoveryDiameters. A granular
+// specimen's tau carries spikes of single rearrangements; the strength a
+// laboratory reads is the curve's, not a spike's.
+constexpr double kPeakSmoothingDiameters = 0.05;
+FirstPeak peak_of(const std::vector<ShearRow>& rows, double sigma_target, double d);
 
 // The rows as CSV (mm, kPa, N, J) and back; the summary as "key = value"
 // lines and back. The parsers throw ReadError (common/errors.h) on malformed text.

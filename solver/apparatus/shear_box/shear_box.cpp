@@ -74,7 +74,7 @@ double default_split_height(const Scene& scene, const ShearBox& b, const Specime
 void add_walls(Scene& scene, ShearBox& b, const SpecimenExtent& e) {
   // Geometry: plates reach a little past the corners; the upper half is
   // tall enough for the platen's start and a generous dilation.
-  const int m = b.wall_material;
+  const int m = b.wall_material, insert = b.insert_material;
   const double L = b.length, W = b.width, zs = b.split_height, g = b.gap;
   const double platen_z = e.top + 0.1 * 2 * e.r_max;
   const double upper_top = platen_z + 4 * e.r_max + 0.5 * b.shear_displacement;
@@ -82,7 +82,7 @@ void add_walls(Scene& scene, ShearBox& b, const SpecimenExtent& e) {
   const Vec3 ex{1, 0, 0}, ey{0, 1, 0}, ez{0, 0, 1};
   b.first_wall = static_cast<int>(scene.walls.size());
   auto& w = scene.walls;
-  w.push_back(rectangle_wall("floor", m, {L / 2, W / 2, 0}, ez, ex, L / 2, W / 2));
+  w.push_back(rectangle_wall("floor", insert, {L / 2, W / 2, 0}, ez, ex, L / 2, W / 2));
   w.push_back(rectangle_wall("lower_x0", m, {0, W / 2, low_h / 2}, ex, ey, W / 2, low_h / 2));
   w.push_back(rectangle_wall("lower_x1", m, {L, W / 2, low_h / 2}, {-1, 0, 0}, ey, W / 2, low_h / 2));
   w.push_back(rectangle_wall("lower_y0", m, {L / 2, 0, low_h / 2}, ey, ex, L / 2, low_h / 2));
@@ -101,7 +101,7 @@ void add_walls(Scene& scene, ShearBox& b, const SpecimenExtent& e) {
   w.push_back(rectangle_wall("upper_y1", m, {L / 2, W, zu}, {0, -1, 0}, ex, L / 2, up_h / 2));
   w.push_back(rectangle_wall("upper_frame", m, {L + frame / 2, W / 2, zs + g / 2}, {0, 0, -1}, ex,
                         frame / 2, W / 2));
-  Wall platen = rectangle_wall("platen", m, {L / 2, W / 2, platen_z}, {0, 0, -1}, ex, L / 2, W / 2);
+  Wall platen = rectangle_wall("platen", insert, {L / 2, W / 2, platen_z}, {0, 0, -1}, ex, L / 2, W / 2);
   // Switched on by the loading program (shear_programme.h); its settings are set
   // there too, from the specimen's stiffness.
   platen.servo.enabled = true;
@@ -118,12 +118,14 @@ void build(Scene& scene) {
     throw TableProblem{*issue};
   const SpecimenExtent e = measure_cell_specimen(scene, b.length, b.width, kCheck, "box");
   if (b.gap == 0) b.gap = 0.2 * 2 * e.r_min;
-  kCheck.require(b.gap < e.r_min, "gap", b.gap, "[0, " + num(e.r_min) + ") m (below the smallest radius)");
+  kCheck.require(b.gap < 2 * e.r_min, "gap", b.gap,
+                 "[0, " + num(2 * e.r_min) + ") m (narrower than the smallest grain)");
   if (b.split_height == 0) b.split_height = default_split_height(scene, b, e);
   kCheck.require(b.split_height > b.gap && b.split_height < e.top, "split_height", b.split_height,
           "(" + num(b.gap) + ", " + num(e.top) + ") m (inside the specimen)");
   if (!resolve_wall_material(scene, b.wall_material))
     kCheck.fail("unknown_material", "wall_material", "the box material does not exist");
+  if (b.insert_material < 0) b.insert_material = b.wall_material;
   add_walls(scene, b, e);
 }
 

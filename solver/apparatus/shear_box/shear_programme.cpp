@@ -245,6 +245,11 @@ void ShearProgramme::measure_row() {
   row.tau = row.shear_force / area;
   row.tau_corrected = row.shear_force / shear_area_corrected(box_, row.displacement);
   row.sigma = row.normal_force / area;
+  // what the upper half's side plates and frame carry of the load (the beads
+  // push them down: a negative z-force) does not reach the shear plane
+  double upper_z = 0;
+  for (int w = kUpperX0; w <= kUpperFrame; ++w) upper_z += means[f + w].force[2];
+  row.sigma_plane = (row.normal_force + upper_z) / area;
   row.dilation = platen[2] - z0_;
   row.friction_angle = row.sigma > 0 ? std::atan(row.tau / row.sigma) * kRad : 0;
   const Observables o = sim_.observe();
@@ -377,7 +382,7 @@ ShearSummary ShearProgramme::summary() const {
 std::string ShearProgramme::save_state() const {
   std::ostringstream o;
   o.precision(17);
-  o << "shear_test 3\n"
+  o << "shear_test 4\n"
     << started_ << ' ' << static_cast<int>(phase_) << ' ' << phase_start_ << ' ' << next_check_
     << ' ' << next_row_ << ' ' << row_steps_ << ' ' << shear_steps_ << ' ' << quiet_checks_
     << '\n'
@@ -391,7 +396,7 @@ std::string ShearProgramme::save_state() const {
       << r.shear_force_upper << ' ' << r.tau << ' ' << r.tau_corrected << ' ' << r.normal_force
       << ' ' << r.sigma << ' ' << r.dilation << ' ' << r.friction_angle << ' ' << r.coordination
       << ' ' << r.kinetic_energy << ' ' << r.inertial_number << ' ' << r.outside << ' '
-      << r.sigma_target << '\n';
+      << r.sigma_target << ' ' << r.sigma_plane << '\n';
   return o.str();
 }
 
@@ -401,7 +406,7 @@ void ShearProgramme::restore_state(const std::string& text) {
   int version = 0, phase = 0;
   size_t count = 0;
   in >> tag >> version;
-  if (tag != "shear_test" || version < 1 || version > 3)
+  if (tag != "shear_test" || version < 1 || version > 4)
     throw ReadError("the checkpoint holds no shear-test state");
   in >> started_ >> phase >> phase_start_ >> next_check_ >> next_row_ >> row_steps_ >>
       shear_steps_ >> quiet_checks_ >> sigma_target_ >> speed_ >> gain_ >> integral_time_ >>
@@ -420,6 +425,8 @@ void ShearProgramme::restore_state(const std::string& text) {
         r.tau_corrected >> r.normal_force >> r.sigma >> r.dilation >> r.friction_angle >>
         r.coordination >> r.kinetic_energy >> r.inertial_number >> r.outside;
     if (version >= 3) in >> r.sigma_target;
+    r.sigma_plane = r.sigma;  // before version 4: not measured
+    if (version >= 4) in >> r.sigma_plane;
   }
   if (!in) throw ReadError("malformed shear-test rows");
 }

@@ -22,6 +22,9 @@ struct ShearBox : ApparatusCell {
   ShearBox() { length = 60.23e-3; width = 60.07e-3; }  // inside: x the shear direction
   double split_height = 0;         // m; 0 = mid-height of the specimen (see shear_box.h)
   double gap = 0;                  // m between the halves; 0 = 0.2 x smallest diameter
+  // The floor's and the platen's material (the inserts that grip the soil
+  // in a laboratory box: porous stones, serrated plates); -1 = wall_material.
+  int insert_material = -1;
   double normal_stress = 160e3;    // Pa, the platen's target
   double shear_speed = 0;          // m/s; 0 = from inertial_number
   double inertial_number = 8e-4;   // target I = (v/H) d sqrt(rho/sigma) for the automatic speed

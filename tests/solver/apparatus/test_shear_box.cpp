@@ -142,7 +142,7 @@ duration = 1
 
 TEST(ShearBoxScene, BadValuesNameTheFieldAndRange) {
   const std::string spec = "material = \"glass\"\ndiameter = 6.35e-3\nlayers = 4";
-  expect_scene_error(box_toml(spec, "gap = 4e-3"), "out_of_range", "shear_box.gap");
+  expect_scene_error(box_toml(spec, "gap = 6.4e-3"), "out_of_range", "shear_box.gap");
   expect_scene_error(box_toml(spec, "normal_stress = -5"), "out_of_range", "shear_box.normal_stress");
   expect_scene_error(box_toml(spec, "inertial_number = 2"), "out_of_range", "shear_box.inertial_number");
   expect_scene_error(box_toml(spec, "shear_displacement = 0.05"), "out_of_range",

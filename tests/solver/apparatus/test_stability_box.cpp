@@ -259,16 +259,17 @@ TEST(ServoUnderShock, SigmaSettlesAfterJumps50To400To50kPa) {
 }
 
 // Case 7. The box gap: beads wedged between the two halves. The halves are
-// rectangles with a slot between them (the gap, below the smallest radius,
-// so no centre can pass); a bead sitting at the slot's height is pushed into
+// rectangles with a slot between them (the gap, narrower than the smallest
+// grain, so no bead can pass); a bead sitting at the slot's height is pushed into
 // it and pinched between the plates' edges, and shearing drags it along one
 // edge while the other holds it: the place where the contact with an edge
 // (a line, not a face) could shoot a bead out or let it through. The
 // specimen: nested layers of 4 x 4 and 3 x 3 beads of 3.97 mm, 5 layers, in
 // a box exactly four beads wide; the split is at the height of the
 // middle 4 x 4 layer's centres, so its twelve outer beads face the slot on
-// all four sides, and the gap is the largest the scene allows (0.95 of the
-// radius; build_shear_box refuses a gap of a radius or more). Consolidated
+// all four sides, and the gap is near the largest the scene allows (0.9 of
+// the diameter, as a laboratory opens it with spacers to about the largest
+// grain; build_shear_box refuses a diameter or more). Consolidated
 // to 400 kPa, then sheared by 1.1 d. Asserted: every row counts no bead
 // outside the box, all values finite, no overlap (bead-bead, bead-wall and
 // bead-edge) above 1 % of d, and no bead faster, while shearing, than the
@@ -294,7 +295,7 @@ TEST(BoxGap, WedgedBeadsNeitherEscapeNorExplode) {
   ShearBox b;
   b.length = b.width = n * d * (1 + 1e-6);
   b.split_height = r + 2 * h;  // the middle n x n layer's centres
-  b.gap = 0.95 * r;
+  b.gap = 0.9 * d;
   b.normal_stress = sigma;
   b.inertial_number = full_form() ? 5e-4 : 2.5e-3;
   b.shear_displacement = 1.1 * d;
