@@ -79,6 +79,22 @@ void k0_plot(const std::filesystem::path& d, const std::string& title,
     jaky.y = {s.jaky_k0, s.jaky_k0};
     c.series.push_back(jaky);
   }
+  if (s.mayne_kulhawy_friction_angle > 0) {
+    plot::Series mk;  // on the unloading steps, from the largest one
+    mk.label = "Mayne & Kulhawy K0,nc OCR^sin φ′ (φ′ = " +
+               fmt("%.1f", s.mayne_kulhawy_friction_angle) + "°)";
+    mk.dashed = true;
+    bool unloading = false;
+    for (size_t i = 0; i < s.steps.size(); ++i) {
+      const OedometerStep& st = s.steps[i];
+      const bool last_loading = st.loading && (i + 1 == s.steps.size() || !s.steps[i + 1].loading);
+      if (!last_loading && !unloading) continue;
+      unloading = true;
+      mk.x.push_back(st.sigma_top * 1e-3);
+      mk.y.push_back(st.loading ? s.k0_nc : st.mayne_kulhawy_k0);
+    }
+    c.series.push_back(mk);
+  }
   c.y_min = 0;
   plot::write_chart_png(c, (d / "k0.png").string());
 }

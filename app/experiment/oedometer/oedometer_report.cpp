@@ -23,6 +23,14 @@ std::string oedometer_text(const TestRun& run) {
   if (s.jaky_k0 > 0)
     o += report_printf("  Jaky 1 - sin(%.1f deg) = %.3f; the measured K0 implies phi' = %.1f deg\n",
              s.jaky_friction_angle, s.jaky_k0, s.implied_friction_angle);
+  if (s.cs_points > 0) {
+    o += report_printf("  plastic share of the loading compression %.2f: %s\n", s.plastic_share,
+                       s.virgin ? "a virgin compression line"
+                                : "mostly elastic, Cc is no virgin compression index");
+    if (s.mayne_kulhawy_friction_angle > 0)
+      o += report_printf("  K0 on unloading against Mayne & Kulhawy K0_nc OCR^sin(%.1f deg): worst %.0f %%\n",
+                         s.mayne_kulhawy_friction_angle, 100 * s.mayne_kulhawy_worst);
+  }
   if (!s.valid) o += "  INVALID: a step ended at step_time, not in equilibrium\n";
   return o;
 }

@@ -23,6 +23,7 @@ std::string csv_header() {
          "max_friction_angle_deg,max_displacement_mm,residual_tau_kPa,"
          "residual_friction_angle_deg,critical_state,residual_from_mm,residual_dilation_rate,"
          "max_dilatancy_angle_deg,max_dilatancy_dynamic,dynamic_events,taylor_min_mu,"
+         "wall_load_percent,peak_friction_angle_plane_deg,residual_friction_angle_plane_deg,"
          "max_inertial_number,sigma_band_min_percent,sigma_band_max_percent,sigma_rms_percent,"
          "valid,start_tau_over_sigma,beads,wall_seconds\n";
 }
@@ -41,6 +42,8 @@ std::string csv_row(const CampaignEntry& e) {
     << fmt("%.6g", s.residual_from * 1e3) << ',' << fmt("%.4g", s.residual_dilation_rate) << ','
     << fmt("%.4f", s.max_dilatancy_angle) << ',' << yes_no(s.max_dilatancy_dynamic) << ','
     << s.dynamic_events << ',' << fmt("%.4g", s.taylor_min) << ','
+    << fmt("%.3f", s.wall_load_percent) << ',' << fmt("%.4f", s.peak_angle_plane) << ','
+    << fmt("%.4f", s.residual_angle_plane) << ','
     << fmt("%.4g", s.max_inertial_number) << ',' << fmt("%.3f", 100 * s.sigma_band_lo) << ','
     << fmt("%.3f", 100 * s.sigma_band_hi) << ',' << fmt("%.3f", 100 * s.sigma_rms) << ','
     << yes_no(s.valid) << ',' << fmt("%.4f", s.start_ratio) << ',' << e.beads << ','
@@ -73,7 +76,7 @@ std::string pm(double value, double spread, const char* f) {
 // One size and stress over its specimens.
 std::string ensemble_row(double d, double s_kpa, const std::vector<const CampaignEntry*>& tests,
                          std::string& md) {
-  std::vector<double> peak, residual, peak_tau, res_tau, psi;
+  std::vector<double> peak, residual, peak_tau, res_tau, psi, res_plane, wall_load;
   int critical = 0, dynamic = 0;
   for (const CampaignEntry* t : tests) {
     peak.push_back(t->summary.peak_angle);
@@ -81,12 +84,14 @@ std::string ensemble_row(double d, double s_kpa, const std::vector<const Campaig
     peak_tau.push_back(t->summary.peak_tau * 1e-3);
     res_tau.push_back(t->summary.residual_tau * 1e-3);
     psi.push_back(t->summary.max_dilatancy_angle);
+    res_plane.push_back(t->summary.residual_angle_plane);
+    wall_load.push_back(t->summary.wall_load_percent);
     critical += t->summary.critical_state;
     dynamic += t->summary.dynamic_events > 0;
   }
   std::ostringstream o;
   o << fmt("%g", d) << ',' << fmt("%g", s_kpa) << ',' << tests.size();
-  for (const auto* x : {&peak, &residual, &peak_tau, &res_tau, &psi}) {
+  for (const auto* x : {&peak, &residual, &peak_tau, &res_tau, &psi, &res_plane, &wall_load}) {
     const Interval i = mean_ci95(*x);
     o << ',' << fmt("%.4f", i.mean) << ',' << fmt("%.4f", i.half_width);
   }
@@ -205,8 +210,9 @@ void write_campaign_report(const std::string& out_dir, const std::string& base_n
   std::string ens_csv =
       "diameter_mm,normal_stress_kPa,specimens,peak_friction_angle_deg,peak_ci95,"
       "residual_friction_angle_deg,residual_ci95,peak_tau_kPa,peak_tau_ci95,residual_tau_kPa,"
-      "residual_tau_ci95,max_dilatancy_angle_deg,max_dilatancy_ci95,critical_state_reached,"
-      "tests_with_dynamic_events\n";
+      "residual_tau_ci95,max_dilatancy_angle_deg,max_dilatancy_ci95,"
+      "residual_friction_angle_plane_deg,residual_plane_ci95,wall_load_percent,wall_load_ci95,"
+      "critical_state_reached,tests_with_dynamic_events\n";
   std::string ens_md =
       "\n## Over the specimens (mean ± 95 % Student interval)\n\n"
       "| d (mm) | σ (kPa) | specimens | φ peak (°) | φ residual (°) | ψ max (°) | critical "

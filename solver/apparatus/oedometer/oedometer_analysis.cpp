@@ -51,6 +51,24 @@ std::vector<OedometerStep> steps_of(const std::vector<OedometerRow>& rows, int p
   return steps;
 }
 
+// The plastic share and the K0-OCR comparison of a test that unloaded
+// after its largest step `peak`.
+void unloading_readings(OedometerSummary& s, int peak) {
+  const double e_max = s.steps[peak].void_ratio, e_last = s.steps.back().void_ratio;
+  if (s.seated_void_ratio > e_max)
+    s.plastic_share = (s.seated_void_ratio - e_last) / (s.seated_void_ratio - e_max);
+  s.virgin = s.plastic_share > 0.5;
+  const double phi = s.jaky_friction_angle > 0 ? s.jaky_friction_angle : s.implied_friction_angle;
+  s.mayne_kulhawy_friction_angle = phi;
+  if (phi <= 0) return;
+  for (size_t i = peak + 1; i < s.steps.size(); ++i) {
+    OedometerStep& st = s.steps[i];
+    st.ocr = s.steps[peak].sigma_top / st.sigma_top;
+    st.mayne_kulhawy_k0 = s.k0_nc * std::pow(st.ocr, std::sin(phi / kDeg));
+    s.mayne_kulhawy_worst = std::max(s.mayne_kulhawy_worst, std::fabs(st.k0 / st.mayne_kulhawy_k0 - 1));
+  }
+}
+
 }  // namespace
 
 double compression_index(const std::vector<double>& sigma, const std::vector<double>& e) {
@@ -102,6 +120,7 @@ OedometerSummary analyse_oedometer(const std::vector<OedometerRow>& rows, int pe
   if (static_cast<int>(s.steps.size()) > peak + 1) {
     s.k0_end = s.steps.back().k0;
     s.ocr_end = s.steps[peak].sigma_target / s.steps.back().sigma_target;
+    unloading_readings(s, peak);
   }
   return s;
 }
@@ -183,19 +202,25 @@ std::string oedometer_summary_text(const OedometerSummary& s) {
   key("jaky_k0", s.jaky_k0);
   key("implied_friction_angle_deg", s.implied_friction_angle);
   key("side_friction_share", s.side_friction);
+  key("plastic_share", s.plastic_share);
+  o << "virgin_compression = " << (s.virgin ? "yes" : "no (mostly elastic: Cc is no virgin index)")
+    << "\n";
+  key("mayne_kulhawy_friction_angle_deg", s.mayne_kulhawy_friction_angle);
+  key("mayne_kulhawy_worst_error", s.mayne_kulhawy_worst);
   o << "valid = " << (s.valid ? "yes" : "no (a step ended at step_time, not in equilibrium)")
     << "\n";
   key("settle_time_s", s.settle_time);
   key("wall_seconds", s.wall_seconds);
   o << "# step sigma_target_kPa sigma_top_kPa sigma_h_kPa void_ratio strain k0 side_friction "
-       "held_s equilibrium branch\n";
+       "held_s equilibrium branch ocr mayne_kulhawy_k0\n";
   char buf[256];
   for (size_t i = 0; i < s.steps.size(); ++i) {
     const OedometerStep& st = s.steps[i];
-    std::snprintf(buf, sizeof buf, "step_%zu = %.6g %.6g %.6g %.6f %.6g %.4f %.4f %.4g %s %s\n",
-                  i + 1, st.sigma_target * 1e-3, st.sigma_top * 1e-3, st.sigma_h * 1e-3,
-                  st.void_ratio, st.strain, st.k0, st.side_friction, st.duration,
-                  st.equilibrium ? "yes" : "no", st.loading ? "loading" : "unloading");
+    std::snprintf(buf, sizeof buf,
+                  "step_%zu = %.6g %.6g %.6g %.6f %.6g %.4f %.4f %.4g %s %s %.4g %.4f\n", i + 1,
+                  st.sigma_target * 1e-3, st.sigma_top * 1e-3, st.sigma_h * 1e-3, st.void_ratio,
+                  st.strain, st.k0, st.side_friction, st.duration, st.equilibrium ? "yes" : "no",
+                  st.loading ? "loading" : "unloading", st.ocr, st.mayne_kulhawy_k0);
     o << buf;
   }
   return o.str();

@@ -23,7 +23,10 @@
 //   Jaky            K0 = 1 - sin(phi') for the friction angle the scene
 //                   gives, and the phi' the measured K0 implies;
 //   side friction   the share of the platen's load the sides carry by
-//                   friction, 1 - (sigma_base - weight/A) / sigma_top.
+//                   friction, 1 - (sigma_base - weight/A) / sigma_top;
+//   plastic share   what unloading did not recover of the loading branch's
+//                   compression: whether Cc is a virgin compression index;
+//   Mayne-Kulhawy   K0 on unloading against K0_nc OCR^(sin phi').
 #pragma once
 
 #include <cstdint>
@@ -61,6 +64,10 @@ struct OedometerStep {
   double duration = 0;        // s held
   bool equilibrium = false;   // ended in equilibrium (else at step_time)
   bool loading = true;        // on the loading branch (up to the largest step)
+  // Unloading steps: the overconsolidation ratio sigma_max / sigma and
+  // Mayne & Kulhawy's K0 for it (OedometerSummary::mayne_kulhawy_*); 1 and
+  // 0 on the loading branch.
+  double ocr = 1, mayne_kulhawy_k0 = 0;
 };
 
 struct OedometerSummary {
@@ -77,6 +84,19 @@ struct OedometerSummary {
   double jaky_k0 = 0;           // 1 - sin(phi') for it (0: none)
   double implied_friction_angle = 0;  // deg, asin(1 - k0_nc)
   double side_friction = 0;     // mean over the loading steps
+  // How much of the loading branch was plastic: the void ratio lost from
+  // the seated state to the largest step that unloading to the last step
+  // did not recover, (e_seated - e_last) / (e_seated - e_max). The loading
+  // branch is a virgin compression line when more than half is
+  // irrecoverable (plastic_share > 0.5); below that it is mostly the
+  // contacts' elastic compression and Cc is not a virgin index.
+  double plastic_share = 0;
+  bool virgin = false;
+  // Mayne & Kulhawy (1982): K0 = K0_nc OCR^(sin phi') on unloading, with
+  // K0_nc the measured one and phi' the scene's friction_angle, else the
+  // one Jaky's formula implies from K0_nc; the largest |measured / that - 1|
+  // over the unloading steps.
+  double mayne_kulhawy_friction_angle = 0, mayne_kulhawy_worst = 0;
   bool valid = true;            // every step ended in equilibrium
   double settle_time = 0;       // s
   double wall_seconds = 0;      // filled in by the caller

@@ -253,6 +253,11 @@ double plane_sigma(const ShearRow& r) { return r.sigma_plane > 0 ? r.sigma_plane
 // angles on the plane), once the peak row and the residual window are known.
 void plane_readings(const std::vector<ShearRow>& rows, int peak_row, ShearSummary& s) {
   const double target = s.normal_stress_target;
+  if (std::none_of(rows.begin(), rows.end(), [](const ShearRow& r) { return r.sigma_plane > 0; })) {
+    s.wall_load_percent = s.peak_angle_plane = s.residual_angle_plane =
+        std::numeric_limits<double>::quiet_NaN();  // rows written before it was recorded
+    return;
+  }
   double lost = 0, ratio = 0;
   int n = 0, m = 0;
   for (const ShearRow& r : rows) {
@@ -443,7 +448,7 @@ std::vector<ShearRow> parse_shear_rows_csv(const std::string& text) {
     r.inertial_number = v[14];
     r.outside = static_cast<int>(v[15]);
     if (v.size() > 16) r.sigma_target = v[16] * 1e3;
-    r.sigma_plane = v.size() > 17 ? v[17] * 1e3 : r.sigma;
+    if (v.size() > 17) r.sigma_plane = v[17] * 1e3;  // else 0: not recorded
     rows.push_back(r);
   }
   return rows;

@@ -36,10 +36,10 @@ struct ShearRow {
   int outside = 0;               // bead centres outside the box (must stay 0)
   double sigma_target = 0;       // Pa, the target during the row (0: the test's)
   // Pa, the normal stress on the shear plane: the platen's load less what
-  // the upper half's side plates and frame carry by friction,
-  // (N + sum F_z of the beads on them) / A (0 in rows read from older
-  // files: taken as sigma). The grains' own weight above the plane is not
-  // counted (0.2 kPa in the paper's box).
+  // the upper half's four side plates carry by friction (more, when a
+  // dilating specimen drags them up), (N + sum F_z of the beads on them) / A
+  // (0 in rows written before it was recorded). The grains' own
+  // weight above the plane is not counted (0.2 kPa in the paper's box).
   double sigma_plane = 0;
 };
 
@@ -87,7 +87,7 @@ struct ShearSummary {
   // platen's load the upper half's walls carried, mean over the shear
   // (percent), and the peak and residual angles on the shear plane's
   // normal stress, atan(tau / sigma_plane), beside those on the applied
-  // one (the laboratory's reading).
+  // one (the laboratory's reading). NaN when the rows do not record it.
   double wall_load_percent = 0;
   double peak_angle_plane = 0, residual_angle_plane = 0;
   double max_inertial_number = 0;

@@ -245,10 +245,12 @@ void ShearProgramme::measure_row() {
   row.tau = row.shear_force / area;
   row.tau_corrected = row.shear_force / shear_area_corrected(box_, row.displacement);
   row.sigma = row.normal_force / area;
-  // what the upper half's side plates and frame carry of the load (the beads
-  // push them down: a negative z-force) does not reach the shear plane
+  // what the upper half's side plates carry of the load by friction (the
+  // beads drag them down: a negative z-force) does not reach the shear
+  // plane; what they drag up (a dilating specimen) adds to it. The upper
+  // frame is left out: the beads under it are the lower half's.
   double upper_z = 0;
-  for (int w = kUpperX0; w <= kUpperFrame; ++w) upper_z += means[f + w].force[2];
+  for (int w = kUpperX0; w <= kUpperY1; ++w) upper_z += means[f + w].force[2];
   row.sigma_plane = (row.normal_force + upper_z) / area;
   row.dilation = platen[2] - z0_;
   row.friction_angle = row.sigma > 0 ? std::atan(row.tau / row.sigma) * kRad : 0;
@@ -425,8 +427,7 @@ void ShearProgramme::restore_state(const std::string& text) {
         r.tau_corrected >> r.normal_force >> r.sigma >> r.dilation >> r.friction_angle >>
         r.coordination >> r.kinetic_energy >> r.inertial_number >> r.outside;
     if (version >= 3) in >> r.sigma_target;
-    r.sigma_plane = r.sigma;  // before version 4: not measured
-    if (version >= 4) in >> r.sigma_plane;
+    if (version >= 4) in >> r.sigma_plane;  // before: not recorded (0)
   }
   if (!in) throw ReadError("malformed shear-test rows");
 }

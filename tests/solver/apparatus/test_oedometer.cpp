@@ -129,6 +129,16 @@ TEST(OedometerAnalysis, IndicesAreTheSlopesOfStraightLines) {
   EXPECT_NEAR(s.jaky_k0, 0.5, 1e-12);  // 1 - sin 30 deg
   EXPECT_NEAR(s.implied_friction_angle, 30, 1e-9);
   EXPECT_TRUE(s.valid);
+  // unloading recovered 0.05 of the 0.2 per decade: three quarters plastic
+  EXPECT_NEAR(s.plastic_share, 0.75, 1e-12);
+  EXPECT_TRUE(s.virgin);
+  // Mayne & Kulhawy with phi' = 30 deg: 0.5 OCR^0.5, 1.414 at OCR 8 and
+  // 2.828 at OCR 32, where 0.8 is measured
+  EXPECT_NEAR(s.steps[6].ocr, 8, 1e-12);
+  EXPECT_NEAR(s.steps[6].mayne_kulhawy_k0, 0.5 * std::sqrt(8.0), 1e-12);
+  EXPECT_NEAR(s.steps[7].mayne_kulhawy_k0, 0.5 * std::sqrt(32.0), 1e-12);
+  EXPECT_NEAR(s.mayne_kulhawy_worst, 1 - 0.8 / (0.5 * std::sqrt(32.0)), 1e-12);
+  EXPECT_DOUBLE_EQ(s.steps[3].mayne_kulhawy_k0, 0.0);  // loading: none
   const std::vector<OedometerRow> back = parse_oedometer_rows_csv(oedometer_rows_csv(rows));
   ASSERT_EQ(back.size(), rows.size());
   EXPECT_NEAR(back[3].void_ratio, rows[3].void_ratio, 1e-8);

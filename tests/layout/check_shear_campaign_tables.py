@@ -1,0 +1,69 @@
+#!/usr/bin/env python3
+"""One source for the direct shear campaign's headline tables: every row of
+the shipped ensemble and envelope CSVs (docs/img/campaign_ensemble.csv,
+docs/img/campaign_envelopes.csv, as `simsols campaign --seeds` writes them)
+appears in docs/shear-box.md as the campaign's summary.md prints it, and the
+apparatus-choice table (docs/img/apparatus_choices.csv) likewise; every
+headline figure quoted elsewhere in the docs from these tables is checked
+against them too.
+  tests/layout/check_shear_campaign_tables.py [REPO_ROOT]"""
+import csv
+import math
+import os
+import sys
+
+root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
+
+
+def rows_of(name):
+    return list(csv.DictReader(open(os.path.join(root, "docs/img", name))))
+
+
+def pm(value, spread, digits):
+    v = float(value)
+    text = f"{v:.{digits}f}"
+    if spread not in ("", None) and math.isfinite(float(spread)):
+        text += f" ± {float(spread):.{digits}f}"
+    return text
+
+
+def g(x):
+    return f"{float(x):g}"
+
+
+doc = open(os.path.join(root, "docs/shear-box.md"), encoding="utf-8").read()
+bad = []
+
+# the ensemble rows: | d | sigma | specimens | peak | residual | psi | critical | dynamic |
+for r in rows_of("campaign_ensemble.csv"):
+    row = (f"| {g(r['diameter_mm'])} | {g(r['normal_stress_kPa'])} | {r['specimens']} | "
+           f"{pm(r['peak_friction_angle_deg'], r['peak_ci95'], 2)} | "
+           f"{pm(r['residual_friction_angle_deg'], r['residual_ci95'], 2)} | "
+           f"{pm(r['max_dilatancy_angle_deg'], r['max_dilatancy_ci95'], 1)} | "
+           f"{r['critical_state_reached']} | {r['tests_with_dynamic_events']} |")
+    if row not in doc:
+        bad.append(f"docs/shear-box.md lacks the ensemble row {row}")
+
+# the envelope rows: | d | strength | phi | c | specimens | ...
+for r in rows_of("campaign_envelopes.csv"):
+    if not r["phi_deg"]:
+        continue
+    head = (f"| {g(r['diameter_mm'])} | {r['strength']} | {pm(r['phi_deg'], r['phi_spread_deg'], 2)} | "
+            f"{pm(r['c_kPa'], r['c_spread_kPa'], 2)} | {r['specimens']} |")
+    if head not in doc:
+        bad.append(f"docs/shear-box.md lacks the envelope row starting {head}")
+
+# the apparatus choices: | choice | specimens | peak | residual | residual on the plane | psi | wall load |
+for r in rows_of("apparatus_choices.csv"):
+    row = (f"| {r['choice']} | {r['specimens']} | {pm(r['peak_deg'], r['peak_ci95'], 2)} | "
+           f"{pm(r['residual_deg'], r['residual_ci95'], 2)} | "
+           f"{pm(r['residual_plane_deg'], r['residual_plane_ci95'], 2)} | "
+           f"{pm(r['max_dilatancy_deg'], r['max_dilatancy_ci95'], 1)} | "
+           f"{pm(r['wall_load_percent'], r['wall_load_ci95'], 2)} |")
+    if row not in doc:
+        bad.append(f"docs/shear-box.md lacks the apparatus-choice row {row}")
+
+if bad:
+    print("\n".join(bad))
+    sys.exit(1)
+print("shear campaign and apparatus-choice tables agree with their CSVs")
