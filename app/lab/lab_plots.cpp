@@ -107,7 +107,11 @@ void draw_lab_plot(const char* id, const LabPlot& p, float width, float height) 
     // a log axis is labelled by value: 10, 100, 1000
     const double value = p.x_log ? std::pow(10.0, v) : v;
     const std::string s = plot::format_tick(value, p.x_log ? value : xs);
-    dl->AddText({X(v) - ImGui::CalcTextSize(s.c_str()).x / 2, b.y + 0.2f * fh}, axis, s.c_str());
+    // centred under its tick, but inside the child window (the last one
+    // of a log axis, "1000", is wider than the margin right of the plot)
+    const float w = ImGui::CalcTextSize(s.c_str()).x;
+    const float left = std::clamp(X(v) - w / 2, o.x, o.x + avail.x - w);
+    dl->AddText({left, b.y + 0.2f * fh}, axis, s.c_str());
   }
   for (double v : yt) {
     dl->AddLine({a.x, Y(v)}, {b.x, Y(v)}, grid);

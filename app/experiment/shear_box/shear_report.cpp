@@ -17,12 +17,23 @@ std::string shear_text(const TestRun& run) {
   o += report_printf("  peak     tau/sigma = %.3f  phi_peak     = %.2f deg  (tau = %.2f kPa at %.2f mm; the "
            "first peak)\n",
            s.peak_ratio, s.peak_angle, s.peak_tau * 1e-3, s.peak_displacement * 1e3);
-  o += report_printf("  residual tau/sigma = %.3f  phi_residual = %.2f deg  (tau = %.2f kPa, mean over the "
-           "last 20 %%)\n",
-           s.residual_ratio, s.residual_angle, s.residual_tau * 1e-3);
+  if (s.critical_state)
+    o += report_printf("  residual tau/sigma = %.3f  phi_residual = %.2f deg  (tau = %.2f kPa, at the "
+                       "critical state from %.2f mm: dz/dx = %+.3f)\n",
+                       s.residual_ratio, s.residual_angle, s.residual_tau * 1e-3,
+                       s.residual_from * 1e3, s.residual_dilation_rate);
+  else
+    o += report_printf("  residual tau/sigma = %.3f  phi_residual = %.2f deg  (tau = %.2f kPa, the last "
+                       "20 %%; no critical state: dz/dx = %+.3f there)\n",
+                       s.residual_ratio, s.residual_angle, s.residual_tau * 1e-3,
+                       s.residual_dilation_rate);
   if (s.max_ratio > s.peak_ratio)
     o += report_printf("  largest  tau/sigma = %.3f  (phi = %.2f deg at %.2f mm, after the peak)\n",
              s.max_ratio, s.max_angle, s.max_displacement * 1e3);
+  if (s.dynamic_events > 0)
+    o += report_printf("  dynamic events %d (Taylor: tau/sigma - dz/dx down to %.3f at %.2f mm)%s\n",
+                       s.dynamic_events, s.taylor_min, s.taylor_min_displacement * 1e3,
+                       s.max_dilatancy_dynamic ? "; the steepest dilatancy is one" : "");
   o += report_printf("  max dilatancy angle %.2f deg; inertial number <= %.2g; beads outside %d\n"
            "  sigma band %+.2f%% / %+.2f%% (RMS %.2f%%)%s; tau/sigma at rest %.3f\n",
            s.max_dilatancy_angle, s.max_inertial_number, s.max_outside, 100 * s.sigma_band_lo,

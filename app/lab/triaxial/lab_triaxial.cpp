@@ -110,7 +110,8 @@ std::string LabTriaxial::progress_text() const {
   }
   const TriaxialRow& r = test_.rows().back();
   std::snprintf(buf, sizeof buf,
-                "ε_a = %.3f %%, q = %.1f kPa, p′ = %.1f kPa, ε_v = %.3f %%, e = %.4f\n"
+                // short lines: the panel wraps a long one at any '.', inside a number
+                "ε_a = %.3f %%, q = %.1f kPa\np′ = %.1f kPa, ε_v = %.3f %%\ne = %.4f\n"
                 "%zu rows, I = %.2g",
                 100 * r.axial_strain, r.q * 1e-3, r.p * 1e-3, 100 * r.volumetric_strain,
                 r.void_ratio, test_.rows().size(), r.inertial_number);

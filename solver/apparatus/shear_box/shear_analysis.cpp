@@ -184,25 +184,34 @@ Residual mean_strength(const std::vector<ShearRow>& rows, size_t a, size_t b, do
 CriticalState critical_state_of(const std::vector<ShearRow>& rows, double sigma_target, double d) {
   CriticalState c;
   if (rows.size() < 3) return c;
+  const size_t n = rows.size();
   const double travel = rows.back().displacement;
-  const double w = std::max(kCriticalWindowDiameters * d, 0.1 * travel);
-  size_t start = rows.size();
-  while (start > 0 && rows[start - 1].displacement >= 0.5 * travel) {
-    const auto [a, b] = window_around(rows, start - 1, w);
-    if (b - a < 3 || std::fabs(slope(rows, a, b)) > kCriticalDilationRate) break;
-    --start;
+  const double shortest = std::max(kCriticalMinDiameters * d, 0.1 * travel);
+  // the longest tail from the second half on whose dilation rate, and that
+  // of each of its halves, is near zero
+  size_t start = n;
+  for (size_t a = 0; a + 2 < n; ++a) {
+    if (rows[a].displacement < 0.5 * travel) continue;
+    if (travel - rows[a].displacement < shortest * (1 - 1e-7)) break;
+    const size_t mid = a + (n - a) / 2;
+    if (std::fabs(slope(rows, a, n)) <= kCriticalDilationRate &&
+        std::fabs(slope(rows, a, mid)) <= 2 * kCriticalDilationRate &&
+        std::fabs(slope(rows, mid, n)) <= 2 * kCriticalDilationRate) {
+      start = a;
+      break;
+    }
   }
-  c.reached = start < rows.size() && travel - rows[start].displacement >= w * (1 - 1e-7);
+  c.reached = start < n;
   if (!c.reached) {
     // the last 20 %, as residual_of
     const double from = 0.8 * travel * (1 - 1e-7);
-    for (start = rows.size(); start > 0 && rows[start - 1].displacement >= from;) --start;
+    for (start = n; start > 0 && rows[start - 1].displacement >= from;) --start;
   }
-  const Residual r = mean_strength(rows, start, rows.size(), sigma_target);
+  const Residual r = mean_strength(rows, start, n, sigma_target);
   c.from = rows[start].displacement;
   c.tau = r.tau;
   c.ratio = r.ratio;
-  c.rate = rows.size() - start >= 2 ? slope(rows, start, rows.size()) : 0;
+  c.rate = n - start >= 2 ? slope(rows, start, n) : 0;
   return c;
 }
 

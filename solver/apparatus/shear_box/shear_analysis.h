@@ -123,16 +123,17 @@ struct Residual {
 };
 Residual residual_of(const std::vector<ShearRow>& rows, double sigma_target);
 
-// The critical state: the last stretch of the test, in the second half of
-// its travel, where the rate of volume change is near zero,
-// |dz/dx| <= kCriticalDilationRate, dz/dx a least-squares slope over a
-// window of max(kCriticalWindowDiameters d, 10 % of the travel) centred
-// on each row; reached when that stretch ends at the last row and is at
-// least one window long. Then tau and tau/sigma are its means; otherwise
-// `reached` is false and they are residual_of's (the last 20 %).
-// `rate` is dz/dx over the window read (least squares).
+// The critical state: the longest final stretch of the test, starting in
+// the second half of its travel, over which the specimen shears at
+// constant volume: the least-squares rate dz/dx over the stretch within
+// kCriticalDilationRate of zero, and over each of its two halves within
+// twice that (no dilation cancelled by a later contraction), the stretch
+// at least max(kCriticalMinDiameters d, 10 % of the travel) long (a rate
+// over less shear is one rearrangement's). When there is one, `reached`,
+// and tau and tau/sigma are its means; otherwise they are residual_of's
+// (the last 20 %). `rate` is dz/dx over the stretch read.
 constexpr double kCriticalDilationRate = 0.02;  // tan psi: |psi| <= 1.15 deg
-constexpr double kCriticalWindowDiameters = 1.0;
+constexpr double kCriticalMinDiameters = 0.25;
 struct CriticalState {
   bool reached = false;
   double from = 0;  // m, displacement where the window starts

@@ -72,17 +72,17 @@ TEST(ShearAnalysisTest, PeakOfTheFilteredCurveIgnoresASingleRowSpike) {
 }
 
 TEST(ShearAnalysisTest, CriticalStateIsWhereTheVolumeStopsChanging) {
-  // dilates at 0.2 up to 2.5 mm, then flat (slope 0); tau/sigma 0.5 then 0.3
-  auto rows = curve(500, [](double x) { return x < 2.5e-3 ? 0.5 : 0.3; },
-                    [](double x) { return 0.2 * std::min(x, 2.5e-3); });
-  const double d = 0.5e-3;  // window: max(d, 10 % of 5 mm) = 0.5 mm
+  // dilates at 0.2 up to 3 mm, then flat (slope 0); tau/sigma 0.5 then 0.3
+  auto rows = curve(500, [](double x) { return x < 3e-3 ? 0.5 : 0.3; },
+                    [](double x) { return 0.2 * std::min(x, 3e-3); });
+  const double d = 0.5e-3;  // shortest stretch: max(d/4, 10 % of 5 mm) = 0.5 mm
   const CriticalState c = critical_state_of(rows, kSigma, d);
   ASSERT_TRUE(c.reached);
-  // rows whose 0.5 mm window still holds part of the rise are left out
-  EXPECT_GT(c.from, 2.5e-3);
-  EXPECT_LE(c.from, 2.75e-3 + 1e-9);
-  EXPECT_NEAR(c.ratio, 0.3, 1e-12);
-  EXPECT_NEAR(c.rate, 0.0, 1e-9);
+  // the longest tail whose rate is within 0.02 (0.011 here) and each half's
+  // within 0.04: it takes in the last 0.33 mm of the rise, no more
+  EXPECT_NEAR(c.from, 2.67e-3, 0.005e-3);
+  EXPECT_LE(std::fabs(c.rate), 0.02);
+  EXPECT_NEAR(c.ratio, 0.3 + 0.2 * 33 / 234, 0.002);
   // still dilating at the end: not reached, the last 20 % with its rate
   auto rising = curve(500, [](double) { return 0.4; }, [](double x) { return 0.05 * x; });
   const CriticalState r = critical_state_of(rising, kSigma, d);
@@ -90,9 +90,19 @@ TEST(ShearAnalysisTest, CriticalStateIsWhereTheVolumeStopsChanging) {
   EXPECT_NEAR(r.from, 4e-3, 1e-5);
   EXPECT_NEAR(r.rate, 0.05, 1e-9);
   EXPECT_NEAR(r.ratio, residual_of(rising, kSigma).ratio, 1e-12);
-  // contracting slowly (|rate| 0.01 < 0.02) counts as the critical state
+  // contracting slowly (0.01 < 0.02) is the critical state, from mid-travel
   auto creeping = curve(500, [](double) { return 0.3; }, [](double x) { return -0.01 * x; });
-  EXPECT_TRUE(critical_state_of(creeping, kSigma, d).reached);
+  const CriticalState k = critical_state_of(creeping, kSigma, d);
+  EXPECT_TRUE(k.reached);
+  EXPECT_NEAR(k.from, 2.5e-3, 1e-9);
+  // dilating, then contracting as much: the whole tail averages zero, its
+  // halves do not; only the contracting end's last stretch could count,
+  // and at -0.1 it does not
+  auto back = curve(500, [](double) { return 0.3; },
+                    [](double x) { return x < 3.75e-3 ? 0.1 * x : 0.375e-3 - 0.1 * (x - 3.75e-3); });
+  EXPECT_FALSE(critical_state_of(back, kSigma, d).reached);
+  // a stretch shorter than a quarter of a bead is no critical state
+  EXPECT_FALSE(critical_state_of(rows, kSigma, 12e-3).reached);  // 3 mm; the second half has 2.5
 }
 
 TEST(ShearAnalysisTest, TaylorEnergyBalanceFlagsALiftTheShearCannotPay) {
