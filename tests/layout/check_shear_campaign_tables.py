@@ -63,6 +63,33 @@ for r in rows_of("apparatus_choices.csv"):
     if row not in doc:
         bad.append(f"docs/shear-box.md lacks the apparatus-choice row {row}")
 
+# the paired changes against the paper's smooth box: the same seeds, each
+# choice's value minus the smooth box's, mean +- t(0.975, n-1) sd / sqrt(n)
+T975 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262}
+
+
+def paired(choice, base, key):
+    by = {}
+    for r in rows_of("apparatus_choices_tests.csv"):
+        by.setdefault(r["choice"], {})[r["seed"]] = float(r[key])
+    d = [by[choice][k] - by[base][k] for k in sorted(by[base]) if k in by[choice]]
+    n = len(d)
+    mean = sum(d) / n
+    sd = math.sqrt(sum((x - mean) ** 2 for x in d) / (n - 1))
+    return mean, T975[n - 1] * sd / math.sqrt(n)
+
+
+choices = [r["choice"] for r in rows_of("apparatus_choices.csv")]
+for c in choices[1:]:
+    cells = []
+    for key, digits in (("peak_friction_angle_deg", 2), ("residual_friction_angle_deg", 2),
+                        ("max_dilatancy_angle_deg", 1)):
+        m, hw = paired(c, choices[0], key)
+        cells.append(f"{m:+.{digits}f} ± {hw:.{digits}f}")
+    row = f"| {c} | " + " | ".join(cells) + " |"
+    if row not in doc:
+        bad.append(f"docs/shear-box.md lacks the paired row {row}")
+
 if bad:
     print("\n".join(bad))
     sys.exit(1)

@@ -93,7 +93,7 @@ std::string ensemble_row(double d, double s_kpa, const std::vector<const Campaig
   o << fmt("%g", d) << ',' << fmt("%g", s_kpa) << ',' << tests.size();
   for (const auto* x : {&peak, &residual, &peak_tau, &res_tau, &psi, &res_plane, &wall_load}) {
     const Interval i = mean_ci95(*x);
-    o << ',' << fmt("%.4f", i.mean) << ',' << fmt("%.4f", i.half_width);
+    o << ',' << fmt("%.6f", i.mean) << ',' << fmt("%.6f", i.half_width);
   }
   o << ',' << critical << ',' << dynamic << '\n';
   md += "| " + fmt("%g", d) + " | " + fmt("%g", s_kpa) + " | " + std::to_string(tests.size()) +
@@ -162,8 +162,8 @@ Envelope fit_envelope(double d_mm, const std::vector<const CampaignEntry*>& test
   e.fitted = true;
   e.table_row = "| " + fmt("%g", d_mm) + " | " + which + " | " + pm(phi, phi_hw, "%.2f") + " | " +
                 pm(c, c_hw, "%.2f") + " | " + std::to_string(fits.size()) + " | " + how + " |\n";
-  e.csv_row = head + "," + fmt("%.4f", phi) + "," + fmt("%.4f", phi_hw) + "," + fmt("%.4f", c) +
-              "," + fmt("%.4f", c_hw) + "," + (fits.size() > 1 ? "ci95" : "se") + "\n";
+  e.csv_row = head + "," + fmt("%.6f", phi) + "," + fmt("%.6f", phi_hw) + "," + fmt("%.6f", c) +
+              "," + fmt("%.6f", c_hw) + "," + (fits.size() > 1 ? "ci95" : "se") + "\n";
   std::printf("Mohr-Coulomb d = %g mm (%s): phi = %s deg, c = %s kPa (%zu specimen%s)\n", d_mm,
               which.c_str(), pm(phi, phi_hw, "%.2f").c_str(), pm(c, c_hw, "%.2f").c_str(),
               fits.size(), fits.size() > 1 ? "s, 95 % interval" : ", standard error");
@@ -214,7 +214,7 @@ void write_campaign_report(const std::string& out_dir, const std::string& base_n
       "residual_friction_angle_plane_deg,residual_plane_ci95,wall_load_percent,wall_load_ci95,"
       "critical_state_reached,tests_with_dynamic_events\n";
   std::string ens_md =
-      "\n## Over the specimens (mean ± 95 % Student interval)\n\n"
+      "\n## Over the specimens (the valid tests: mean ± 95 % Student interval)\n\n"
       "| d (mm) | σ (kPa) | specimens | φ peak (°) | φ residual (°) | ψ max (°) | critical "
       "state reached | with dynamic events |\n|---|---|---|---|---|---|---|---|\n";
   std::string env_csv = "diameter_mm,strength,specimens,phi_deg,phi_spread_deg,c_kPa,c_spread_kPa,spread\n";
@@ -233,8 +233,9 @@ void write_campaign_report(const std::string& out_dir, const std::string& base_n
       csv += csv_row(e);
       md += md_row(e);
       if (e.seed == first_seed) curves.push_back({fmt("%g kPa", e.s_kpa), e.rows, e.summary});
+      if (!e.summary.valid) continue;  // listed above, left out of what follows
       by_stress[e.s_kpa].push_back(&e);
-      if (e.summary.valid) tests.push_back(&e);
+      tests.push_back(&e);
     }
     for (const auto& [s_kpa, at] : by_stress) ens_csv += ensemble_row(d, s_kpa, at, ens_md);
     const std::string stem = fmt("d%gmm", d);

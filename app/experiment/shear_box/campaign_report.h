@@ -6,7 +6,7 @@
 //                             critical state, or the last 20 % flagged), the
 //                             dilatancy and Taylor's energy check, the
 //                             normal-stress band (valid or not), tau/sigma at rest
-//   ensemble.csv              per size and stress, over the specimens (seeds):
+//   ensemble.csv              per size and stress, over the valid specimens (seeds):
 //                             the means of the strengths with their 95 %
 //                             Student intervals
 //   envelopes.csv             per size, the Mohr-Coulomb envelopes

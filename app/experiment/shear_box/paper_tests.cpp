@@ -73,11 +73,14 @@ Scene paper_test_scene(const Scene& base, const std::string& base_name, double d
   if (b.specimen.method == Specimen::Method::Given)
     throw SceneError("bad_enum", base_name, 0, "shear_box.specimen.method",
                      "the programme prepares its own specimens: use \"layers\" or \"pour\"");
+  // the gap keeps its share of the bead diameter (the default's 0.2 d, or
+  // the base's own spacing); the split height is found again
+  const double gap_share = b.specimen.diameter > 0 ? b.gap / b.specimen.diameter : 0;
   b.specimen.diameter = d_mm * 1e-3;
   b.specimen.layers = layers;
   b.normal_stress = s_kpa * 1e3;
   b.split_height = 0;
-  b.gap = 0;
+  b.gap = gap_share * b.specimen.diameter;
   sc.apparatus = b;
   sc.name = paper_test_name(d_mm, s_kpa);
   sc.source_text.clear();

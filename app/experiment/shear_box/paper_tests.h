@@ -29,7 +29,8 @@ std::string paper_test_name(double d_mm, double s_kpa);
 // One test of the programme from a base scene with a [shear_box]: its
 // specimen replaced by `layers` layers of d_mm beads (layers = 0: Table 1's
 // layers, and d_mm read as the Table 1 size it names), its
-// normal stress set, the split and gap back to automatic; `adjust` may
+// normal stress set, the split back to automatic and the gap the same share
+// of the diameter as the base's (0.2 d by default); `adjust` may
 // change it further before the box is built (precision, displacement).
 // Throws SceneError naming `base_name` and the field.
 Scene paper_test_scene(const Scene& base, const std::string& base_name, double d_mm,
