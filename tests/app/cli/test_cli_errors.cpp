@@ -85,11 +85,11 @@ TEST(CliErrors, CampaignRunsOutsideTheRepositoryFromTheBuiltInScene) {
 // nothing is drawn.
 TEST(CliErrors, PlotDrawsCurvesAndNamesBadInputs) {
   const fs::path d = fresh_dir("plot");
-  std::vector<simsols::ShearRow> rows(5);
-  for (int i = 0; i < 5; ++i) {
+  std::vector<simsols::ShearRow> rows(15);
+  for (int i = 0; i < 15; ++i) {
     rows[i].displacement = i * 1e-4;
     rows[i].sigma = rows[i].sigma_target = 1e5;
-    rows[i].tau = (i == 2 ? 6e4 : 3e4);  // a peak at the third row
+    rows[i].tau = (0.6 - 0.05 * std::abs(i - 7)) * 1e5;  // a peak of 0.6 at the eighth row
   }
   fs::create_directories(d / "a");
   std::ofstream(d / "a/shear.csv") << simsols::shear_rows_csv(rows);
@@ -98,7 +98,7 @@ TEST(CliErrors, PlotDrawsCurvesAndNamesBadInputs) {
   const Result ok = run_in(d, "plot a b.csv --out fig --title T");
   ASSERT_EQ(ok.status, 0) << ok.out;
   EXPECT_TRUE(fs::exists(d / "fig_stress.png") && fs::exists(d / "fig_dilation.png"));
-  EXPECT_NE(ok.out.find("a: 5 rows, peak tau/sigma 0.600"), std::string::npos) << ok.out;
+  EXPECT_NE(ok.out.find("a: 15 rows, peak tau/sigma 0.600"), std::string::npos) << ok.out;
   const Result labels = run_in(d, "plot a b.csv --label one --out g");
   EXPECT_EQ(labels.status, 2);
   EXPECT_NE(labels.out.find("--label"), std::string::npos) << labels.out;
