@@ -3,9 +3,9 @@
 the shipped ensemble and envelope CSVs (docs/img/campaign_ensemble.csv,
 docs/img/campaign_envelopes.csv, as `simsols campaign --seeds` writes them)
 appears in docs/shear-box.md as the campaign's summary.md prints it, and the
-apparatus-choice table (docs/img/apparatus_choices.csv) likewise; every
-headline figure quoted elsewhere in the docs from these tables is checked
-against them too.
+apparatus-choice tables (docs/img/apparatus_choices.csv, the paired
+changes recomputed from apparatus_choices_tests.csv) likewise, with the
+wall friction they name the measured median of the shipped VSSUQ data.
   tests/layout/check_shear_campaign_tables.py [REPO_ROOT]"""
 import csv
 import math
@@ -62,6 +62,14 @@ for r in rows_of("apparatus_choices.csv"):
            f"{pm(r['wall_load_percent'], r['wall_load_ci95'], 2)} |")
     if row not in doc:
         bad.append(f"docs/shear-box.md lacks the apparatus-choice row {row}")
+
+# the side plates' friction named in the table is the measured median of
+# glass on acrylic in the shipped VSSUQ data
+lines = (l for l in open(os.path.join(root, "assets/materials/glass_beads_vssuq.csv")) if not l.startswith("#"))
+mu = sorted(float(r["value"]) for r in csv.DictReader(lines) if r["quantity"] == "mupw_glass-acrylic")
+median = (mu[len(mu) // 2] + mu[(len(mu) - 1) // 2]) / 2
+if not any(f"μ_w = {median:.3f}" in r["choice"] for r in rows_of("apparatus_choices.csv")):
+    bad.append(f"the wall-friction choice should name the measured median μ_w = {median:.3f}")
 
 # the paired changes against the paper's smooth box: the same seeds, each
 # choice's value minus the smooth box's, mean +- t(0.975, n-1) sd / sqrt(n)
