@@ -3,9 +3,12 @@
 //
 // ShearRow is one row of the test (means over the steps of the row);
 // analyse_shear_rows() turns the rows into a ShearSummary with the
-// definitions of geotechnical practice (the first peak, the residual over a
-// stated late window, the normal-stress band and the test's validity);
-// fit_mohr_coulomb() fits an envelope over several tests. ShearProgramme
+// definitions of geotechnical practice (the first peak of the curve once
+// single-row spikes are filtered out, the residual at the critical state
+// where the volume stops changing, Taylor's energy check for dynamic
+// events, the shear plane's normal stress, the normal-stress band and the
+// test's validity); fit_mohr_coulomb() fits an envelope over several
+// tests (the campaign fits one per specimen, campaign_report.h). ShearProgramme
 // (shear_programme.h) fills the rows, the campaign re-reads kept tests through
 // the CSV and summary parsers, the lab draws the same marks live; the
 // definitions live here once.
