@@ -91,16 +91,16 @@ std::string ensemble_row(double d, double s_kpa, const std::vector<const Campaig
   }
   std::ostringstream o;
   o << fmt("%g", d) << ',' << fmt("%g", s_kpa) << ',' << tests.size();
+  std::vector<Interval> in;  // in the CSV's order: peak, residual, ..., psi (4)
   for (const auto* x : {&peak, &residual, &peak_tau, &res_tau, &psi, &res_plane, &wall_load}) {
-    const Interval i = mean_ci95(*x);
-    o << ',' << fmt("%.6f", i.mean) << ',' << fmt("%.6f", i.half_width);
+    in.push_back(mean_ci95(*x));
+    o << ',' << fmt("%.6f", in.back().mean) << ',' << fmt("%.6f", in.back().half_width);
   }
   o << ',' << critical << ',' << dynamic << '\n';
   md += "| " + fmt("%g", d) + " | " + fmt("%g", s_kpa) + " | " + std::to_string(tests.size()) +
-        " | " + pm(mean_ci95(peak).mean, mean_ci95(peak).half_width, "%.2f") + " | " +
-        pm(mean_ci95(residual).mean, mean_ci95(residual).half_width, "%.2f") + " | " +
-        pm(mean_ci95(psi).mean, mean_ci95(psi).half_width, "%.1f") + " | " +
-        std::to_string(critical) + " | " + std::to_string(dynamic) + " |\n";
+        " | " + pm(in[0].mean, in[0].half_width, "%.2f") + " | " +
+        pm(in[1].mean, in[1].half_width, "%.2f") + " | " + pm(in[4].mean, in[4].half_width, "%.1f") +
+        " | " + std::to_string(critical) + " | " + std::to_string(dynamic) + " |\n";
   return o.str();
 }
 

@@ -64,6 +64,39 @@ bool loaded(const ShearRow& r, double test_target) {
   return r.sigma > 0.5 * target_of(r, test_target);
 }
 
+// Mean tau and tau/sigma over the loaded rows [a, b).
+Residual mean_strength(const std::vector<ShearRow>& rows, size_t a, size_t b, double target) {
+  Residual r;
+  int count = 0;
+  for (size_t i = a; i < b; ++i)
+    if (loaded(rows[i], target)) {
+      r.tau += rows[i].tau;
+      r.ratio += rows[i].tau / rows[i].sigma;
+      ++count;
+    }
+  if (count > 0) {
+    r.tau /= count;
+    r.ratio /= count;
+  }
+  return r;
+}
+
+// The first row of the last 20 % of the travel: at 0.8 x the end when rows
+// are evenly spaced, included whether the displacements are exact or read
+// back from shear.csv (9 digits).
+size_t last_fifth(const std::vector<ShearRow>& rows) {
+  const double from = 0.8 * rows.back().displacement * (1 - 1e-7);
+  size_t start = rows.size();
+  while (start > 0 && rows[start - 1].displacement >= from) --start;
+  return start;
+}
+
+// The sliding window (rows) of the dilatancy angle and Taylor's check:
+// about 1/40 of the test, at least 3 rows.
+size_t dilatancy_window(const std::vector<ShearRow>& rows) {
+  return std::max<size_t>(3, rows.size() / 40);
+}
+
 }  // namespace
 
 std::string shear_rows_csv(const std::vector<ShearRow>& rows) {
@@ -86,24 +119,7 @@ std::string shear_rows_csv(const std::vector<ShearRow>& rows) {
 }
 
 Residual residual_of(const std::vector<ShearRow>& rows, double sigma_target) {
-  Residual r;
-  if (rows.empty()) return r;
-  // the window's first row sits at 0.8 x the end when rows are evenly
-  // spaced: included whether the displacements are exact or read back from
-  // shear.csv (9 digits)
-  const double from = 0.8 * rows.back().displacement * (1 - 1e-7);
-  int count = 0;
-  for (const ShearRow& row : rows)
-    if (row.displacement >= from && loaded(row, sigma_target)) {
-      r.tau += row.tau;
-      r.ratio += row.tau / row.sigma;
-      ++count;
-    }
-  if (count > 0) {
-    r.tau /= count;
-    r.ratio /= count;
-  }
-  return r;
+  return rows.empty() ? Residual{} : mean_strength(rows, last_fifth(rows), rows.size(), sigma_target);
 }
 
 FirstPeak first_peak(const std::vector<ShearRow>& rows, double sigma_target, double recovery,
@@ -160,27 +176,6 @@ FirstPeak peak_of(const std::vector<ShearRow>& rows, double sigma_target, double
   return first_peak(smoothed_rows(rows, window), sigma_target, kPeakRecoveryDiameters * d);
 }
 
-namespace {
-
-// Mean tau and tau/sigma over the loaded rows [a, b).
-Residual mean_strength(const std::vector<ShearRow>& rows, size_t a, size_t b, double target) {
-  Residual r;
-  int count = 0;
-  for (size_t i = a; i < b; ++i)
-    if (loaded(rows[i], target)) {
-      r.tau += rows[i].tau;
-      r.ratio += rows[i].tau / rows[i].sigma;
-      ++count;
-    }
-  if (count > 0) {
-    r.tau /= count;
-    r.ratio /= count;
-  }
-  return r;
-}
-
-}  // namespace
-
 CriticalState critical_state_of(const std::vector<ShearRow>& rows, double sigma_target, double d) {
   CriticalState c;
   if (rows.size() < 3) return c;
@@ -202,11 +197,7 @@ CriticalState critical_state_of(const std::vector<ShearRow>& rows, double sigma_
     }
   }
   c.reached = start < n;
-  if (!c.reached) {
-    // the last 20 %, as residual_of
-    const double from = 0.8 * travel * (1 - 1e-7);
-    for (start = n; start > 0 && rows[start - 1].displacement >= from;) --start;
-  }
+  if (!c.reached) start = last_fifth(rows);  // as residual_of
   const Residual r = mean_strength(rows, start, n, sigma_target);
   c.from = rows[start].displacement;
   c.tau = r.tau;
@@ -217,7 +208,7 @@ CriticalState critical_state_of(const std::vector<ShearRow>& rows, double sigma_
 
 TaylorCheck taylor_check(const std::vector<ShearRow>& rows, double sigma_target, double from) {
   TaylorCheck t;
-  const size_t w = std::max<size_t>(3, rows.size() / 40);
+  const size_t w = dilatancy_window(rows);
   bool inside = false, first = true;
   for (size_t a = 0; a + w <= rows.size(); ++a) {
     if (rows[a].displacement < from) continue;
@@ -329,9 +320,9 @@ void analyse_shear_rows(const std::vector<ShearRow>& rows, ShearSummary& out) {
   s.critical_state = cs.reached;
   s.residual_from = cs.from;
   s.residual_dilation_rate = cs.rate;
-  // Dilatancy: least-squares slope of dz(dx) over a sliding window of
-  // ~1/40 of the test (at least 3 rows), the steepest rise.
-  const size_t w = std::max<size_t>(3, rows.size() / 40);
+  // Dilatancy: least-squares slope of dz(dx) over a sliding window, the
+  // steepest rise.
+  const size_t w = dilatancy_window(rows);
   double steepest = 0;
   size_t at = 0;
   for (size_t a = 0; a + w <= rows.size(); ++a)
