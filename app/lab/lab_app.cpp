@@ -117,10 +117,22 @@ void LabApp::attach_view() {
   fit_view();
 }
 
+// The camera on the beads and walls where they are now (F, the panel's
+// Fit, a new simulation, the end of a stage: refit_on_stage).
 void LabApp::fit_view() {
   if (!sim_view_) return;
+  sim_view_->refit_bounds();
   camera_.set_preset(preset_);
   camera_.fit(sim_view_->lo(), sim_view_->hi(), double(view_w_) / std::max(1, view_h_));
+}
+
+// A specimen settles into a fraction of the height it was poured in: the
+// view is framed again once it is prepared, loaded and when the test starts.
+void LabApp::refit_on_stage() {
+  const LabStage st = exp_->stage();
+  if (st == fitted_stage_) return;
+  fitted_stage_ = st;
+  if (st == LabStage::Prepared || st == LabStage::Loaded || st == LabStage::Running) fit_view();
 }
 
 void LabApp::poll_input() {
@@ -321,6 +333,7 @@ int LabApp::run() {
     act(exp_->poll());
     if (script_) run_script();
     attach_view();  // after anything that may have replaced the simulation
+    refit_on_stage();
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();

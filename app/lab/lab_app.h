@@ -56,6 +56,7 @@ class LabApp {
   void act(const std::string& error);  // shows an action's error in the panel
   LabExperiment& experiment() { return *exp_; }
   void fit_view();
+  void refit_on_stage();
   void save_screenshot(const std::string& path);
   void save_frame(const std::string& path);  // the viewport only (or the Alioscopy image)
   std::string state_text();                  // key = value lines (scripts, tests)
@@ -118,6 +119,7 @@ class LabApp {
   render::Camera camera_;
   render::ViewPreset preset_ = render::ViewPreset::ThreeQuarter;
   int generation_ = -1;
+  LabStage fitted_stage_ = LabStage::Empty;  // the stage the view was last framed for
   std::string message_;  // last error or note, shown in the panel
   bool help_ = false, close_asked_ = false, quit_ = false;
   double draw_ms_ = 0, fps_ = 0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "solver/core/observe.h"
 
@@ -54,7 +55,6 @@ std::pair<glm::dvec3, glm::dvec3> plane_axes(const glm::dvec3& n) {
 SimulationView::SimulationView(const Gl& gl, Simulation& sim)
     : sim_(sim), packer_(sim), buffers_(gl) {
   const Scene& scene = sim.scene();
-  const glm::dvec3 origin = to_glm(packer_.origin());
   // Layered specimens: one band per layer, from the reference heights (the
   // layers' centres are evenly spaced by construction).
   const Specimen* specimen = scene.specimen();
@@ -68,26 +68,41 @@ SimulationView::SimulationView(const Gl& gl, Simulation& sim)
     const int layers = specimen->layers;
     if (zmax > zmin) packer_.set_layer_bands(zmin, (zmax - zmin) / (layers - 1));
   }
-  // Bounds: the initial specimen and the rectangles, these no further than
-  // half the specimen's size beyond it (the triaxial cell's plates are much
-  // larger than the specimen so they can slide past each other: the view
-  // frames the specimen, not them).
-  glm::dvec3 lo(1e300), hi(-1e300);
-  double radii = 0;
+  std::vector<Vec3> centres, walls;
+  std::vector<double> radii;
   for (const Particle& p : scene.particles) {
-    lo = glm::min(lo, to_glm(p.position) - p.radius);
-    hi = glm::max(hi, to_glm(p.position) + p.radius);
-    radii += p.radius;
+    centres.push_back(p.position);
+    radii.push_back(p.radius);
   }
-  if (!scene.particles.empty())  // the force chains' width scale
-    buffers_.mutable_geometry().bead_radius = float(radii / double(scene.particles.size()));
+  for (const Wall& w : scene.walls) walls.push_back(w.point);
+  set_bounds(centres, radii, walls);
+  if (!radii.empty())  // the force chains' width scale
+    buffers_.mutable_geometry().bead_radius =
+        float(std::accumulate(radii.begin(), radii.end(), 0.0) / double(radii.size()));
+  bridge_ = std::make_unique<ParticleBridge>(gl, buffers_, packer_, sim.model().device());
+}
+
+// Bounds: the beads and the rectangles (walls at `wall_at`), these no
+// further than half the specimen's size beyond it (the triaxial cell's
+// plates are much larger than the specimen so they can slide past each
+// other: the view frames the specimen, not them).
+void SimulationView::set_bounds(const std::vector<Vec3>& centres, const std::vector<double>& radii,
+                                const std::vector<Vec3>& wall_at) {
+  const Scene& scene = sim_.scene();
+  const glm::dvec3 origin = to_glm(packer_.origin());
+  glm::dvec3 lo(1e300), hi(-1e300);
+  for (size_t i = 0; i < centres.size(); ++i) {
+    lo = glm::min(lo, to_glm(centres[i]) - radii[i]);
+    hi = glm::max(hi, to_glm(centres[i]) + radii[i]);
+  }
   const bool beads = lo.x <= hi.x;
   const glm::dvec3 reach = beads ? 0.5 * (hi - lo) : glm::dvec3(1e300);
   const glm::dvec3 wall_lo = beads ? lo - reach : glm::dvec3(-1e300),
                    wall_hi = beads ? hi + reach : glm::dvec3(1e300);
-  for (const Wall& w : scene.walls) {
+  for (size_t i = 0; i < scene.walls.size(); ++i) {
+    const Wall& w = scene.walls[i];
     if (w.shape != WallShape::Rectangle) continue;
-    const glm::dvec3 c = to_glm(w.point), u = to_glm(w.axis_u) * w.half_u,
+    const glm::dvec3 c = to_glm(wall_at[i]), u = to_glm(w.axis_u) * w.half_u,
                      v = glm::cross(to_glm(w.normal), to_glm(w.axis_u)) * w.half_v;
     for (int k = 0; k < 4; ++k) {
       const glm::dvec3 q = glm::clamp(c + ((k & 1) ? u : -u) + ((k & 2) ? v : -v), wall_lo, wall_hi);
@@ -102,7 +117,11 @@ SimulationView::SimulationView(const Gl& gl, Simulation& sim)
     clip_lo_ = wall_lo - origin;
     clip_hi_ = wall_hi - origin;
   }
-  bridge_ = std::make_unique<ParticleBridge>(gl, buffers_, packer_, sim.model().device());
+}
+
+void SimulationView::refit_bounds() {
+  const ParticleSnapshot s = sim_.snapshot();
+  set_bounds(s.position, s.radius, wall_points(sim_.model(), sim_.state()));
 }
 
 SimulationView::Update SimulationView::update(ColorField field, bool contacts) {

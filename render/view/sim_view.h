@@ -19,6 +19,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "render/plot/colormap.h"
 #include "render/view/particle_bridge.h"
@@ -50,13 +51,18 @@ class SimulationView {
 
   // The geometry to draw: the buffers, the walls where they are now, bounds.
   FrameGeometry geometry();
-  // Bounds of the specimen and the apparatus at the start (render frame):
-  // what camera fitting uses, so a view does not jump as the run goes on.
+  // Bounds of the specimen and the apparatus (render frame): what camera
+  // fitting uses, taken at the start and again only on refit_bounds() (the
+  // lab calls it when a stage ends and on F), so a view does not jump as the
+  // run goes on. The walls are drawn within half the specimen's size of it.
   glm::dvec3 lo() const { return lo_; }
   glm::dvec3 hi() const { return hi_; }
+  void refit_bounds();  // the beads and walls where they are now
 
  private:
   void add_cell_faces(FrameGeometry& g, const glm::dvec3& origin);
+  void set_bounds(const std::vector<Vec3>& centres, const std::vector<double>& radii,
+                  const std::vector<Vec3>& wall_at);
   Simulation& sim_;
   ViewPacker packer_;
   GeometryBuffers buffers_;

@@ -65,6 +65,9 @@ void Simulation::set_wall_velocity(int wall, const Vec3& v) {
 
 void Simulation::set_servo(int wall, const WallServo& c) {
   check_wall(*model_, wall, "set_servo");
+  if (c.leader >= 0) check_wall(*model_, c.leader, "set_servo (leader)");
+  if (c.leader == wall || !(c.stop >= 0))
+    throw std::invalid_argument("set_servo: a wall cannot lead itself, and a stop is >= 0 m");
   if (c.enabled && !model_->config().servo)
     throw std::logic_error("set_servo: the kernels were built without servo walls");
   if (!model_->config().servo) return;
@@ -91,6 +94,8 @@ WallServo Simulation::servo_setting(int wall) {
   s.enabled = a[3] != 0;
   s.integral_time = b[0] > 0 ? 1 / b[0] : 0;
   s.mass = b[1] > 0 ? 1 / b[1] : 0;
+  s.leader = static_cast<int>(b[2]) - 1;
+  s.stop = b[3];
   return s;
 }
 

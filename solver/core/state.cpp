@@ -12,7 +12,8 @@ namespace simsols {
 
 std::array<double, 8> servo_record(const WallServo& c) {
   return {c.target_force, c.gain, c.max_speed, c.enabled ? 1.0 : 0.0,
-          c.integral_time > 0 ? 1 / c.integral_time : 0, c.mass > 0 ? 1 / c.mass : 0, 0, 0};
+          c.integral_time > 0 ? 1 / c.integral_time : 0, c.mass > 0 ? 1 / c.mass : 0,
+          c.leader >= 0 ? c.leader + 1.0 : 0.0, c.stop};
 }
 
 namespace {

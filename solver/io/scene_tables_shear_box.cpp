@@ -10,7 +10,8 @@ void read_shear_box(const Reader& root, Scene& scene) {
                       {"length", "width", "split_height", "gap", "wall_material", "insert_material", "normal_stress",
                        "shear_speed", "inertial_number", "shear_displacement", "loading",
                        "platen_mass", "servo_gain", "servo_max_speed", "servo_integral_time",
-                       "settle_time", "consolidate_time", "rows", "specimen"});
+                       "upper_half", "upper_half_weight", "settle_time", "consolidate_time",
+                       "rows", "specimen"});
   ShearBox b;
   b.length = r.number("length", b.length);
   b.width = r.number("width", b.width);
@@ -27,6 +28,8 @@ void read_shear_box(const Reader& root, Scene& scene) {
   b.servo_gain = r.number("servo_gain", b.servo_gain);
   b.servo_max_speed = r.number("servo_max_speed", b.servo_max_speed);
   b.servo_integral_time = r.number("servo_integral_time", b.servo_integral_time);
+  b.upper_half = r.choice("upper_half", ShearBox::UpperHalf::Fixed);
+  b.upper_half_weight = r.number("upper_half_weight", b.upper_half_weight);
   b.settle_time = r.number("settle_time", b.settle_time);
   b.consolidate_time = r.number("consolidate_time", b.consolidate_time);
   const std::int64_t rows = r.optional_integer("rows").value_or(b.rows);
@@ -59,6 +62,10 @@ void write_shear_box(TableWriter& w) {
   w.line("servo_gain", b.servo_gain);
   w.line("servo_max_speed", b.servo_max_speed);
   w.line("servo_integral_time", b.servo_integral_time);
+  if (b.upper_half != ShearBox::UpperHalf::Fixed) {  // older scenes stay as they were
+    w.text("upper_half", choice_name(b.upper_half));
+    w.line("upper_half_weight", b.upper_half_weight);
+  }
   w.line("settle_time", b.settle_time);
   w.line("consolidate_time", b.consolidate_time);
   w.line("rows", std::to_string(b.rows));

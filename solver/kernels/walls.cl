@@ -415,27 +415,57 @@ __kernel void advance_walls(__global real4* wall_point, __global float4* wall_po
 //                `target` (a hanger's weight) and back by the particles:
 //                  M du/dt = target - F,  u += dt (target - F) / M,
 //                the same symplectic Euler step as the particles' (integrate.cl).
-// servo: 2 real4 per wall, (target, gain, max_speed, on) and (1/T_i, 1/M, 0, 0);
+// A rigid group (a shear box's floating upper half): member walls name a
+// leader; the leader's controller takes the members' forces along its own
+// normal too, and every member moves at the leader's velocity.
+// A stop bounds a dead weight's travel along its normal from where the
+// scene put it (the upper half coming to rest on the lower one): the wall
+// halts there and its momentum is lost (a plastic impact).
+// servo: 2 real4 per wall, (target, gain, max_speed, on) and
+// (1/T_i, 1/M, leader + 1 or 0, stop or 0);
 // 1/M > 0 selects the dead weight (gain, max_speed, T_i unused).
 // reading: 1 real4 per wall, (F this step, sum of F since the host last
 // reset it, v_i or u, steps in the sum).
-INLINE void servo_wall(int w, __global const real4* walls, __global const real4* servo,
-                       __global const real4* partial, __global real4* wall_vel,
-                       __global real4* reading, __global real4* mean, real dt, int groups) {
+INLINE real4 wall_sum(int w, __global const real4* partial, int groups) {
   real4 sum = (real4)(0);
   for (int g = 0; g < groups; ++g) sum += partial[w * groups + g];
+  return sum;
+}
+
+// The reaction along n of wall w and of the walls that follow it.
+INLINE real group_reaction(int w, real3 n, real3 own, __global const real4* servo,
+                           __global const real4* partial, int groups, int nwalls) {
+  real3 f = own;
+  for (int m = 0; m < nwalls; ++m)
+    if ((int)servo[2 * m + 1].z == w + 1) f += wall_sum(m, partial, groups).xyz;
+  return -dot(f, n);
+}
+
+// The largest speed along n that keeps wall w short of its stop.
+INLINE real stop_speed(int w, real3 n, real stop, __global const real4* walls,
+                       __global const real4* wall_point, real dt) {
+  const real travel = dot(wall_point[w].xyz - walls[WALL_RECORD * w].xyz, n);
+  return stop > (real)0 ? fmax(stop - travel, (real)0) / dt : (real)INFINITY;
+}
+
+INLINE void servo_wall(int w, __global const real4* walls, __global const real4* servo,
+                       __global const real4* partial, __global real4* wall_vel,
+                       __global real4* reading, __global real4* mean,
+                       __global const real4* wall_point, real dt, int groups, int nwalls) {
+  const real4 sum = wall_sum(w, partial, groups);
   mean[w] += (real4)(sum.xyz, 1);
   const real4 c = servo[2 * w];
   if (c.w == (real)0) return;
   const real inv_ti = servo[2 * w + 1].x;
   const real inv_mass = servo[2 * w + 1].y;
   const real3 n = walls[WALL_RECORD * w + 1].xyz;
-  const real f = -dot(sum.xyz, n);
+  const real f = group_reaction(w, n, sum.xyz, servo, partial, groups, nwalls);
   real4 r = reading[w];
   const real e = c.x - f;
   real v;
   if (inv_mass > (real)0) {
     v = dot(wall_vel[w].xyz, n) + dt * e * inv_mass;
+    v = fmin(v, stop_speed(w, n, servo[2 * w + 1].w, walls, wall_point, dt));
     r.z = v;
   } else {
     const real vp = c.y * e;
@@ -451,6 +481,7 @@ INLINE void servo_wall(int w, __global const real4* walls, __global const real4*
 // The walls' whole step, by one work item: the forces on them (with
 // `reduce` set, the chunk sums of reduce_walls, computed here; else
 // reduce_walls ran before), every wall's servo step, then every wall
+// (a group's members at their leader's velocity)
 // advances (advance_wall), controlled or not. CPUs run it at the end of
 // finish_particles (integrate.cl; one pass over the masks costs less than
 // a launch), GPUs as servo_walls after reduce_walls, in parallel.
@@ -463,8 +494,11 @@ INLINE void walls_step(__global const real4* walls, __global const real4* servo,
                        int groups, int reduce, int nwalls) {
   for (int c = 0; reduce && c < groups; ++c)
     wall_chunk_sums(c, wall_near, wall_off, wall_force, partial, n, chunk, groups, nwalls);
+  for (int w = 0; w < nwalls; ++w)
+    servo_wall(w, walls, servo, partial, wall_vel, reading, mean, wall_point, dt, groups, nwalls);
   for (int w = 0; w < nwalls; ++w) {
-    servo_wall(w, walls, servo, partial, wall_vel, reading, mean, dt, groups);
+    const int leader = (int)servo[2 * w + 1].z - 1;
+    if (leader >= 0) wall_vel[w] = wall_vel[leader];
     advance_wall(w, wall_point, wall_point_lo, wall_vel, flags, dt, skin);
   }
 }

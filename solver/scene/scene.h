@@ -126,6 +126,12 @@ struct WallServo {
   double max_speed = 0;      // m/s, > 0 (servo)
   double integral_time = 0;  // s, >= 0; 0 = proportional only (servo)
   double mass = 0;           // kg, >= 0; > 0 = dead weight
+  // A rigid group (walls.cl): a member names its leader (a wall index,
+  // -1 = none) and moves with it, its force counted in the leader's along
+  // the leader's normal; a dead weight's travel along its normal from the
+  // scene's position stops at `stop` (m, > 0; 0 = no stop).
+  int leader = -1;
+  double stop = 0;
 };
 
 // A rigid wall moving with a prescribed constant velocity, or servo-controlled.

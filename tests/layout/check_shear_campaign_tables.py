@@ -71,8 +71,8 @@ median = (mu[len(mu) // 2] + mu[(len(mu) - 1) // 2]) / 2
 if not any(f"μ_w = {median:.3f}" in r["choice"] for r in rows_of("apparatus_choices.csv")):
     bad.append(f"the wall-friction choice should name the measured median μ_w = {median:.3f}")
 
-# the paired changes against the paper's smooth box: the same seeds, each
-# choice's value minus the smooth box's, mean +- t(0.975, n-1) sd / sqrt(n)
+# the paired changes: the same seeds, each choice's value minus its
+# baseline's, mean +- t(0.975, n-1) sd / sqrt(n)
 T975 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262}
 
 
@@ -87,14 +87,17 @@ def paired(choice, base, key):
     return mean, T975[n - 1] * sd / math.sqrt(n)
 
 
-choices = [r["choice"] for r in rows_of("apparatus_choices.csv")]
-for c in choices[1:]:
+# each choice against the box it differs from in that one setting (paired_with)
+for r in rows_of("apparatus_choices.csv"):
+    c, base = r["choice"], r["paired_with"]
+    if not base:
+        continue
     cells = []
     for key, digits in (("peak_friction_angle_deg", 2), ("residual_friction_angle_deg", 2),
                         ("max_dilatancy_angle_deg", 1)):
-        m, hw = paired(c, choices[0], key)
+        m, hw = paired(c, base, key)
         cells.append(f"{m:+.{digits}f} ± {hw:.{digits}f}")
-    row = f"| {c} | " + " | ".join(cells) + " |"
+    row = f"| {c} | {base} | " + " | ".join(cells) + " |"
     if row not in doc:
         bad.append(f"docs/shear-box.md lacks the paired row {row}")
 

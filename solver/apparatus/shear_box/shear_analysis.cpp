@@ -289,6 +289,8 @@ void analyse_shear_rows(const std::vector<ShearRow>& rows, ShearSummary& out) {
   s.settle_time = out.settle_time;
   s.consolidate_time = out.consolidate_time;
   s.platen_mass = out.platen_mass;
+  s.upper_half_floating = out.upper_half_floating;
+  s.upper_half_rise = out.upper_half_rise;
   s.wall_seconds = out.wall_seconds;
   out = s;
   if (rows.empty()) return;
@@ -376,11 +378,13 @@ std::string shear_summary_text(const ShearSummary& s) {
                 "critical_state = %s\nresidual_from_mm = %.6g\nresidual_dilation_rate = %.4g\n"
                 "taylor_min_mu = %.4g\ntaylor_min_displacement_mm = %.6g\ndynamic_events = %d\n"
                 "max_dilatancy_dynamic = %s\nwall_load_percent = %.3f\n"
-                "peak_friction_angle_plane_deg = %.4f\nresidual_friction_angle_plane_deg = %.4f\n",
+                "peak_friction_angle_plane_deg = %.4f\nresidual_friction_angle_plane_deg = %.4f\n"
+                "upper_half = %s\nupper_half_rise_mm = %.6g\n",
                 s.critical_state ? "yes" : "no", s.residual_from * 1e3, s.residual_dilation_rate,
                 s.taylor_min, s.taylor_min_displacement * 1e3, s.dynamic_events,
                 s.max_dilatancy_dynamic ? "yes" : "no", s.wall_load_percent, s.peak_angle_plane,
-                s.residual_angle_plane);
+                s.residual_angle_plane, s.upper_half_floating ? "floating" : "fixed",
+                s.upper_half_rise * 1e3);
   return std::string(buf) + more;
 }
 
@@ -540,7 +544,8 @@ ShearSummary parse_shear_summary(const std::string& text) {
                 {"taylor_min_displacement_mm", &s.taylor_min_displacement, 1e-3},
                 {"wall_load_percent", &s.wall_load_percent, 1},
                 {"peak_friction_angle_plane_deg", &s.peak_angle_plane, 1},
-                {"residual_friction_angle_plane_deg", &s.residual_angle_plane, 1}};
+                {"residual_friction_angle_plane_deg", &s.residual_angle_plane, 1},
+                {"upper_half_rise_mm", &s.upper_half_rise, 1e-3}};
   int seen = 0;
   for (const auto& f : fields)
     if (const auto it = kv.find(f.key); it != kv.end()) {
@@ -552,6 +557,7 @@ ShearSummary parse_shear_summary(const std::string& text) {
   if (const auto it = kv.find("dynamic_events"); it != kv.end())
     s.dynamic_events = static_cast<int>(to_double(it->second, it->first));
   s.critical_state = kv.count("critical_state") && kv.at("critical_state") == "yes";
+  s.upper_half_floating = kv.count("upper_half") && kv.at("upper_half") == "floating";
   s.max_dilatancy_dynamic =
       kv.count("max_dilatancy_dynamic") && kv.at("max_dilatancy_dynamic") == "yes";
   if (seen < 10) throw ReadError("not a shear-test summary (too few keys)");

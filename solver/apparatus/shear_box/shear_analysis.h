@@ -105,6 +105,10 @@ struct ShearSummary {
   // the horizontal force the specimen already exerts between the halves.
   double start_tau = 0, start_ratio = 0;
   double platen_mass = 0;           // kg, the dead weight's platen (0: servo)
+  // The upper half (ShearBox::upper_half): floating or held, and how far
+  // it had risen at the last row (m; negative: it sank, at most the gap).
+  bool upper_half_floating = false;
+  double upper_half_rise = 0;
   int max_outside = 0;
   double settle_time = 0, consolidate_time = 0;  // s spent in each phase
   double wall_seconds = 0;          // filled in by the caller

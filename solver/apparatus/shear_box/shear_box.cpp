@@ -30,6 +30,8 @@ void check_box(const ShearBox& b, const Scene& scene) {
   kCheck.require(b.platen_mass >= 0 && b.platen_mass <= 1e4, "platen_mass", b.platen_mass,
           "[0, 1e4] kg (0 = automatic)");
   check_servo_settings(kCheck, b.servo_gain, b.servo_max_speed, b.servo_integral_time);
+  kCheck.require(b.upper_half_weight >= 0 && b.upper_half_weight <= 1e4, "upper_half_weight",
+                 b.upper_half_weight, "[0, 1e4] N");
   kCheck.require(b.settle_time >= 0 && b.settle_time <= 100, "settle_time", b.settle_time, "[0, 100] s");
   kCheck.require(b.consolidate_time > 0 && b.consolidate_time <= 100, "consolidate_time",
           b.consolidate_time, "(0, 100] s");

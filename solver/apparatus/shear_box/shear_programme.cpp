@@ -102,6 +102,31 @@ void ShearProgramme::apply_servo(bool on) {
   sim_.set_servo(box_.first_wall + kPlaten, s);
 }
 
+// The floating upper half (ShearBox::upper_half): its frame a dead weight
+// of upper_half_weight along -z with the platen's mass (the same contact
+// count reasoning), stopped where the halves meet (the gap closed), its
+// four side plates members of the frame's group (walls.cl). Off: held.
+void ShearProgramme::float_upper_half(bool on) {
+  if (box_.upper_half != ShearBox::UpperHalf::Floating) return;
+  const int frame = box_.first_wall + kUpperFrame;
+  WallServo lead;
+  lead.enabled = on;
+  lead.target_force = box_.upper_half_weight;
+  lead.mass = platen_mass_;
+  lead.stop = box_.gap;
+  sim_.set_servo(frame, lead);
+  for (int w = kUpperX0; w <= kUpperY1; ++w) {
+    WallServo member;
+    member.leader = on ? frame : -1;
+    sim_.set_servo(box_.first_wall + w, member);
+  }
+}
+
+double ShearProgramme::upper_half_rise() const {
+  const int frame = box_.first_wall + kUpperFrame;
+  return sim_.wall_point(frame)[2] - sim_.scene().walls[frame].point[2];
+}
+
 void ShearProgramme::set_normal_stress(double pascals) {
   if (!(pascals > 0) || !std::isfinite(pascals))
     throw std::invalid_argument("normal stress must be > 0 Pa");
@@ -176,11 +201,13 @@ void ShearProgramme::enter(ShearPhase p) {
       shear_steps_ = row_steps_ * box_.rows;
       measure_row();  // at rest: the means over the last equilibrium check
       move_lower_half(speed_);
+      float_upper_half(true);
       next_row_ = now + row_steps_;
       break;
     }
     case ShearPhase::Done:
       move_lower_half(0);
+      float_upper_half(false);
       apply_servo(false);
       break;
   }
@@ -377,6 +404,8 @@ ShearSummary ShearProgramme::summary() const {
   s.settle_time = settle_seconds_;
   s.consolidate_time = consolidate_seconds_;
   s.platen_mass = platen_mass();
+  s.upper_half_floating = box_.upper_half == ShearBox::UpperHalf::Floating;
+  s.upper_half_rise = upper_half_rise();
   analyse_shear_rows(rows_, s);
   return s;
 }

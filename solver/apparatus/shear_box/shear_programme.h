@@ -109,6 +109,8 @@ class ShearProgramme : public ApparatusProgramme {
   void apply_servo(bool on);
   void tune_servo();  // gain_ and integral_time_ for sigma_target_ (automatic settings)
   void move_lower_half(double vx);  // the floor, lower sides and frame at vx along x
+  void float_upper_half(bool on);   // a floating upper half set free (on) or held
+  double upper_half_rise() const;   // m the upper half has risen since the scene placed it
   bool settled();
   bool consolidated();
   bool equilibrium(double reaction);  // consolidated()'s criterion, with the dead weight's handover

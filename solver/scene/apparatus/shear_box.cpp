@@ -6,4 +6,8 @@ namespace simsols {
 SIMSOLS_CHOICES(ShearBox::Loading, {ShearBox::Loading::DeadWeight, "dead_weight"},
                 {ShearBox::Loading::Servo, "servo"})
 
+// [shear_box] upper_half
+SIMSOLS_CHOICES(ShearBox::UpperHalf, {ShearBox::UpperHalf::Fixed, "fixed"},
+                {ShearBox::UpperHalf::Floating, "floating"})
+
 }  // namespace simsols

@@ -39,6 +39,15 @@ struct ShearBox : ApparatusCell {
   double servo_gain = 0;           // m/(s N); 0 = automatic (from the Hertz stiffness)
   double servo_max_speed = 0.5;    // m/s, the platen's speed cap
   double servo_integral_time = 0;  // s; 0 = automatic
+  // The upper half during shear (docs/shear-box.md "Apparatus choices"):
+  // fixed (held vertically, the paper's box) or floating (free vertically,
+  // held horizontally, as a box whose gap screws are backed off: its side
+  // plates and frame move as one body under upper_half_weight, pulled by
+  // the beads' friction on them, and come to rest on the lower half when
+  // the gap closes). Consolidation holds it in both.
+  enum class UpperHalf : std::uint8_t { Fixed, Floating };
+  UpperHalf upper_half = UpperHalf::Fixed;
+  double upper_half_weight = 0;    // N the floating half rests with; 0 = counterweighted
   double consolidate_time = 0.1;   // s, longest consolidation under the platen
   int rows = 400;                  // output rows over the shear displacement
 };
@@ -55,5 +64,6 @@ enum ShearBoxWall : int {
 
 // [shear_box] loading's names (choice_table.h).
 template <> std::span<const Named<ShearBox::Loading>> choices();
+template <> std::span<const Named<ShearBox::UpperHalf>> choices();
 
 }  // namespace simsols

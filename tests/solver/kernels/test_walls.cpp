@@ -124,6 +124,69 @@ TEST_P(Walls, ServoPlatenHoldsItsTargetForce) {
   EXPECT_LT(wall_points(sim.model(), sim.state())[1][2], 2 * R) << "the platen came down";
 }
 
+// A rigid group (walls.cl): a plate resting on a sphere follows a leader
+// plate that touches nothing, a dead weight of 1 N along its normal (-z).
+// The member's load is the leader's reaction: the sphere carries 1 N and
+// both plates move together. With a stop short of the sphere the group
+// halts at the stop, untouched.
+struct GroupRun {
+  double member_force = 0, floor_force = 0, weight = 0, member_travel = 0, leader_travel = 0;
+};
+
+GroupRun run_group(Precision p, double stop) {
+  Scene s = empty_scene(p, soft(0.5, 0.3, 0.0));
+  s.effects.gravity = {0, 0, -9.81};
+  const double R = 5e-3;
+  s.particles = {sphere(R, {0, 0, R})};
+  Wall member = rectangle({0, 0, 2 * R + 2e-4}, 2 * R, 2 * R);
+  member.normal = {0, 0, -1};
+  Wall leader = rectangle({0.1, 0, 0.05}, 0.01, 0.01);
+  leader.normal = {0, 0, -1};
+  leader.servo.enabled = true;
+  leader.servo.target_force = 1.0;
+  leader.servo.mass = 0.01;
+  leader.servo.stop = stop;
+  member.servo.leader = 2;
+  s.walls = {plane("floor", {0, 0, 0}, {0, 0, 1}), member, leader};
+  Simulation sim(default_device(), s);
+  sim.advance(40000);
+  GroupRun out;
+  const int samples = 200;
+  for (int i = 0; i < samples; ++i) {
+    sim.advance(20);
+    const std::vector<WallReaction> w = sim.wall_reactions();
+    out.member_force += w[1].force[2] / samples;
+    out.floor_force += -w[0].force[2] / samples;
+  }
+  const auto at = wall_points(sim.model(), sim.state());
+  out.member_travel = at[1][2] - s.walls[1].point[2];
+  out.leader_travel = at[2][2] - s.walls[2].point[2];
+  out.weight = mass(s, s.particles[0]) * 9.81;
+  return out;
+}
+
+TEST_P(Walls, RigidGroupCarriesItsLeadersLoad) {
+  const GroupRun g = run_group(GetParam(), 0);
+  report("member plate force, mean (N)", g.member_force, 1.0);
+  report("floor force, mean (N)", g.floor_force, 1.0 + g.weight);
+  report("member travel - leader travel (m)", g.member_travel - g.leader_travel, 0);
+  EXPECT_NEAR(g.member_force, 1.0, 0.01);
+  EXPECT_NEAR(g.floor_force / (1.0 + g.weight), 1.0, 0.01);
+  EXPECT_LT(g.member_travel, -2e-4) << "the member came down onto the sphere";
+  EXPECT_NEAR(g.member_travel, g.leader_travel, 1e-9);
+}
+
+TEST_P(Walls, RigidGroupHaltsAtItsStop) {
+  const GroupRun g = run_group(GetParam(), 1e-4);  // half the way to the sphere
+  report("leader travel (m)", -g.leader_travel, 1e-4);
+  // The stop reads the wall's float position at 0.05 m, where a float's
+  // step is 3.7e-9 m (2.4e-9 m seen); double lands on it.
+  const double tol = GetParam() == Precision::Float ? 2.5e-8 : 1e-12;
+  EXPECT_NEAR(-g.leader_travel, 1e-4, tol);
+  EXPECT_NEAR(g.member_travel, g.leader_travel, 1e-9);
+  EXPECT_EQ(g.member_force, 0.0) << "stopped short of the sphere";
+}
+
 SIMSOLS_BOTH_PRECISIONS(Walls);
 
 }  // namespace
