@@ -15,6 +15,7 @@
 #include <memory>
 #include <optional>
 
+#include "solver/apparatus/run_profile.h"
 #include "solver/core/engine_options.h"
 #include "solver/io/checkpoint.h"
 #include "app/cli/commands.h"
@@ -43,6 +44,7 @@ struct RunOptions {
   std::string out_dir;
   bool resume = false;
   std::string precision;
+  std::string profile = "paper";  // --profile (run_profile.h)
   double duration = 0;
   long long stop_after = 0;  // stop (with a checkpoint) after this many steps of this invocation
   std::string stop_at;       // stop (with a checkpoint) at the end of this stage of the test
@@ -262,6 +264,10 @@ Scene read_run_scene(const RunOptions& opt) {
     throw UsageError("missing_field", "", 0, "SCENE", "a scene file is required (or --resume)");
   Scene scene = read_scene(opt.scene_path);
   apply_precision(opt, scene);
+  const ProfileApplied applied = apply_profile(scene, run_profile(opt.profile), opt.scene_path);
+  if (opt.profile != "paper" && !opt.quiet)
+    std::printf("profile %s: Young's moduli x %.3g (kappa = %.0f at the normal stress)\n",
+                opt.profile.c_str(), applied.stiffness_scale, applied.kappa);
   if (opt.duration != 0) scene.numerics.duration = opt.duration;
   validate_scene(scene, scene.source_path);
   FrameOptions::resolve(opt.frame, &scene);  // a bad [view] is refused even without --frames
@@ -396,6 +402,9 @@ CommandRunner add_run_command(CLI::App& app) {
                 "history size, and exit without running");
   cmd->add_flag("--resume", opt->resume, "Continue the run in --out from its last checkpoint");
   cmd->add_option("--precision", opt->precision, "Override numerics.precision: float or double");
+  cmd->add_option("--profile", opt->profile,
+                  "paper (the scene's settings, default) or fast (a shear box: E x 0.1 with "
+                  "kappa >= 400, dt 0.5, I 2e-3; docs/accuracy.md)");
   cmd->add_option("--duration", opt->duration, "Override numerics.duration (s, > 0)");
   cmd->add_option("--stop-after", opt->stop_after,
                   "Stop after this many steps (a checkpoint is written; resume with --resume)")

@@ -56,6 +56,7 @@ class LabApp {
   void act(const std::string& error);  // shows an action's error in the panel
   LabExperiment& experiment() { return *exp_; }
   void fit_view();
+  void draw_profile();
   void refit_on_stage();
   void save_screenshot(const std::string& path);
   void save_frame(const std::string& path);  // the viewport only (or the Alioscopy image)

@@ -12,6 +12,7 @@
 
 #include "app/experiment/default_scenes.h"
 #include "app/experiment/shear_box/paper_tests.h"
+#include "solver/apparatus/run_profile.h"
 #include "solver/common/errors.h"
 #include "solver/io/checkpoint.h"
 #include "solver/io/output.h"
@@ -106,11 +107,17 @@ std::string LabExperiment::adopt_scene(Scene sc, const std::string& label,
 std::string LabExperiment::prepare() {
   if (label_.empty()) return "choose a preset or open a scene first";
   if (building_.valid()) return "a specimen is already being built";
+  Scene profiled = scene_;
+  try {
+    apply_profile(profiled, run_profile(profile_), label_);
+  } catch (const InputError& e) {
+    return e.message;
+  }
   running_ = false;
   loading_started_ = false;
   auto device = device_;
   news_ = std::make_shared<BuildNews>();
-  building_ = std::async(std::launch::async, [device, scene = scene_, news = news_,
+  building_ = std::async(std::launch::async, [device, scene = std::move(profiled), news = news_,
                                               dir = preparation_dir_]() mutable {
     const auto line = [&](const std::string& l) {
       const std::lock_guard lock(news->mutex);
@@ -141,7 +148,9 @@ std::string LabExperiment::poll() {
     return e.what();
   }
   const std::lock_guard lock(news_->mutex);
-  if (news_->prepared) scene_ = sim_->scene();  // Reset builds the prepared specimen again
+  // Reset builds the prepared specimen again (a profile's scene would be
+  // profiled twice: it is searched again instead)
+  if (news_->prepared && profile_ == "paper") scene_ = sim_->scene();
   return {};
 }
 

@@ -58,6 +58,10 @@ class LabExperiment {
     scene_.numerics.dt_fraction = f;
     scene_.numerics.dt = 0;
   }
+  // A run profile (run_profile.h) applied to the specimen at prepare(), on
+  // top of the panel's settings; "paper" changes nothing.
+  void set_profile(const std::string& name) { profile_ = name; }
+  const std::string& profile() const { return profile_; }
 
   // Bench actions; each returns an error text or "" (e.g. "prepare first").
   // Starts the build in the background; poll() finishes it. A scene that
@@ -122,6 +126,7 @@ class LabExperiment {
   std::shared_ptr<Device> device_;
   Scene scene_;
   std::string label_;
+  std::string profile_ = "paper";  // set_profile
   std::unique_ptr<Simulation> sim_;
   std::unique_ptr<LabApparatus> app_;
   // What the background build says (its preparation's lines) and whether

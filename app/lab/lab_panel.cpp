@@ -14,6 +14,7 @@
 #include "app/lab/lab_plots.h"
 #include "app/experiment/shear_box/paper_tests.h"
 #include "solver/core/slots.h"
+#include "solver/apparatus/run_profile.h"
 
 namespace simsols {
 
@@ -155,10 +156,30 @@ void LabApp::draw_presets() {
   }
 }
 
+// The run profile (run_profile.h): paper, or a faster one applied at the
+// next prepare on top of the settings below.
+void LabApp::draw_profile() {
+  const auto profiles = run_profiles();
+  int current = 0;
+  for (size_t i = 0; i < profiles.size(); ++i)
+    if (exp_->profile() == profiles[i].name) current = int(i);
+  ImGui::SetNextItemWidth(150);
+  if (ImGui::BeginCombo("profile", profiles[current].name)) {
+    for (size_t i = 0; i < profiles.size(); ++i)
+      if (ImGui::Selectable(profiles[i].name, int(i) == current)) {
+        exp_->set_profile(profiles[i].name);
+        message_ = std::string("profile ") + profiles[i].name + ": " + profiles[i].summary +
+                   "; applies when the specimen is prepared again (Reset)";
+      }
+    ImGui::EndCombo();
+  }
+}
+
 // Float or double, the time step as a fraction of the Rayleigh time, and
 // what the accuracy study measured for these settings on the specimen most
 // like this one (docs/accuracy.md).
 void LabApp::draw_precision_and_time_step() {
+  draw_profile();
   int precision = exp_->scene().numerics.precision == Precision::Float ? 0 : 1;
   ImGui::Text("precision");
   ImGui::SameLine();
@@ -172,10 +193,16 @@ void LabApp::draw_precision_and_time_step() {
     exp_->set_dt_fraction(dt_fraction);
   const std::optional<StudySpecimen> kind = accuracy_study_specimen(exp_->scene());
   if (!kind) return;  // the accuracy study measured shear tests only
+  const ImVec4 grey = ImGui::GetStyle().Colors[ImGuiCol_TextDisabled];
+  if (exp_->profile() != "paper") {
+    ImGui::PushTextWrapPos(0);
+    ImGui::TextColored(grey, "%s", profile_accuracy_text(exp_->profile(), *kind).c_str());
+    ImGui::PopTextWrapPos();
+    return;
+  }
   if (const SettingSummary* a =
           expected_accuracy(dt_fraction, exp_->scene().numerics.precision, *kind)) {
     ImGui::PushTextWrapPos(0);
-    const ImVec4 grey = ImGui::GetStyle().Colors[ImGuiCol_TextDisabled];
     ImGui::TextColored(grey, "%s", expected_accuracy_text(*a).c_str());
     ImGui::PopTextWrapPos();
   }

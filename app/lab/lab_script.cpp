@@ -34,6 +34,7 @@ const LabApp::Script::Command LabApp::Script::kCommands[] = {
     {"preset", "D_MM S_KPA", &Script::choose_preset},
     {"open", "SCENE.toml", &Script::open_scene},
     {"precision", "float|double", &Script::choose_precision},
+    {"profile", "paper|fast", &Script::choose_profile},
     {"effect", "SLOT CHOICE", &Script::choose_effect},
     {"prepare", "", &Script::prepare},
     {"load", "[KPA]", &Script::apply_load},
@@ -86,12 +87,13 @@ std::string LabApp::state_text() {
     if (s->preparation.friction) o << "preparation_friction = " << *s->preparation.friction << "\n";
   }
   o << "preparation_dir = " << exp_->preparation_dir() << "\n";
+  o << "profile = " << exp_->profile() << "\n";
   o << "paused = " << (exp_->paused() ? 1 : 0) << "\n";
   if (sim) {
     char hash[32];
     std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sim->hash()));
     o << "steps = " << sim->steps() << "\ntime_s = " << sim->time() << "\nbeads = "
-      << sim->model().particles() << "\nhash = " << hash << "\n";
+      << sim->model().particles() << "\nhash = " << hash << "\ndt_s = " << sim->dt() << "\n";
     // what the status line shows: the effect slots compiled into the kernels
     o << "compiled = " << compiled_slots_line(sim->scene(), sim->model().config())
       << "\nhistory_bytes = " << sim->model().config().history_bytes_per_contact() << "\n";

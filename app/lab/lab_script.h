@@ -56,6 +56,7 @@ struct LabApp::Script {
   void choose_preset(const Line& line);        // preset D_MM S_KPA
   void open_scene(const Line& line);           // open SCENE.toml
   void choose_precision(const Line& line);     // precision float|double
+  void choose_profile(const Line& line);       // profile paper|fast
   void choose_effect(const Line& line);        // effect SLOT CHOICE
   void prepare(const Line& line);              // prepare
   void apply_load(const Line& line);           // load [KPA]

@@ -8,6 +8,7 @@
 #include <functional>
 
 #include "app/lab/lab_script.h"
+#include "solver/apparatus/run_profile.h"
 #include "solver/io/output.h"
 #include "app/experiment/shear_box/paper_tests.h"
 #include "solver/core/slots.h"
@@ -84,6 +85,15 @@ void LabApp::Script::choose_precision(const Line& line) {
   const std::optional<Precision> p = parse_choice<Precision>(line.argument);
   if (!p) return fail(line, "precision " + names<Precision>(), 2);
   experiment().set_precision(*p);
+}
+
+void LabApp::Script::choose_profile(const Line& line) {
+  std::string names;
+  for (const RunProfile& p : run_profiles()) {
+    if (line.argument == p.name) return experiment().set_profile(p.name);
+    names += (names.empty() ? "" : "|") + std::string(p.name);
+  }
+  fail(line, "profile " + names, 2);
 }
 
 // the panel's slot choices: effect SLOT CHOICE (applies at the next prepare)

@@ -62,7 +62,8 @@ constexpr HeadlineResult kCellHeadlines[] = {
 const ApparatusKind kKinds[] = {
     {"shear_box", "Direct shear", "a direct shear test", "shear", kShearBoxWalls,
      "settle,consolidate,shear", build_shear_box, make<ShearProgramme>, shear_box_stress,
-     check_shear_box_specimen_top, resize_shear_box, kShearHeadlines, shear_box_expected_time},
+     check_shear_box_specimen_top, resize_shear_box, kShearHeadlines, shear_box_expected_time,
+     shear_box_profile_stress, set_shear_box_inertial_number},
     {"oedometer", "Oedometer", "an oedometer test", "oedometer", kOedometerWalls, "settle,load",
      build_oedometer, make<OedometerProgramme>, no_stress, nullptr, resize_cell,
      kOedometerHeadlines, oedometer_expected_time},

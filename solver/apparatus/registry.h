@@ -72,6 +72,12 @@ struct ApparatusKind {
   // the time step, the particle-steps campaigns weigh their ETAs and a
   // cluster's time limits with.
   double (*expected_time)(const Scene& scene);
+  // The run profiles' levers on the test (run_profile.h): the stress a
+  // profile's stiffness number is taken at (Pa), and setting the test's
+  // target inertial number (its speed, where the scene does not fix it);
+  // nullptr where only the paper profile was measured.
+  double (*profile_stress)(const Scene& scene) = nullptr;
+  void (*set_inertial_number)(Scene& scene, double inertial_number) = nullptr;
 };
 
 // Particle-steps of the scene's test (placed): its beads times its kind's

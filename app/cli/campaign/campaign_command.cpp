@@ -2,6 +2,9 @@
 
 #include <cstdio>
 
+#include "solver/common/errors.h"
+#include "solver/apparatus/run_profile.h"
+
 namespace simsols {
 
 // What a campaign run with the cluster flags says at its end; 0.
@@ -22,6 +25,13 @@ int report_interrupted(size_t k, size_t count, const std::string& name,
               "%zu of %zu tests finished. Resume with the same command.\n",
               k + 1, count, name.c_str(), dir.string().c_str(), k, count);
   return interrupt.exit_status();
+}
+
+void refuse_profile(const CampaignOptions& opt, const std::string& base_name) {
+  if (std::string(run_profile(opt.profile).name) == "paper") return;
+  throw UsageError("not_applicable", "--profile",
+                   "'" + opt.profile + "' is measured on the direct shear box only "
+                   "(docs/accuracy.md); " + base_name + " is another apparatus: use --profile paper");
 }
 
 }  // namespace simsols

@@ -16,6 +16,10 @@
 
 namespace simsols {
 
+struct CampaignOptions;
+// --profile other than paper on a campaign it was not measured for.
+void refuse_profile(const CampaignOptions& opt, const std::string& base_name);
+
 struct CampaignOptions {
   std::string base;  // empty = the built-in shear_box.toml (kDefaultSceneName)
   std::string out_dir;
@@ -23,6 +27,7 @@ struct CampaignOptions {
   std::vector<double> stresses_kpa{50, 160, 280, 400};
   int layers = 0;  // 0 = Table 1
   std::string precision;
+  std::string profile = "paper";  // --profile (run_profile.h)
   double displacement_mm = 0;  // 0 = the base scene's
   std::vector<double> inertial_numbers;  // a periodic cell's; empty = the base scene's
   int seeds = 3;  // specimens per point (a shear campaign: 1 unless given)

@@ -21,6 +21,7 @@ int periodic_cell_campaign(const CampaignOptions& opt, const Scene& base, const 
   spec.inertial_numbers = opt.inertial_numbers;
   spec.seeds = opt.seeds;
   spec.precision = precision_flag(opt.precision);
+  refuse_profile(opt, base_name);
   std::vector<CellCampaignTest> tests = plan_cell_campaign(base, base_name, spec, opt.out_dir);
   InterruptScope interrupt;
   CampaignRun run = campaign_run(opt.cluster, opt.out_dir, interrupt.stop_function(), opt.quiet);

@@ -33,6 +33,7 @@ int shear_box_campaign(const CampaignOptions& opt, const Scene& base, const std:
   spec.stresses_kpa = opt.stresses_kpa;
   spec.layers = opt.layers;
   spec.precision = precision_flag(opt.precision);
+  spec.profile = &run_profile(opt.profile);
   spec.displacement_mm = opt.displacement_mm;
   spec.seeds = opt.seeds_given ? opt.seeds : 1;
   std::vector<CampaignTest> tests = plan_campaign(base, base_name, spec, opt.out_dir);

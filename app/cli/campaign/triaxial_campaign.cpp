@@ -22,6 +22,7 @@ int triaxial_campaign(const CampaignOptions& opt, const Scene& given, const std:
   TriaxialCampaignSpec spec;
   if (opt.stresses_given) spec.stresses_kpa = opt.stresses_kpa;
   spec.precision = precision_flag(opt.precision);
+  refuse_profile(opt, base_name);
   InterruptScope interrupt;
   CampaignRun run = campaign_run(opt.cluster, opt.out_dir, interrupt.stop_function(), opt.quiet);
   const Specimen* specimen = base.specimen();

@@ -1,12 +1,17 @@
 #include "app/experiment/shear_box/accuracy_table.h"
 
 #include <cmath>
+#include <map>
+#include <sstream>
+
+#include "solver/common/errors.h"
 
 #include "solver/io/output.h"
 
 namespace simsols {
 
 const char* embedded_accuracy_csv();  // accuracy_csv.cpp (generated)
+const char* embedded_profiles_csv();  // the same
 
 const std::vector<SettingSummary>& accuracy_table() {
   static const std::vector<SettingSummary> table = parse_ensemble_csv(embedded_accuracy_csv());
@@ -63,6 +68,55 @@ std::string expected_accuracy_text(const SettingSummary& s) {
   if (ref && ref->wall_seconds > 0)
     text += ", " + format_number("%.2f", s.wall_seconds / ref->wall_seconds) + "x their time";
   return text + where;
+}
+
+namespace {
+
+std::vector<std::string> cells_of(const std::string& line) {
+  std::vector<std::string> out(1);
+  for (char c : line) {
+    if (c == ',') out.emplace_back();
+    else if (c != '\r') out.back() += c;
+  }
+  return out;
+}
+
+// The rows of the embedded profiles.csv ('#' lines are its notes), each
+// as column name -> cell.
+std::vector<std::map<std::string, std::string>> profile_rows() {
+  std::istringstream in(embedded_profiles_csv());
+  std::vector<std::string> header;
+  std::vector<std::map<std::string, std::string>> rows;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    const std::vector<std::string> cells = cells_of(line);
+    if (header.empty()) {
+      header = cells;
+      continue;
+    }
+    if (cells.size() != header.size()) throw ReadError("profiles.csv: a row of " + std::to_string(cells.size()) + " cells");
+    auto& row = rows.emplace_back();
+    for (size_t i = 0; i < cells.size(); ++i) row[header[i]] = cells[i];
+  }
+  return rows;
+}
+
+}  // namespace
+
+std::string profile_accuracy_text(const std::string& profile, StudySpecimen specimen) {
+  static const auto rows = profile_rows();
+  for (const auto& r : rows) {
+    if (r.at("profile") != profile || r.at("specimen") != specimen_name(specimen)) continue;
+    const auto pm = [&](const char* name, const char* key) {
+      return std::string(name) + " " + r.at(std::string(key) + "_deg") + " +- " +
+             r.at(std::string(key) + "_ci95") + " deg";
+    };
+    return "measured against the paper profile on the same " + r.at("tests") + " " +
+           specimen_name(specimen) + " specimens: " + pm("phi_peak", "peak_diff") + ", " +
+           pm("phi_res", "residual_diff") + ", " + r.at("step_ratio") +
+           "x fewer steps (docs/accuracy.md, the fast profile)";
+  }
+  return {};
 }
 
 std::optional<StudySpecimen> accuracy_study_specimen(const Scene& scene) {

@@ -28,4 +28,10 @@ std::optional<StudySpecimen> accuracy_study_specimen(const Scene& scene);
 // the poured specimen's adds phi_res.
 std::string expected_accuracy_text(const SettingSummary& s);
 
+// A run profile's measured effect (assets/accuracy/profiles.csv, embedded:
+// the profile against `paper` on the same specimens, docs/accuracy.md "The
+// fast profile"): the panel's line for `specimen`, or "" when the file has
+// no row for them. Throws ReadError when the embedded file is malformed.
+std::string profile_accuracy_text(const std::string& profile, StudySpecimen specimen);
+
 }  // namespace simsols

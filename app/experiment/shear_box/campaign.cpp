@@ -120,6 +120,7 @@ std::vector<CampaignTest> plan_campaign(const Scene& base, const std::string& ba
           t.seed = box.specimen.seed;
         });
         if (k > 0) sc.name += "_s" + std::to_string(t.seed);
+        if (spec.profile) apply_profile(sc, *spec.profile, base_name);
         validate_scene(sc, base_name + " (" + sc.name + ")");
         t.scene = std::move(sc);
         t.dir = fs::path(out_dir) / t.scene.name;

@@ -28,6 +28,7 @@
 #include "app/experiment/campaign_loop.h"
 #include "app/experiment/shear_box/shear_run.h"
 #include "solver/core/cl_device.h"
+#include "solver/apparatus/run_profile.h"
 #include "solver/scene/scene.h"
 
 namespace simsols {
@@ -41,6 +42,7 @@ struct CampaignSpec {
   // Specimens per size and stress: the base's seed and the next ones. The
   // first keeps the test's plain folder name, the others add _s<seed>.
   int seeds = 1;
+  const RunProfile* profile = nullptr;   // nullptr = paper (run_profile.h)
 };
 
 struct CampaignTest {

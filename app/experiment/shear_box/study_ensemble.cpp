@@ -17,6 +17,7 @@ namespace {
 
 struct Samples {
   std::vector<double> peak, residual, dilatancy;
+  std::vector<int> seed;
   double wall = 0;
 };
 
@@ -27,6 +28,7 @@ Samples samples_of(const std::vector<StudyCase>& runs, const StudySettings& s) {
     x.peak.push_back(c.shear.peak_angle);
     x.residual.push_back(c.shear.residual_angle);
     x.dilatancy.push_back(c.shear.dilatancy_angle);
+    x.seed.push_back(c.settings.seed);
     x.wall += c.shear.wall_seconds;
   }
   if (!x.peak.empty()) x.wall /= static_cast<double>(x.peak.size());
@@ -51,6 +53,20 @@ const SettingSummary* reference_of(const std::vector<SettingSummary>& all, const
     if (!first) first = &x;
   }
   return first;
+}
+
+// The error of x against the reference on one result: the mean of the
+// paired differences x_k - ref_k over the seeds k both ran, with Student's
+// interval (the same specimen under both settings: the specimen-to-specimen
+// scatter cancels); Welch's interval of the two means when fewer than two
+// seeds pair up.
+Interval error_of(const Samples& x, const Samples& ref, std::vector<double> Samples::*field) {
+  std::vector<double> d;
+  for (size_t i = 0; i < x.seed.size(); ++i)
+    for (size_t j = 0; j < ref.seed.size(); ++j)
+      if (x.seed[i] == ref.seed[j]) d.push_back((x.*field)[i] - (ref.*field)[j]);
+  if (d.size() >= 2) return mean_ci95(d);
+  return difference_ci95(x.*field, ref.*field);
 }
 
 }  // namespace
@@ -79,9 +95,9 @@ std::vector<SettingSummary> summarise_settings(const std::vector<StudyCase>& run
     s.dilatancy = mean_ci95(x.dilatancy);
     s.wall_seconds = x.wall;
     if (ref.peak.empty()) continue;
-    s.peak_error = difference_ci95(x.peak, ref.peak);
-    s.residual_error = difference_ci95(x.residual, ref.residual);
-    s.dilatancy_error = difference_ci95(x.dilatancy, ref.dilatancy);
+    s.peak_error = error_of(x, ref, &Samples::peak);
+    s.residual_error = error_of(x, ref, &Samples::residual);
+    s.dilatancy_error = error_of(x, ref, &Samples::dilatancy);
   }
   return out;
 }
@@ -403,9 +419,9 @@ std::string ensemble_summary_md(const StudyPreset& preset,
                    " specimens per setting (preparation seeds 1.." +
                    std::to_string(preset.ensemble) +
                    "). Each result is the ensemble mean ± its 95 % confidence interval; "
-                   "an error is the difference from the specimen's reference's mean (its first "
-                   "row) ± Welch's 95 % interval, **bold** when significant (the interval "
-                   "excludes zero).\n";
+                   "an error is the mean of the paired differences from the specimen's reference "
+                   "(its first row), member by member on the same seeds, ± its 95 % Student "
+                   "interval, **bold** when significant (the interval excludes zero).\n";
   for (StudySpecimen specimen : kStudySpecimens) {
     if (settings_of(settings, specimen).empty()) continue;
     md += "\n## The " + std::string(specimen_name(specimen)) + " specimen\n\nSpecimen: " +

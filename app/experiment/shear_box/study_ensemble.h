@@ -3,9 +3,12 @@
 //
 // A setting runs as an ensemble of specimens that differ only in their
 // preparation seed (study_runs in study.h). Its results are the ensemble
-// means with their 95 % confidence intervals, and its error is the
-// difference of its mean from the reference's mean, with Welch's interval
-// (study_stats.h): significant only when that interval excludes zero.
+// means with their 95 % confidence intervals, and its error against the
+// reference is paired: the mean of the differences member by member (the
+// same seed, so the same specimen, under both settings) with Student's
+// interval, which the specimen-to-specimen scatter does not widen (Welch's
+// interval of the two means, study_stats.h, when fewer than two seeds
+// pair up); significant only when that interval excludes zero.
 //
 // Each specimen (StudySpecimen) has its own reference, and its settings are
 // compared with that one only.

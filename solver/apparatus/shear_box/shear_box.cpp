@@ -181,6 +181,15 @@ void resize_shear_box(Scene& scene, double across, double height) {
 }
 
 
+double shear_box_profile_stress(const Scene& s) {
+  return s.apparatus_as<ShearBox>()->normal_stress;
+}
+
+void set_shear_box_inertial_number(Scene& s, double inertial_number) {
+  ShearBox& b = *s.apparatus_as<ShearBox>();
+  if (b.shear_speed == 0) b.inertial_number = inertial_number;
+}
+
 double shear_box_expected_time(const Scene& s) {
   const ShearBox& b = *s.apparatus_as<ShearBox>();
   const double d = 2 * s.particles.at(0).radius;

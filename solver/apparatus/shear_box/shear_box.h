@@ -48,6 +48,11 @@ void resize_shear_box(Scene& scene, double across, double height);
 // settling allowance, 0.05 s of consolidation and the travel at its speed.
 double shear_box_expected_time(const Scene& scene);
 
+// The run profiles' levers (registry.h): the normal stress, and the target
+// inertial number of an automatic shear speed (a given shear_speed is kept).
+double shear_box_profile_stress(const Scene& scene);
+void set_shear_box_inertial_number(Scene& scene, double inertial_number);
+
 // Inside area of the box (m^2) and its corrected value after a relative
 // displacement dx of the halves.
 double shear_area(const ShearBox& box);

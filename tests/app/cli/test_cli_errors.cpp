@@ -172,6 +172,9 @@ TEST(CliErrors, ClusterFlagsNameTheProblem) {
       {"study size --out s", "--scene", "give the apparatus' scene"},
       {"study shape --out s --bulk b.csv", "--bulk", "flag of the size study"},
       {"study sensitivity --out s --preset quick", "--preset", "paper, ci"},
+      {campaign + "--profile quick", "--profile", "the profiles: paper, fast"},
+      {"campaign " SIMSOLS_SOURCE_DIR "/assets/scenes/triaxial.toml --profile fast --out c",
+       "--profile", "measured on the direct shear box only"},
   };
   for (const Case& c : cases) {
     const Result r = run_in(d, c.args);

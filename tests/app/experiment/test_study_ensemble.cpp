@@ -77,6 +77,26 @@ TEST(StudyEnsemble, SettingsAreMeansWithIntervalsAndSignificantErrors) {
   while (std::getline(in, line)) EXPECT_EQ(fields(line), fields(header)) << line;
 }
 
+// Paired errors: the specimens scatter by 5 deg, but each moves by
+// 0.5 +- 0.05 deg under the setting: the same seeds resolve that, where
+// Welch's interval of the two means (half width ~ 13 deg) cannot.
+TEST(StudyEnsemble, ErrorsArePairedOnTheSameSeeds) {
+  const double ref[] = {30, 35, 40, 33}, moved[] = {0.45, 0.55, 0.5, 0.5};
+  std::vector<StudyCase> runs;
+  for (int k = 0; k < 4; ++k) runs.push_back(run("reference", "ref", k + 1, ref[k]));
+  for (int k = 0; k < 4; ++k) runs.push_back(run("stiffness", "E x 0.1", k + 1, ref[k] + moved[k]));
+  runs.push_back(run("stiffness", "E x 0.01", 1, 30.5));  // one pair only: Welch's, unknown
+  const std::vector<SettingSummary> s = summarise_settings(runs);
+  ASSERT_EQ(s.size(), 3u);
+  ASSERT_TRUE(s[1].peak_error);
+  EXPECT_NEAR(s[1].peak_error->mean, 0.5, 1e-12);
+  EXPECT_NEAR(s[1].peak_error->half_width, 3.1824 * 0.0408248 / 2, 1e-4);  // t(0.975, 3) sd / sqrt 4
+  EXPECT_TRUE(s[1].peak_error->significant());
+  const Interval welch = difference_ci95({30.45, 35.55, 40.5, 33.5}, {30, 35, 40, 33});
+  EXPECT_FALSE(welch.significant());
+  EXPECT_TRUE(std::isnan(s[2].peak_error->half_width));
+}
+
 TEST(StudyEnsemble, TwinsSeparateWhereTheCurvesFirstDifferBeyondTheThreshold) {
   ShearResult a, b;
   for (int i = 0; i < 10; ++i) {

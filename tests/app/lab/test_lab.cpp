@@ -172,3 +172,23 @@ TEST(Lab, EffectSlotsSwitchTheCompiledKernels) {
   std::ofstream(d / "bad.txt") << "effect rolling sticky\n";
   EXPECT_NE(run(lab(d / "bad.txt")), 0);
 }
+
+// The fast profile (run_profile.h) applies at prepare: E x 0.1 and dt 0.5
+// instead of 0.25 x Rayleigh give a step sqrt(10) x 2 as long.
+TEST(Lab, TheFastProfileLengthensTheStep) {
+  if (run("command -v xvfb-run") != 0) GTEST_SKIP() << "xvfb-run not installed (Debian: xvfb)";
+  const fs::path d = fs::temp_directory_path() / ("simsols_lab_profile_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  std::ofstream(d / "s.txt") << "preset 6.35 160\nprepare\nstate " << (d / "paper.state").string()
+                             << "\nprofile fast\nprepare\nstate " << (d / "fast.state").string() << "\n";
+  ASSERT_EQ(run(lab(d / "s.txt")), 0);
+  auto paper = read_state(d / "paper.state"), fast = read_state(d / "fast.state");
+  EXPECT_EQ(paper["profile"], "paper");
+  EXPECT_EQ(fast["profile"], "fast");
+  const double ratio = std::stod(fast["dt_s"]) / std::stod(paper["dt_s"]);
+  EXPECT_NEAR(ratio, 2 * std::sqrt(10.0), 1e-6 * ratio);
+  std::ofstream(d / "bad.txt") << "profile quick\n";
+  EXPECT_NE(run(lab(d / "bad.txt")), 0);
+  fs::remove_all(d);
+}
