@@ -67,8 +67,8 @@ CommandRunner add_campaign_command(CLI::App& app) {
       cmd->add_option("--layers", opt->layers, "Layers for every size (default: Table 1)");
   cmd->add_option("--precision", opt->precision, "float or double (default: the base scene's)");
   cmd->add_option("--profile", opt->profile,
-                  "paper (the base scene's settings, default) or fast (shear box: E x 0.1 with "
-                  "kappa >= 400, dt 0.5, I 2e-3; docs/accuracy.md)");
+                  "paper (the base scene's settings, default) or fast (shear box: dt 0.5 x "
+                  "Rayleigh, I 2e-3; docs/accuracy.md)");
   CLI::Option* displacement =
       cmd->add_option("--displacement", opt->displacement_mm,
                       "Horizontal displacement to shear, mm (default: the base scene's)");

@@ -403,8 +403,8 @@ CommandRunner add_run_command(CLI::App& app) {
   cmd->add_flag("--resume", opt->resume, "Continue the run in --out from its last checkpoint");
   cmd->add_option("--precision", opt->precision, "Override numerics.precision: float or double");
   cmd->add_option("--profile", opt->profile,
-                  "paper (the scene's settings, default) or fast (a shear box: E x 0.1 with "
-                  "kappa >= 400, dt 0.5, I 2e-3; docs/accuracy.md)");
+                  "paper (the scene's settings, default) or fast (a shear box: dt 0.5 x Rayleigh, "
+                  "I 2e-3; docs/accuracy.md)");
   cmd->add_option("--duration", opt->duration, "Override numerics.duration (s, > 0)");
   cmd->add_option("--stop-after", opt->stop_after,
                   "Stop after this many steps (a checkpoint is written; resume with --resume)")

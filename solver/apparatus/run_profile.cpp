@@ -14,8 +14,8 @@ namespace {
 constexpr RunProfile kProfiles[] = {
     {"paper", "the scene's own settings (the paper's: dt 0.25 x Rayleigh, E as given, I 8e-4)",
      1, 0, 0, 0},
-    {"fast", "E x 0.1 (kappa >= 400), dt 0.5 x Rayleigh, I 2e-3: the shear box only", 0.1, 400,
-     0.5, 2e-3},
+    // the stiffness lever stays off: E x 0.1 moved the 3.97 mm peaks by -8 deg
+    {"fast", "dt 0.5 x Rayleigh and I 2e-3, E as given: the shear box only", 1, 400, 0.5, 2e-3},
 };
 
 }  // namespace

@@ -172,7 +172,8 @@ Envelope fit_envelope(double d_mm, const std::vector<const CampaignEntry*>& test
 }
 
 const char* kTestsIntro =
-    "Peak: the first peak of τ/σ smoothed over a quarter of a bead diameter; largest: the "
+    "Peak: the first peak of τ/σ after single-row spikes are removed (a Hampel filter over "
+    "d/20 of travel, docs/shear-box.md); largest: the "
     "largest τ/σ of a row; residual: the mean at the critical state, from where |dz/dx| stays "
     "below 0.02 to the end (\"not reached\": the last 20 % of the travel, while the volume still "
     "changes); ψ max: the steepest rise, \"(dynamic)\" when Taylor's energy balance could not "

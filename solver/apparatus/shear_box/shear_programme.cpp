@@ -479,8 +479,8 @@ std::string ShearProgramme::describe() const {
 std::string ShearProgramme::measuring_line() const {
   char buf[192];
   std::snprintf(buf, sizeof buf,
-                "shearing at %.4g mm/s (inertial number %.2g at the start; target < 1e-3), "
-                "specimen height %.2f mm",
+                "shearing at %.4g mm/s (inertial number %.2g at the start; quasi-static below "
+                "1e-3), specimen height %.2f mm",
                 speed_ * 1e3, inertial_number(), summary().specimen_height * 1e3);
   return buf;
 }

@@ -168,4 +168,10 @@ TEST(StudyEnsemble, DocsAndLabTablesAreTheShippedCsv) {
     EXPECT_EQ(base->settings.specimen, k);
     EXPECT_NE(expected_accuracy_text(*base).find("phi_peak"), std::string::npos);
   }
+  // the paired study in the paper's box (docs/img), the same way
+  const std::vector<SettingSummary> paired = parse_ensemble_csv(
+      read_text(SIMSOLS_SOURCE_DIR "/docs/img/accuracy_paired_poured_ensemble.csv"));
+  EXPECT_NE(docs.find(ensemble_table_md(paired, StudySpecimen::Poured)), std::string::npos)
+      << "docs/accuracy.md does not hold the table of docs/img/accuracy_paired_poured_ensemble.csv; "
+         "regenerate it with: simsols study table --from docs/img/accuracy_paired_poured_ensemble.csv";
 }
