@@ -264,8 +264,9 @@ Scene read_run_scene(const RunOptions& opt) {
     throw UsageError("missing_field", "", 0, "SCENE", "a scene file is required (or --resume)");
   Scene scene = read_scene(opt.scene_path);
   apply_precision(opt, scene);
-  const ProfileApplied applied = apply_profile(scene, run_profile(opt.profile), opt.scene_path);
-  if (opt.profile != "paper" && !opt.quiet)
+  const RunProfile& profile = run_profile(opt.profile);
+  const ProfileApplied applied = apply_profile(scene, profile, opt.scene_path);
+  if (!profile.neutral() && !opt.quiet)
     std::printf("profile %s: Young's moduli x %.3g (kappa = %.0f at the normal stress)\n",
                 opt.profile.c_str(), applied.stiffness_scale, applied.kappa);
   if (opt.duration != 0) scene.numerics.duration = opt.duration;

@@ -150,7 +150,7 @@ std::string LabExperiment::poll() {
   const std::lock_guard lock(news_->mutex);
   // Reset builds the prepared specimen again (a profile's scene would be
   // profiled twice: it is searched again instead)
-  if (news_->prepared && profile_ == "paper") scene_ = sim_->scene();
+  if (news_->prepared && run_profile(profile_).neutral()) scene_ = sim_->scene();
   return {};
 }
 

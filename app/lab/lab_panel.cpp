@@ -194,7 +194,7 @@ void LabApp::draw_precision_and_time_step() {
   const std::optional<StudySpecimen> kind = accuracy_study_specimen(exp_->scene());
   if (!kind) return;  // the accuracy study measured shear tests only
   const ImVec4 grey = ImGui::GetStyle().Colors[ImGuiCol_TextDisabled];
-  if (exp_->profile() != "paper") {
+  if (!run_profile(exp_->profile()).neutral()) {
     ImGui::PushTextWrapPos(0);
     ImGui::TextColored(grey, "%s", profile_accuracy_text(exp_->profile(), *kind).c_str());
     ImGui::PopTextWrapPos();

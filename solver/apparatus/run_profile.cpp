@@ -45,17 +45,14 @@ ProfileApplied apply_profile(Scene& scene, const RunProfile& p, const std::strin
     return measured ? stiffness_number(scene.materials.at(specimen->material), kind->profile_stress(scene))
                     : 0.0;
   };
-  if (std::string(p.name) == "paper") {
-    out.kappa = kappa();
-    return out;
-  }
-  if (!measured)
+  if (!measured && !p.neutral())
     throw SceneError("not_applicable", scene_name, 0, "apparatus",
                      std::string("the '") + p.name +
                          "' profile is measured on the direct shear box only "
                          "(docs/accuracy.md); use --profile paper for this apparatus");
   double scale = p.stiffness_scale;
-  if (p.kappa_floor > 0)  // kappa scales as scale^(2/3): the softest scale that keeps the floor
+  // kappa scales as scale^(2/3): the softest scale that keeps the floor
+  if (p.kappa_floor > 0 && measured)
     scale = std::min(1.0, std::max(scale, std::pow(p.kappa_floor / kappa(), 1.5)));
   for (Material& m : scene.materials) m.young_modulus *= scale;
   if (p.dt_fraction > 0) {

@@ -35,6 +35,8 @@ struct RunProfile {
   double kappa_floor;      // 0 = none
   double dt_fraction;      // 0 = the scene's
   double inertial_number;  // shear box target; 0 = the scene's
+  // No lever moves anything (`paper`): it applies to any scene.
+  bool neutral() const { return stiffness_scale == 1 && dt_fraction == 0 && inertial_number == 0; }
 };
 
 // The profiles, `paper` (the default) first.

@@ -28,7 +28,7 @@ int report_interrupted(size_t k, size_t count, const std::string& name,
 }
 
 void refuse_profile(const CampaignOptions& opt, const std::string& base_name) {
-  if (std::string(run_profile(opt.profile).name) == "paper") return;
+  if (run_profile(opt.profile).neutral()) return;
   throw UsageError("not_applicable", "--profile",
                    "'" + opt.profile + "' is measured on the direct shear box only "
                    "(docs/accuracy.md); " + base_name + " is another apparatus: use --profile paper");
