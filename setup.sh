@@ -48,6 +48,8 @@ PACKAGES=(
   libxrandr-dev
   # Boost.Math, header-only: Student's t quantiles (app/experiment/shear_box/study_stats.cpp)
   libboost-math-dev
+  # NLopt (C++): the calibration's search on its surrogate (app/experiment/calibration)
+  libnlopt-cxx-dev
   # Assimp: grain surface meshes, STL/OBJ (solver/scene/mesh_body.cpp)
   libassimp-dev
   # `import simsols` (app/python): pybind11 and Python's headers to build it,

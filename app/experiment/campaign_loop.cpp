@@ -59,7 +59,7 @@ CampaignOutcome run_campaign_loop(const CampaignLoop& loop, const CampaignRun& r
     if (!run.quiet && done_cost > 0)
       std::fprintf(stderr, "[campaign] %zu/%zu tests, %.0f s so far, ETA %.0f s\n", k,
                    loop.count, outcome.seconds,
-                   outcome.seconds / done_cost * (total_cost - done_cost));
+                   outcome.seconds / done_cost * (total_cost - done_cost + loop.later_cost));
     ProgrammeRunOptions o;
     o.device = run.device;
     o.out_dir = dir.string();
@@ -67,7 +67,7 @@ CampaignOutcome run_campaign_loop(const CampaignLoop& loop, const CampaignRun& r
     o.quiet = run.quiet;
     o.resume = fs::exists(dir / "checkpoint.bin") && fs::exists(dir / loop.rows_file);
     o.stop_requested = run.stop_requested;
-    o.later_particle_steps = total_cost - done_cost - loop.cost(k);
+    o.later_particle_steps = total_cost - done_cost - loop.cost(k) + loop.later_cost;
     const auto t0 = std::chrono::steady_clock::now();
     if (loop.run(k, o)) {
       outcome.interrupted = true;

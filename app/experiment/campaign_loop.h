@@ -50,6 +50,9 @@ struct CampaignLoop {
   size_t count = 0;
   std::string what;       // "tests", "triaxial tests"
   std::string rows_file;  // "shear.csv", "triaxial.csv"
+  // Particle-steps of the work after this loop (a calibration's later
+  // rounds): the ETA covers it too.
+  double later_cost = 0;
   std::function<double(size_t)> cost;
   std::function<std::filesystem::path(size_t)> dir;
   std::function<std::string(size_t)> name;

@@ -59,21 +59,39 @@ constexpr HeadlineResult kCellHeadlines[] = {
     {"friction_angle_deg", "φ_mob (°)", BulkMatch::None},
     {"solid_fraction", "Φ", BulkMatch::None}};
 
+constexpr CurveQuantity kShearCurves[] = {
+    {"displacement", "displacement_mm", "mm"}, {"stress_ratio", "tau_over_sigma", "-"},
+    {"shear_stress", "tau_kPa", "kPa"},        {"dilation", "dilation_mm", "mm"},
+    {"normal_stress", "sigma_kPa", "kPa"}};
+constexpr CurveQuantity kOedometerCurves[] = {
+    {"vertical_stress", "sigma_top_kPa", "kPa"}, {"void_ratio", "void_ratio", "-"},
+    {"horizontal_stress", "sigma_h_kPa", "kPa"}, {"k0", "k0", "-"}};
+constexpr CurveQuantity kTriaxialCurves[] = {
+    {"axial_strain", "axial_strain", "-"}, {"volumetric_strain", "volumetric_strain", "-"},
+    {"stress_ratio", "q_over_p", "-"},     {"deviator_stress", "q_kPa", "kPa"},
+    {"mean_stress", "p_kPa", "kPa"},       {"void_ratio", "void_ratio", "-"}};
+constexpr CurveQuantity kCellCurves[] = {
+    {"axial_strain", "strain", "-"},       {"shear_strain", "strain", "-"},
+    {"volumetric_strain", "volumetric_strain", "-"}, {"stress_ratio", "stress_ratio", "-"},
+    {"deviator_stress", "q_kPa", "kPa"},   {"mean_stress", "p_kPa", "kPa"},
+    {"void_ratio", "void_ratio", "-"}};
 const ApparatusKind kKinds[] = {
     {"shear_box", "Direct shear", "a direct shear test", "shear", kShearBoxWalls,
      "settle,consolidate,shear", build_shear_box, make<ShearProgramme>, shear_box_stress,
      check_shear_box_specimen_top, resize_shear_box, kShearHeadlines, shear_box_expected_time,
-     shear_box_profile_stress, set_shear_box_inertial_number},
+     shear_box_profile_stress, set_shear_box_inertial_number, kShearCurves, nullptr,
+     "shear_box.specimen.seed"},
     {"oedometer", "Oedometer", "an oedometer test", "oedometer", kOedometerWalls, "settle,load",
      build_oedometer, make<OedometerProgramme>, no_stress, nullptr, resize_cell,
-     kOedometerHeadlines, oedometer_expected_time},
+     kOedometerHeadlines, oedometer_expected_time, nullptr, nullptr, kOedometerCurves, nullptr,
+     "oedometer.specimen.seed"},
     {"triaxial", "Triaxial", "a triaxial test", "triaxial", kTriaxialWalls,
      "settle,consolidate,compress", build_triaxial, make<TriaxialProgramme>, triaxial_stress,
-     nullptr, resize_cell, kTriaxialHeadlines,
-     triaxial_expected_time},
+     nullptr, resize_cell, kTriaxialHeadlines, triaxial_expected_time, nullptr, nullptr,
+     kTriaxialCurves, nullptr, "triaxial.specimen.seed"},
     {"periodic_cell", "Periodic cell", "a periodic-cell test", "cell", 0, "compress,test",
      build_periodic_cell, make<CellProgramme>, cell_stress, nullptr, nullptr, kCellHeadlines,
-     periodic_cell_expected_time},
+     periodic_cell_expected_time, nullptr, nullptr, kCellCurves, "stage=1", "periodic_cell.seed"},
 };
 static_assert(std::size(kKinds) + 1 == std::variant_size_v<Apparatus>,
               "one registry entry per alternative of Scene::apparatus");

@@ -42,6 +42,16 @@ struct HeadlineResult {
   BulkMatch bulk;
 };
 
+// A quantity of a kind's rows file that a measured curve can be compared
+// with (a calibration's targets, app/experiment/calibration): the name a
+// target gives it, the column that holds it and that column's unit ("-",
+// "kPa", "mm"). Signs follow the rows file: compression positive.
+struct CurveQuantity {
+  const char* name;    // "axial_strain"
+  const char* column;  // "strain"
+  const char* unit;
+};
+
 struct ApparatusKind {
   const char* name;       // its scene table and its key everywhere: "shear_box"
   const char* title;      // the test in a plot's title: "Direct shear"
@@ -78,6 +88,13 @@ struct ApparatusKind {
   // nullptr where only the paper profile was measured.
   double (*profile_stress)(const Scene& scene) = nullptr;
   void (*set_inertial_number)(Scene& scene, double inertial_number) = nullptr;
+  // Its rows' quantities a measured curve can be compared with; the rows
+  // that belong to the test proper, as "column=value" ("stage=1"), or
+  // nullptr for every row; the scene's key (a dotted TOML path) of the
+  // specimen's random seed, which a calibration's replicates change.
+  std::span<const CurveQuantity> curves = {};
+  const char* curve_rows = nullptr;
+  const char* seed_key = nullptr;
 };
 
 // Particle-steps of the scene's test (placed): its beads times its kind's

@@ -1,0 +1,157 @@
+#include "app/experiment/calibration/calibration_spec.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include "solver/apparatus/registry.h"
+#include "solver/io/scene_toml.h"
+#include "solver/io/toml_reader.h"
+
+namespace simsols {
+
+namespace fs = std::filesystem;
+using scene_toml::Context;
+using scene_toml::Reader;
+
+double CalibrationParameter::value(double u) const {
+  return log_scale ? std::exp(std::log(min) + u * (std::log(max) - std::log(min)))
+                   : min + u * (max - min);
+}
+
+double CalibrationParameter::unit_of(double v) const {
+  return log_scale ? (std::log(v) - std::log(min)) / (std::log(max) - std::log(min))
+                   : (v - min) / (max - min);
+}
+
+int CalibrationSpec::round_size(int r) const {
+  return budget / rounds + (r < budget % rounds ? 1 : 0);
+}
+
+std::optional<std::pair<double, std::string>> unit_factor(const std::string& unit) {
+  static const std::pair<const char*, std::pair<double, const char*>> kUnits[] = {
+      {"-", {1, ""}},          {"%", {0.01, ""}},       {"Pa", {1, "stress"}},
+      {"kPa", {1e3, "stress"}}, {"MPa", {1e6, "stress"}}, {"m", {1, "length"}},
+      {"mm", {1e-3, "length"}}};
+  for (const auto& [name, f] : kUnits)
+    if (unit == name) return std::make_pair(f.first, std::string(f.second));
+  return std::nullopt;
+}
+
+namespace {
+
+const std::vector<std::string> kUnitNames = {"-", "%", "Pa", "kPa", "MPa", "m", "mm"};
+
+std::string resolve(const std::string& base, const std::string& p) {
+  const fs::path path(p);
+  return path.is_absolute() ? p : (fs::path(base).parent_path() / path).lexically_normal().string();
+}
+
+CalibrationParameter read_parameter(const Reader& r) {
+  CalibrationParameter p;
+  p.name = r.string("name");
+  p.key = r.string("key");
+  p.min = r.number("min");
+  p.max = r.number("max");
+  p.log_scale = r.choice("scale", "linear", {"linear", "log"}) == "log";
+  r.check_range("max", p.max, p.max > p.min, "(min, inf): above min = " + scene_toml::num(p.min));
+  if (p.log_scale) r.check_range("min", p.min, p.min > 0, "(0, inf) on a log scale");
+  return p;
+}
+
+// A column's unit and quantity, checked against the quantities of the
+// target's apparatus (`kind`, null when its scene could not be read).
+CurveColumn read_column(const Reader& r, const ApparatusKind* kind) {
+  CurveColumn c;
+  c.column = r.string("column");
+  c.unit = r.choice("unit", kUnitNames);
+  c.quantity = r.string("quantity");
+  c.scatter = r.optional_number("scatter");
+  if (c.scatter) r.check_range("scatter", *c.scatter, *c.scatter >= 0, "[0, inf)");
+  if (!kind) return c;
+  std::vector<std::string> names;
+  for (const CurveQuantity& q : kind->curves) {
+    names.push_back(q.name);
+    if (c.quantity != q.name) continue;
+    if (unit_factor(c.unit)->second != unit_factor(q.unit)->second)
+      r.fail("bad_unit", "unit", "'" + c.unit + "' is not a unit of " + c.quantity +
+                                     " (measured in " + q.unit + " by " + kind->test_noun + ")");
+    return c;
+  }
+  r.fail("bad_enum", "quantity",
+         "'" + c.quantity + "' is not measured by " + kind->test_noun + "; allowed values: " +
+             scene_toml::join(names, true));
+}
+
+CalibrationTarget read_target(const Reader& r, const std::string& file) {
+  CalibrationTarget t;
+  t.name = r.string("name");
+  t.scene = resolve(file, r.string("scene"));
+  t.data = resolve(file, r.string("data"));
+  t.where = r.string("where", "");
+  if (!t.where.empty() && t.where.find('=') == std::string::npos)
+    r.fail("bad_value", "where", "'" + t.where + "' is not of the form column=value");
+  for (const char* k : {"scene", "data"})
+    if (!fs::exists(k[0] == 's' ? t.scene : t.data))
+      r.fail("missing_file", k, "'" + (k[0] == 's' ? t.scene : t.data) + "' does not exist");
+  for (auto&& [key, node] : r.table("set")) {  // scene keys: checked when they are set
+    if (!node.is_number())
+      r.context().fail("wrong_type", scene_toml::line_of(node.source()),
+                       scene_toml::child(r.field("set"), key.str()), "expected a number");
+    t.set.emplace_back(std::string(key.str()), *node.value<double>());
+  }
+  const ApparatusKind* kind = apparatus_kind(read_scene(t.scene));
+  if (!kind) r.fail("no_apparatus", "scene", "'" + t.scene + "' has no apparatus: no test to run");
+  const std::vector<std::string> keys = {"column", "unit", "quantity", "scatter"};
+  t.x = read_column(r.sub("x", keys), kind);
+  const std::vector<const toml::table*> ys = r.tables("y");
+  for (size_t i = 0; i < ys.size(); ++i)
+    t.y.push_back(read_column(Reader(*ys[i], scene_toml::item(r.field("y"), i), r.context(), keys),
+                              kind));
+  if (t.y.empty()) r.fail("missing_key", "y", "a target compares at least one [[targets.y]]");
+  return t;
+}
+
+}  // namespace
+
+CalibrationSpec read_calibration(const std::string& path) {
+  toml::table doc;
+  try {
+    doc = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw SceneError("toml_syntax", path, scene_toml::line_of(e.source()), "",
+                     std::string(e.description()));
+  }
+  Context ctx{path, {}};
+  CalibrationSpec s;
+  s.path = path;
+  const Reader top(doc, "", ctx, {"calibration", "parameters", "targets"});
+  const Reader c = top.sub("calibration", {"name", "budget", "rounds", "replicates", "points"});
+  s.name = c.string("name", fs::path(path).stem().string());
+  s.budget = static_cast<int>(c.optional_integer("budget").value_or(s.budget));
+  s.rounds = static_cast<int>(c.optional_integer("rounds").value_or(s.rounds));
+  s.replicates = static_cast<int>(c.optional_integer("replicates").value_or(s.replicates));
+  s.points = static_cast<int>(c.optional_integer("points").value_or(s.points));
+  c.check_range("rounds", s.rounds, s.rounds >= 1 && s.rounds <= 10, "[1, 10]");
+  c.check_range("replicates", s.replicates, s.replicates >= 2 && s.replicates <= 100, "[2, 100]");
+  c.check_range("points", s.points, s.points >= 2 && s.points <= 200, "[2, 200]");
+  const std::vector<const toml::table*> ps = top.tables("parameters");
+  for (size_t i = 0; i < ps.size(); ++i)
+    s.parameters.push_back(read_parameter(
+        Reader(*ps[i], scene_toml::item("parameters", i), ctx, {"name", "key", "min", "max", "scale"})));
+  if (s.parameters.empty() || s.parameters.size() > 6)
+    ctx.fail("out_of_range", 0, "parameters",
+             std::to_string(s.parameters.size()) + " parameters, allowed [1, 6]");
+  const int least = 2 * s.rounds + 2 * static_cast<int>(s.parameters.size());
+  c.check_range("budget", s.budget, s.budget >= least && s.budget <= 10000,
+                "[" + std::to_string(least) + ", 10000] (2 per round and 2 per parameter at least)");
+  const std::vector<const toml::table*> ts = top.tables("targets");
+  for (size_t i = 0; i < ts.size(); ++i)
+    s.targets.push_back(read_target(Reader(*ts[i], scene_toml::item("targets", i), ctx,
+                                           {"name", "scene", "data", "where", "set", "x", "y"}),
+                                    path));
+  if (s.targets.empty()) ctx.fail("missing_key", 0, "targets", "at least one [[targets]]");
+  ctx.throw_if_any();
+  return s;
+}
+
+}  // namespace simsols

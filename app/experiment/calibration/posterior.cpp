@@ -1,0 +1,143 @@
+#include "app/experiment/calibration/posterior.h"
+
+#include <algorithm>
+#include <boost/random/sobol.hpp>
+#include <cmath>
+#include <nlopt.hpp>
+#include <numeric>
+#include <random>
+
+namespace simsols {
+
+namespace {
+
+// Samples of the posterior: enough for 2 % quantiles in each dimension.
+int sample_count(int parameters) { return 4096 * parameters; }
+
+// The weighted q-quantile of `v` (weights `w`, normalised).
+double quantile(const Eigen::VectorXd& v, const Eigen::VectorXd& w, double q) {
+  std::vector<int> order(v.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return v(a) < v(b); });
+  double sum = 0;
+  for (int i : order)
+    if ((sum += w(i)) >= q) return v(i);
+  return v(order.back());
+}
+
+Estimate estimate(const CalibrationParameter& p, const Eigen::VectorXd& u,
+                  const Eigen::VectorXd& w, double best_u) {
+  Eigen::VectorXd v(u.size());
+  for (int i = 0; i < u.size(); ++i) v(i) = p.value(u(i));
+  Estimate e;
+  e.best = p.value(best_u);
+  e.mean = w.dot(v);
+  e.sd = std::sqrt(std::max(0.0, w.dot(v.cwiseProduct(v)) - e.mean * e.mean));
+  e.lo95 = quantile(v, w, 0.025);
+  e.hi95 = quantile(v, w, 0.975);
+  return e;
+}
+
+// The mode: NLopt's bounded simplex (Subplex) on -log L from the best sample.
+Eigen::VectorXd mode(const Comparison& c, const Surrogate& s, const Eigen::VectorXd& start) {
+  struct Data {
+    const Comparison& c;
+    const Surrogate& s;
+  } data{c, s};
+  const auto objective = [](const std::vector<double>& x, std::vector<double>&, void* d) {
+    const Data& dd = *static_cast<const Data*>(d);
+    return -log_likelihood(dd.c, dd.s, Eigen::Map<const Eigen::VectorXd>(x.data(), x.size()));
+  };
+  const unsigned n = static_cast<unsigned>(start.size());
+  nlopt::opt opt(nlopt::LN_SBPLX, n);
+  opt.set_lower_bounds(std::vector<double>(n, 0.0));
+  opt.set_upper_bounds(std::vector<double>(n, 1.0));
+  opt.set_min_objective(objective, &data);
+  opt.set_xtol_abs(1e-7);
+  opt.set_maxeval(4000);
+  std::vector<double> x(start.data(), start.data() + n);
+  double f = 0;
+  try {
+    opt.optimize(x, f);
+  } catch (const nlopt::roundoff_limited&) {  // x is still the best found
+  }
+  return Eigen::Map<Eigen::VectorXd>(x.data(), n);
+}
+
+}  // namespace
+
+std::vector<double> curve_misfits(const Comparison& c, const Eigen::VectorXd& y,
+                                  const Eigen::VectorXd& surrogate_error) {
+  std::vector<double> sum(c.curves, 0.0);
+  std::vector<int> count(c.curves, 0);
+  for (int f = 0; f < y.size(); ++f) {
+    if (!std::isfinite(y(f))) continue;
+    const double e = std::isfinite(surrogate_error(f)) ? surrogate_error(f) : 0;
+    const double s2 = c.scatter(f) * c.scatter(f) + c.seed_scatter(f) * c.seed_scatter(f) + e * e +
+                      1e-24 + 1e-12 * c.measured(f) * c.measured(f);
+    sum[c.curve_of[f]] += (y(f) - c.measured(f)) * (y(f) - c.measured(f)) / s2;
+    ++count[c.curve_of[f]];
+  }
+  for (int k = 0; k < c.curves; ++k) sum[k] = count[k] ? sum[k] / count[k] : NAN;
+  return sum;
+}
+
+double log_likelihood(const Comparison& c, const Surrogate& s, const Eigen::VectorXd& u) {
+  double total = 0;
+  for (double d : curve_misfits(c, s.predict(u), s.loo_error()))
+    if (std::isfinite(d)) total += d;
+  return -0.5 * total;
+}
+
+Posterior posterior(const CalibrationSpec& spec, const Comparison& c, const Surrogate& s) {
+  const int np = static_cast<int>(spec.parameters.size());
+  Posterior p;
+  p.u = sobol_designs(np, sample_count(np));
+  const int m = static_cast<int>(p.u.rows());
+  Eigen::VectorXd logl(m);
+  for (int i = 0; i < m; ++i) logl(i) = log_likelihood(c, s, p.u.row(i).transpose());
+  Eigen::Index top = 0;
+  const double peak = logl.maxCoeff(&top);
+  p.weight = (logl.array() - peak).exp().matrix();
+  p.weight /= p.weight.sum();
+  p.effective_samples = 1.0 / p.weight.squaredNorm();
+  p.best_u = mode(c, s, p.u.row(top).transpose());
+  for (int j = 0; j < np; ++j)
+    p.estimates.push_back(estimate(spec.parameters[j], p.u.col(j), p.weight, p.best_u(j)));
+  return p;
+}
+
+Eigen::MatrixXd draw_designs(const Posterior& p, int n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  const int np = static_cast<int>(p.u.cols());
+  Eigen::VectorXd sd(np);
+  for (int j = 0; j < np; ++j) {
+    const double mean = p.weight.dot(p.u.col(j));
+    sd(j) = std::sqrt(std::max(0.0, p.weight.dot(p.u.col(j).cwiseProduct(p.u.col(j))) - mean * mean));
+  }
+  Eigen::MatrixXd out(n, np);
+  const double start = std::uniform_real_distribution<double>(0, 1.0 / n)(rng);
+  double cumulative = 0;
+  int i = 0;
+  for (int k = 0; k < n; ++k) {
+    const double target = start + double(k) / n;
+    while (i + 1 < p.weight.size() && cumulative + p.weight(i) < target) cumulative += p.weight(i++);
+    for (int j = 0; j < np; ++j) {
+      const double step = std::normal_distribution<double>(0, 0.5 * sd(j) + 1e-3)(rng);
+      out(k, j) = std::clamp(p.u(i, j) + step, 0.0, 1.0);
+    }
+  }
+  return out;
+}
+
+Eigen::MatrixXd sobol_designs(int parameters, int n) {
+  boost::random::sobol engine(static_cast<std::size_t>(parameters));
+  const double scale = std::ldexp(1.0, -64);
+  Eigen::MatrixXd out(n, parameters);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < parameters; ++j)
+      out(i, j) = std::fmod(static_cast<double>(engine()) * scale + 0.5 / n, 1.0);
+  return out;
+}
+
+}  // namespace simsols

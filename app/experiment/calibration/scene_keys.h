@@ -1,0 +1,36 @@
+// A scene file with some of its values replaced, by dotted key: how a
+// calibration sets the parameters it fits, a target's own settings and a
+// replicate's seed on the scene of a test, without knowing the scene's
+// tables.
+//
+// A key is a dotted path of the scene's TOML: "periodic_cell.seed",
+// "triaxial.specimen.preparation.void_ratio". Where a component meets an
+// array of tables ([[materials]], [[grains]]), the next one is the name of
+// the entry: "materials.sand.sliding_friction". Every table on the path
+// must exist; the last key is set or added. The scene is then read as the
+// scene reader reads any file, so a value out of its range is reported
+// with the field's name as usual.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "solver/scene/scene.h"
+
+namespace simsols {
+
+struct SceneValue {
+  std::string key;
+  double value = 0;
+  bool integer = false;  // written as a TOML integer (a seed)
+};
+
+// The scene at `path` with `values` set, read (not placed). SceneError
+// naming `path` and the key when a table on a key's path is missing.
+Scene scene_with(const std::string& path, const std::vector<SceneValue>& values);
+
+// The TOML text of the scene at `path` with `values` set (what scene_with
+// reads): for a run's folder.
+std::string scene_text_with(const std::string& path, const std::vector<SceneValue>& values);
+
+}  // namespace simsols
