@@ -24,6 +24,7 @@ void read_periodic_cell(const Reader& root, Scene& scene) {
   Reader r = root.sub("periodic_cell",
                       {"particles", "diameter", "size_spread", "material", "seed",
                        "start_solid_fraction", "preparation_friction", "preparation_restitution",
+                       "preparation_rolling_friction",
                        "pressure", "test", "path",
                        "inertial_number", "compression_inertial_number", "shear_strain",
                        "axial_strain", "row_strain", "given", "edges"});
@@ -39,6 +40,7 @@ void read_periodic_cell(const Reader& root, Scene& scene) {
   c.start_solid_fraction = r.number("start_solid_fraction", c.start_solid_fraction);
   c.preparation_friction = r.number("preparation_friction", c.preparation_friction);
   c.preparation_restitution = r.number("preparation_restitution", c.preparation_restitution);
+  c.preparation_rolling_friction = r.optional_number("preparation_rolling_friction");
   c.pressure = r.number("pressure", c.pressure);
   c.test = index_of<PeriodicCell::Test>(kTests, r.choice("test", kTests[0], kTests));
   c.path = index_of<PeriodicCell::Path>(kPaths, r.choice("path", kPaths[0], kPaths));
@@ -78,6 +80,8 @@ void write_periodic_cell(TableWriter& w) {
   w.line("start_solid_fraction", c.start_solid_fraction);
   w.line("preparation_friction", c.preparation_friction);
   w.line("preparation_restitution", c.preparation_restitution);
+  if (c.preparation_rolling_friction)
+    w.line("preparation_rolling_friction", *c.preparation_rolling_friction);
   w.line("pressure", c.pressure);
   w.text("test", kTests[static_cast<int>(c.test)]);
   w.text("path", kPaths[static_cast<int>(c.path)]);

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -56,8 +57,10 @@ void write_marginal(const CalibrationSpec& spec, const CalibrationResult& r, siz
   const CalibrationParameter& p = spec.parameters[j];
   constexpr int kBins = 40;
   std::vector<double> mass(kBins, 0.0);
+  const double lo = r.posterior.u.col(j).minCoeff(), hi = r.posterior.u.col(j).maxCoeff();
+  const double width = std::max(hi - lo, 1e-12);
   for (int i = 0; i < r.posterior.u.rows(); ++i)
-    mass[std::min(kBins - 1, int(r.posterior.u(i, j) * kBins))] += r.posterior.weight(i);
+    mass[std::min(kBins - 1, int((r.posterior.u(i, j) - lo) / width * kBins))] += r.posterior.weight(i);
   plot::Chart c;
   c.title = spec.name + ": posterior of " + p.name;
   c.x_label = p.name + (p.log_scale ? " (log scale)" : "");
@@ -66,7 +69,7 @@ void write_marginal(const CalibrationSpec& spec, const CalibrationResult& r, siz
   plot::Series s;
   s.label = p.name;
   for (int b = 0; b < kBins; ++b) {
-    s.x.push_back(p.value((b + 0.5) / kBins));
+    s.x.push_back(p.value(lo + width * (b + 0.5) / kBins));
     s.y.push_back(mass[b]);
   }
   c.series.push_back(s);

@@ -89,18 +89,44 @@ double log_likelihood(const Comparison& c, const Surrogate& s, const Eigen::Vect
   return -0.5 * total;
 }
 
+namespace {
+
+// Samples of [lo, hi] (a Sobol sequence) and their normalised weights.
+void weigh(const Comparison& c, const Surrogate& s, const Eigen::VectorXd& lo,
+           const Eigen::VectorXd& hi, Posterior& p) {
+  const int np = static_cast<int>(lo.size());
+  p.u = sobol_designs(np, sample_count(np));
+  for (int i = 0; i < p.u.rows(); ++i)
+    p.u.row(i) = (lo + p.u.row(i).transpose().cwiseProduct(hi - lo)).transpose();
+  Eigen::VectorXd logl(p.u.rows());
+  for (int i = 0; i < p.u.rows(); ++i) logl(i) = log_likelihood(c, s, p.u.row(i).transpose());
+  p.weight = (logl.array() - logl.maxCoeff()).exp().matrix();
+  p.weight /= p.weight.sum();
+  p.effective_samples = 1.0 / p.weight.squaredNorm();
+}
+
+}  // namespace
+
 Posterior posterior(const CalibrationSpec& spec, const Comparison& c, const Surrogate& s) {
   const int np = static_cast<int>(spec.parameters.size());
   Posterior p;
-  p.u = sobol_designs(np, sample_count(np));
-  const int m = static_cast<int>(p.u.rows());
-  Eigen::VectorXd logl(m);
-  for (int i = 0; i < m; ++i) logl(i) = log_likelihood(c, s, p.u.row(i).transpose());
+  weigh(c, s, Eigen::VectorXd::Zero(np), Eigen::VectorXd::Ones(np), p);
+  // A narrow posterior holds few of the ranges' samples: sample again the
+  // box around every sample of weight above 1e-8 of the largest, widened by
+  // one spacing of the first samples (the prior is uniform there too, and
+  // the mass outside is below 1e-8 of the peak's).
+  if (p.effective_samples < 1000) {
+    const double spacing = std::pow(double(p.u.rows()), -1.0 / np);
+    Eigen::VectorXd lo = Eigen::VectorXd::Ones(np), hi = Eigen::VectorXd::Zero(np);
+    for (int i = 0; i < p.u.rows(); ++i)
+      if (p.weight(i) > 1e-8 * p.weight.maxCoeff()) {
+        lo = lo.cwiseMin(p.u.row(i).transpose());
+        hi = hi.cwiseMax(p.u.row(i).transpose());
+      }
+    weigh(c, s, (lo.array() - spacing).max(0.0).matrix(), (hi.array() + spacing).min(1.0).matrix(), p);
+  }
   Eigen::Index top = 0;
-  const double peak = logl.maxCoeff(&top);
-  p.weight = (logl.array() - peak).exp().matrix();
-  p.weight /= p.weight.sum();
-  p.effective_samples = 1.0 / p.weight.squaredNorm();
+  p.weight.maxCoeff(&top);
   p.best_u = mode(c, s, p.u.row(top).transpose());
   for (int j = 0; j < np; ++j)
     p.estimates.push_back(estimate(spec.parameters[j], p.u.col(j), p.weight, p.best_u(j)));

@@ -13,8 +13,10 @@
 //   log L(u) = -1/2 sum over curves of D.
 // The prior is uniform over the ranges (in log for a log-scale
 // parameter). The posterior is sampled by weighting a Sobol sequence of
-// the ranges (importance sampling from the prior); its effective sample
-// size is reported.
+// the ranges (importance sampling from the prior); when that leaves fewer
+// than 1000 effective samples, a second sequence covers the box that
+// holds the first one's weight and the weights are taken again there. The
+// effective sample size is reported.
 #pragma once
 
 #include <Eigen/Dense>

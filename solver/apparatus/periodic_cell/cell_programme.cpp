@@ -54,7 +54,8 @@ CellProgramme::CellProgramme(Simulation& sim) : sim_(sim), cell_(cell_of(sim)) {
 void CellProgramme::apply_friction() {
   if (stage_ == Stage::Compress)
     sim_.override_friction(
-        Model::FrictionOverride{cell_.preparation_friction, std::nullopt, cell_.preparation_restitution});
+        Model::FrictionOverride{cell_.preparation_friction, cell_.preparation_rolling_friction,
+                                cell_.preparation_restitution});
   else
     sim_.override_friction(std::nullopt);
 }

@@ -28,6 +28,8 @@ std::optional<SceneIssue> check(const PeriodicCell& c, const Scene& scene) {
   if (!(c.preparation_friction >= 0)) return issue("preparation_friction", c.preparation_friction, "[0, inf)");
   if (!(c.preparation_restitution > 0 && c.preparation_restitution <= 1))
     return issue("preparation_restitution", c.preparation_restitution, "(0, 1]");
+  if (c.preparation_rolling_friction && !(*c.preparation_rolling_friction >= 0))
+    return issue("preparation_rolling_friction", *c.preparation_rolling_friction, "[0, inf) m");
   if (!(c.pressure > 0)) return issue("pressure", c.pressure, "(0, inf) Pa");
   if (!(c.inertial_number > 0 && c.inertial_number <= 1))
     return issue("inertial_number", c.inertial_number, "(0, 1]");

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <cstdint>
 
 namespace simsols {
@@ -31,6 +32,10 @@ struct PeriodicCell {
   double start_solid_fraction = 0.2;  // the gas, (0, 0.4]
   double preparation_friction = 0;    // mu_s while compressed
   double preparation_restitution = 0.5;  // restitution while compressed: the gas cools
+  // The rolling friction (m) while compressed; unset: the materials' own. A
+  // calibration that fits the rolling friction sets it, so the packing
+  // does not change with the parameter.
+  std::optional<double> preparation_rolling_friction;
   double pressure = 100e3;            // Pa
   Test test = Test::SimpleShear;
   Path path = Path::ConstantSigma3;
