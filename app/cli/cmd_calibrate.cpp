@@ -1,12 +1,17 @@
 // simsols calibrate: a material's parameters fitted to measured curves
-// (app/experiment/calibration/calibration.h, docs/calibration.md).
+// (app/experiment/calibration/calibration.h, docs/calibration.md); and
+// simsols predict: tests run with the calibrated material on several
+// specimens, as a band (prediction.h).
 //
 //   simsols calibrate CALIBRATION.toml --out DIR [-q]
+//   simsols predict PREDICTION.toml --out DIR [-q]
 //
 // The calibration file names the parameters with their ranges, the
-// measured curves with the test of each, and the budget. Everything is
-// read and checked before a simulation runs. Rerunning the same command
-// continues an interrupted calibration (Ctrl-C: exit 130).
+// measured curves with the test of each, and the budget; the prediction
+// file the calibrated values and the tests. Everything is read and
+// checked before a simulation runs. Rerunning the same command continues
+// an interrupted one (Ctrl-C: exit 130).
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -14,6 +19,7 @@
 #include "app/cli/interrupt.h"
 #include "app/experiment/calibration/calibration.h"
 #include "app/experiment/calibration/calibration_report.h"
+#include "app/experiment/calibration/prediction.h"
 
 namespace simsols {
 namespace {
@@ -60,7 +66,55 @@ int calibrate(const CalibrateOptions& opt) {
   return 0;
 }
 
+void print_prediction(const PredictionSpec& spec, const PredictionResult& r, const std::string& out) {
+  std::printf("prediction %s: %zu tests x %d specimens, %.0f s now\n", spec.name.c_str(),
+              spec.tests.size(), spec.specimens, r.seconds);
+  for (const PredictedCurve& c : r.curves) {
+    const double u = unit_factor(c.unit)->first;
+    double peak = 0;
+    for (double p : c.peak) peak += p / double(c.peak.size());
+    std::printf("  %s %s: peak %.4g %s (mean of the specimens)", c.test.c_str(), c.quantity.c_str(),
+                peak / u, c.unit.c_str());
+    if (std::isfinite(c.rms_error))
+      std::printf(", r.m.s. error %.4g against a band sd of %.4g, %.0f %% of the measured points "
+                  "within 2 sd", c.rms_error / u, c.rms_sd / u, 100 * c.inside);
+    std::printf("\n");
+  }
+  std::printf("  results in %s (prediction.csv, specimens.csv, band_*.csv, predict_*.png)\n",
+              out.c_str());
+}
+
+int predict(const CalibrateOptions& opt) {
+  const PredictionSpec spec = read_prediction(opt.file);
+  const std::string out = opt.out_dir.empty() ? "out/predict-" + spec.name : opt.out_dir;
+  std::filesystem::create_directories(out);
+  InterruptScope interrupt;
+  const CalibrationOptions o{open_command_device(), out, opt.quiet, interrupt.stop_function()};
+  const PredictionResult r = run_prediction(spec, o);
+  if (r.interrupted) {
+    std::printf("prediction interrupted in %s: the same command continues it\n",
+                r.interrupted_dir.c_str());
+    return interrupt.exit_status();
+  }
+  write_prediction_report(spec, r, out);
+  print_prediction(spec, r, out);
+  return 0;
+}
+
 }  // namespace
+
+CommandRunner add_predict_command(CLI::App& app) {
+  auto opt = std::make_shared<CalibrateOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "predict",
+      "Run tests with a calibrated material on several specimens: bands, with the measured curve "
+      "and the error when given; resumable");
+  cmd->add_option("prediction", opt->file, "Prediction file (TOML, docs/calibration.md)")->required();
+  cmd->add_option("--out,-o", opt->out_dir,
+                  "Output folder (default out/predict-<name>; rerun to resume)");
+  cmd->add_flag("--quiet,-q", opt->quiet, "No progress lines");
+  return [opt] { return predict(*opt); };
+}
 
 CommandRunner add_calibrate_command(CLI::App& app) {
   auto opt = std::make_shared<CalibrateOptions>();

@@ -42,5 +42,6 @@ CommandRunner add_lab_command(CLI::App& app);
 CommandRunner add_study_command(CLI::App& app);
 CommandRunner add_plot_command(CLI::App& app);
 CommandRunner add_calibrate_command(CLI::App& app);
+CommandRunner add_predict_command(CLI::App& app);
 
 }  // namespace simsols

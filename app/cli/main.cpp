@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
   add(simsols::add_study_command);
   add(simsols::add_plot_command);
   add(simsols::add_calibrate_command);
+  add(simsols::add_predict_command);
   // A mistyped command: named, with the closest one and the list (CLI11
   // alone says only that a subcommand is required).
   if (argc > 1 && argv[1][0] != '-') {

@@ -4,9 +4,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "app/experiment/apparatus_run.h"
 #include "app/experiment/calibration/scene_keys.h"
-#include "app/experiment/campaign_loop.h"
+#include "app/experiment/calibration/test_batch.h"
 #include "solver/common/errors.h"
 #include "solver/io/scene_toml.h"
 
@@ -59,14 +58,7 @@ Problem make_problem(const CalibrationSpec& spec) {
   return p;
 }
 
-// One target's test at one design (and seed).
-struct CalibrationRun {
-  Scene scene;
-  fs::path dir;
-  double cost = 0;
-  size_t target = 0;
-  int design = 0;
-};
+using CalibrationRun = BatchTest;
 
 std::vector<SceneValue> values_of(const Problem& p, size_t target, const Eigen::VectorXd& u,
                                   int seed) {
@@ -99,23 +91,11 @@ std::vector<CalibrationRun> make_runs(const Problem& p, const Eigen::MatrixXd& d
 // Runs (or keeps) every test of `runs`; true when interrupted.
 bool run_all(std::vector<CalibrationRun>& runs, double later_cost, const CalibrationOptions& o,
              CalibrationResult& result) {
-  CampaignLoop loop = campaign_loop(runs, "calibration tests", "");
-  loop.later_cost = later_cost;
-  loop.keep = [](size_t) {};
-  loop.run = [&](size_t k, ProgrammeRunOptions& ro) {
-    ro.resume = ro.resume || fs::exists(runs[k].dir / "checkpoint.bin");
-    const TestRun run = run_scene_test(runs[k].scene, ro, [&](const std::string& line) {
-      if (!o.quiet) std::fprintf(stderr, "%s\n", line.c_str());
-    });
-    return run.state.interrupted;
-  };
-  loop.print = [](size_t) {};
-  const CampaignOutcome out = run_campaign_loop(loop, {o.device, o.stop_requested, o.quiet, {}, false});
+  const BatchOutcome out =
+      run_batch(runs, later_cost, {o.device, o.quiet, o.stop_requested, "calibration tests"});
   result.seconds += out.seconds;
-  if (out.interrupted) {
-    result.interrupted = true;
-    result.interrupted_dir = runs[out.interrupted_test].dir.string();
-  }
+  result.interrupted = out.interrupted;
+  result.interrupted_dir = out.interrupted_dir;
   return out.interrupted;
 }
 

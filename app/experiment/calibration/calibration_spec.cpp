@@ -82,16 +82,17 @@ CurveColumn read_column(const Reader& r, const ApparatusKind* kind) {
              scene_toml::join(names, true));
 }
 
-CalibrationTarget read_target(const Reader& r, const std::string& file) {
+// A [[targets]] table, or a prediction's [[tests]] (data optional).
+CalibrationTarget read_target(const Reader& r, const std::string& file, bool data_required = true) {
   CalibrationTarget t;
   t.name = r.string("name");
   t.scene = resolve(file, r.string("scene"));
-  t.data = resolve(file, r.string("data"));
+  t.data = data_required || r.has("data") ? resolve(file, r.string("data")) : "";
   t.where = r.string("where", "");
   if (!t.where.empty() && t.where.find('=') == std::string::npos)
     r.fail("bad_value", "where", "'" + t.where + "' is not of the form column=value");
   for (const char* k : {"scene", "data"})
-    if (!fs::exists(k[0] == 's' ? t.scene : t.data))
+    if ((k[0] == 's' || !t.data.empty()) && !fs::exists(k[0] == 's' ? t.scene : t.data))
       r.fail("missing_file", k, "'" + (k[0] == 's' ? t.scene : t.data) + "' does not exist");
   for (auto&& [key, node] : r.table("set")) {  // scene keys: checked when they are set
     if (!node.is_number())
@@ -150,6 +151,60 @@ CalibrationSpec read_calibration(const std::string& path) {
                                            {"name", "scene", "data", "where", "set", "x", "y"}),
                                     path));
   if (s.targets.empty()) ctx.fail("missing_key", 0, "targets", "at least one [[targets]]");
+  ctx.throw_if_any();
+  return s;
+}
+
+std::vector<std::pair<std::string, double>> read_calibrated(const std::string& path) {
+  toml::table doc;
+  try {
+    doc = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw SceneError("toml_syntax", path, scene_toml::line_of(e.source()), "",
+                     std::string(e.description()));
+  }
+  Context ctx{path, {}};
+  const Reader top(doc, "", ctx, {"calibrated"});
+  std::vector<std::pair<std::string, double>> out;
+  for (auto&& [key, node] : top.table("calibrated")) {
+    if (!node.is_number())
+      ctx.fail("wrong_type", scene_toml::line_of(node.source()),
+               scene_toml::child("calibrated", key.str()), "expected a number");
+    out.emplace_back(std::string(key.str()), *node.value<double>());
+  }
+  if (out.empty()) ctx.fail("missing_key", 0, "calibrated", "no calibrated values ([calibrated])");
+  ctx.throw_if_any();
+  return out;
+}
+
+PredictionSpec read_prediction(const std::string& path) {
+  toml::table doc;
+  try {
+    doc = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw SceneError("toml_syntax", path, scene_toml::line_of(e.source()), "",
+                     std::string(e.description()));
+  }
+  Context ctx{path, {}};
+  PredictionSpec s;
+  s.path = path;
+  const Reader top(doc, "", ctx, {"prediction", "tests"});
+  const Reader p = top.sub("prediction", {"name", "calibrated", "specimens", "points", "at"});
+  s.name = p.string("name", fs::path(path).stem().string());
+  s.calibrated = resolve(path, p.string("calibrated"));
+  if (!fs::exists(s.calibrated))
+    p.fail("missing_file", "calibrated", "'" + s.calibrated + "' does not exist");
+  s.specimens = static_cast<int>(p.optional_integer("specimens").value_or(s.specimens));
+  s.points = static_cast<int>(p.optional_integer("points").value_or(s.points));
+  p.check_range("specimens", s.specimens, s.specimens >= 2 && s.specimens <= 100, "[2, 100]");
+  p.check_range("points", s.points, s.points >= 2 && s.points <= 1000, "[2, 1000]");
+  s.at = p.numbers("at", {});
+  const std::vector<const toml::table*> ts = top.tables("tests");
+  for (size_t i = 0; i < ts.size(); ++i)
+    s.tests.push_back(read_target(Reader(*ts[i], scene_toml::item("tests", i), ctx,
+                                         {"name", "scene", "data", "where", "set", "x", "y"}),
+                                  path, false));
+  if (s.tests.empty()) ctx.fail("missing_key", 0, "tests", "at least one [[tests]]");
   ctx.throw_if_any();
   return s;
 }

@@ -73,4 +73,24 @@ std::optional<std::pair<double, std::string>> unit_factor(const std::string& uni
 
 CalibrationSpec read_calibration(const std::string& path);
 
+// A prediction (`simsols predict`, prediction.h): tests run with a
+// calibrated material on several specimens.
+//   [prediction]  calibrated (a calibration's calibrated.toml), specimens,
+//                 points (of each band), at (x's, in the tests' x unit,
+//                 where every y is reported per specimen)
+//   [[tests]]     as a calibration's [[targets]], with data optional: a
+//                 measured curve, when given, is drawn over the band and
+//                 the prediction's error against it reported
+struct PredictionSpec {
+  std::string path, name, calibrated;
+  int specimens = 5;
+  int points = 40;
+  std::vector<double> at;
+  std::vector<CalibrationTarget> tests;  // data "" when none
+};
+PredictionSpec read_prediction(const std::string& path);
+
+// The [calibrated] values of a calibration's calibrated.toml, by scene key.
+std::vector<std::pair<std::string, double>> read_calibrated(const std::string& path);
+
 }  // namespace simsols

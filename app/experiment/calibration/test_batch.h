@@ -1,0 +1,42 @@
+// A batch of tests run one after another with the campaign loop
+// (campaign_loop.h): each kept when it finished earlier, resumed from its
+// checkpoint when it was stopped, else run, with progress and an ETA that
+// also covers the work after the batch. The calibration's rounds and
+// replicates and the prediction's specimens are such batches.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "solver/core/cl_device.h"
+#include "solver/scene/scene.h"
+
+namespace simsols {
+
+struct BatchTest {
+  Scene scene;  // as read (run_scene_test places it)
+  std::filesystem::path dir;
+  double cost = 0;  // particle-steps (expected_particle_steps)
+  size_t target = 0;  // the caller's indices
+  int design = 0;
+};
+
+struct BatchOptions {
+  std::shared_ptr<Device> device;
+  bool quiet = false;
+  std::function<bool()> stop_requested;
+  std::string what = "tests";  // progress lines' noun
+};
+
+struct BatchOutcome {
+  bool interrupted = false;
+  std::string interrupted_dir;
+  double seconds = 0;  // wall time of the tests run now
+};
+
+BatchOutcome run_batch(std::vector<BatchTest>& tests, double later_cost, const BatchOptions& o);
+
+}  // namespace simsols
