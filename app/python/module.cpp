@@ -10,6 +10,8 @@
 //   sim.save_checkpoint("c.bin"); sim = simsols.load_checkpoint("c.bin")
 //   r = simsols.run_test(scene, "out")   # as `simsols run`: r["summary"], r["rows"]
 //   s = simsols.study_sensitivity("out", preset="ci")   # as `simsols study sensitivity`
+//   c = simsols.calibrate("kfs.toml", "out")           # as `simsols calibrate`
+//   p = simsols.predict("pred.toml", "out")            # as `simsols predict`
 //
 // Design:
 // - Scenes travel as TOML. A dict becomes TOML text (toml++) and goes
@@ -27,6 +29,7 @@
 #include <pybind11/stl.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -34,6 +37,8 @@
 #include <vector>
 
 #include "app/experiment/apparatus_run.h"
+#include "app/experiment/calibration/calibration_report.h"
+#include "app/experiment/calibration/prediction.h"
 #include "solver/apparatus/registry.h"
 #include "app/experiment/specimen_report.h"
 #include "app/experiment/shear_box/sensitivity.h"
@@ -304,6 +309,61 @@ py::dict per_response(const std::array<double, kSensitivityResponses>& v) {
   return d;
 }
 
+// A calibration (app/experiment/calibration/calibration.h) as `simsols
+// calibrate FILE --out OUT` runs it, resumable the same way: the
+// parameters' calibrated values with their posterior, and each curve's fit.
+py::dict calibrate(const std::string& path, const std::string& out, bool quiet,
+                   std::shared_ptr<Device> device) {
+  const CalibrationSpec spec = read_calibration(path);
+  CalibrationResult r;
+  {
+    py::gil_scoped_release release;
+    std::filesystem::create_directories(out);
+    r = run_calibration(spec, {device_or_open(std::move(device)), out, quiet, {}});
+    write_calibration_report(spec, r, out);
+  }
+  py::dict parameters;
+  for (size_t j = 0; j < spec.parameters.size(); ++j) {
+    const Estimate& e = r.posterior.estimates[j];
+    parameters[spec.parameters[j].name.c_str()] =
+        py::dict(py::arg("key") = spec.parameters[j].key, py::arg("calibrated") = r.calibrated[j],
+                 py::arg("mean") = e.mean, py::arg("sd") = e.sd, py::arg("lo95") = e.lo95,
+                 py::arg("hi95") = e.hi95);
+  }
+  py::list curves;
+  for (const CurveFit& c : r.curves)
+    curves.append(py::dict(py::arg("target") = c.target, py::arg("quantity") = c.quantity,
+                           py::arg("unit") = c.unit, py::arg("rms_misfit") = c.rms_misfit,
+                           py::arg("seed_scatter") = c.seed_scatter));
+  return py::dict(py::arg("parameters") = parameters, py::arg("curves") = curves,
+                  py::arg("simulations") = r.simulations,
+                  py::arg("effective_samples") = r.posterior.effective_samples);
+}
+
+// A prediction (prediction.h) as `simsols predict FILE --out OUT`: per
+// test and quantity, the band and each specimen's peak.
+py::dict predict(const std::string& path, const std::string& out, bool quiet,
+                 std::shared_ptr<Device> device) {
+  const PredictionSpec spec = read_prediction(path);
+  PredictionResult r;
+  {
+    py::gil_scoped_release release;
+    std::filesystem::create_directories(out);
+    r = run_prediction(spec, {device_or_open(std::move(device)), out, quiet, {}});
+    write_prediction_report(spec, r, out);
+  }
+  py::dict tests;
+  for (const PredictedCurve& c : r.curves) {
+    if (!tests.contains(c.test.c_str())) tests[c.test.c_str()] = py::dict();
+    tests[c.test.c_str()][c.quantity.c_str()] =
+        py::dict(py::arg("x") = c.x, py::arg("mean") = c.mean, py::arg("sd") = c.sd,
+                 py::arg("measured") = c.measured, py::arg("peak") = c.peak,
+                 py::arg("x_at_peak") = c.x_at_peak, py::arg("rms_error") = c.rms_error,
+                 py::arg("inside") = c.inside);
+  }
+  return tests;
+}
+
 py::dict study_sensitivity(const std::string& out, const std::string& preset_name, bool quiet,
                            std::shared_ptr<Device> device) {
   const SensitivityPreset preset = sensitivity_preset(preset_name);
@@ -456,6 +516,16 @@ void define_simulation(py::module_& m) {
         "files in `out`, resumable): returns tests (one dict each), effects[factor][response] "
         "(oat_low, oat_high, mu, mu_star, sigma, effects), base, noise_mean, noise_sd, noise_band, "
         "noise_mu_star, chaos_mu_star_limit");
+  m.def("calibrate", &calibrate, py::arg("path"), py::arg("out"), py::arg("quiet") = true,
+        py::arg("device") = nullptr,
+        "A calibration as `simsols calibrate PATH --out OUT` (its files in `out`, resumable): "
+        "returns parameters[name] (key, calibrated, mean, sd, lo95, hi95), curves (target, "
+        "quantity, unit, rms_misfit, seed_scatter), simulations, effective_samples");
+  m.def("predict", &predict, py::arg("path"), py::arg("out"), py::arg("quiet") = true,
+        py::arg("device") = nullptr,
+        "A prediction as `simsols predict PATH --out OUT`: returns [test][quantity] = "
+        "dict(x, mean, sd, measured (SI; NaN without a measurement), peak, x_at_peak (per "
+        "specimen), rms_error, inside (share of measured points within 2 sd))");
   m.def("load_checkpoint",
         [](const std::string& path, std::shared_ptr<Device> device) {
           return load_checkpoint(device_or_open(std::move(device)), path);
