@@ -78,7 +78,7 @@ std::vector<CalibrationRun> make_runs(const Problem& p, const Eigen::MatrixXd& d
       CalibrationRun r;
       const std::string folder = seed > 0 ? round : round + "_" + std::to_string(i);
       r.scene = scene_with(p.spec.targets[t].scene, values_of(p, t, designs.row(i).transpose(), seed));
-      r.scene.name += "_" + folder;
+      r.scene.name += "_" + p.spec.targets[t].name + "_" + folder;
       r.dir = root / "runs" / folder / p.spec.targets[t].name;
       r.cost = p.cost[t];
       r.target = t;

@@ -69,6 +69,37 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 
 }  // namespace
 
+// ---------------------------------------------------------------- calibrate
+
+TEST(CliErrors, CalibrationFileProblemsNameTheFieldBeforeAnythingRuns) {
+  const fs::path d = fresh_dir("calibrate");
+  std::ofstream(d / "m.csv") << "eps,eta\n0,0\n0.1,1\n";
+  std::ofstream(d / "cal.toml")
+      << "[calibration]\nbugdet = 10\n[[parameters]]\nname = \"mu\"\n"
+         "key = \"materials.beads.sliding_friction\"\nmin = 0.1\nmax = 0.5\nscale = \"lin\"\n"
+         "[[targets]]\nname = \"t\"\nscene = \"" SIMSOLS_ASSETS_DIR "/tests/periodic_triaxial_small.toml\"\n"
+         "data = \"nowhere.csv\"\n";
+  const Result r = run_in(d, "calibrate cal.toml --out out");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("calibration.bugdet"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("did you mean 'budget'"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("parameters[0].scale"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"linear\", \"log\""), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(d / "out" / "runs")) << "nothing ran";
+  // The bad choice stopped the reading; mended, the next problem is named.
+  std::string text = read(d / "cal.toml");
+  text.replace(text.find("bugdet"), 6, "budget");
+  text.replace(text.find("\"lin\""), 5, "\"log\"");
+  std::ofstream(d / "cal.toml") << text;
+  const Result m = run_in(d, "calibrate cal.toml --out out");
+  EXPECT_EQ(m.status, 2) << m.out;
+  EXPECT_NE(m.out.find("targets[0].data"), std::string::npos) << m.out;
+  EXPECT_NE(m.out.find("nowhere.csv' does not exist"), std::string::npos) << m.out;
+  const Result p = run_in(d, "predict cal.toml --out out");
+  EXPECT_EQ(p.status, 2) << p.out;
+  EXPECT_NE(p.out.find("prediction.calibrated"), std::string::npos) << p.out;
+}
+
 // ---------------------------------------------------------------- campaign
 
 TEST(CliErrors, CampaignRunsOutsideTheRepositoryFromTheBuiltInScene) {
