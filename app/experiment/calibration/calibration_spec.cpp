@@ -39,6 +39,16 @@ std::optional<std::pair<double, std::string>> unit_factor(const std::string& uni
 
 namespace {
 
+// The file as TOML; SceneError naming its line when it is not TOML.
+toml::table parse_file(const std::string& path) {
+  try {
+    return toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw SceneError("toml_syntax", path, scene_toml::line_of(e.source()), "",
+                     std::string(e.description()));
+  }
+}
+
 const std::vector<std::string> kUnitNames = {"-", "%", "Pa", "kPa", "MPa", "m", "mm"};
 
 std::string resolve(const std::string& base, const std::string& p) {
@@ -115,13 +125,7 @@ CalibrationTarget read_target(const Reader& r, const std::string& file, bool dat
 }  // namespace
 
 CalibrationSpec read_calibration(const std::string& path) {
-  toml::table doc;
-  try {
-    doc = toml::parse_file(path);
-  } catch (const toml::parse_error& e) {
-    throw SceneError("toml_syntax", path, scene_toml::line_of(e.source()), "",
-                     std::string(e.description()));
-  }
+  const toml::table doc = parse_file(path);
   Context ctx{path, {}};
   CalibrationSpec s;
   s.path = path;
@@ -156,13 +160,7 @@ CalibrationSpec read_calibration(const std::string& path) {
 }
 
 std::vector<std::pair<std::string, double>> read_calibrated(const std::string& path) {
-  toml::table doc;
-  try {
-    doc = toml::parse_file(path);
-  } catch (const toml::parse_error& e) {
-    throw SceneError("toml_syntax", path, scene_toml::line_of(e.source()), "",
-                     std::string(e.description()));
-  }
+  const toml::table doc = parse_file(path);
   Context ctx{path, {}};
   const Reader top(doc, "", ctx, {"calibrated"});
   std::vector<std::pair<std::string, double>> out;
@@ -178,13 +176,7 @@ std::vector<std::pair<std::string, double>> read_calibrated(const std::string& p
 }
 
 PredictionSpec read_prediction(const std::string& path) {
-  toml::table doc;
-  try {
-    doc = toml::parse_file(path);
-  } catch (const toml::parse_error& e) {
-    throw SceneError("toml_syntax", path, scene_toml::line_of(e.source()), "",
-                     std::string(e.description()));
-  }
+  const toml::table doc = parse_file(path);
   Context ctx{path, {}};
   PredictionSpec s;
   s.path = path;
