@@ -31,6 +31,7 @@
 
 #include "render/gl/alioscopy.h"
 #include "render/gl/camera.h"
+#include "app/lab/lab_calibration.h"
 #include "app/lab/lab_experiment.h"
 #include "app/lab/lab_window.h"
 #include "render/gl/renderer.h"
@@ -103,6 +104,9 @@ class LabApp {
   bool draw_effect_slots();  // lab_effects.cpp; true when a slot changed
   void draw_plots();   // in the column right of the 3D view
   void draw_status();  // under the 3D view, wrapped to its width
+  // Loads a calibrated.toml (its measured curve `target`, "" = the first)
+  // and applies its material to the scene of the next preparation.
+  std::string use_calibration(const std::string& path, const std::string& target);
   void draw_help();
   void draw_close_dialog();
 
@@ -132,6 +136,9 @@ class LabApp {
   int apparatus_ = 0;  // the panel's choice: an index into lab_benches()
   int preset_size_ = 4, preset_stress_ = 1;
   char scene_path_[512] = "";
+  char calibrated_path_[512] = "";  // a calibration's calibrated.toml
+  LabCalibration calibration_;      // its material and measured curve
+  std::size_t measured_shown_ = 0;  // measured points over the live plots last frame
   char out_path_[512] = "results/lab";
   bool record_ = false;
   int record_every_ = 5, frame_no_ = 0;

@@ -1,4 +1,6 @@
 #include "app/lab/lab_experiment.h"
+
+#include "app/experiment/calibration/scene_keys.h"
 #include "app/experiment/test_title.h"
 
 #include "app/experiment/specimen_report.h"
@@ -208,6 +210,20 @@ std::string LabExperiment::step() {
     p.advance(200);
   }
   return {};
+}
+
+std::string LabExperiment::set_materials(const std::vector<std::pair<std::string, double>>& values) {
+  Scene sc = scene_;
+  const std::vector<std::string> not_set = set_material_values(sc, values);
+  try {
+    validate_scene(sc, label_);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  scene_ = std::move(sc);
+  std::string note;
+  for (const std::string& k : not_set) note += (note.empty() ? "" : ", ") + k;
+  return note.empty() ? "" : "not a material of this scene, not set: " + note;
 }
 
 std::string LabExperiment::set(const std::string& key, double value) {

@@ -78,6 +78,10 @@ class LabExperiment {
   bool paused() const { return !running_; }
   std::string step();     // one measurement row (running) or 200 steps (loading)
   std::string reset();    // a fresh specimen (same as prepare)
+  // A calibration's values set on the scene's materials (the next
+  // prepare's); the keys that name no material's field are listed in the
+  // returned note (they are not set), "" when all were.
+  std::string set_materials(const std::vector<std::pair<std::string, double>>& values);
   // A live setting by key (LabApparatus::settings), in its unit.
   std::string set(const std::string& key, double value);
 

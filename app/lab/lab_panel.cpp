@@ -136,6 +136,24 @@ void LabApp::draw_preset_and_scene_file() {
       act(exp_->prepare());
     }
   }
+  ImGui::SetNextItemWidth(300);
+  ImGui::InputTextWithHint("##calibrated", "calibrated.toml (simsols calibrate)", calibrated_path_,
+                           sizeof calibrated_path_);
+  ImGui::SameLine();
+  if (ImGui::Button("Material")) {
+    message_.clear();
+    const std::string err = use_calibration(calibrated_path_, "");
+    act(err);
+    if (err.empty() || err.rfind("not a material", 0) == 0) act(exp_->prepare());
+  }
+  if (calibration_.loaded())
+    ImGui::TextDisabled("calibrated material; measured: %s", calibration_.target().c_str());
+}
+
+std::string LabApp::use_calibration(const std::string& path, const std::string& target) {
+  const std::string err = calibration_.load(path, target);
+  if (!err.empty()) return err;
+  return exp_->set_materials(calibration_.values());
 }
 
 void LabApp::draw_presets() {
@@ -338,7 +356,10 @@ void LabApp::draw_plots() {
   ImGui::Begin("Live plots", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoScrollbar);
-  const std::vector<LabPlot> plots = a->live_plots();
+  std::vector<LabPlot> plots = a->live_plots();
+  calibration_.overlay(plots);
+  measured_shown_ = 0;
+  for (const LabPlot& p : plots) measured_shown_ += p.measured_x.size();
   if (plots.empty()) {
     plots_shown_ = 0;
     ImGui::End();

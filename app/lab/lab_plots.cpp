@@ -16,7 +16,7 @@ namespace {
 // (zero included on linear axes, the target, 8 % headroom, widened to the
 // outer ticks) and the ticks.
 struct Layout {
-  std::vector<double> px, py, xt, yt;
+  std::vector<double> px, py, xt, yt, mx, my;  // m*: the measured points as plotted
   std::vector<std::size_t> index;
   double x0 = 0, x1 = 1, y0 = 0, y1 = 1;
 };
@@ -32,15 +32,23 @@ Layout lay_out(const LabPlot& p) {
     py.push_back(p.y[i]);
     index.push_back(i);
   }
+  for (std::size_t i = 0; i < p.measured_x.size() && i < p.measured_y.size(); ++i) {
+    if ((p.x_log && !(p.measured_x[i] > 0)) || !std::isfinite(p.measured_y[i])) continue;
+    l.mx.push_back(p.x_log ? std::log10(p.measured_x[i]) : p.measured_x[i]);
+    l.my.push_back(p.measured_y[i]);
+  }
   double& x0 = l.x0;
   double& x1 = l.x1;
   double& y0 = l.y0;
   double& y1 = l.y1;
-  if (!px.empty()) {
-    x0 = *std::min_element(px.begin(), px.end());
-    x1 = *std::max_element(px.begin(), px.end());
-    y0 = *std::min_element(py.begin(), py.end());
-    y1 = *std::max_element(py.begin(), py.end());
+  std::vector<double> ax = px, ay = py;  // the range holds both curves
+  ax.insert(ax.end(), l.mx.begin(), l.mx.end());
+  ay.insert(ay.end(), l.my.begin(), l.my.end());
+  if (!ax.empty()) {
+    x0 = *std::min_element(ax.begin(), ax.end());
+    x1 = *std::max_element(ax.begin(), ax.end());
+    y0 = *std::min_element(ay.begin(), ay.end());
+    y1 = *std::max_element(ay.begin(), ay.end());
     if (!p.x_log) {  // linear axes start at zero; a void ratio or log axis need not
       x0 = std::min(0.0, x0);
       y0 = std::min(0.0, y0);
@@ -48,8 +56,8 @@ Layout lay_out(const LabPlot& p) {
     }
   }
   if (p.target) {
-    y0 = px.empty() ? std::min(0.0, *p.target) : std::min(y0, *p.target);
-    y1 = px.empty() ? *p.target : std::max(y1, *p.target);
+    y0 = ax.empty() ? std::min(0.0, *p.target) : std::min(y0, *p.target);
+    y1 = ax.empty() ? *p.target : std::max(y1, *p.target);
   }
   if (y1 > y0) y1 += 0.08 * (y1 - y0);  // headroom: the top of the curve and the peak marker
   if (p.x_log) x0 = std::floor(x0), x1 = std::max(x0 + 1, std::ceil(x1));  // whole decades
@@ -78,6 +86,10 @@ void draw_lab_plot(const char* id, const LabPlot& p, float width, float height) 
   if (p.peak && *p.peak < p.y.size()) {  // the peak's value on the title line, off the curve
     ImGui::SameLine();
     ImGui::TextColored({1.0f, 0.47f, 0.24f, 1.0f}, "peak %.3g", p.y[*p.peak]);
+  }
+  if (!p.measured_x.empty()) {  // whose the points are
+    ImGui::SameLine();
+    ImGui::TextColored({0.95f, 0.85f, 0.35f, 1.0f}, "• %s", p.measured_label.c_str());
   }
   // the y axis' name on the title line, right-aligned (off the curve)
   const ImU32 axis = IM_COL32(150, 155, 165, 255);
@@ -132,6 +144,9 @@ void draw_lab_plot(const char* id, const LabPlot& p, float width, float height) 
     const ImVec2 ts = ImGui::CalcTextSize("target");
     dl->AddText({b.x - ts.x - 4, ty + 2}, goal, "target");
   }
+  const ImU32 measured = IM_COL32(242, 217, 89, 255);
+  for (std::size_t i = 0; i < l.mx.size(); ++i)
+    dl->AddCircleFilled({X(l.mx[i]), Y(l.my[i])}, 2.5f, measured, 8);
   if (pts.size() >= 2) dl->AddPolyline(pts.data(), int(pts.size()), line, 0, 2.0f);
   const auto marked = p.peak ? std::find(index.begin(), index.end(), *p.peak) : index.end();
   if (marked != index.end()) {

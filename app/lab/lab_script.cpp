@@ -33,6 +33,7 @@ const LabApp::Script::Command LabApp::Script::kCommands[] = {
     {"apparatus", "shear_box|oedometer|triaxial", &Script::choose_apparatus},
     {"preset", "D_MM S_KPA", &Script::choose_preset},
     {"open", "SCENE.toml", &Script::open_scene},
+    {"material", "CALIBRATED.toml [TARGET]", &Script::use_material},
     {"precision", "float|double", &Script::choose_precision},
     {"profile", "paper|fast", &Script::choose_profile},
     {"effect", "SLOT CHOICE", &Script::choose_effect},
@@ -86,6 +87,9 @@ std::string LabApp::state_text() {
     o << "specimen_method = " << choice_name(s->method) << "\n";
     if (s->preparation.friction) o << "preparation_friction = " << *s->preparation.friction << "\n";
   }
+  for (const Material& m : exp_->scene().materials)
+    o << "sliding_friction." << m.name << " = " << m.sliding_friction << "\nrolling_friction."
+      << m.name << " = " << m.rolling_friction << "\n";
   o << "preparation_dir = " << exp_->preparation_dir() << "\n";
   o << "profile = " << exp_->profile() << "\n";
   o << "paused = " << (exp_->paused() ? 1 : 0) << "\n";
@@ -101,7 +105,8 @@ std::string LabApp::state_text() {
   if (a) o << a->state_lines();
   o << "fps = " << fps_ << "\nrender_scale = " << render_scale_ << "\ndraw_ms = " << draw_ms_
     << "\nsolver_steps_per_s = " << exp_->steps_per_second() << "\n";
-  o << "live_plots = " << plots_shown_ << "\nlive_plot_height_px = " << plot_height_ << "\n";
+  o << "live_plots = " << plots_shown_ << "\nlive_plot_height_px = " << plot_height_
+    << "\nmeasured_points = " << measured_shown_ << "\n";
   return o.str();
 }
 

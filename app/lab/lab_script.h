@@ -55,6 +55,7 @@ struct LabApp::Script {
   void choose_apparatus(const Line& line);     // apparatus KIND (a name of the registry)
   void choose_preset(const Line& line);        // preset D_MM S_KPA
   void open_scene(const Line& line);           // open SCENE.toml
+  void use_material(const Line& line);         // material CALIBRATED.toml [TARGET]
   void choose_precision(const Line& line);     // precision float|double
   void choose_profile(const Line& line);       // profile paper|fast
   void choose_effect(const Line& line);        // effect SLOT CHOICE

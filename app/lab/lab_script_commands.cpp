@@ -81,6 +81,16 @@ void LabApp::Script::open_scene(const Line& line) {
     lab.apparatus_ = lab_bench_index(experiment().scene());
 }
 
+void LabApp::Script::use_material(const Line& line) {
+  const size_t space = line.argument.find(' ');
+  const std::string path = line.argument.substr(0, space);
+  const std::string target = space == std::string::npos ? "" : line.argument.substr(space + 1);
+  const std::string err = lab.use_calibration(path, target);
+  // a note on keys that are not a material's is not a failure
+  if (err.rfind("not a material", 0) == 0) return;
+  succeeded(line, err);
+}
+
 void LabApp::Script::choose_precision(const Line& line) {
   const std::optional<Precision> p = parse_choice<Precision>(line.argument);
   if (!p) return fail(line, "precision " + names<Precision>(), 2);

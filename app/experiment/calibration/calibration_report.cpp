@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include <toml++/toml.h>
+
 #include "render/plot/chart.h"
 #include "solver/common/atomic_file.h"
 #include "solver/io/output.h"
@@ -58,12 +60,38 @@ void write_design(const CalibrationSpec& spec, const CalibrationResult& r, const
   write_file_atomic((dir / "design.csv").string(), o.str());
 }
 
+toml::table column_table(const CurveColumn& c) {
+  toml::table t{{"column", c.column}, {"unit", c.unit}, {"quantity", c.quantity}};
+  if (c.scatter) t.insert("scatter", *c.scatter);
+  return t;
+}
+
+// The calibrated values, and the measured curves they were fitted to (as
+// the calibration file's targets, paths absolute): the lab draws them.
 void write_calibrated(const CalibrationSpec& spec, const CalibrationResult& r, const fs::path& dir) {
+  toml::table values;
+  for (size_t j = 0; j < spec.parameters.size(); ++j)
+    values.insert(spec.parameters[j].key, r.calibrated[j]);
+  toml::array measured;
+  for (const CalibrationTarget& t : spec.targets) {
+    toml::table set, m{{"name", t.name},
+                       {"scene", fs::absolute(t.scene).string()},
+                       {"data", fs::absolute(t.data).string()},
+                       {"x", column_table(t.x)}};
+    if (!t.where.empty()) m.insert("where", t.where);
+    for (const auto& [key, v] : t.set) set.insert(key, v);
+    if (!set.empty()) m.insert("set", set);
+    toml::array ys;
+    for (const CurveColumn& y : t.y) ys.push_back(column_table(y));
+    m.insert("y", ys);
+    measured.push_back(m);
+  }
+  const toml::table doc{{"calibrated", values}, {"measured", measured}};
   std::ostringstream o;
   o << "# " << spec.name << ": calibrated by `simsols calibrate " << spec.path << "`\n"
-    << "# the replicates' values; intervals in parameters.csv\n[calibrated]\n";
-  for (size_t j = 0; j < spec.parameters.size(); ++j)
-    o << '"' << spec.parameters[j].key << "\" = " << g(r.calibrated[j]) << '\n';
+    << "# [calibrated]: the replicates' values (intervals in parameters.csv); [[measured]]: the\n"
+    << "# curves they were fitted to (the calibration's targets)\n"
+    << doc << '\n';
   write_file_atomic((dir / "calibrated.toml").string(), o.str());
 }
 

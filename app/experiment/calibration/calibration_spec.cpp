@@ -162,7 +162,7 @@ CalibrationSpec read_calibration(const std::string& path) {
 std::vector<std::pair<std::string, double>> read_calibrated(const std::string& path) {
   const toml::table doc = parse_file(path);
   Context ctx{path, {}};
-  const Reader top(doc, "", ctx, {"calibrated"});
+  const Reader top(doc, "", ctx, {"calibrated", "measured"});
   std::vector<std::pair<std::string, double>> out;
   for (auto&& [key, node] : top.table("calibrated")) {
     if (!node.is_number())
@@ -171,6 +171,20 @@ std::vector<std::pair<std::string, double>> read_calibrated(const std::string& p
     out.emplace_back(std::string(key.str()), *node.value<double>());
   }
   if (out.empty()) ctx.fail("missing_key", 0, "calibrated", "no calibrated values ([calibrated])");
+  ctx.throw_if_any();
+  return out;
+}
+
+std::vector<CalibrationTarget> read_calibrated_measured(const std::string& path) {
+  const toml::table doc = parse_file(path);
+  Context ctx{path, {}};
+  const Reader top(doc, "", ctx, {"calibrated", "measured"});
+  std::vector<CalibrationTarget> out;
+  const std::vector<const toml::table*> ms = top.tables("measured");
+  for (size_t i = 0; i < ms.size(); ++i)
+    out.push_back(read_target(Reader(*ms[i], scene_toml::item("measured", i), ctx,
+                                     {"name", "scene", "data", "where", "set", "x", "y"}),
+                              path));
   ctx.throw_if_any();
   return out;
 }

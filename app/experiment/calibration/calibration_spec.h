@@ -92,5 +92,8 @@ PredictionSpec read_prediction(const std::string& path);
 
 // The [calibrated] values of a calibration's calibrated.toml, by scene key.
 std::vector<std::pair<std::string, double>> read_calibrated(const std::string& path);
+// Its [[measured]] curves (the calibration's targets); none in a file
+// written by hand.
+std::vector<CalibrationTarget> read_calibrated_measured(const std::string& path);
 
 }  // namespace simsols

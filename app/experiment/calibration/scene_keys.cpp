@@ -74,4 +74,29 @@ Scene scene_with(const std::string& path, const std::vector<SceneValue>& values)
   return read_scene_text(scene_text_with(path, values), path);
 }
 
+std::vector<std::string> set_material_values(
+    Scene& scene, const std::vector<std::pair<std::string, double>>& values) {
+  std::vector<std::string> not_set;
+  for (const auto& [key, value] : values) {
+    const std::vector<std::string> parts = components(key);
+    const int m = parts.size() == 3 && parts[0] == "materials" ? scene.material_index(parts[1]) : -1;
+    double* field = nullptr;
+    if (m >= 0) {
+      Material& mat = scene.materials[static_cast<size_t>(m)];
+      const std::pair<const char*, double*> fields[] = {
+          {"young_modulus", &mat.young_modulus}, {"poisson_ratio", &mat.poisson_ratio},
+          {"density", &mat.density},             {"restitution", &mat.restitution},
+          {"sliding_friction", &mat.sliding_friction},
+          {"rolling_friction", &mat.rolling_friction}};
+      for (const auto& [name, f] : fields)
+        if (parts[2] == name) field = f;
+    }
+    if (field)
+      *field = value;
+    else
+      not_set.push_back(key);
+  }
+  return not_set;
+}
+
 }  // namespace simsols

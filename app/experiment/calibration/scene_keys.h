@@ -13,6 +13,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "solver/scene/scene.h"
@@ -32,5 +33,14 @@ Scene scene_with(const std::string& path, const std::vector<SceneValue>& values)
 // The TOML text of the scene at `path` with `values` set (what scene_with
 // reads): for a run's folder.
 std::string scene_text_with(const std::string& path, const std::vector<SceneValue>& values);
+
+// A calibration's material on a scene already read (the lab's): each value
+// whose key names a field of one of the scene's materials
+// ("materials.<name>.<field>": young_modulus, poisson_ratio, density,
+// restitution, sliding_friction, rolling_friction) is set on it. Returns
+// the keys of the other values, which are not set (a key of another
+// table, a material the scene does not have).
+std::vector<std::string> set_material_values(
+    Scene& scene, const std::vector<std::pair<std::string, double>>& values);
 
 }  // namespace simsols

@@ -122,6 +122,7 @@ std::vector<LabPlot> LabOedometer::live_plots() const {
   LabPlot e{"e – log σ′v", "σ′v (kPa, log)", "void ratio e"};
   LabPlot load{"load programme", "time (s)", "σ′v at the platen (kPa)"};
   e.x_log = true;
+  e.measures("vertical_stress", 1e-3, "void_ratio", 1);
   for (const OedometerRow& r : test_.rows()) {
     if (r.sigma_top > 0) {
       e.x.push_back(r.sigma_top * 1e-3);

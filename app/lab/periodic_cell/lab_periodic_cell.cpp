@@ -89,6 +89,7 @@ std::vector<LabPlot> LabPeriodicCell::live_plots() const {
   LabPlot ratio{testing ? "stress ratio" : "pressure", x, testing ? "τ/σ or q/p" : "p (kPa)"};
   LabPlot phi{"solid fraction", x, "Φ"};
   LabPlot z{"coordination", x, "Z"};
+  if (testing) ratio.measures("axial_strain", 1, "stress_ratio", 1);
   for (const CellRow& r : test_.rows()) {
     if ((r[kColStage] == 1) != testing) continue;
     const double at = testing ? r[kColStrain] : r[kColVolumetric];

@@ -120,6 +120,9 @@ std::vector<LabPlot> LabShearBox::live_plots() const {
   LabPlot tau{"shear stress", dx, "τ (kPa)"};
   LabPlot sigma{"normal stress", dx, "σ (kPa)"};
   LabPlot dil{"dilation", dx, "vertical displacement (mm)"};
+  ratio.measures("displacement", 1e3, "stress_ratio", 1);
+  tau.measures("displacement", 1e3, "shear_stress", 1e-3);
+  dil.measures("displacement", 1e3, "dilation", 1e3);
   if (test_.normal_stress() > 0) sigma.target = test_.normal_stress() * 1e-3;
   for (const ShearRow& r : test_.rows()) {
     sigma.x.push_back(r.displacement * 1e3);

@@ -145,6 +145,9 @@ std::vector<LabPlot> LabTriaxial::live_plots() const {
   LabPlot v{"volumetric strain", "axial strain (%)", "ε_v (%), compression +"};
   LabPlot e{"e – log p′", "p′ (kPa, log)", "void ratio e"};
   e.x_log = true;
+  q.measures("axial_strain", 100, "deviator_stress", 1e-3);
+  v.measures("axial_strain", 100, "volumetric_strain", 100);
+  e.measures("mean_stress", 1e-3, "void_ratio", 1);
   for (const TriaxialRow& r : test_.rows()) {
     q.x.push_back(100 * r.axial_strain);
     q.y.push_back(r.q * 1e-3);

@@ -192,3 +192,33 @@ TEST(Lab, TheFastProfileLengthensTheStep) {
   EXPECT_NE(run(lab(d / "bad.txt")), 0);
   fs::remove_all(d);
 }
+
+// A calibration's result in the lab (lab_calibration.h): `material` sets
+// the calibrated friction on the scene's material and prepares a specimen
+// with it; the measured curve it was fitted to is drawn over the live plot
+// that measures its quantities (the periodic cell's stress ratio against
+// the axial strain), every one of its points; a target the file does not
+// have is refused naming the ones it has.
+TEST(Lab, ACalibratedMaterialAndItsMeasuredCurve) {
+  if (run("command -v xvfb-run") != 0) GTEST_SKIP() << "xvfb-run not installed (Debian: xvfb)";
+  const fs::path d = fs::temp_directory_path() / ("simsols_lab_calibrated_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  const std::string scene = std::string(SIMSOLS_ASSETS_DIR) + "/tests/periodic_triaxial_small.toml";
+  std::ofstream(d / "m.csv") << "# measured\neps_pct,eta\n0,0\n1,0.6\n2,0.9\n5,1.1\n10,1.0\n";
+  std::ofstream(d / "cal.toml")
+      << "[calibrated]\n\"materials.beads.sliding_friction\" = 0.42\n"
+         "[[measured]]\nname = \"lab\"\nscene = \"" << scene << "\"\ndata = \"m.csv\"\n"
+         "x = { column = \"eps_pct\", unit = \"%\", quantity = \"axial_strain\" }\n"
+         "[[measured.y]]\ncolumn = \"eta\"\nunit = \"-\"\nquantity = \"stress_ratio\"\n";
+  std::ofstream(d / "s.txt") << "open " << scene << "\nmaterial " << (d / "cal.toml").string()
+                             << "\nprepare\nstart\nrows 40\nstate " << (d / "lab.state").string() << "\n";
+  ASSERT_EQ(run(lab(d / "s.txt")), 0);
+  auto state = read_state(d / "lab.state");
+  EXPECT_EQ(state["sliding_friction.beads"], "0.42");
+  EXPECT_EQ(state["measured_points"], "5");
+  std::ofstream(d / "bad.txt") << "open " << scene << "\nmaterial " << (d / "cal.toml").string()
+                               << " TMD2\n";
+  EXPECT_NE(run(lab(d / "bad.txt")), 0);
+  fs::remove_all(d);
+}
