@@ -67,16 +67,20 @@ toml::table column_table(const CurveColumn& c) {
 }
 
 // The calibrated values, and the measured curves they were fitted to (as
-// the calibration file's targets, paths absolute): the lab draws them.
+// the calibration file's targets, paths relative to the folder, as
+// read_calibrated_measured resolves them): the lab draws them.
 void write_calibrated(const CalibrationSpec& spec, const CalibrationResult& r, const fs::path& dir) {
+  const auto here = [&](const std::string& p) {
+    return fs::absolute(p).lexically_relative(fs::absolute(dir)).string();
+  };
   toml::table values;
   for (size_t j = 0; j < spec.parameters.size(); ++j)
     values.insert(spec.parameters[j].key, r.calibrated[j]);
   toml::array measured;
   for (const CalibrationTarget& t : spec.targets) {
     toml::table set, m{{"name", t.name},
-                       {"scene", fs::absolute(t.scene).string()},
-                       {"data", fs::absolute(t.data).string()},
+                       {"scene", here(t.scene)},
+                       {"data", here(t.data)},
                        {"x", column_table(t.x)}};
     if (!t.where.empty()) m.insert("where", t.where);
     for (const auto& [key, v] : t.set) set.insert(key, v);

@@ -4,12 +4,30 @@
 
 #include "app/experiment/apparatus_run.h"
 #include "app/experiment/campaign_loop.h"
+#include "solver/common/errors.h"
+#include "solver/io/output.h"
 
 namespace simsols {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// A folder kept or resumed must hold the test asked for now: its scene as
+// given, the values set, is the one written when it started.
+void check_kept(const BatchTest& t) {
+  const fs::path given = t.dir / "scene.toml";
+  if (!fs::exists(given) || read_text(given.string()) == t.scene.source_text) return;
+  throw SceneError("stale_run", given.string(), 0, "",
+                   "this test was run with other values than are asked for now (the "
+                   "calibration or prediction file, or the calibrated values, changed): give "
+                   "a new --out folder, or remove " + t.dir.string());
+}
+
+}  // namespace
+
 BatchOutcome run_batch(std::vector<BatchTest>& tests, double later_cost, const BatchOptions& o) {
+  for (const BatchTest& t : tests) check_kept(t);
   CampaignLoop loop = campaign_loop(tests, o.what, "");
   loop.later_cost = later_cost;
   loop.keep = [](size_t) {};

@@ -2,7 +2,11 @@
 // (campaign_loop.h): each kept when it finished earlier, resumed from its
 // checkpoint when it was stopped, else run, with progress and an ETA that
 // also covers the work after the batch. The calibration's rounds and
-// replicates and the prediction's specimens are such batches.
+// replicates and the prediction's specimens are such batches. A folder
+// whose scene.toml differs from the test asked for now (the values
+// changed since it ran) is refused (SceneError "stale_run") before
+// anything runs: a kept result must be the result of the test it stands
+// for.
 #pragma once
 
 #include <filesystem>

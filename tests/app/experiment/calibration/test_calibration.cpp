@@ -4,7 +4,8 @@
 // and given other specimens (seed 1 for the design, 1001.. for the
 // replicates), must find mu_s with 0.3 inside its 95 % interval and the
 // interval well inside the range. A second call on the same folder keeps
-// every simulation and gives the same answer (a resumed calibration).
+// every simulation and gives the same answer (a resumed calibration); a
+// call with another range is refused instead of mixing the folder's tests in.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -16,6 +17,7 @@
 #include "app/experiment/calibration/calibration.h"
 #include "app/experiment/calibration/calibration_report.h"
 #include "app/experiment/calibration/scene_keys.h"
+#include "solver/common/errors.h"
 #include "tests/support/test_support.h"
 
 #ifndef SIMSOLS_ASSETS_DIR
@@ -75,6 +77,15 @@ TEST(Calibration, RecoversTheFrictionOfItsOwnTargetWithinItsInterval) {
   const CalibrationResult again = run_calibration(spec, o);
   EXPECT_EQ(again.seconds, 0) << "every simulation kept";
   EXPECT_DOUBLE_EQ(again.calibrated[0], r.calibrated[0]);
+  // Another range asks for other tests: the kept ones are refused, not mixed in.
+  CalibrationSpec other = spec;
+  other.parameters[0].max = 0.7;
+  try {
+    run_calibration(other, o);
+    FAIL() << "the folder's tests were run with another range";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.code, "stale_run");
+  }
   fs::remove_all(d);
 }
 
