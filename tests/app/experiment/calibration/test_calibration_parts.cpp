@@ -16,6 +16,7 @@
 #include "app/experiment/calibration/surrogate.h"
 #include "solver/common/csv_table.h"
 #include "solver/common/errors.h"
+#include "solver/io/scene_toml.h"
 
 #ifndef SIMSOLS_ASSETS_DIR
 #error "SIMSOLS_ASSETS_DIR must name the assets folder"
@@ -66,6 +67,17 @@ TEST(SceneKeys, SetsAMaterialByNameAndATableKey) {
   }
   // A value out of the scene's range is the scene reader's error, as usual.
   EXPECT_THROW(scene_with(kScene, {{"materials.beads.poisson_ratio", 0.7, false}}), SceneError);
+}
+
+TEST(SceneKeys, SetsACalibratedMaterialOnASceneAlreadyRead) {
+  Scene s = read_scene(kScene);
+  const std::vector<std::string> not_set = set_material_values(
+      s, {{"materials.beads.rolling_friction", 2e-5}, {"materials.beads.young_modulus", 1e9},
+          {"periodic_cell.preparation_friction", 0.1}, {"materials.sand.density", 2650}});
+  EXPECT_DOUBLE_EQ(s.materials.at(0).rolling_friction, 2e-5);
+  EXPECT_DOUBLE_EQ(s.materials.at(0).young_modulus, 1e9);
+  EXPECT_EQ(not_set, (std::vector<std::string>{"periodic_cell.preparation_friction",
+                                               "materials.sand.density"}));
 }
 
 TEST(CalibrationSpec, ReportsEveryBadFieldWithItsName) {

@@ -1,0 +1,87 @@
+#!/usr/bin/env python3
+"""One source for docs/calibration.md's figures of Karlsruhe fine sand: each
+table row is made here from the shipped files and must stand in the doc.
+  density map:  assets/calibration/kfs/density_map.py (packing.csv, the measured file)
+  parameters:   docs/img/kfs_parameters.csv (the calibration's parameters.csv), and
+                assets/calibration/kfs/calibrated.toml must hold its calibrated values
+  curves:       docs/img/kfs_curves.csv (its curves.csv)
+  predictions:  assets/calibration/kfs/kfs_predictions.csv (when present)
+  tests/layout/check_calibration_tables.py [REPO_ROOT] [--print]
+--print writes the tables instead of checking them."""
+import csv
+import importlib.util
+import os
+import re
+import sys
+
+root = sys.argv[1] if len(sys.argv) > 1 and not sys.argv[1].startswith("--") else \
+    os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+kfs = os.path.join(root, "assets", "calibration", "kfs")
+img = os.path.join(root, "docs", "img")
+SYMBOL = {"mu_s": "μ_s", "mu_r": "μ_r (m)", "stress_ratio": "q/p′", "volumetric_strain": "ε_v (%)"}
+
+
+def rows(path):
+    with open(path) as f:
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))
+
+
+def g(x, digits=3):
+    return f"{float(x):.{digits}g}"
+
+
+def density_rows():
+    spec = importlib.util.spec_from_file_location("density_map", os.path.join(kfs, "density_map.py"))
+    m = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(m)
+    _, _, out = m.mapping()
+    return [f"| {n} | {e_sand:.4f} | {100 * dr:.1f} % | {e:.4f} | {mu} |" for n, e_sand, dr, e, mu in out]
+
+
+def parameter_rows():
+    return [f"| {SYMBOL.get(r['parameter'], r['parameter'])} | {g(r['min'])}–{g(r['max'])} ({r['scale']}) | "
+            f"{g(r['calibrated'])} | {g(r['mean'])} ± {g(r['sd'], 2)} | {g(r['lo95'])}–{g(r['hi95'])} |"
+            for r in rows(os.path.join(img, "kfs_parameters.csv"))]
+
+
+def curve_rows():
+    return [f"| {r['target']} | {SYMBOL.get(r['quantity'], r['quantity'])} | {g(r['rms_misfit'])} | "
+            f"{g(r['seed_scatter'])} | {g(r['misfit_D'])} |" for r in rows(os.path.join(img, "kfs_curves.csv"))]
+
+
+def prediction_rows():
+    path = os.path.join(kfs, "kfs_predictions.csv")
+    if not os.path.exists(path):
+        return []
+    return [f"| {r['sigma3_kPa']} | {r['Dr_pct']} % | {r['phi_peak_deg']} ({r['phi_peak_lo95_deg']}–"
+            f"{r['phi_peak_hi95_deg']}) | {r['eps1_at_peak_pct']} ± {r['eps1_at_peak_ci95_pct']} | "
+            f"{r['epsv_at_10pct_pct']} ± {r['epsv_at_10pct_ci95_pct']} | "
+            f"{r['epsv_at_20pct_pct']} ± {r['epsv_at_20pct_ci95_pct']} |"
+            for r in rows(path)]
+
+
+def calibrated_agrees():
+    text = open(os.path.join(kfs, "calibrated.toml")).read()
+    bad = []
+    for r in rows(os.path.join(img, "kfs_parameters.csv")):
+        m = re.search(r"""['"]%s['"]\s*=\s*([0-9.eE+-]+)""" % re.escape(r["key"]), text)
+        if not m or abs(float(m.group(1)) - float(r["calibrated"])) > 1e-5 * abs(float(r["calibrated"])):
+            bad.append(f"calibrated.toml: {r['key']} is {m.group(1) if m else 'missing'}, "
+                       f"kfs_parameters.csv says {r['calibrated']}")
+    return bad
+
+
+tables = {"density": density_rows(), "parameters": parameter_rows(), "curves": curve_rows(),
+          "predictions": prediction_rows()}
+if "--print" in sys.argv:
+    for name, lines in tables.items():
+        print(f"# {name}\n" + "\n".join(lines) + "\n")
+    sys.exit(0)
+doc = open(os.path.join(root, "docs", "calibration.md")).read()
+missing = [f"{name}: {line}" for name, lines in tables.items() for line in lines if line not in doc]
+missing += calibrated_agrees()
+if missing:
+    print("docs/calibration.md or calibrated.toml differs from the shipped CSVs; rows expected:")
+    print("\n".join(missing))
+    sys.exit(1)
+print(f"{sum(len(v) for v in tables.values())} rows of docs/calibration.md agree with their CSVs")
