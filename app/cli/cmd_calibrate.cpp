@@ -41,6 +41,7 @@ void print_result(const CalibrationSpec& spec, const CalibrationResult& r, const
     std::printf("  %s %s: r.m.s. misfit %.4g %s, one specimen's scatter %.4g %s\n",
                 c.target.c_str(), c.quantity.c_str(), c.rms_misfit, c.unit.c_str(),
                 c.seed_scatter, c.unit.c_str());
+  for (const std::string& w : calibration_warnings(r)) std::printf("  warning: %s\n", w.c_str());
   std::printf("  results in %s (parameters.csv, curves.csv, calibrated.toml, fit_*.png)\n",
               out.c_str());
 }
@@ -77,7 +78,7 @@ void print_prediction(const PredictionSpec& spec, const PredictionResult& r, con
                 peak / u, c.unit.c_str());
     if (std::isfinite(c.rms_error))
       std::printf(", r.m.s. error %.4g against a band sd of %.4g, %.0f %% of the measured points "
-                  "within 2 sd", c.rms_error / u, c.rms_sd / u, 100 * c.inside);
+                  "inside the 95 %% prediction interval", c.rms_error / u, c.rms_sd / u, 100 * c.inside);
     std::printf("\n");
   }
   std::printf("  results in %s (prediction.csv, specimens.csv, band_*.csv, predict_*.png)\n",

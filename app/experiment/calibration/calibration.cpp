@@ -49,8 +49,10 @@ Problem make_problem(const CalibrationSpec& spec) {
         s.push_back(y.scatter.value_or(0) * unit);
         p.comparison.curve_of.push_back(p.comparison.curves);
       }
+      p.comparison.test_of.push_back(static_cast<int>(t));
       ++p.comparison.curves;
     }
+  p.comparison.tests = static_cast<int>(spec.targets.size());
   p.values = static_cast<int>(m.size());
   p.comparison.measured = Eigen::Map<Eigen::VectorXd>(m.data(), p.values);
   p.comparison.scatter = Eigen::Map<Eigen::VectorXd>(s.data(), p.values);
@@ -106,7 +108,13 @@ Eigen::VectorXd design_values(const Problem& p, const std::vector<CalibrationRun
   int f = 0;
   for (const CalibrationRun& r : runs) {
     if (r.design != design) continue;
-    const Curve c = simulated_curve(p.spec.targets[r.target], *p.kinds[r.target], r.dir.string());
+    Curve c;
+    try {
+      c = simulated_curve(p.spec.targets[r.target], *p.kinds[r.target], r.dir.string());
+    } catch (const ReadError& e) {  // a test that measured nothing: no values, not an end
+      std::fprintf(stderr, "[calibrate] %s: %s; its values are left out\n", r.dir.c_str(), e.what());
+      c.y.resize(p.spec.targets[r.target].y.size());
+    }
     for (const std::vector<double>& y : c.y)
       for (double x : p.points[r.target]) v(f++) = value_at(c.x, y, x);
     if (curves) curves->push_back(c);
@@ -160,14 +168,18 @@ void print_round(const CalibrationSpec& spec, const std::string& what, const Pos
 // curve's fit of their mean.
 void measure_replicates(Problem& p, const std::vector<Eigen::VectorXd>& reps,
                         CalibrationResult& result) {
-  const int n = static_cast<int>(reps.size());
-  Eigen::VectorXd mean = Eigen::VectorXd::Zero(p.values), sq = Eigen::VectorXd::Zero(p.values);
-  for (const Eigen::VectorXd& r : reps) {
-    mean += r / n;
-    sq += r.cwiseProduct(r) / n;
+  // Mean and standard deviation over the replicates that reached each
+  // point; NaN where fewer than two did.
+  Eigen::VectorXd mean(p.values);
+  for (int f = 0; f < p.values; ++f) {
+    double sum = 0, sq = 0;
+    int n = 0;
+    for (const Eigen::VectorXd& r : reps)
+      if (std::isfinite(r(f))) sum += r(f), sq += r(f) * r(f), ++n;
+    mean(f) = n > 0 ? sum / n : NAN;
+    p.comparison.seed_scatter(f) =
+        n >= 2 ? std::sqrt(std::max(0.0, (sq - n * mean(f) * mean(f)) / (n - 1))) : NAN;
   }
-  for (int f = 0; f < p.values; ++f)
-    p.comparison.seed_scatter(f) = std::sqrt(std::max(0.0, (sq(f) - mean(f) * mean(f)) * n / (n - 1)));
   const std::vector<double> d =
       curve_misfits(p.comparison, mean, Eigen::VectorXd::Zero(p.values));
   int f = 0, curve = 0;
@@ -178,7 +190,7 @@ void measure_replicates(Problem& p, const std::vector<Eigen::VectorXd>& reps,
                  y.scatter ? *y.scatter : NAN, d[curve++]};
       double miss = 0, scatter = 0;
       for (size_t k = 0; k < p.points[t].size(); ++k, ++f)
-        if (std::isfinite(mean(f))) {
+        if (std::isfinite(mean(f)) && std::isfinite(p.comparison.seed_scatter(f))) {
           miss += std::pow(mean(f) - p.comparison.measured(f), 2);
           scatter += std::pow(p.comparison.seed_scatter(f), 2);
           ++c.points;

@@ -113,11 +113,34 @@ void write_summary(const CalibrationSpec& spec, const CalibrationResult& r, cons
   for (const CurveFit& c : r.curves)
     o << c.target << '.' << c.quantity << "_rms_misfit = " << g(c.rms_misfit) << '\n'
       << c.target << '.' << c.quantity << "_seed_scatter = " << g(c.seed_scatter) << '\n';
+  for (const std::string& w : calibration_warnings(r)) o << "warning = " << w << '\n';
   o << "wall_seconds = " << g(r.seconds) << '\n';
   write_file_atomic((dir / "summary.txt").string(), o.str());
 }
 
 }  // namespace
+
+std::vector<std::string> calibration_warnings(const CalibrationResult& r) {
+  std::vector<std::string> w;
+  double d = 0;
+  int n = 0;
+  for (const CurveFit& c : r.curves)
+    if (std::isfinite(c.misfit)) d += c.misfit, ++n;
+  if (n > 0 && d / n > 4)
+    w.push_back("the curves' mean misfit D is " + g(d / n) +
+                " (1: within the known errors): the model does not reproduce them, and the "
+                "intervals hold only for the best it can do");
+  if (r.posterior.effective_samples < 100)
+    w.push_back("the posterior rests on " + g(r.posterior.effective_samples) +
+                " effective samples: its quantiles are rough");
+  for (size_t j = 0; j < r.calibrated.size(); ++j) {
+    const Estimate& e = r.posterior.estimates[j];
+    if (r.calibrated[j] < e.lo95 || r.calibrated[j] > e.hi95)
+      w.push_back("parameter " + std::to_string(j + 1) + "'s calibrated value " + g(r.calibrated[j]) +
+                  " lies outside the final 95 % interval (the specimens' scatter moved it)");
+  }
+  return w;
+}
 
 void write_calibration_report(const CalibrationSpec& spec, const CalibrationResult& r,
                               const std::string& out_dir) {

@@ -18,10 +18,18 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "app/experiment/calibration/calibration.h"
 
 namespace simsols {
+
+// What a reader of the result must know: a misfit D far above 1 at the
+// calibrated values (the model does not reproduce the curves within the
+// errors it knows of, and the intervals hold only if it did), a posterior
+// resting on few effective samples, a calibrated value outside the final
+// 95 % interval. Printed by the command, written into summary.txt.
+std::vector<std::string> calibration_warnings(const CalibrationResult& result);
 
 void write_calibration_report(const CalibrationSpec& spec, const CalibrationResult& result,
                               const std::string& out_dir);

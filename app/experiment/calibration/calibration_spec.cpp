@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "app/experiment/calibration/scene_keys.h"
 #include "solver/apparatus/registry.h"
 #include "solver/io/scene_toml.h"
 #include "solver/io/toml_reader.h"
@@ -122,6 +123,31 @@ CalibrationTarget read_target(const Reader& r, const std::string& file, bool dat
   return t;
 }
 
+// Two entries with the same `what` (a folder's name, a scene key) would
+// overwrite each other: refused naming the second.
+template <class T, class Key>
+void check_unique(const std::vector<T>& v, const char* table, const char* what, Key key,
+                  const std::string& path) {
+  for (size_t i = 0; i < v.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (key(v[i]) == key(v[j]))
+        throw SceneError("duplicate", path, 0, scene_toml::item(table, i) + "." + what,
+                         "'" + key(v[i]) + "' is also " + scene_toml::item(table, j) + "'s");
+}
+
+// Every target's scene with every parameter at its minimum, then at its
+// maximum: a key the scene does not have, or a range its reader refuses,
+// is reported before anything runs (SceneError naming the scene and key).
+void check_ranges(const CalibrationSpec& s) {
+  for (const CalibrationTarget& t : s.targets)
+    for (double u : {0.0, 1.0}) {
+      std::vector<SceneValue> values;
+      for (const auto& [key, v] : t.set) values.push_back({key, v, false});
+      for (const CalibrationParameter& p : s.parameters) values.push_back({p.key, p.value(u), false});
+      scene_with(t.scene, values);
+    }
+}
+
 }  // namespace
 
 CalibrationSpec read_calibration(const std::string& path) {
@@ -156,6 +182,9 @@ CalibrationSpec read_calibration(const std::string& path) {
                                     path));
   if (s.targets.empty()) ctx.fail("missing_key", 0, "targets", "at least one [[targets]]");
   ctx.throw_if_any();
+  check_unique(s.parameters, "parameters", "key", [](const auto& p) { return p.key; }, path);
+  check_unique(s.targets, "targets", "name", [](const auto& t) { return t.name; }, path);
+  check_ranges(s);
   return s;
 }
 
@@ -212,6 +241,7 @@ PredictionSpec read_prediction(const std::string& path) {
                                   path, false));
   if (s.tests.empty()) ctx.fail("missing_key", 0, "tests", "at least one [[tests]]");
   ctx.throw_if_any();
+  check_unique(s.tests, "tests", "name", [](const auto& t) { return t.name; }, path);
   return s;
 }
 

@@ -58,8 +58,13 @@ Curve measured_curve(const CalibrationTarget& target) {
       cols.push_back(column_or_fail(t, y.column, [&](auto m) { fail("y", m); }));
       factors.push_back(unit_factor(y.unit)->first);
     }
-    return read_curve(t, kept_rows(t, target.where, [&](auto m) { fail("where", m); }), cols,
-                      factors);
+    const std::vector<size_t> rows = kept_rows(t, target.where, [&](auto m) { fail("where", m); });
+    for (size_t r : rows)
+      for (int c : cols)
+        if (!std::isfinite(t.number(r, c)))
+          fail("data", t.source + ":" + std::to_string(t.lines[r]) + ": column '" +
+                           t.header[static_cast<size_t>(c)] + "' is not a finite number");
+    return read_curve(t, rows, cols, factors);
   } catch (const ReadError& e) {
     fail("data", e.what());
   }

@@ -68,24 +68,37 @@ Eigen::VectorXd mode(const Comparison& c, const Surrogate& s, const Eigen::Vecto
 
 std::vector<double> curve_misfits(const Comparison& c, const Eigen::VectorXd& y,
                                   const Eigen::VectorXd& surrogate_error) {
-  std::vector<double> sum(c.curves, 0.0);
+  // Each curve's variance, pooled over its points (one s for the curve: a
+  // point where every source of error happens to be small, the elastic
+  // start, must not outweigh the rest), and its squared misses. A value
+  // that cannot be predicted (NaN: not reached, or fitted exactly, with no
+  // error to say) and a point the replicates did not all reach are left out.
+  std::vector<double> var(c.curves, 0.0), miss(c.curves, 0.0);
   std::vector<int> count(c.curves, 0);
   for (int f = 0; f < y.size(); ++f) {
-    if (!std::isfinite(y(f))) continue;
-    const double e = std::isfinite(surrogate_error(f)) ? surrogate_error(f) : 0;
-    const double s2 = c.scatter(f) * c.scatter(f) + c.seed_scatter(f) * c.seed_scatter(f) + e * e +
-                      1e-24 + 1e-12 * c.measured(f) * c.measured(f);
-    sum[c.curve_of[f]] += (y(f) - c.measured(f)) * (y(f) - c.measured(f)) / s2;
-    ++count[c.curve_of[f]];
+    const double e = surrogate_error(f), seed = c.seed_scatter(f);
+    if (!std::isfinite(y(f)) || !std::isfinite(e) || !std::isfinite(seed)) continue;
+    const int k = c.curve_of[f];
+    var[k] += c.scatter(f) * c.scatter(f) + seed * seed + e * e;
+    miss[k] += (y(f) - c.measured(f)) * (y(f) - c.measured(f));
+    ++count[k];
   }
-  for (int k = 0; k < c.curves; ++k) sum[k] = count[k] ? sum[k] / count[k] : NAN;
-  return sum;
+  std::vector<double> d(c.curves, NAN);
+  for (int k = 0; k < c.curves; ++k)
+    if (count[k] > 0) d[k] = miss[k] / std::max(var[k], 1e-300);
+  return d;
 }
 
 double log_likelihood(const Comparison& c, const Surrogate& s, const Eigen::VectorXd& u) {
+  const std::vector<double> d = curve_misfits(c, s.predict(u), s.loo_error());
+  // One observation per test: its curves (of one specimen) averaged.
+  std::vector<double> sum(c.tests, 0.0);
+  std::vector<int> n(c.tests, 0);
+  for (int k = 0; k < c.curves; ++k)
+    if (std::isfinite(d[k])) sum[c.test_of[k]] += d[k], ++n[c.test_of[k]];
   double total = 0;
-  for (double d : curve_misfits(c, s.predict(u), s.loo_error()))
-    if (std::isfinite(d)) total += d;
+  for (int t = 0; t < c.tests; ++t)
+    if (n[t] > 0) total += sum[t] / n[t];
   return -0.5 * total;
 }
 

@@ -3,14 +3,17 @@
 // the most likely set, and the next round's designs drawn from it.
 //
 // The model of the error. At comparison point k of a curve, the simulated
-// value S_k(u) (the surrogate's) misses the measured m_k by
-//   r_k = (S_k(u) - m_k) / s_k,  s_k^2 = scatter^2 + seed_k^2 + surrogate_k^2,
-// the measurement's scatter (given by the user, or 0), the specimens'
-// seed-to-seed standard deviation (from the replicates, 0 before them)
-// and the surrogate's leave-one-out error. The points of one curve are not
-// independent (a specimen that is stronger is stronger all along), so a
-// curve counts as one observation: its misfit is D = mean_k r_k^2, and
-//   log L(u) = -1/2 sum over curves of D.
+// value S_k(u) (the surrogate's) misses the measured m_k. The error it may
+// have is s_k^2 = scatter^2 + seed_k^2 + surrogate_k^2: the measurement's
+// scatter (given by the user, or 0), the specimens' seed-to-seed standard
+// deviation (from the replicates, 0 before them) and the surrogate's
+// leave-one-out error. The points of one curve are not independent (a
+// specimen that is stronger is stronger all along), and the curves of one
+// test are of one specimen, so each test counts as one observation:
+//   D_curve = mean_k (S_k - m_k)^2 / mean_k s_k^2   (the variance pooled
+//             over the curve, so no point where every error is small, the
+//             elastic start, outweighs the rest),
+//   log L(u) = -1/2 sum over tests of (mean of the test's D_curve).
 // The prior is uniform over the ranges (in log for a log-scale
 // parameter). The posterior is sampled by weighting a Sobol sequence of
 // the ranges (importance sampling from the prior); when that leaves fewer
@@ -28,18 +31,22 @@
 
 namespace simsols {
 
-// The compared values, flattened: value f belongs to curve curve_of[f].
+// The compared values, flattened: value f belongs to curve curve_of[f],
+// curve k to test test_of[k].
 struct Comparison {
   Eigen::VectorXd measured;      // m_f, SI
   Eigen::VectorXd scatter;       // the measurement's standard deviation, SI (0 when not given)
   Eigen::VectorXd seed_scatter;  // the specimens', SI (0 until the replicates ran)
   std::vector<int> curve_of;
+  std::vector<int> test_of;
   int curves = 0;
+  int tests = 0;
 };
 
 // log L(u) of the surrogate's prediction at u, as above.
 double log_likelihood(const Comparison& c, const Surrogate& s, const Eigen::VectorXd& u);
-// Each curve's misfit D of values `y` (the same order as c.measured).
+// Each curve's misfit D of values `y` (the same order as c.measured), NaN
+// for a curve none of whose points can be compared.
 std::vector<double> curve_misfits(const Comparison& c, const Eigen::VectorXd& y,
                                   const Eigen::VectorXd& surrogate_error);
 

@@ -1,6 +1,7 @@
 #include "app/experiment/calibration/prediction.h"
 
 #include <algorithm>
+#include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <filesystem>
 
@@ -15,6 +16,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Specimens no calibration ran: its designs use the scene's seed, its
+// replicates 1001 on.
+constexpr int kFirstSeed = 2001;
+
 std::vector<BatchTest> prediction_tests(const PredictionSpec& spec, const fs::path& root) {
   const std::vector<std::pair<std::string, double>> calibrated = read_calibrated(spec.calibrated);
   std::vector<BatchTest> tests;
@@ -28,10 +33,11 @@ std::vector<BatchTest> prediction_tests(const PredictionSpec& spec, const fs::pa
       std::vector<SceneValue> values;
       for (const auto& [key, v] : calibrated) values.push_back({key, v, false});
       for (const auto& [key, v] : test.set) values.push_back({key, v, false});
-      values.push_back({kind.seed_key, double(k), true});
-      BatchTest b{scene_with(test.scene, values), root / test.name / ("s" + std::to_string(k)),
+      const int seed = kFirstSeed + k - 1;
+      values.push_back({kind.seed_key, double(seed), true});
+      BatchTest b{scene_with(test.scene, values), root / test.name / ("s" + std::to_string(seed)),
                   cost, t, k};
-      b.scene.name += "_" + test.name + "_s" + std::to_string(k);
+      b.scene.name += "_" + test.name + "_s" + std::to_string(seed);
       tests.push_back(std::move(b));
     }
   }
@@ -60,7 +66,10 @@ PredictedCurve predicted_curve(const PredictionSpec& spec, size_t t, size_t j,
   p.x_unit = test.x.unit;
   p.x = band_points(spec, measured, specimens);
   const double n = double(specimens.size());
-  double err = 0, var = 0, inside = 0, compared = 0;
+  // A new specimen's 95 % prediction interval: mean +- t sd sqrt(1 + 1/n).
+  const double half = boost::math::quantile(complement(boost::math::students_t(n - 1), 0.025)) *
+                      std::sqrt(1 + 1 / n);
+  double err = 0, var = 0, inside = 0, compared = 0, measured_points = 0;
   for (double x : p.x) {
     double sum = 0, sq = 0, lo = INFINITY, hi = -INFINITY;
     for (const Curve& c : specimens) {
@@ -77,17 +86,19 @@ PredictedCurve predicted_curve(const PredictionSpec& spec, size_t t, size_t j,
     p.lo.push_back(lo);
     p.hi.push_back(hi);
     p.measured.push_back(m);
-    if (std::isfinite(m) && std::isfinite(mean)) {
-      err += (mean - m) * (mean - m);
-      var += sd * sd;
-      inside += std::abs(mean - m) <= 2 * sd ? 1 : 0;
-      ++compared;
-    }
+    p.half_width.push_back(half * sd);
+    if (!std::isfinite(m)) continue;
+    ++measured_points;  // a point the band does not reach counts as outside
+    if (!std::isfinite(mean) || !std::isfinite(sd)) continue;
+    err += (mean - m) * (mean - m);
+    var += sd * sd;
+    inside += std::abs(mean - m) <= half * sd ? 1 : 0;
+    ++compared;
   }
   if (compared > 0) {
     p.rms_error = std::sqrt(err / compared);
     p.rms_sd = std::sqrt(var / compared);
-    p.inside = inside / compared;
+    p.inside = inside / measured_points;
   }
   const double xu = unit_factor(test.x.unit)->first;
   p.at.resize(spec.at.size());
@@ -104,6 +115,8 @@ PredictedCurve predicted_curve(const PredictionSpec& spec, size_t t, size_t j,
 
 PredictionResult run_prediction(const PredictionSpec& spec, const CalibrationOptions& o) {
   PredictionResult r;
+  for (const CalibrationTarget& t : spec.tests)  // a bad measured file is named before anything runs
+    r.measured.push_back(t.data.empty() ? Curve{} : measured_curve(t));
   std::vector<BatchTest> tests = prediction_tests(spec, o.out_dir);
   const BatchOutcome out = run_batch(tests, 0, {o.device, o.quiet, o.stop_requested, "prediction tests"});
   r.seconds = out.seconds;
@@ -116,7 +129,6 @@ PredictionResult run_prediction(const PredictionSpec& spec, const CalibrationOpt
     r.specimens[b.target].push_back(simulated_curve(spec.tests[b.target], kind, b.dir.string()));
   }
   for (size_t t = 0; t < spec.tests.size(); ++t) {
-    r.measured.push_back(spec.tests[t].data.empty() ? Curve{} : measured_curve(spec.tests[t]));
     for (size_t j = 0; j < spec.tests[t].y.size(); ++j)
       r.curves.push_back(predicted_curve(spec, t, j, r.measured[t], r.specimens[t]));
   }

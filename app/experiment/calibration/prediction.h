@@ -4,7 +4,7 @@
 //
 // Each test of the prediction file (calibration_spec.h) runs with the
 // calibrated values and its own keys set, on `specimens` specimens (the
-// kind's seed key = 1, 2, ...), into OUT/<test>/s<seed>/. The band of each
+// kind's seed key = 2001, 2002, ...: specimens no calibration ran), into OUT/<test>/s<seed>/. The band of each
 // y is the specimens' mean and standard deviation, their least and largest
 // value, at `points` x's (over the measured range when there is a
 // measurement, else over the range every specimen reached). For each
@@ -23,11 +23,15 @@ namespace simsols {
 struct PredictedCurve {
   std::string test, quantity, unit, x_unit;  // units: the test's columns'
   std::vector<double> x, mean, sd, lo, hi, measured;  // SI; measured NaN without data
+  // Half the 95 % prediction interval of one more specimen, t(n-1) sd
+  // sqrt(1 + 1/n): where a measurement of the same test should fall.
+  std::vector<double> half_width;
   std::vector<double> peak, x_at_peak;                // per specimen, SI
   std::vector<std::vector<double>> at;                // [at index][specimen], SI
   // Against the measurement (NaN without one): the r.m.s. of mean - measured,
-  // the r.m.s. of the specimens' sd, and the share of measured points
-  // within mean +- 2 sd.
+  // the r.m.s. of the specimens' sd, and the share of the measured points
+  // inside the prediction interval (a point the band does not reach counts
+  // as outside).
   double rms_error = NAN, rms_sd = NAN, inside = NAN;
 };
 

@@ -35,10 +35,11 @@ void write_band(const PredictedCurve& c, const fs::path& dir) {
   std::ostringstream o;
   o << "# " << c.test << ": " << c.quantity << " predicted, the specimens' mean, standard deviation, "
     << "least and largest; x in " << c.x_unit << ", y in " << c.unit << "\n";
-  o << "x,mean,sd,lo,hi,measured\n";
+  o << "x,mean,sd,lo,hi,prediction_half_width,measured\n";
   for (size_t i = 0; i < c.x.size(); ++i)
     o << g(c.x[i] / xu) << ',' << g(c.mean[i] / yu) << ',' << g(c.sd[i] / yu) << ','
-      << g(c.lo[i] / yu) << ',' << g(c.hi[i] / yu) << ',' << g(c.measured[i] / yu) << '\n';
+      << g(c.lo[i] / yu) << ',' << g(c.hi[i] / yu) << ',' << g(c.half_width[i] / yu) << ','
+      << g(c.measured[i] / yu) << '\n';
   write_file_atomic((dir / ("band_" + c.test + "_" + c.quantity + ".csv")).string(), o.str());
 }
 
@@ -50,16 +51,16 @@ void write_plot(const PredictionSpec& spec, const PredictedCurve& c, const fs::p
   chart.y_label = c.quantity + " (" + (c.unit == "-" ? std::string("–") : c.unit) + ")";
   plot::Series mean, lo, hi, meas;
   mean.label = "mean of " + std::to_string(spec.specimens) + " specimens";
-  lo.label = "mean ± 2 sd";
+  lo.label = "95 % prediction interval";
   meas.label = "measured";
   for (size_t i = 0; i < c.x.size(); ++i) {
     const double x = c.x[i] / xu;
     mean.x.push_back(x);
     mean.y.push_back(c.mean[i] / yu);
     lo.x.push_back(x);
-    lo.y.push_back((c.mean[i] - 2 * c.sd[i]) / yu);
+    lo.y.push_back((c.mean[i] - c.half_width[i]) / yu);
     hi.x.push_back(x);
-    hi.y.push_back((c.mean[i] + 2 * c.sd[i]) / yu);
+    hi.y.push_back((c.mean[i] + c.half_width[i]) / yu);
     meas.x.push_back(x);
     meas.y.push_back(c.measured[i] / yu);
   }
@@ -79,7 +80,7 @@ void write_tables(const PredictionSpec& spec, const PredictionResult& r, const f
   all << "test,quantity,unit,x_unit,specimens,peak_mean,peak_ci95,x_at_peak_mean,x_at_peak_ci95";
   for (double a : spec.at) per << ",at_" << g(a), all << ",at_" << g(a) << "_mean,at_" << g(a) << "_ci95";
   per << '\n';
-  all << ",rms_error,rms_sd,inside_2sd\n";
+  all << ",rms_error,rms_sd,inside_prediction_interval\n";
   for (const PredictedCurve& c : r.curves) {
     const double xu = factor(c.x_unit), yu = factor(c.unit);
     const std::string head = c.test + ',' + c.quantity + ',' + c.unit + ',' + c.x_unit + ',';

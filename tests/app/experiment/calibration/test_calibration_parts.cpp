@@ -99,7 +99,7 @@ TEST(CalibrationSpec, ReportsEveryBadFieldWithItsName) {
     EXPECT_EQ(e.code, "out_of_range");
   }
   write(d / "unit.toml",
-        "[[parameters]]\nname = \"mu\"\nkey = \"k\"\nmin = 0.1\nmax = 0.5\n" + good_target +
+        "[[parameters]]\nname = \"mu\"\nkey = \"materials.beads.sliding_friction\"\nmin = 0.1\nmax = 0.5\n" + good_target +
             "[[targets.y]]\ncolumn = \"eta\"\nunit = \"kPa\"\nquantity = \"stress_ratio\"\n");
   try {
     read_calibration((d / "unit.toml").string());
@@ -109,7 +109,7 @@ TEST(CalibrationSpec, ReportsEveryBadFieldWithItsName) {
     EXPECT_EQ(e.field, "targets[0].y[0].unit");
   }
   write(d / "quantity.toml",
-        "[[parameters]]\nname = \"mu\"\nkey = \"k\"\nmin = 0.1\nmax = 0.5\n" + good_target +
+        "[[parameters]]\nname = \"mu\"\nkey = \"materials.beads.sliding_friction\"\nmin = 0.1\nmax = 0.5\n" + good_target +
             "[[targets.y]]\ncolumn = \"eta\"\nunit = \"-\"\nquantity = \"dilation\"\n");
   try {
     read_calibration((d / "quantity.toml").string());
@@ -119,7 +119,7 @@ TEST(CalibrationSpec, ReportsEveryBadFieldWithItsName) {
     EXPECT_NE(e.message.find("stress_ratio"), std::string::npos) << e.message;
   }
   write(d / "ok.toml",
-        "[[parameters]]\nname = \"mu\"\nkey = \"k\"\nmin = 0.1\nmax = 0.5\n" + good_target +
+        "[[parameters]]\nname = \"mu\"\nkey = \"materials.beads.sliding_friction\"\nmin = 0.1\nmax = 0.5\n" + good_target +
             "[[targets.y]]\ncolumn = \"eta\"\nunit = \"-\"\nquantity = \"stress_ratio\"\n");
   const CalibrationSpec s = read_calibration((d / "ok.toml").string());
   const Curve m = measured_curve(s.targets.at(0));
@@ -167,7 +167,9 @@ TEST(Posterior, FindsTheParametersOfAKnownResponseWithAnHonestInterval) {
   c.scatter = Eigen::VectorXd::Constant(3, 0.02);
   c.seed_scatter = Eigen::VectorXd::Zero(3);
   c.curve_of = {0, 1, 2};
+  c.test_of = {0, 1, 2};
   c.curves = 3;
+  c.tests = 3;
   CalibrationSpec spec;
   spec.parameters = {{"a", "a", 0, 1, false}, {"b", "b", 10, 1000, true}};
   const Posterior p = posterior(spec, c, Surrogate(u, y));
