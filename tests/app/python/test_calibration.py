@@ -1,6 +1,6 @@
 """The calibration's prediction from Python (app/experiment/calibration/prediction.h):
 a calibrated friction, written as `simsols calibrate` writes it, predicts the
-small periodic-cell triaxial test on two specimens; the band's mean lies
+small periodic-cell triaxial test on two new specimens; the band's mean lies
 between its least and largest specimen, the measured curve (the program's
 own run of the same material on seed 1) sits inside the band, and the
 command line, pointed at the same folder, keeps every test and writes the
@@ -34,8 +34,8 @@ def test_prediction_from_python_and_the_command_line(tmp_path):
     assert len(band["x"]) == 10 and len(band["peak"]) == 2
     for mean, sd in zip(band["mean"], band["sd"]):
         assert math.isfinite(mean) and sd >= 0
-    # seed 1 is one of the two specimens and the material is the same:
-    # most of the measured curve lies within 2 sd of their mean
+    # the same material on two other specimens (seeds 2001, 2002):
+    # most of the measured curve lies inside their prediction interval
     assert band["inside"] >= 0.5, band
     assert band["rms_error"] < 0.2
     table = open(os.path.join(out, "prediction.csv")).read()
