@@ -1,5 +1,7 @@
 #include "app/experiment/shear_box/accuracy_table.h"
 
+#include "solver/common/csv_table.h"
+
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -72,31 +74,14 @@ std::string expected_accuracy_text(const SettingSummary& s) {
 
 namespace {
 
-std::vector<std::string> cells_of(const std::string& line) {
-  std::vector<std::string> out(1);
-  for (char c : line) {
-    if (c == ',') out.emplace_back();
-    else if (c != '\r') out.back() += c;
-  }
-  return out;
-}
-
 // The rows of the embedded profiles.csv ('#' lines are its notes), each
 // as column name -> cell.
 std::vector<std::map<std::string, std::string>> profile_rows() {
-  std::istringstream in(embedded_profiles_csv());
-  std::vector<std::string> header;
+  const CsvTable t = parse_csv(embedded_profiles_csv(), "profiles.csv");
   std::vector<std::map<std::string, std::string>> rows;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#') continue;
-    const std::vector<std::string> cells = cells_of(line);
-    if (header.empty()) {
-      header = cells;
-      continue;
-    }
-    if (cells.size() != header.size()) throw ReadError("profiles.csv: a row of " + std::to_string(cells.size()) + " cells");
+  for (const std::vector<std::string>& cells : t.rows) {
     auto& row = rows.emplace_back();
-    for (size_t i = 0; i < cells.size(); ++i) row[header[i]] = cells[i];
+    for (size_t i = 0; i < cells.size(); ++i) row[t.header[i]] = cells[i];
   }
   return rows;
 }

@@ -175,3 +175,15 @@ TEST(StudyEnsemble, DocsAndLabTablesAreTheShippedCsv) {
       << "docs/accuracy.md does not hold the table of docs/img/accuracy_paired_poured_ensemble.csv; "
          "regenerate it with: simsols study table --from docs/img/accuracy_paired_poured_ensemble.csv";
 }
+
+// The lab's line for the fast profile comes from the embedded profiles.csv
+// (assets/accuracy/profiles.csv): read through the CSV reader, its layered
+// row names the paired differences; the paper profile has no row.
+namespace simsols {
+TEST(StudyEnsemble, TheFastProfilesLineIsReadFromItsTable) {
+  const std::string fast = profile_accuracy_text("fast", StudySpecimen::Layered);
+  EXPECT_NE(fast.find("phi_peak"), std::string::npos) << fast;
+  EXPECT_NE(fast.find("layered specimens"), std::string::npos) << fast;
+  EXPECT_TRUE(profile_accuracy_text("paper", StudySpecimen::Layered).empty());
+}
+}  // namespace simsols
