@@ -74,7 +74,7 @@ constexpr CurveQuantity kCellCurves[] = {
     {"axial_strain", "strain", "-"},       {"shear_strain", "strain", "-"},
     {"volumetric_strain", "volumetric_strain", "-"}, {"stress_ratio", "stress_ratio", "-"},
     {"deviator_stress", "q_kPa", "kPa"},   {"mean_stress", "p_kPa", "kPa"},
-    {"void_ratio", "void_ratio", "-"}};
+    {"void_ratio", "void_ratio", "-"},     {"vertical_stress", "sigma_zz_kPa", "kPa"}};
 const ApparatusKind kKinds[] = {
     {"shear_box", "Direct shear", "a direct shear test", "shear", kShearBoxWalls,
      "settle,consolidate,shear", build_shear_box, make<ShearProgramme>, shear_box_stress,

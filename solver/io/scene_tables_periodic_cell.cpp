@@ -8,7 +8,7 @@
 namespace simsols::scene_toml {
 namespace {
 
-const std::vector<std::string> kTests = {"simple_shear", "triaxial", "isotropic"};
+const std::vector<std::string> kTests = {"simple_shear", "triaxial", "isotropic", "oedometric"};
 const std::vector<std::string> kPaths = {"constant_sigma3", "constant_p"};
 
 template <class E>
@@ -27,7 +27,7 @@ void read_periodic_cell(const Reader& root, Scene& scene) {
                        "preparation_rolling_friction",
                        "pressure", "test", "path",
                        "inertial_number", "compression_inertial_number", "shear_strain",
-                       "axial_strain", "row_strain", "given", "edges"});
+                       "axial_strain", "vertical_stress", "row_strain", "given", "edges"});
   PeriodicCell c;
   const std::int64_t n = r.optional_integer("particles").value_or(c.particles);
   if (n < 8 || n > 10000000)
@@ -44,6 +44,7 @@ void read_periodic_cell(const Reader& root, Scene& scene) {
   c.pressure = r.number("pressure", c.pressure);
   c.test = index_of<PeriodicCell::Test>(kTests, r.choice("test", kTests[0], kTests));
   c.path = index_of<PeriodicCell::Path>(kPaths, r.choice("path", kPaths[0], kPaths));
+  c.vertical_stress = r.number("vertical_stress", c.vertical_stress);
   c.inertial_number = r.number("inertial_number", c.inertial_number);
   c.compression_inertial_number = r.number("compression_inertial_number", c.compression_inertial_number);
   c.shear_strain = r.number("shear_strain", c.shear_strain);
@@ -89,6 +90,7 @@ void write_periodic_cell(TableWriter& w) {
   w.line("compression_inertial_number", c.compression_inertial_number);
   w.line("shear_strain", c.shear_strain);
   w.line("axial_strain", c.axial_strain);
+  if (c.vertical_stress > 0) w.line("vertical_stress", c.vertical_stress);
   w.line("row_strain", c.row_strain);
   w.line("given", true);
   const std::optional<PeriodicBox>& box = w.scene().periodic;

@@ -78,6 +78,7 @@ double CellProgramme::servo_rate_max() const {
 }
 
 double CellProgramme::end_strain() const {
+  if (oedometric()) return kOedometricTravelEstimate;  // its end is a stress
   return cell_.test == PeriodicCell::Test::SimpleShear ? cell_.shear_strain : cell_.axial_strain;
 }
 
@@ -111,6 +112,7 @@ void CellProgramme::servo(const CellMeasure& m, Mat3& grad) {
   if (stage_ == Stage::Test && cell_.test == PeriodicCell::Test::SimpleShear)
     controlled[0] = controlled[1] = false;
   if (stage_ == Stage::Test && cell_.test == PeriodicCell::Test::AxialCompression) controlled[2] = false;
+  if (stage_ == Stage::Test && oedometric()) controlled[0] = controlled[1] = controlled[2] = false;
   for (int a = 0; a < 3; ++a) {
     if (!controlled[a]) {
       integral_[a] = 0;
@@ -142,6 +144,7 @@ void CellProgramme::start_test() {
   compress_steps_ = sim_.steps();
   volume0_ = det3(sim_.state().cell_now.h);
   strain_ = 0;
+  travel_ = 0;
   next_row_ = cell_.row_strain;
   sum_ = {};
   summed_ = 0;
@@ -152,6 +155,11 @@ void CellProgramme::start_test() {
   }
   stage_ = Stage::Test;
   apply_friction();
+  if (oedometric()) {  // the sides held from the first step of the test on
+    Mat3 grad{};
+    grad[8] = -test_rate();
+    sim_.set_cell_gradient(grad);
+  }
 }
 
 void CellProgramme::control() {
@@ -187,6 +195,7 @@ void CellProgramme::control() {
   servo(m, grad);
   if (stage_ == Stage::Test && cell_.test == PeriodicCell::Test::SimpleShear) grad[2] = test_rate();
   if (stage_ == Stage::Test && cell_.test == PeriodicCell::Test::AxialCompression) grad[8] = -test_rate();
+  if (stage_ == Stage::Test && oedometric()) oedometric_control(m, grad);
   sim_.set_cell_gradient(grad);
   if (stage_ == Stage::Compress) {
     if (controls_ % kCompressRowControls == 0) add_row();
@@ -194,10 +203,24 @@ void CellProgramme::control() {
       add_row();
       start_test();
     }
-  } else if (strain_ >= next_row_ - 1e-12) {
+  } else if (travel_ >= next_row_ - 1e-12) {
     add_row();
     next_row_ += cell_.row_strain;
   }
+}
+
+// x and y held (no lateral strain), z shortened at the test's rate until
+// sigma_zz reaches the vertical stress (a row there), then lengthened until
+// it is back at the pressure.
+void CellProgramme::oedometric_control(const CellMeasure& m, Mat3& grad) {
+  grad = Mat3{};
+  if (!unloading_ && m.stress[8] >= vertical_stress()) {
+    unloading_ = true;
+    add_row();
+  } else if (unloading_ && m.stress[8] <= cell_.pressure) {
+    finished_ = true;
+  }
+  grad[8] = unloading_ ? test_rate() : -test_rate();
 }
 
 void CellProgramme::add_row() {
@@ -222,13 +245,16 @@ bool CellProgramme::advance(std::int64_t max_steps) {
     max_steps -= steps;
     since_control_ += steps;
     const Mat3& grad = sim_.state().cell_now.grad;
-    if (stage_ == Stage::Test)
-      strain_ += steps * sim_.dt() *
-                 (cell_.test == PeriodicCell::Test::SimpleShear ? grad[2] : -grad[8]);
+    if (stage_ == Stage::Test) {
+      const double d = steps * sim_.dt() *
+                       (cell_.test == PeriodicCell::Test::SimpleShear ? grad[2] : -grad[8]);
+      strain_ += d;
+      travel_ += std::abs(d);
+    }
     if (since_control_ < kControlSteps) break;
     since_control_ = 0;
     control();
-    if (stage_ == Stage::Test && strain_ >= end_strain() - 1e-12) {
+    if (stage_ == Stage::Test && (oedometric() ? finished_ : strain_ >= end_strain() - 1e-12)) {
       add_row();
       stage_ = Stage::Done;
       sim_.set_cell_gradient(Mat3{});
@@ -274,10 +300,11 @@ std::string CellProgramme::caption() const {
 std::string CellProgramme::save_state() const {
   std::ostringstream o;
   o.precision(17);
-  o << "cell_test 2\n"
+  o << "cell_test 3\n"
     << static_cast<int>(stage_) << ' ' << strain_ << ' ' << volume0_ << ' ' << next_row_ << ' '
     << quiet_ << ' ' << controls_ << ' ' << compress_steps_ << ' ' << since_control_ << ' '
-    << summed_ << ' ' << integral_[0] << ' ' << integral_[1] << ' ' << integral_[2] << '\n';
+    << summed_ << ' ' << integral_[0] << ' ' << integral_[1] << ' ' << integral_[2] << ' '
+    << travel_ << ' ' << unloading_ << ' ' << finished_ << '\n';
   for (double x : sum_) o << x << ' ';
   o << '\n' << rows_.size() << '\n';
   for (const CellRow& r : rows_) {
@@ -293,9 +320,13 @@ void CellProgramme::restore_state(const std::string& text) {
   int version = 0, stage = 0;
   size_t count = 0;
   in >> tag >> version;
-  if (tag != "cell_test" || version != 2) throw ReadError("the checkpoint holds no periodic-cell state");
+  if (tag != "cell_test" || (version != 2 && version != 3))
+    throw ReadError("the checkpoint holds no periodic-cell state");
   in >> stage >> strain_ >> volume0_ >> next_row_ >> quiet_ >> controls_ >> compress_steps_ >>
       since_control_ >> summed_ >> integral_[0] >> integral_[1] >> integral_[2];
+  travel_ = strain_;  // version 2: a monotonic test, its travel its strain
+  unloading_ = finished_ = false;
+  if (version == 3) in >> travel_ >> unloading_ >> finished_;
   for (double& x : sum_) in >> x;
   in >> count;
   if (!in || stage < 0 || stage > 2 || count > 10000000 || since_control_ < 0 ||
@@ -312,7 +343,7 @@ void CellProgramme::restore_state(const std::string& text) {
 std::string CellProgramme::rows_csv() const { return cell_rows_csv(rows_); }
 
 CellSummary CellProgramme::summary() const {
-  const char* tests[] = {"simple_shear", "triaxial", "isotropic"};
+  const char* tests[] = {"simple_shear", "triaxial", "isotropic", "oedometric"};
   CellSummary s = cell_summary(rows_, 0.5 * end_strain());
   s.test = tests[static_cast<int>(cell_.test)];
   s.particles = static_cast<int>(sim_.scene().particles.size());
@@ -326,7 +357,28 @@ CellSummary CellProgramme::summary() const {
 std::string CellProgramme::summary_text(double wall_seconds) const {
   CellSummary s = summary();
   s.wall_seconds = wall_seconds;
-  return cell_summary_text(s);
+  std::string text = cell_summary_text(s);
+  if (!oedometric()) return text;
+  // One-dimensional compression: the void ratio at the start, at the
+  // largest vertical stress and back at the pressure, and K0 there.
+  const CellRow* first = nullptr;
+  const CellRow* top = nullptr;
+  for (const CellRow& r : rows_) {
+    if (r[kColStage] != 1) continue;
+    if (!first) first = &r;
+    if (!top || r[kColSzz] > (*top)[kColSzz]) top = &r;
+  }
+  if (!first) return text;
+  const CellRow& last = rows_.back();
+  std::ostringstream o;
+  o.precision(6);
+  o << "oedometric_vertical_stress_max_kPa = " << (*top)[kColSzz]
+    << "\noedometric_void_ratio_start = " << (*first)[kColVoid]
+    << "\noedometric_void_ratio_at_max = " << (*top)[kColVoid]
+    << "\noedometric_void_ratio_end = " << last[kColVoid]
+    << "\noedometric_k0_at_max = " << ((*top)[kColSxx] + (*top)[kColSyy]) / (2 * (*top)[kColSzz]) << "\n";
+  const size_t at = text.rfind("wall_seconds");
+  return at == std::string::npos ? text + o.str() : text.insert(at, o.str());
 }
 
 std::string CellProgramme::describe() const {

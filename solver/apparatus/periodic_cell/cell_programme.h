@@ -80,12 +80,23 @@ class CellProgramme : public ApparatusProgramme {
   void add_row();
   double stiffness(const CellMeasure& m) const;  // M, Pa
   double target(int axis, const CellMeasure& m) const;
+  bool oedometric() const { return cell_.test == PeriodicCell::Test::Oedometric; }
+  double vertical_stress() const {
+    return cell_.vertical_stress > 0 ? cell_.vertical_stress : 4 * cell_.pressure;
+  }
+  // Oedometric: the grid's gradient along z, and the turn at the largest
+  // stress and the end back at `pressure`.
+  void oedometric_control(const CellMeasure& m, Mat3& grad);
 
   Simulation& sim_;
   const PeriodicCell& cell_;
   double diameter_ = 0, density_ = 0, e_star_ = 0;
   Stage stage_ = Stage::Compress;
   double strain_ = 0, volumetric_ = 0, volume0_ = 0, next_row_ = 0;
+  // The strain travelled in the test (|d strain| summed: rows come every
+  // row_strain of it), and the oedometric test's unloading half.
+  double travel_ = 0;
+  bool unloading_ = false, finished_ = false;
   int quiet_ = 0, controls_ = 0;
   std::int64_t since_control_ = 0;  // steps since the last control
   std::int64_t compress_steps_ = 0;

@@ -37,6 +37,8 @@ std::optional<SceneIssue> check(const PeriodicCell& c, const Scene& scene) {
     return issue("compression_inertial_number", c.compression_inertial_number, "(0, 1]");
   if (!(c.shear_strain > 0)) return issue("shear_strain", c.shear_strain, "(0, inf)");
   if (!(c.axial_strain > 0 && c.axial_strain < 0.9)) return issue("axial_strain", c.axial_strain, "(0, 0.9)");
+  if (!(c.vertical_stress == 0 || c.vertical_stress > c.pressure))
+    return issue("vertical_stress", c.vertical_stress, "0 (4 x pressure) or above pressure, Pa");
   if (!(c.row_strain > 0)) return issue("row_strain", c.row_strain, "(0, inf)");
   return std::nullopt;
 }
@@ -142,6 +144,8 @@ double periodic_cell_expected_time(const Scene& s) {
   double seconds = 2 * std::log(0.6 / c.start_solid_fraction) / 3 / (c.compression_inertial_number * scale);
   if (c.test == PeriodicCell::Test::SimpleShear) seconds += c.shear_strain / (c.inertial_number * scale);
   if (c.test == PeriodicCell::Test::AxialCompression) seconds += c.axial_strain / (c.inertial_number * scale);
+  if (c.test == PeriodicCell::Test::Oedometric)
+    seconds += kOedometricTravelEstimate / (c.inertial_number * scale);
   return seconds;
 }
 }  // namespace simsols

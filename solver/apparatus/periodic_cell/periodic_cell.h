@@ -29,6 +29,10 @@ std::optional<SceneIssue> build_periodic_cell(Scene& scene);
 // the compression (about ln(0.6 / phi_0) / 3 of volumetric strain at the
 // servo's fastest rate, twice that to settle) and the test at its rate.
 double periodic_cell_expected_time(const Scene& scene);
+// The axial strain an oedometric test travels, loading and unloading, as
+// estimated before it runs (its end is a stress, not a strain): for the
+// progress line and the cost.
+inline constexpr double kOedometricTravelEstimate = 0.04;
 
 struct CellMeasure {
   Mat3 stress{};        // Pa, compression positive, [a][b] = -(1/V) sum f_a l_b

@@ -19,10 +19,14 @@ namespace simsols {
 //   triaxial      shortening along z at a constant rate, sigma_xx = sigma_yy
 //                 held at `pressure` (path constant_sigma3) or moved to keep
 //                 p = `pressure` (constant_p), to axial_strain;
-//   isotropic     the compression alone, its rows the test.
+//   isotropic     the compression alone, its rows the test;
+//   oedometric    one-dimensional compression: z shortened at the test's
+//                 rate with x and y held (no lateral strain) until sigma_zz
+//                 reaches vertical_stress, then lengthened until it is back
+//                 at `pressure` (loading and unloading, as an oedometer).
 // Rates are set by inertial numbers I = rate d sqrt(rho / P).
 struct PeriodicCell {
-  enum class Test : std::uint8_t { SimpleShear, AxialCompression, Isotropic };  // "triaxial" is AxialCompression
+  enum class Test : std::uint8_t { SimpleShear, AxialCompression, Isotropic, Oedometric };  // "triaxial" is AxialCompression
   enum class Path : std::uint8_t { ConstantSigma3, ConstantP };
   int particles = 1000;
   double diameter = 1e-3;          // m, mean
@@ -43,6 +47,7 @@ struct PeriodicCell {
   double compression_inertial_number = 1e-2;  // the servo's fastest strain rate
   double shear_strain = 1.0;           // simple_shear: gamma at the end
   double axial_strain = 0.2;           // triaxial: epsilon_zz at the end
+  double vertical_stress = 0;          // oedometric: Pa, the largest sigma_zz; 0 = 4 x pressure
   double row_strain = 0.01;            // strain between rows
   // Particles and cell as placed (a resolved scene: to_toml writes them, so
   // the same specimen is read back); unset: generated from the seed.

@@ -68,6 +68,8 @@ TEST(PeriodicCellScene, BadValuesNameTheirField) {
                               "periodic_cell.start_solid_fraction");
   testing::expect_scene_error(with("inertial_number", "0"), "out_of_range", "periodic_cell.inertial_number");
   testing::expect_scene_error(with("test", "\"sheer\""), "bad_enum", "periodic_cell.test");
+  testing::expect_scene_error(with("vertical_stress", "50e3"), "out_of_range",
+                              "periodic_cell.vertical_stress");  // below its pressure of 100 kPa
 }
 
 TEST(PeriodicCellScene, TheKernelsRefuseFloatAndGravity) {
@@ -202,6 +204,52 @@ TEST(PeriodicCellTest, FrictionlessSpheresShearAtRandomClosePackingWithoutDilata
   EXPECT_GT(d / mu0, 1) << "the friction grows with I";
   EXPECT_LT(d / mu0, 10);
   EXPECT_LT(fast.phi.mean, slow.phi.mean) << "faster flows are looser";
+}
+
+}  // namespace
+}  // namespace simsols
+
+namespace simsols {
+namespace {
+
+// One-dimensional compression (test = "oedometric"): from 20 kPa the cell
+// is shortened along z with x and y held until sigma_zz reaches 400 kPa,
+// then lengthened until it is back at 20 kPa. The cell's x and y edges
+// stay as they were when the test began, to the bit (its gradient has a
+// zz part alone); the turn is within one control's stress step of 400 kPa; the
+// sides carry less than the axis while loading (K0 < 1) and more once
+// unloaded (K0 > 1 in an overconsolidated specimen).
+TEST(PeriodicCellTest, OedometricLoadingHoldsTheSidesAndTurnsAtItsStress) {
+  std::string text =
+      read_scene(std::string(SIMSOLS_SOURCE_DIR) + "/assets/tests/periodic_triaxial_small.toml").source_text;
+  const auto set = [&](const std::string& key, const std::string& value) {
+    const size_t at = text.find("\n" + key + " = ");
+    ASSERT_NE(at, std::string::npos) << key;
+    text.replace(at + 1, text.find('\n', at + 1) - at - 1, key + " = " + value);
+  };
+  set("test", "\"oedometric\"\nvertical_stress = 400e3");
+  set("pressure", "20e3");
+  set("row_strain", "0.001");
+  Simulation sim(default_device(), parse_scene(text, "oedometric.toml"));
+  CellProgramme test(sim);
+  while (!test.measuring()) test.advance(1 << 20);
+  const Mat3 start = sim.state().cell_now.h;
+  while (!test.done()) test.advance(1 << 20);
+  const Mat3 end = sim.state().cell_now.h;
+  for (int k = 0; k < 6; ++k) EXPECT_EQ(end[k], start[k]) << "the sides moved: h[" << k << "]";
+  EXPECT_LT(end[8], start[8]) << "z shortened (measured strain at the end 0.0008)";
+  double top = 0;
+  const CellRow* turn = nullptr;
+  for (const CellRow& r : test.rows())
+    if (r[kColStage] == 1 && r[kColSzz] > top) top = r[kColSzz], turn = &r;
+  ASSERT_NE(turn, nullptr);
+  EXPECT_GE(top, 400);
+  EXPECT_LT(top, 440) << "the turn overshoots (measured 410.6 kPa)";
+  EXPECT_LT((*turn)[kColSxx], (*turn)[kColSzz]) << "K0 < 1 while loading (measured 0.41)";
+  const CellRow& last = test.rows().back();
+  EXPECT_LE(last[kColSzz], 20 * 1.05);
+  EXPECT_GT(last[kColSxx], last[kColSzz]) << "K0 > 1 unloaded (overconsolidated)";
+  EXPECT_NE(test.summary_text(0).find("oedometric_k0_at_max"), std::string::npos);
 }
 
 }  // namespace
