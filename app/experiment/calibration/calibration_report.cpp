@@ -83,6 +83,7 @@ void write_calibrated(const CalibrationSpec& spec, const CalibrationResult& r, c
                        {"data", here(t.data)},
                        {"x", column_table(t.x)}};
     if (!t.where.empty()) m.insert("where", t.where);
+    if (t.zero_at) m.insert("zero_at", *t.zero_at);
     for (const auto& [key, v] : t.set) set.insert(key, v);
     if (!set.empty()) m.insert("set", set);
     toml::array ys;

@@ -50,6 +50,8 @@ toml::table parse_file(const std::string& path) {
   }
 }
 
+const std::vector<std::string> kTargetKeys = {"name", "scene", "data", "where", "set",
+                                              "zero_at", "x", "y"};
 const std::vector<std::string> kUnitNames = {"-", "%", "Pa", "kPa", "MPa", "m", "mm"};
 
 std::string resolve(const std::string& base, const std::string& p) {
@@ -100,6 +102,7 @@ CalibrationTarget read_target(const Reader& r, const std::string& file, bool dat
   t.scene = resolve(file, r.string("scene"));
   t.data = data_required || r.has("data") ? resolve(file, r.string("data")) : "";
   t.where = r.string("where", "");
+  t.zero_at = r.optional_number("zero_at");
   if (!t.where.empty() && t.where.find('=') == std::string::npos)
     r.fail("bad_value", "where", "'" + t.where + "' is not of the form column=value");
   for (const char* k : {"scene", "data"})
@@ -178,7 +181,7 @@ CalibrationSpec read_calibration(const std::string& path) {
   const std::vector<const toml::table*> ts = top.tables("targets");
   for (size_t i = 0; i < ts.size(); ++i)
     s.targets.push_back(read_target(Reader(*ts[i], scene_toml::item("targets", i), ctx,
-                                           {"name", "scene", "data", "where", "set", "x", "y"}),
+                                           kTargetKeys),
                                     path));
   if (s.targets.empty()) ctx.fail("missing_key", 0, "targets", "at least one [[targets]]");
   ctx.throw_if_any();
@@ -212,7 +215,7 @@ std::vector<CalibrationTarget> read_calibrated_measured(const std::string& path)
   const std::vector<const toml::table*> ms = top.tables("measured");
   for (size_t i = 0; i < ms.size(); ++i)
     out.push_back(read_target(Reader(*ms[i], scene_toml::item("measured", i), ctx,
-                                     {"name", "scene", "data", "where", "set", "x", "y"}),
+                                     kTargetKeys),
                               path));
   ctx.throw_if_any();
   return out;
@@ -237,7 +240,7 @@ PredictionSpec read_prediction(const std::string& path) {
   const std::vector<const toml::table*> ts = top.tables("tests");
   for (size_t i = 0; i < ts.size(); ++i)
     s.tests.push_back(read_target(Reader(*ts[i], scene_toml::item("tests", i), ctx,
-                                         {"name", "scene", "data", "where", "set", "x", "y"}),
+                                         kTargetKeys),
                                   path, false));
   if (s.tests.empty()) ctx.fail("missing_key", 0, "tests", "at least one [[tests]]");
   ctx.throw_if_any();

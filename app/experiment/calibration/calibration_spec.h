@@ -8,7 +8,8 @@
 //                   called sand), min, max, scale ("linear" | "log")
 //   [[targets]]     name, scene (the test), data (the measured CSV),
 //                   where ("column=value": the rows kept), set (scene
-//                   keys fixed for this target alone), x and [[targets.y]]:
+//                   keys fixed for this target alone), zero_at (every y
+//                   relative to its value at this x), x and [[targets.y]]:
 //                   column, unit and quantity (what the apparatus
 //                   measures, registry.h CurveQuantity), y's scatter
 //
@@ -49,6 +50,10 @@ struct CalibrationTarget {
   std::string data;   // path, ditto
   std::string where;  // "column=value", or ""
   std::vector<std::pair<std::string, double>> set;  // scene keys for this target alone
+  // When set: every y is taken relative to its value at this x (in x's
+  // unit), on the measured and the simulated curve alike: curves compared
+  // from a state both reach (an oedometer's strain from its first load).
+  std::optional<double> zero_at;
   CurveColumn x;
   std::vector<CurveColumn> y;
 };

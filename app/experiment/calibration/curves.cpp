@@ -33,6 +33,15 @@ std::vector<size_t> kept_rows(const CsvTable& t, const std::string& where,
   return out;
 }
 
+// Every y less its value at x0 (the first branch that reaches it); NaN
+// throughout when none does.
+void make_relative(Curve& c, double x0) {
+  for (std::vector<double>& y : c.y) {
+    const double y0 = value_at(c.x, y, x0);
+    for (double& v : y) v -= y0;
+  }
+}
+
 Curve read_curve(const CsvTable& t, const std::vector<size_t>& rows, const std::vector<int>& cols,
                  const std::vector<double>& factors) {
   Curve c;
@@ -64,7 +73,9 @@ Curve measured_curve(const CalibrationTarget& target) {
         if (!std::isfinite(t.number(r, c)))
           fail("data", t.source + ":" + std::to_string(t.lines[r]) + ": column '" +
                            t.header[static_cast<size_t>(c)] + "' is not a finite number");
-    return read_curve(t, rows, cols, factors);
+    Curve c = read_curve(t, rows, cols, factors);
+    if (target.zero_at) make_relative(c, *target.zero_at * factors[0]);
+    return c;
   } catch (const ReadError& e) {
     fail("data", e.what());
   }
@@ -93,7 +104,9 @@ Curve simulated_curve(const CalibrationTarget& target, const ApparatusKind& kind
       cols.push_back(column_or_fail(t, q.column, fail));
       factors.push_back(unit_factor(q.unit)->first);
     }
-    return read_curve(t, kept_rows(t, kind.curve_rows ? kind.curve_rows : "", fail), cols, factors);
+    Curve c = read_curve(t, kept_rows(t, kind.curve_rows ? kind.curve_rows : "", fail), cols, factors);
+    if (target.zero_at) make_relative(c, *target.zero_at * unit_factor(target.x.unit)->first);
+    return c;
   }
   throw ReadError(dir + ": no rows file with a column '" + qx.column + "'");
 }

@@ -9,14 +9,19 @@ from packing.csv. A test of D_r gets the spheres' e = e_max - D_r (e_max -
 e_min), and the preparation friction that gives it, interpolated linearly
 in packing.csv's means.
 
-  density_map.py                 the table, and the TOML lines of kfs_triaxial.toml
-  density_map.py --check FILE    exit 1 unless FILE sets those frictions (to 1e-3)
+  density_map.py                 the table of the triaxial tests (kfs_triaxial.toml)
+  density_map.py --oedometer     the table of the oedometer tests OE1-OE12, whose D_r is
+                                 their initial void ratio's with the sand's e_max = 1.054 and
+                                 e_min = 0.677 (the data set's header)
+  density_map.py --check FILE    exit 1 unless FILE sets those frictions (to 1e-3; both tables)
   density_map.py --run SIMSOLS   measure packing.csv again (21 runs, ~15 min on 2 cores)
 """
 import csv, os, re, subprocess, sys, tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DATA = os.path.join(HERE, '..', '..', 'validation', 'karlsruhe_fine_sand_triaxial_100kPa.csv')
+OEDOMETER = os.path.join(HERE, '..', '..', 'validation', 'karlsruhe_fine_sand_oedometer.csv')
+E_MAX_SAND, E_MIN_SAND = 1.054, 0.677
 FRICTIONS = [0, 0.05, 0.1, 0.2, 0.3, 0.5, 1.0]
 
 
@@ -46,11 +51,20 @@ def tests():
     return seen
 
 
-def mapping():
+def oedometer_tests():
+    seen = {}
+    for r in rows(OEDOMETER):
+        if r['step'] == '0':
+            e0 = float(r['e'])
+            seen[r['test_id']] = (e0, (E_MAX_SAND - e0) / (E_MAX_SAND - E_MIN_SAND))
+    return seen
+
+
+def mapping(which=tests):
     table = packing()
     e_min, e_max = table[0][1], table[-1][1]
     out = []
-    for name, (e_sand, dr) in tests().items():
+    for name, (e_sand, dr) in which().items():
         e = e_max - dr * (e_max - e_min)
         out.append((name, e_sand, dr, e, round(friction_for(e, table), 3)))
     return e_min, e_max, out
@@ -82,12 +96,15 @@ def main():
     if len(sys.argv) == 3 and sys.argv[1] == '--check':
         text = open(sys.argv[2]).read()
         bad = []
-        for name, _, _, _, mu in out:
-            m = re.search(r'name = "%s"(?:.|\n)*?"periodic_cell\.preparation_friction" = ([0-9.]+)' % name, text)
+        listed = [t for t in out + mapping(oedometer_tests)[2] if 'name = "%s"' % t[0] in text]
+        for name, _, _, _, mu in listed:
+            m = re.search(r'name = "%s"\n(?:.|\n)*?"periodic_cell\.preparation_friction" = ([0-9.]+)' % name, text)
             if not m or abs(float(m.group(1)) - mu) > 1e-3:
                 bad.append(f'{name}: {m.group(1) if m else "none"} in the file, {mu} from packing.csv')
         print('\n'.join(bad) or 'the preparation frictions agree with packing.csv')
         sys.exit(1 if bad else 0)
+    if '--oedometer' in sys.argv:
+        e_min, e_max, out = mapping(oedometer_tests)
     print(f'spheres: e_min = {e_min:.4f} (friction 0), e_max = {e_max:.4f} (friction 1.0)')
     print('| test | e (sand) | D_r | e (spheres) | preparation friction |\n|---|---|---|---|---|')
     for name, e_sand, dr, e, mu in out:

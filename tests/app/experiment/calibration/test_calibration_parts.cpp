@@ -121,11 +121,15 @@ TEST(CalibrationSpec, ReportsEveryBadFieldWithItsName) {
   write(d / "ok.toml",
         "[[parameters]]\nname = \"mu\"\nkey = \"materials.beads.sliding_friction\"\nmin = 0.1\nmax = 0.5\n" + good_target +
             "[[targets.y]]\ncolumn = \"eta\"\nunit = \"-\"\nquantity = \"stress_ratio\"\n");
-  const CalibrationSpec s = read_calibration((d / "ok.toml").string());
+  CalibrationSpec s = read_calibration((d / "ok.toml").string());
   const Curve m = measured_curve(s.targets.at(0));
   ASSERT_EQ(m.x.size(), 2u);
   EXPECT_DOUBLE_EQ(m.x[1], 0.05);  // % to a strain
   EXPECT_DOUBLE_EQ(m.y[0][1], 1.2);
+  s.targets[0].zero_at = 2.5;  // % : every y from its value half way, 0.6
+  const Curve r = measured_curve(s.targets[0]);
+  EXPECT_DOUBLE_EQ(r.y[0][0], -0.6);
+  EXPECT_DOUBLE_EQ(r.y[0][1], 0.6);
 }
 
 TEST(Curves, ValueAtFollowsTheFirstBranchThatReachesX) {
