@@ -44,6 +44,24 @@ std::vector<BatchTest> prediction_tests(const PredictionSpec& spec, const fs::pa
   return tests;
 }
 
+// y averaged over the rows within a twentieth of the x range on either
+// side of each: a small specimen's curve has teeth (the collapse of one
+// force chain) that a peak taken row by row would pick.
+std::vector<double> running_mean(const std::vector<double>& x, const std::vector<double>& y) {
+  if (x.empty()) return {};
+  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  const double half = 0.5 * (*hi - *lo) / 20;
+  std::vector<double> out(y.size());
+  for (size_t i = 0; i < y.size(); ++i) {
+    double sum = 0;
+    int n = 0;
+    for (size_t k = 0; k < y.size(); ++k)
+      if (std::abs(x[k] - x[i]) <= half && std::isfinite(y[k])) sum += y[k], ++n;
+    out[i] = n ? sum / n : NAN;
+  }
+  return out;
+}
+
 // Where a band is drawn: over the measured range, else over what every
 // specimen reached.
 std::vector<double> band_points(const PredictionSpec& spec, const Curve& measured,
@@ -103,9 +121,10 @@ PredictedCurve predicted_curve(const PredictionSpec& spec, size_t t, size_t j,
   const double xu = unit_factor(test.x.unit)->first;
   p.at.resize(spec.at.size());
   for (const Curve& c : specimens) {
-    const auto top = std::max_element(c.y[j].begin(), c.y[j].end());
-    p.peak.push_back(*top);
-    p.x_at_peak.push_back(c.x[size_t(top - c.y[j].begin())]);
+    const std::vector<double> smooth = running_mean(c.x, c.y[j]);
+    const auto top = std::max_element(smooth.begin(), smooth.end());
+    p.peak.push_back(top == smooth.end() ? NAN : *top);
+    p.x_at_peak.push_back(top == smooth.end() ? NAN : c.x[size_t(top - smooth.begin())]);
     for (size_t a = 0; a < spec.at.size(); ++a) p.at[a].push_back(value_at(c.x, c.y[j], spec.at[a] * xu));
   }
   return p;

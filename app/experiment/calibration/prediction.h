@@ -8,8 +8,10 @@
 // y is the specimens' mean and standard deviation, their least and largest
 // value, at `points` x's (over the measured range when there is a
 // measurement, else over the range every specimen reached). For each
-// specimen the y's peak, the x at the peak and the y at each `at` are
-// kept, so a prediction states a scalar with its interval. Resumable like
+// specimen the y's peak (of its curve averaged over a twentieth of the x
+// range, so one row's tooth is not the peak), the x at the peak and the y
+// at each `at` are kept, so a prediction states a scalar with its
+// interval. Resumable like
 // the calibration.
 #pragma once
 
