@@ -40,16 +40,6 @@ std::optional<std::pair<double, std::string>> unit_factor(const std::string& uni
 
 namespace {
 
-// The file as TOML; SceneError naming its line when it is not TOML.
-toml::table parse_file(const std::string& path) {
-  try {
-    return toml::parse_file(path);
-  } catch (const toml::parse_error& e) {
-    throw SceneError("toml_syntax", path, scene_toml::line_of(e.source()), "",
-                     std::string(e.description()));
-  }
-}
-
 const std::vector<std::string> kTargetKeys = {"name", "scene", "data", "where", "set",
                                               "zero_at", "x", "y"};
 const std::vector<std::string> kUnitNames = {"-", "%", "Pa", "kPa", "MPa", "m", "mm"};
@@ -154,7 +144,7 @@ void check_ranges(const CalibrationSpec& s) {
 }  // namespace
 
 CalibrationSpec read_calibration(const std::string& path) {
-  const toml::table doc = parse_file(path);
+  const toml::table doc = parse_toml_file(path);
   Context ctx{path, {}};
   CalibrationSpec s;
   s.path = path;
@@ -192,7 +182,7 @@ CalibrationSpec read_calibration(const std::string& path) {
 }
 
 std::vector<std::pair<std::string, double>> read_calibrated(const std::string& path) {
-  const toml::table doc = parse_file(path);
+  const toml::table doc = parse_toml_file(path);
   Context ctx{path, {}};
   const Reader top(doc, "", ctx, {"calibrated", "measured"});
   std::vector<std::pair<std::string, double>> out;
@@ -208,7 +198,7 @@ std::vector<std::pair<std::string, double>> read_calibrated(const std::string& p
 }
 
 std::vector<CalibrationTarget> read_calibrated_measured(const std::string& path) {
-  const toml::table doc = parse_file(path);
+  const toml::table doc = parse_toml_file(path);
   Context ctx{path, {}};
   const Reader top(doc, "", ctx, {"calibrated", "measured"});
   std::vector<CalibrationTarget> out;
@@ -222,7 +212,7 @@ std::vector<CalibrationTarget> read_calibrated_measured(const std::string& path)
 }
 
 PredictionSpec read_prediction(const std::string& path) {
-  const toml::table doc = parse_file(path);
+  const toml::table doc = parse_toml_file(path);
   Context ctx{path, {}};
   PredictionSpec s;
   s.path = path;

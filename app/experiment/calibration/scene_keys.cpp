@@ -56,14 +56,17 @@ void set_value(toml::table& doc, const SceneValue& v, const std::string& path) {
 
 }  // namespace
 
-std::string scene_text_with(const std::string& path, const std::vector<SceneValue>& values) {
-  toml::table doc;
+toml::table parse_toml_file(const std::string& path) {
   try {
-    doc = toml::parse_file(path);
+    return toml::parse_file(path);
   } catch (const toml::parse_error& e) {
     throw SceneError("toml_syntax", path, static_cast<int>(e.source().begin.line), "",
                      std::string(e.description()));
   }
+}
+
+std::string scene_text_with(const std::string& path, const std::vector<SceneValue>& values) {
+  toml::table doc = parse_toml_file(path);
   for (const SceneValue& v : values) set_value(doc, v, path);
   std::ostringstream text;
   text << doc << '\n';

@@ -12,6 +12,8 @@
 // with the field's name as usual.
 #pragma once
 
+#include <toml++/toml.h>
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,6 +27,10 @@ struct SceneValue {
   double value = 0;
   bool integer = false;  // written as a TOML integer (a seed)
 };
+
+// The TOML file at `path`; SceneError naming its line when it is not TOML
+// (the calibration's, prediction's and calibrated files read it too).
+toml::table parse_toml_file(const std::string& path);
 
 // The scene at `path` with `values` set, read (not placed). SceneError
 // naming `path` and the key when a table on a key's path is missing.
