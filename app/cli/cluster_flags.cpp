@@ -77,6 +77,50 @@ int collect_from_manifest(const ClusterFlags& f, const std::string& command,
   return runner();
 }
 
+namespace {
+
+void emit_job(const std::string& command, const std::vector<std::string>& args,
+              const std::string& out_dir, const std::vector<ClusterTest>& tests,
+              const std::string& batch) {
+  ClusterJob job;
+  job.command = command;
+  job.args = args;
+  job.out_dir = fs::absolute(out_dir).lexically_normal();
+  job.executable = fs::read_symlink("/proc/self/exe");
+  job.tests = tests;
+  job.batch = batch;
+  write_slurm_job(job);
+  const fs::path slurm = job.out_dir / "slurm";
+  std::printf("wrote %s: manifest.toml (%zu tests%s%s), array.sbatch, collect.sbatch, submit.sh\n"
+              "submit with: %s [sbatch options, e.g. --partition=P]\n"
+              "collect by hand: simsols %s --collect %s\n",
+              slurm.string().c_str(), tests.size(), batch.empty() ? "" : " of batch ",
+              batch.c_str(), (slurm / "submit.sh").string().c_str(), command.c_str(),
+              job.out_dir.string().c_str());
+}
+
+}  // namespace
+
+BatchCluster batch_cluster(const ClusterFlags& f, const std::string& command,
+                           const std::vector<std::string>& args, const std::string& out_dir) {
+  const CampaignRun checked = campaign_run(f, out_dir, {}, true);  // the flags' own checks
+  BatchCluster c;
+  if (f.emitting())
+    c.mode = BatchCluster::Mode::emit;
+  else if (checked.only)
+    c.mode = BatchCluster::Mode::task, c.task = *checked.only;
+  else if (f.collecting)
+    c.mode = BatchCluster::Mode::collect;
+  if (c.mode != BatchCluster::Mode::emit && c.mode != BatchCluster::Mode::here &&
+      fs::exists(fs::path(out_dir) / "slurm" / "manifest.toml"))
+    c.job_tests = read_manifest(out_dir).tests;
+  c.write_job = [command, args, out_dir](const std::vector<BatchTest>& tests,
+                                         const std::string& batch) {
+    emit_job(command, args, out_dir, cluster_tests(tests), batch);
+  };
+  return c;
+}
+
 bool emit_or_check_plan(const ClusterFlags& f, const std::string& command,
                         const std::vector<std::string>& args, const std::string& out_dir,
                         const std::vector<ClusterTest>& tests) {
@@ -92,19 +136,7 @@ bool emit_or_check_plan(const ClusterFlags& f, const std::string& command,
                            "): run the array's own command, or emit the job again");
   }
   if (!f.emitting()) return false;
-  ClusterJob job;
-  job.command = command;
-  job.args = args;
-  job.out_dir = fs::absolute(out_dir).lexically_normal();
-  job.executable = fs::read_symlink("/proc/self/exe");
-  job.tests = tests;
-  write_slurm_job(job);
-  const fs::path slurm = job.out_dir / "slurm";
-  std::printf("wrote %s: manifest.toml (%zu tests), array.sbatch, collect.sbatch, submit.sh\n"
-              "submit with: %s [sbatch options, e.g. --partition=P]\n"
-              "collect by hand: simsols %s --collect %s\n",
-              slurm.string().c_str(), tests.size(), (slurm / "submit.sh").string().c_str(),
-              command.c_str(), job.out_dir.string().c_str());
+  emit_job(command, args, out_dir, tests, "");
   return true;
 }
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "app/cli/commands.h"
+#include "app/experiment/calibration/test_batch.h"
 #include "app/experiment/campaign_loop.h"
 #include "app/experiment/cluster.h"
 
@@ -51,6 +52,13 @@ int collect_from_manifest(const ClusterFlags& flags, const std::string& command,
 bool emit_or_check_plan(const ClusterFlags& flags, const std::string& command,
                         const std::vector<std::string>& args, const std::string& out_dir,
                         const std::vector<ClusterTest>& tests);
+
+// A command run in batches (calibrate, predict; test_batch.h): what the
+// flags make of its batches. --task and --collect read the tests of the
+// job in `out_dir`'s manifest; a batch's job is written with the
+// command's `args` (given_args) and its name.
+BatchCluster batch_cluster(const ClusterFlags& flags, const std::string& command,
+                           const std::vector<std::string>& args, const std::string& out_dir);
 
 // The tests of a plan as the cluster files list them.
 template <class Test>

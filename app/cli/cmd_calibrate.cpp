@@ -3,9 +3,12 @@
 // simsols predict: tests run with the calibrated material on several
 // specimens, as a band (prediction.h).
 //
-//   simsols calibrate CALIBRATION.toml --out DIR [-q]
-//   simsols predict PREDICTION.toml --out DIR [-q]
+//   simsols calibrate CALIBRATION.toml --out DIR [-q] [--emit slurm | --task K | --collect DIR]
+//   simsols predict PREDICTION.toml --out DIR [-q] [--emit slurm | --task K | --collect DIR]
 //
+// On a Slurm cluster each batch of tests (a calibration's round, its
+// replicates; a prediction's tests) is a job array, and the job that
+// collects one writes and submits the next (test_batch.h, docs/cluster.md).
 // The calibration file names the parameters with their ranges, the
 // measured curves with the test of each, and the budget; the prediction
 // file the calibrated values and the tests. Everything is read and
@@ -15,11 +18,13 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "app/cli/cluster_flags.h"
 #include "app/cli/commands.h"
 #include "app/cli/interrupt.h"
 #include "app/experiment/calibration/calibration.h"
 #include "app/experiment/calibration/calibration_report.h"
 #include "app/experiment/calibration/prediction.h"
+#include "solver/common/errors.h"
 
 namespace simsols {
 namespace {
@@ -27,7 +32,18 @@ namespace {
 struct CalibrateOptions {
   std::string file, out_dir;
   bool quiet = false;
+  ClusterFlags cluster;
+  std::vector<std::string> command_line;  // for a cluster job (given_args)
 };
+
+// What the command says when a cluster run ends it before the report.
+void print_ended(const ClusterFlags& f, const std::string& what) {
+  if (f.task >= 0)
+    std::printf("%s: task %lld done; the collecting job goes on when every task has\n",
+                what.c_str(), f.task);
+  else if (f.collecting)
+    std::printf("%s: a batch collected; the next batch's job is written (above)\n", what.c_str());
+}
 
 void print_result(const CalibrationSpec& spec, const CalibrationResult& r, const std::string& out) {
   std::printf("calibration %s: %d simulations, %.0f s now\n", spec.name.c_str(), r.simulations,
@@ -56,7 +72,13 @@ int calibrate(const CalibrateOptions& opt) {
   o.out_dir = out;
   o.quiet = opt.quiet;
   o.stop_requested = interrupt.stop_function();
+  const BatchCluster cluster = batch_cluster(opt.cluster, "calibrate", opt.command_line, out);
+  o.cluster = &cluster;
   const CalibrationResult r = run_calibration(spec, o);
+  if (r.ended) {
+    print_ended(opt.cluster, "calibration " + spec.name);
+    return 0;
+  }
   if (r.interrupted) {
     std::printf("calibration interrupted in %s: the same command continues it\n",
                 r.interrupted_dir.c_str());
@@ -90,8 +112,14 @@ int predict(const CalibrateOptions& opt) {
   const std::string out = opt.out_dir.empty() ? "out/predict-" + spec.name : opt.out_dir;
   std::filesystem::create_directories(out);
   InterruptScope interrupt;
-  const CalibrationOptions o{open_command_device(), out, opt.quiet, interrupt.stop_function()};
+  const BatchCluster cluster = batch_cluster(opt.cluster, "predict", opt.command_line, out);
+  const CalibrationOptions o{open_command_device(), out, opt.quiet, interrupt.stop_function(),
+                             &cluster};
   const PredictionResult r = run_prediction(spec, o);
+  if (r.ended) {
+    print_ended(opt.cluster, "prediction " + spec.name);
+    return 0;
+  }
   if (r.interrupted) {
     std::printf("prediction interrupted in %s: the same command continues it\n",
                 r.interrupted_dir.c_str());
@@ -110,11 +138,18 @@ CommandRunner add_predict_command(CLI::App& app) {
       "predict",
       "Run tests with a calibrated material on several specimens: bands, with the measured curve "
       "and the error when given; resumable");
-  cmd->add_option("prediction", opt->file, "Prediction file (TOML, docs/calibration.md)")->required();
+  cmd->add_option("prediction", opt->file, "Prediction file (TOML, docs/calibration.md)");
   cmd->add_option("--out,-o", opt->out_dir,
                   "Output folder (default out/predict-<name>; rerun to resume)");
   cmd->add_flag("--quiet,-q", opt->quiet, "No progress lines");
-  return [opt] { return predict(*opt); };
+  add_cluster_flags(cmd, opt->cluster);
+  return [opt, cmd] {
+    if (!opt->cluster.collect.empty())
+      return collect_from_manifest(opt->cluster, "predict", add_predict_command);
+    if (opt->file.empty()) throw UsageError("missing_field", "PREDICTION", "give the prediction file");
+    opt->command_line = given_args(cmd, {"prediction", "--out"});
+    return predict(*opt);
+  };
 }
 
 CommandRunner add_calibrate_command(CLI::App& app) {
@@ -123,12 +158,18 @@ CommandRunner add_calibrate_command(CLI::App& app) {
       "calibrate",
       "Fit a material's parameters to measured curves (direct shear, triaxial, oedometer), with "
       "their uncertainty; resumable");
-  cmd->add_option("calibration", opt->file, "Calibration file (TOML, docs/calibration.md)")
-      ->required();
+  cmd->add_option("calibration", opt->file, "Calibration file (TOML, docs/calibration.md)");
   cmd->add_option("--out,-o", opt->out_dir,
                   "Output folder (default out/calibrate-<name>; rerun to resume)");
   cmd->add_flag("--quiet,-q", opt->quiet, "No progress lines");
-  return [opt] { return calibrate(*opt); };
+  add_cluster_flags(cmd, opt->cluster);
+  return [opt, cmd] {
+    if (!opt->cluster.collect.empty())
+      return collect_from_manifest(opt->cluster, "calibrate", add_calibrate_command);
+    if (opt->file.empty()) throw UsageError("missing_field", "CALIBRATION", "give the calibration file");
+    opt->command_line = given_args(cmd, {"calibration", "--out"});
+    return calibrate(*opt);
+  };
 }
 
 }  // namespace simsols

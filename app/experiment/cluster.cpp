@@ -38,6 +38,7 @@ std::string manifest_text(const ClusterJob& job) {
     << "\nargs = [";
   for (size_t k = 0; k < job.args.size(); ++k) o << (k ? ", " : "") << toml_string(job.args[k]);
   o << "]\ntests = " << job.tests.size() << "\n";
+  if (!job.batch.empty()) o << "batch = " << toml_string(job.batch) << "\n";
   for (size_t k = 0; k < job.tests.size(); ++k) {
     const ClusterTest& t = job.tests[k];
     const ClusterNeeds n = cluster_needs(t);
@@ -85,8 +86,20 @@ std::string collect_script(const ClusterJob& job, const fs::path& slurm) {
     << "#SBATCH --job-name=simsols-" << job.out_dir.filename().string() << "-collect\n"
     << "#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\n#SBATCH --time=30\n#SBATCH --mem=2048M\n"
     << "#SBATCH --output=" << (slurm / "logs" / "collect.out").string() << "\n"
-    << "set -euo pipefail\nexec " << shell_word(job.executable.string()) << " " << job.command
-    << " --collect " << shell_word(job.out_dir.string()) << "\n";
+    << (job.batch.empty() ? "" : "#SBATCH --open-mode=append\n") << "set -euo pipefail\n";
+  const std::string collect = shell_word(job.executable.string()) + " " + job.command +
+                              " --collect " + shell_word(job.out_dir.string()) + "\n";
+  if (job.batch.empty()) {
+    o << "exec " << collect;
+    return o.str();
+  }
+  // run in batches: the collection writes the next batch's job (its
+  // manifest names another batch) until the last writes the report; the
+  // log keeps every batch's collection
+  const std::string manifest = shell_word((slurm / "manifest.toml").string());
+  o << collect << "if ! grep -qxF " << shell_word("batch = " + toml_string(job.batch)) << " "
+    << manifest << "; then\n  exec " << shell_word((slurm / "submit.sh").string())
+    << " \"$@\"  # the next batch, with this job's sbatch arguments\nfi\n";
   return o.str();
 }
 
@@ -99,7 +112,8 @@ std::string submit_script(const ClusterJob& job) {
     << "set -eu\ncd \"$(dirname \"$0\")\"\n"
     << "array=$(sbatch --parsable \"$@\" array.sbatch)\n"
     << "array=${array%%;*}\n"
-    << "collect=$(sbatch --parsable \"$@\" --dependency=afterany:\"$array\" collect.sbatch)\n"
+    << "collect=$(sbatch --parsable \"$@\" --dependency=afterany:\"$array\" collect.sbatch"
+    << (job.batch.empty() ? "" : " \"$@\"") << ")\n"
     << "echo \"array job $array, collect job ${collect%%;*}\"\n";
   return o.str();
 }
@@ -171,6 +185,7 @@ Manifest read_manifest(const fs::path& dir) {
   if (const toml::array* tests = t["test"].as_array())
     for (const toml::node& n : *tests)
       if (const toml::table* test = n.as_table()) m.tests.push_back((*test)["name"].value_or(std::string()));
+  m.batch = t["batch"].value_or(std::string());
   return m;
 }
 

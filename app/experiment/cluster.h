@@ -21,6 +21,13 @@
 //                   sbatch calls (a partition, an account, ...)
 // Each file is written whole (write_file_atomic) and the scripts are
 // executable. The manifest is what `--collect DIR` reads back.
+//
+// A command that runs in batches (a calibration's rounds, each drawn from
+// the last's results) writes one batch's job at a time, named in the
+// manifest (`batch`). Its collecting job runs `--collect`, which writes
+// the next batch's job once this one's tests have finished; the collecting
+// job then submits it with the same sbatch arguments (submit.sh hands them
+// to it), until the last batch's collection writes the report.
 #pragma once
 
 #include <filesystem>
@@ -53,6 +60,7 @@ struct ClusterJob {
   std::filesystem::path out_dir;   // absolute
   std::filesystem::path executable;
   std::vector<ClusterTest> tests;
+  std::string batch;  // a command run in batches: this job's ("round0"); else ""
 };
 
 // Writes DIR/slurm/{manifest.toml, array.sbatch, collect.sbatch, submit.sh}.
@@ -67,6 +75,7 @@ struct Manifest {
   std::string command;
   std::vector<std::string> args;
   std::vector<std::string> tests;  // the tests' names, in array order
+  std::string batch;               // "" for a command run in one job
 };
 Manifest read_manifest(const std::filesystem::path& dir);
 

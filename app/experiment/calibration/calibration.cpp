@@ -90,15 +90,17 @@ std::vector<CalibrationRun> make_runs(const Problem& p, const Eigen::MatrixXd& d
   return runs;
 }
 
-// Runs (or keeps) every test of `runs`; true when interrupted.
-bool run_all(std::vector<CalibrationRun>& runs, double later_cost, const CalibrationOptions& o,
-             CalibrationResult& result) {
-  const BatchOutcome out =
-      run_batch(runs, later_cost, {o.device, o.quiet, o.stop_requested, "calibration tests"});
+// Runs (or keeps) every test of the batch `runs`; true when the command
+// ends there (interrupted, or on a cluster).
+bool run_all(std::vector<CalibrationRun>& runs, const std::string& batch, double later_cost,
+             const CalibrationOptions& o, CalibrationResult& result) {
+  const BatchOutcome out = run_batch(
+      runs, later_cost, {o.device, o.quiet, o.stop_requested, "calibration tests", batch, o.cluster});
   result.seconds += out.seconds;
   result.interrupted = out.interrupted;
   result.interrupted_dir = out.interrupted_dir;
-  return out.interrupted;
+  result.ended = out.ended;
+  return out.interrupted || out.ended;
 }
 
 // A design's compared values (F), its tests' curves read back.
@@ -216,9 +218,10 @@ CalibrationResult run_calibration(const CalibrationSpec& spec, const Calibration
     const int n = spec.round_size(r);
     const Eigen::MatrixXd designs = r == 0 ? sobol_designs(int(spec.parameters.size()), n)
                                            : draw_designs(post, n, std::uint64_t(r));
-    std::vector<CalibrationRun> runs = make_runs(p, designs, root, "round" + std::to_string(r), 0);
+    const std::string round = "round" + std::to_string(r);
+    std::vector<CalibrationRun> runs = make_runs(p, designs, root, round, 0);
     const double later = per_design * (spec.budget - u_all.rows() - n + spec.replicates);
-    if (run_all(runs, later, o, result)) return result;
+    if (run_all(runs, round, later, o, result)) return result;
     for (int i = 0; i < n; ++i) {
       const Eigen::VectorXd v = design_values(p, runs, i, nullptr);
       append_row(u_all, designs.row(i).transpose());
@@ -229,13 +232,18 @@ CalibrationResult run_calibration(const CalibrationSpec& spec, const Calibration
     if (!o.quiet) print_round(spec, "round " + std::to_string(r + 1) + "/" + std::to_string(spec.rounds), post);
   }
   const Eigen::VectorXd best = post.best_u;
+  std::vector<std::vector<CalibrationRun>> batch;  // per replicate
+  std::vector<CalibrationRun> all;
+  for (int k = 0; k < spec.replicates; ++k) {
+    batch.push_back(make_runs(p, best.transpose(), root, "replicate" + std::to_string(k),
+                              kFirstReplicateSeed + k));
+    all.insert(all.end(), batch.back().begin(), batch.back().end());
+  }
+  if (run_all(all, "replicates", 0, o, result)) return result;
   std::vector<Eigen::VectorXd> reps;
   result.replicates.resize(spec.targets.size());
   for (int k = 0; k < spec.replicates; ++k) {
-    std::vector<CalibrationRun> runs = make_runs(p, best.transpose(), root,
-                                                 "replicate" + std::to_string(k),
-                                                 kFirstReplicateSeed + k);
-    if (run_all(runs, per_design * (spec.replicates - k - 1), o, result)) return result;
+    const std::vector<CalibrationRun>& runs = batch[k];
     std::vector<Curve> curves;
     reps.push_back(design_values(p, runs, 0, &curves));
     for (size_t t = 0; t < curves.size(); ++t) result.replicates[t].push_back(curves[t]);

@@ -10,7 +10,7 @@
 // and the posterior (posterior.h) is computed; the next round draws its
 // designs from it. At the end, the specimens' own scatter is measured:
 // the most likely set runs every target again on `replicates` other seeds
-// (the kind's seed key, registry.h; seeds 1001, 1002, ...) into
+// (the kind's seed key, registry.h; seeds 1001, 1002, ...), one batch, into
 //   OUT/runs/replicate<k>/<target>/
 // and the posterior is computed once more with that scatter in the
 // likelihood. What it writes is in calibration_report.h.
@@ -18,7 +18,9 @@
 // Every run keeps what finished: the same command continues an
 // interrupted calibration (finished tests are read back, an interrupted
 // one resumes from its checkpoint), with progress and an ETA over all the
-// rounds (campaign_loop.h).
+// rounds (campaign_loop.h). On a Slurm cluster each batch (a round, the
+// replicates) is a job array, and the job collecting one writes and
+// submits the next (test_batch.h, docs/cluster.md).
 #pragma once
 
 #include <functional>
@@ -29,6 +31,7 @@
 #include "app/experiment/calibration/calibration_spec.h"
 #include "app/experiment/calibration/curves.h"
 #include "app/experiment/calibration/posterior.h"
+#include "app/experiment/calibration/test_batch.h"
 #include "solver/core/cl_device.h"
 
 namespace simsols {
@@ -38,6 +41,7 @@ struct CalibrationOptions {
   std::string out_dir;
   bool quiet = false;
   std::function<bool()> stop_requested;  // Ctrl-C (interrupt.h)
+  const BatchCluster* cluster = nullptr;  // the cluster flags; null: all here
 };
 
 // One measured curve against the calibrated material, in the measured
@@ -64,6 +68,7 @@ struct DesignRow {
 struct CalibrationResult {
   bool interrupted = false;
   std::string interrupted_dir;  // the test that was stopped
+  bool ended = false;  // on a cluster: a batch's job written or a task run, no result
   Posterior posterior;          // the last one, with the specimens' scatter
   std::vector<double> calibrated;  // the replicates' parameters (the mode before them)
   std::vector<CurveFit> curves;

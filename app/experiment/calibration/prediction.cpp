@@ -137,11 +137,13 @@ PredictionResult run_prediction(const PredictionSpec& spec, const CalibrationOpt
   for (const CalibrationTarget& t : spec.tests)  // a bad measured file is named before anything runs
     r.measured.push_back(t.data.empty() ? Curve{} : measured_curve(t));
   std::vector<BatchTest> tests = prediction_tests(spec, o.out_dir);
-  const BatchOutcome out = run_batch(tests, 0, {o.device, o.quiet, o.stop_requested, "prediction tests"});
+  const BatchOutcome out = run_batch(
+      tests, 0, {o.device, o.quiet, o.stop_requested, "prediction tests", "tests", o.cluster});
   r.seconds = out.seconds;
   r.interrupted = out.interrupted;
   r.interrupted_dir = out.interrupted_dir;
-  if (r.interrupted) return r;
+  r.ended = out.ended;
+  if (r.interrupted || r.ended) return r;
   r.specimens.resize(spec.tests.size());
   for (const BatchTest& b : tests) {
     const ApparatusKind& kind = required_apparatus_kind(b.scene);

@@ -40,6 +40,7 @@ struct PredictedCurve {
 struct PredictionResult {
   bool interrupted = false;
   std::string interrupted_dir;
+  bool ended = false;  // on a cluster: the job written or a task run, no result
   std::vector<PredictedCurve> curves;         // per test, per y
   std::vector<std::vector<Curve>> specimens;  // per test, per specimen
   std::vector<Curve> measured;                // per test; empty without data

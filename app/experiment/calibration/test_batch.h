@@ -28,17 +28,31 @@ struct BatchTest {
   int design = 0;
 };
 
+struct BatchCluster {
+  enum class Mode { here, emit, task, collect };
+  Mode mode = Mode::here;
+  size_t task = 0;
+  // --task, --collect: the tests of the job the folder's manifest lists
+  // (empty: none written yet).
+  std::vector<std::string> job_tests;
+  // Writes the job array of a batch's tests (`batch`: "round0", ...).
+  std::function<void(const std::vector<BatchTest>&, const std::string& batch)> write_job;
+};
+
 struct BatchOptions {
   std::shared_ptr<Device> device;
   bool quiet = false;
   std::function<bool()> stop_requested;
   std::string what = "tests";  // progress lines' noun
+  std::string batch;           // its name in a cluster job ("round0", "replicates")
+  const BatchCluster* cluster = nullptr;  // null: every test here
 };
 
 struct BatchOutcome {
   bool interrupted = false;
   std::string interrupted_dir;
   double seconds = 0;  // wall time of the tests run now
+  bool ended = false;  // on a cluster: a job written or a task run; the command ends
 };
 
 BatchOutcome run_batch(std::vector<BatchTest>& tests, double later_cost, const BatchOptions& o);

@@ -5,11 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tests/support/cli_support.h"
@@ -566,4 +569,92 @@ TEST(Cli, AccuracyStudyReducedForm) {
       EXPECT_TRUE(fs::exists(again / e.path().filename())) << e.path().filename();
     }
   EXPECT_GT(charts, 0);
+}
+
+namespace {
+
+std::string file_text(const fs::path& p) {
+  std::ifstream f(p);
+  return std::string((std::istreambuf_iterator<char>(f)), {});
+}
+
+// The manifest's batch and its number of tests.
+std::pair<std::string, int> manifest_batch(const fs::path& out) {
+  const std::string m = file_text(out / "slurm" / "manifest.toml");
+  const auto at = m.find("\nbatch = '");
+  const std::string batch = at == std::string::npos ? "" : m.substr(at + 10, m.find('\'', at + 10) - at - 10);
+  int tests = 0;
+  for (size_t p = m.find("[[test]]"); p != std::string::npos; p = m.find("[[test]]", p + 1)) ++tests;
+  return {batch, tests};
+}
+
+}  // namespace
+
+// A calibration on a Slurm cluster is a chain of job arrays, one per batch
+// (round 0, round 1, the replicates): --emit writes the first; each array
+// task (--task K) runs one test; --collect writes the next batch's job, and
+// after the last batch the report, which equals a run on one machine. A
+// prediction is one batch. (tests/cluster/test_slurm.sh runs a campaign
+// through a real Slurm; here each array task is run by hand.)
+TEST(Cli, CalibrationRunsAsAChainOfJobArraysAndEqualsALocalRun) {
+  const fs::path d = fresh_dir("calibration_cluster");
+  fs::create_directories(d);
+  {  // a measured curve: any rising stress ratio will do
+    std::ofstream m(d / "measured.csv");
+    m << "strain,stress_ratio\n";
+    for (int i = 0; i <= 10; ++i) m << 0.003 * i << "," << 1.2 * (1 - std::exp(-i * 0.6)) << "\n";
+  }
+  const std::string target =
+      "[[targets]]\nname = \"t\"\nscene = \"" + std::string(SIMSOLS_ASSETS_DIR) +
+      "/tests/periodic_triaxial_small.toml\"\ndata = \"measured.csv\"\n"
+      "set = { \"periodic_cell.axial_strain\" = 0.03 }\n"
+      "x = { column = \"strain\", unit = \"-\", quantity = \"axial_strain\" }\n"
+      "[[targets.y]]\ncolumn = \"stress_ratio\"\nunit = \"-\"\nquantity = \"stress_ratio\"\n";
+  std::ofstream(d / "cal.toml")
+      << "[calibration]\nname = \"chain\"\nbudget = 6\nrounds = 2\nreplicates = 2\npoints = 5\n"
+         "[[parameters]]\nname = \"mu_s\"\nkey = \"materials.beads.sliding_friction\"\n"
+         "min = 0.1\nmax = 0.6\n" << target;
+  const std::string cal = "calibrate " + (d / "cal.toml").string() + " -q --out ";
+  const fs::path out = d / "cluster";
+  Result r = run(cal + out.string() + " --emit slurm");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(file_text(out / "slurm" / "collect.sbatch").find("submit.sh \"$@\""), std::string::npos)
+      << "the collecting job submits the next batch with its own sbatch arguments";
+  EXPECT_NE(file_text(out / "slurm" / "submit.sh").find("collect.sbatch \"$@\""), std::string::npos);
+  r = run("calibrate -q --collect " + out.string());
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("have not finished"), std::string::npos) << r.out;
+  std::vector<std::pair<std::string, int>> batches;
+  while (!fs::exists(out / "parameters.csv") && batches.size() < 4) {
+    batches.push_back(manifest_batch(out));
+    for (int k = 0; k < batches.back().second; ++k) {
+      r = run(cal + out.string() + " --task " + std::to_string(k));
+      ASSERT_EQ(r.status, 0) << r.out;
+    }
+    r = run("calibrate -q --collect " + out.string());
+    ASSERT_EQ(r.status, 0) << r.out;
+  }
+  const std::vector<std::pair<std::string, int>> expected = {
+      {"round0", 3}, {"round1", 3}, {"replicates", 2}};
+  EXPECT_EQ(batches, expected);
+  r = run(cal + (d / "local").string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  for (const char* f : {"parameters.csv", "design.csv", "curves.csv"})
+    EXPECT_EQ(file_text(out / f), file_text(d / "local" / f)) << f;
+
+  // the calibrated material's prediction: one batch, collected into its report
+  std::ofstream(d / "predict.toml")
+      << "[prediction]\nname = \"p\"\ncalibrated = \"" << (out / "calibrated.toml").string()
+      << "\"\nspecimens = 2\npoints = 5\n"
+      << std::regex_replace(target, std::regex("targets"), "tests");
+  const fs::path pred = d / "prediction";
+  r = run("predict " + (d / "predict.toml").string() + " -q --out " + pred.string() + " --emit slurm");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(manifest_batch(pred), (std::pair<std::string, int>{"tests", 2}));
+  for (int k = 0; k < 2; ++k)
+    ASSERT_EQ(run("predict " + (d / "predict.toml").string() + " -q --out " + pred.string() +
+                  " --task " + std::to_string(k)).status, 0);
+  r = run("predict -q --collect " + pred.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_TRUE(fs::exists(pred / "prediction.csv")) << r.out;
 }
