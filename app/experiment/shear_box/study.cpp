@@ -145,8 +145,7 @@ std::optional<StudyPreset> study_preset(const std::string& name, int ensemble) {
     const Precision D = Precision::Double;
     p.displacement_mm = 0.4;
     p.rows = 20;
-    p.cases = {make("reference", "reference: dt 0.1 double", 0.1, D),
-               make("time step", "dt 0.1", 0.1),
+    p.cases = {make("reference", "reference: dt 0.15 double", 0.15, D),
                make("time step", "dt 0.2", 0.2),
                make("time step", "dt 0.4", 0.4),
                make("precision", "double dt 0.2", 0.2, D),
