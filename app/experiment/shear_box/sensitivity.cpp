@@ -102,6 +102,7 @@ Scene base_scene(const SensitivityPreset& p) {
   ShearBox& b = *sc.apparatus_as<ShearBox>();
   b.specimen.method = Specimen::Method::Pour;
   b.settle_time = p.settle_time;
+  if (p.consolidate_time > 0) b.consolidate_time = p.consolidate_time;
   b.shear_displacement = p.displacement_mm * 1e-3;
   b.length = p.box_length;
   b.width = p.box_width;
@@ -145,6 +146,7 @@ SensitivityPreset sensitivity_preset(const std::string& name) {
     p.layers = 2;
     p.displacement_mm = 0.3;
     p.settle_time = 0.12;
+    p.consolidate_time = 0.04;  // its 50 beads do not reach the equilibrium criterion
     p.seeds = 2;
     p.trajectories = 1;
     p.box_ratios = {7};

@@ -72,6 +72,7 @@ struct SensitivityPreset {
   double diameter_mm = 6.35, stress_kpa = 160, displacement_mm = 4;
   int layers = 4;
   double settle_time = 0.3;   // s: the pour falls (~0.12 s) and comes to rest
+  double consolidate_time = 0;  // s: the longest consolidation; 0: the scene's (0.1 s)
   int seeds = 5;              // the base point's seeds (noise: seeds 2..)
   int trajectories = 4;       // Morris r
   int grid_levels = 4;        // Morris p

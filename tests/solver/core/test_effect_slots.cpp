@@ -76,13 +76,11 @@ TEST_P(EffectSlots, HistoryMemoryFollowsTheSlots) {
   // mindlin_deresiewicz's turning point
   struct Case { TangentialModel t; RollingModel r; DampingModel d; int planes; };
   const auto viscous = DampingModel::Viscous, undamped = DampingModel::None;
-  const Case cases[] = {{TangentialModel::Mindlin, RollingModel::ConstantTorque, viscous, 1},
-                        {TangentialModel::Mindlin, RollingModel::ConstantTorque, undamped, 1},
+  // (each case compiles its own kernels: the ones that tell the layouts apart)
+  const Case cases[] = {{TangentialModel::Mindlin, RollingModel::ConstantTorque, undamped, 1},
                         {TangentialModel::Mindlin, RollingModel::SpringDashpot, viscous, 2},
-                        {TangentialModel::None, RollingModel::SpringDashpot, viscous, 2},
                         {TangentialModel::None, RollingModel::SpringDashpot, undamped, 1},
                         {TangentialModel::None, RollingModel::ConstantTorque, viscous, 1},
-                        {TangentialModel::None, RollingModel::ConstantTorque, undamped, 0},
                         {TangentialModel::None, RollingModel::None, undamped, 0},
                         {TangentialModel::MindlinDeresiewicz, RollingModel::ConstantTorque, viscous, 2},
                         {TangentialModel::MindlinDeresiewicz, RollingModel::SpringDashpot, undamped, 3}};
