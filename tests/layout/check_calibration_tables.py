@@ -6,6 +6,7 @@ table row is made here from the shipped files and must stand in the doc.
                 assets/calibration/kfs/calibrated.toml must hold its calibrated values
   curves:       docs/img/kfs_curves.csv (its curves.csv)
   predictions:  assets/calibration/kfs/kfs_predictions.csv (when present)
+  recovery:     assets/calibration/recovery/recovery.csv (the two-parameter recovery study)
   tests/layout/check_calibration_tables.py [REPO_ROOT] [--print]
 --print writes the tables instead of checking them."""
 import csv
@@ -60,6 +61,20 @@ def prediction_rows():
             for r in rows(path)]
 
 
+def recovery_rows():
+    by = {}
+    for r in rows(os.path.join(root, "assets", "calibration", "recovery", "recovery.csv")):
+        by.setdefault(r["truth"], {})[r["parameter"]] = r
+    out = []
+    for truth, p in by.items():
+        cells = [f"{g(p[n]['true'])} | {g(p[n]['calibrated'])} ({g(p[n]['lo95'])}–{g(p[n]['hi95'])})"
+                 f"{'' if p[n]['inside'] == '1' else ' outside'}" for n in ("mu_s", "mu_r")]
+        out.append(f"| {truth} | " + " | ".join(cells) + " |")
+    inside = sum(int(p[n]["inside"]) for p in by.values() for n in p)
+    out.append(f"The truth lies inside the 95 % interval in {inside} of {2 * len(by)} cases.")
+    return out
+
+
 def calibrated_agrees():
     text = open(os.path.join(kfs, "calibrated.toml")).read()
     bad = []
@@ -72,7 +87,7 @@ def calibrated_agrees():
 
 
 tables = {"density": density_rows(), "parameters": parameter_rows(), "curves": curve_rows(),
-          "predictions": prediction_rows()}
+          "predictions": prediction_rows(), "recovery": recovery_rows()}
 if "--print" in sys.argv:
     for name, lines in tables.items():
         print(f"# {name}\n" + "\n".join(lines) + "\n")

@@ -7,17 +7,19 @@ For each known material (TRUTHS: sliding friction mu_s and rolling lever
 arm mu_r), the program makes its own "measurements": `simsols predict`
 with the truth as the calibrated values runs recovery_cell.toml at three
 densities (preparation frictions 0.5, 0.15, 0) on specimens it alone uses
-(seeds 2001, 2002; specimen 2001 of each density is the measured curve).
-Then `simsols calibrate`, told only the ranges (mu_s 0.1-1, mu_r 1e-5 to
-5e-4 m, log), fits both parameters to the stress ratio and volumetric
-strain of the three tests. Printed: one row per truth and parameter, with
-the calibrated value, the posterior mean and 95 % interval, and whether the
-truth lies inside. Everything is kept in OUT; running again resumes.
+(seeds 2001, 2002). Then `simsols calibrate`, told only the ranges (mu_s
+0.1-1, mu_r 1e-5 to 5e-4 m, log), fits both parameters to the stress ratio
+and volumetric strain of the three tests of one specimen seed, once with
+specimen 2001's curves as the measurements and once with 2002's. Printed:
+one row per truth, measured specimen and parameter, with the calibrated
+value, the posterior mean and 95 % interval, and whether the truth lies
+inside. Everything is kept in OUT; running again resumes.
 """
 import argparse, csv, os, subprocess, sys
 
 TRUTHS = [(0.2, 3e-5), (0.3, 2e-4), (0.5, 8e-5), (0.7, 3e-4)]
 KEYS = {'mu_s': 'materials.beads.sliding_friction', 'mu_r': 'materials.beads.rolling_friction'}
+SEEDS = (2001, 2002)  # the measured specimens (simsols predict's seeds)
 DENSITIES = [('loose', 0.5), ('medium', 0.15), ('dense', 0.0)]
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCENE = os.path.join(HERE, 'recovery_cell.toml')
@@ -45,19 +47,20 @@ def measurements(simsols, d, truth):
                     os.path.join(d, 'measured'), '-q'], check=True, stdout=subprocess.DEVNULL)
 
 
-def calibrate(simsols, d):
+def calibrate(simsols, d, seed):
     text = ('[calibration]\nname = "recovery"\nbudget = 16\nrounds = 2\nreplicates = 3\npoints = 10\n'
             '\n[[parameters]]\nname = "mu_s"\nkey = "%s"\nmin = 0.1\nmax = 1.0\n'
             '\n[[parameters]]\nname = "mu_r"\nkey = "%s"\nmin = 1e-5\nmax = 5e-4\nscale = "log"\n'
             % (KEYS['mu_s'], KEYS['mu_r']))
     for name, prep in DENSITIES:
         text += (f'\n[[targets]]\nname = "{name}"\nscene = "{SCENE}"\n'
-                 f'data = "measured/{name}/s2001/cell.csv"\nwhere = "stage=1"\n'
+                 f'data = "measured/{name}/s{seed}/cell.csv"\nwhere = "stage=1"\n'
                  f'set = {{ "periodic_cell.preparation_friction" = {prep} }}\n' + X + Y.format(t='targets'))
-    write(os.path.join(d, 'calibration.toml'), text)
-    subprocess.run([simsols, 'calibrate', os.path.join(d, 'calibration.toml'), '--out',
-                    os.path.join(d, 'calibration'), '-q'], check=True, stdout=subprocess.DEVNULL)
-    return {r['parameter']: r for r in csv.DictReader(open(os.path.join(d, 'calibration', 'parameters.csv')))}
+    write(os.path.join(d, f'calibration_s{seed}.toml'), text)
+    out = os.path.join(d, f'calibration_s{seed}')
+    subprocess.run([simsols, 'calibrate', os.path.join(d, f'calibration_s{seed}.toml'), '--out', out, '-q'],
+                   check=True, stdout=subprocess.DEVNULL)
+    return {r['parameter']: r for r in csv.DictReader(open(os.path.join(out, 'parameters.csv')))}
 
 
 def main():
@@ -66,21 +69,22 @@ def main():
     ap.add_argument('--simsols', default='build/release/app/simsols')
     a = ap.parse_args()
     print('# Two-parameter recovery of simsols calibrate (assets/calibration/recovery/recovery.py, docs/calibration.md):')
-    print('# targets made by the program with the true values (recovery_cell.toml, three densities, specimen seed 2001),')
+    print('# targets made by the program with the true values (recovery_cell.toml, three densities, one specimen seed),')
     print('# fitted over mu_s in [0.1, 1] and mu_r in [1e-5, 5e-4] m (log); 16 designs in 2 rounds, 3 replicates.')
     print('# mu_r in m (d = 1 mm); inside: the truth lies in the 95 % interval (1) or not (0).')
-    print('truth,parameter,true,calibrated,mean,lo95,hi95,inside')
+    print('truth,specimen,parameter,true,calibrated,mean,lo95,hi95,inside')
     for k, truth in enumerate(TRUTHS):
         d = os.path.abspath(os.path.join(a.out, f'truth{k + 1}'))
         os.makedirs(d, exist_ok=True)
         print(f'[recovery] truth {k + 1}/{len(TRUTHS)}: mu_s = {truth[0]}, mu_r = {truth[1]} m', file=sys.stderr)
         measurements(a.simsols, d, truth)
-        p = calibrate(a.simsols, d)
-        for name, v in zip(KEYS, truth):
-            r = p[name]
-            inside = int(float(r['lo95']) <= v <= float(r['hi95']))
-            print(f"{k + 1},{name},{v:.6g},{float(r['calibrated']):.4g},{float(r['mean']):.4g},"
-                  f"{float(r['lo95']):.4g},{float(r['hi95']):.4g},{inside}", flush=True)
+        for seed in SEEDS:
+            p = calibrate(a.simsols, d, seed)
+            for name, v in zip(KEYS, truth):
+                r = p[name]
+                inside = int(float(r['lo95']) <= v <= float(r['hi95']))
+                print(f"{k + 1},{seed},{name},{v:.6g},{float(r['calibrated']):.4g},{float(r['mean']):.4g},"
+                      f"{float(r['lo95']):.4g},{float(r['hi95']):.4g},{inside}", flush=True)
 
 
 if __name__ == '__main__':
