@@ -84,13 +84,13 @@ std::string oedometer_toml(const std::string& grading, const std::string& diamet
 length = 33.46e-3
 width = 33.40e-3
 load_steps = [25e3, 50e3]
-settle_time = 0.1
+settle_time = 0.06
 step_time = 0.01
 
 [oedometer.specimen]
 method = "pour"
 material = "glass"
-)" + diameter + R"(layers = 4
+)" + diameter + R"(layers = 2
 seed = 3
 
 [oedometer.specimen.grading]
@@ -138,13 +138,14 @@ TEST(Grading, AGradedPourSettlesInFloat) {
       ASSERT_GE(std::sqrt(d2), b[i].radius + b[j].radius) << i << " " << j;
     }
   }
-  const double want = 11 * 11 * 4 * kPi / 6 * 27e-9;  // 4 layers of 11 x 11 beads of 3 mm
+  const double want = 11 * 11 * 2 * kPi / 6 * 27e-9;  // 2 layers of 11 x 11 beads of 3 mm
   EXPECT_GE(solid, want);
   EXPECT_LT(solid, want + kPi / 6 * std::pow(largest, 3));
   Simulation sim(default_device(), scene);
   OedometerProgramme test(sim);
-  while (!test.done()) test.advance(1 << 16);  // throws RunawayError on a NaN
-  std::printf("[measure] graded pour: %zu beads of %.3f to %.3f mm settled and loaded in %lld "
+  // to its first load step's row (throws RunawayError on a NaN)
+  while (!test.done() && test.rows().empty()) test.advance(1 << 14);
+  std::printf("[measure] graded pour: %zu beads of %.3f to %.3f mm settled and first loaded in %lld "
               "steps (float)\n",
               b.size(), 1e3 * smallest, 1e3 * largest, static_cast<long long>(sim.steps()));
   EXPECT_FALSE(test.rows().empty());
