@@ -7,6 +7,7 @@ table row is made here from the shipped files and must stand in the doc.
   curves:       docs/img/kfs_curves.csv (its curves.csv)
   predictions:  assets/calibration/kfs/kfs_predictions.csv (when present)
   recovery:     assets/calibration/recovery/recovery.csv (the two-parameter recovery study)
+                and recovery_budget32.csv (some of it again with twice the budget, when present)
   tests/layout/check_calibration_tables.py [REPO_ROOT] [--print]
 --print writes the tables instead of checking them."""
 import csv
@@ -61,17 +62,23 @@ def prediction_rows():
             for r in rows(path)]
 
 
-def recovery_rows():
+def recovery_rows(name="recovery.csv"):
+    path = os.path.join(root, "assets", "calibration", "recovery", name)
+    if not os.path.exists(path):
+        return []
     by = {}
-    for r in rows(os.path.join(root, "assets", "calibration", "recovery", "recovery.csv")):
-        by.setdefault(r["truth"], {})[r["parameter"]] = r
+    for r in rows(path):
+        by.setdefault((r["truth"], r["specimen"], r["designs"]), {})[r["parameter"]] = r
     out = []
-    for truth, p in by.items():
-        cells = [f"{g(p[n]['true'])} | {g(p[n]['calibrated'])} ({g(p[n]['lo95'])}–{g(p[n]['hi95'])})"
-                 f"{'' if p[n]['inside'] == '1' else ' outside'}" for n in ("mu_s", "mu_r")]
-        out.append(f"| {truth} | " + " | ".join(cells) + " |")
+    for (truth, specimen, designs), p in by.items():
+        # mu_s to three decimals; mu_r (m) over the diameter, 1 mm
+        f = {"mu_s": lambda x: f"{float(x):.3f}", "mu_r": lambda x: f"{1e3 * float(x):.3f}"}
+        cells = [f"{f[n](p[n]['true'])} | {f[n](p[n]['calibrated'])} ({f[n](p[n]['lo95'])}–"
+                 f"{f[n](p[n]['hi95'])}){'' if p[n]['inside'] == '1' else ' outside'}"
+                 for n in ("mu_s", "mu_r")]
+        out.append(f"| {truth} | {specimen} | {designs} | " + " | ".join(cells) + " |")
     inside = sum(int(p[n]["inside"]) for p in by.values() for n in p)
-    out.append(f"The truth lies inside the 95 % interval in {inside} of {2 * len(by)} cases.")
+    out.append(f"the truth lies inside the 95 % interval in {inside} of {2 * len(by)} cases")
     return out
 
 
@@ -87,7 +94,8 @@ def calibrated_agrees():
 
 
 tables = {"density": density_rows(), "parameters": parameter_rows(), "curves": curve_rows(),
-          "predictions": prediction_rows(), "recovery": recovery_rows()}
+          "predictions": prediction_rows(), "recovery": recovery_rows(),
+          "recovery, larger budget": recovery_rows("recovery_budget32.csv")}
 if "--print" in sys.argv:
     for name, lines in tables.items():
         print(f"# {name}\n" + "\n".join(lines) + "\n")

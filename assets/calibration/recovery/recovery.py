@@ -2,6 +2,7 @@
 """Two-parameter recovery study of `simsols calibrate` (docs/calibration.md, "Recovery").
 
   recovery.py OUT [--simsols build/release/app/simsols] > recovery.csv
+  recovery.py OUT --budget 32 --rounds 4 --truths 2 > recovery_budget32.csv
 
 For each known material (TRUTHS: sliding friction mu_s and rolling lever
 arm mu_r), the program makes its own "measurements": `simsols predict`
@@ -13,7 +14,9 @@ and volumetric strain of the three tests of one specimen seed, once with
 specimen 2001's curves as the measurements and once with 2002's. Printed:
 one row per truth, measured specimen and parameter, with the calibrated
 value, the posterior mean and 95 % interval, and whether the truth lies
-inside. Everything is kept in OUT; running again resumes.
+inside. --budget and --rounds change the calibration's (16 designs in 2
+rounds by default; another budget runs in folders of its own), --truths
+picks truths by number. Everything is kept in OUT; running again resumes.
 """
 import argparse, csv, os, subprocess, sys
 
@@ -47,18 +50,19 @@ def measurements(simsols, d, truth):
                     os.path.join(d, 'measured'), '-q'], check=True, stdout=subprocess.DEVNULL)
 
 
-def calibrate(simsols, d, seed):
-    text = ('[calibration]\nname = "recovery"\nbudget = 16\nrounds = 2\nreplicates = 3\npoints = 10\n'
+def calibrate(simsols, d, seed, budget, rounds):
+    text = (f'[calibration]\nname = "recovery"\nbudget = {budget}\nrounds = {rounds}\nreplicates = 3\npoints = 10\n'
             '\n[[parameters]]\nname = "mu_s"\nkey = "%s"\nmin = 0.1\nmax = 1.0\n'
             '\n[[parameters]]\nname = "mu_r"\nkey = "%s"\nmin = 1e-5\nmax = 5e-4\nscale = "log"\n'
             % (KEYS['mu_s'], KEYS['mu_r']))
+    folder = f'calibration_s{seed}' + ('' if (budget, rounds) == (16, 2) else f'_b{budget}r{rounds}')
     for name, prep in DENSITIES:
         text += (f'\n[[targets]]\nname = "{name}"\nscene = "{SCENE}"\n'
                  f'data = "measured/{name}/s{seed}/cell.csv"\nwhere = "stage=1"\n'
                  f'set = {{ "periodic_cell.preparation_friction" = {prep} }}\n' + X + Y.format(t='targets'))
-    write(os.path.join(d, f'calibration_s{seed}.toml'), text)
-    out = os.path.join(d, f'calibration_s{seed}')
-    subprocess.run([simsols, 'calibrate', os.path.join(d, f'calibration_s{seed}.toml'), '--out', out, '-q'],
+    write(os.path.join(d, folder + '.toml'), text)
+    out = os.path.join(d, folder)
+    subprocess.run([simsols, 'calibrate', os.path.join(d, folder + '.toml'), '--out', out, '-q'],
                    check=True, stdout=subprocess.DEVNULL)
     return {r['parameter']: r for r in csv.DictReader(open(os.path.join(out, 'parameters.csv')))}
 
@@ -67,23 +71,29 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument('out')
     ap.add_argument('--simsols', default='build/release/app/simsols')
+    ap.add_argument('--budget', type=int, default=16)
+    ap.add_argument('--rounds', type=int, default=2)
+    ap.add_argument('--truths', default=','.join(str(k + 1) for k in range(len(TRUTHS))))
     a = ap.parse_args()
+    picked = [int(k) for k in a.truths.split(',')]
     print('# Two-parameter recovery of simsols calibrate (assets/calibration/recovery/recovery.py, docs/calibration.md):')
     print('# targets made by the program with the true values (recovery_cell.toml, three densities, one specimen seed),')
-    print('# fitted over mu_s in [0.1, 1] and mu_r in [1e-5, 5e-4] m (log); 16 designs in 2 rounds, 3 replicates.')
+    print(f'# fitted over mu_s in [0.1, 1] and mu_r in [1e-5, 5e-4] m (log); {a.budget} designs in {a.rounds} rounds, 3 replicates.')
     print('# mu_r in m (d = 1 mm); inside: the truth lies in the 95 % interval (1) or not (0).')
-    print('truth,specimen,parameter,true,calibrated,mean,lo95,hi95,inside')
+    print('truth,specimen,designs,parameter,true,calibrated,mean,lo95,hi95,inside')
     for k, truth in enumerate(TRUTHS):
+        if k + 1 not in picked:
+            continue
         d = os.path.abspath(os.path.join(a.out, f'truth{k + 1}'))
         os.makedirs(d, exist_ok=True)
         print(f'[recovery] truth {k + 1}/{len(TRUTHS)}: mu_s = {truth[0]}, mu_r = {truth[1]} m', file=sys.stderr)
         measurements(a.simsols, d, truth)
         for seed in SEEDS:
-            p = calibrate(a.simsols, d, seed)
+            p = calibrate(a.simsols, d, seed, a.budget, a.rounds)
             for name, v in zip(KEYS, truth):
                 r = p[name]
                 inside = int(float(r['lo95']) <= v <= float(r['hi95']))
-                print(f"{k + 1},{seed},{name},{v:.6g},{float(r['calibrated']):.4g},{float(r['mean']):.4g},"
+                print(f"{k + 1},{seed},{a.budget},{name},{v:.6g},{float(r['calibrated']):.4g},{float(r['mean']):.4g},"
                       f"{float(r['lo95']):.4g},{float(r['hi95']):.4g},{inside}", flush=True)
 
 
