@@ -62,14 +62,13 @@ Problem make_problem(const CalibrationSpec& spec) {
 
 using CalibrationRun = BatchTest;
 
+// A design's test: the target's keys, then the parameters' values.
 std::vector<SceneValue> values_of(const Problem& p, size_t target, const Eigen::VectorXd& u,
                                   int seed) {
-  std::vector<SceneValue> v;
-  for (const auto& [key, value] : p.spec.targets[target].set) v.push_back({key, value, false});
+  KeyValues parameters;
   for (size_t j = 0; j < p.spec.parameters.size(); ++j)
-    v.push_back({p.spec.parameters[j].key, p.spec.parameters[j].value(u(j)), false});
-  if (seed > 0) v.push_back({p.kinds[target]->seed_key, double(seed), true});
-  return v;
+    parameters.emplace_back(p.spec.parameters[j].key, p.spec.parameters[j].value(u(j)));
+  return test_values(p.spec.targets[target].set, parameters, p.kinds[target]->seed_key, seed);
 }
 
 std::vector<CalibrationRun> make_runs(const Problem& p, const Eigen::MatrixXd& designs,

@@ -30,13 +30,9 @@ std::vector<BatchTest> prediction_tests(const PredictionSpec& spec, const fs::pa
     place_scene(base);
     const double cost = expected_particle_steps(base);
     for (int k = 1; k <= spec.specimens; ++k) {
-      std::vector<SceneValue> values;
-      for (const auto& [key, v] : calibrated) values.push_back({key, v, false});
-      for (const auto& [key, v] : test.set) values.push_back({key, v, false});
-      const int seed = kFirstSeed + k - 1;
-      values.push_back({kind.seed_key, double(seed), true});
-      BatchTest b{scene_with(test.scene, values), root / test.name / ("s" + std::to_string(seed)),
-                  cost, t, k};
+      const int seed = kFirstSeed + k - 1;  // the test's own keys over the calibrated values
+      BatchTest b{scene_with(test.scene, test_values(calibrated, test.set, kind.seed_key, seed)),
+                  root / test.name / ("s" + std::to_string(seed)), cost, t, k};
       b.scene.name += "_" + test.name + "_s" + std::to_string(seed);
       tests.push_back(std::move(b));
     }

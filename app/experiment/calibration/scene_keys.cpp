@@ -73,6 +73,15 @@ std::string scene_text_with(const std::string& path, const std::vector<SceneValu
   return text.str();
 }
 
+std::vector<SceneValue> test_values(const KeyValues& first, const KeyValues& then,
+                                    const char* seed_key, int seed) {
+  std::vector<SceneValue> v;
+  for (const KeyValues* kv : {&first, &then})
+    for (const auto& [key, value] : *kv) v.push_back({key, value, false});
+  if (seed > 0) v.push_back({seed_key, double(seed), true});
+  return v;
+}
+
 Scene scene_with(const std::string& path, const std::vector<SceneValue>& values) {
   return read_scene_text(scene_text_with(path, values), path);
 }

@@ -28,6 +28,13 @@ struct SceneValue {
   bool integer = false;  // written as a TOML integer (a seed)
 };
 
+// The values one test of a calibration or a prediction runs with: `first`,
+// then `then` (a key in both takes then's value), then the specimen's seed
+// under the kind's `seed_key` when `seed` > 0.
+using KeyValues = std::vector<std::pair<std::string, double>>;
+std::vector<SceneValue> test_values(const KeyValues& first, const KeyValues& then,
+                                    const char* seed_key, int seed);
+
 // The TOML file at `path`; SceneError naming its line when it is not TOML
 // (the calibration's, prediction's and calibrated files read it too).
 toml::table parse_toml_file(const std::string& path);
