@@ -5,7 +5,7 @@ table row is made here from the shipped files and must stand in the doc.
   parameters:   docs/img/kfs_parameters.csv (the calibration's parameters.csv), and
                 assets/calibration/kfs/calibrated.toml must hold its calibrated values
   curves:       docs/img/kfs_curves.csv (its curves.csv)
-  predictions:  assets/calibration/kfs/kfs_predictions.csv (when present)
+  predictions:  assets/calibration/kfs_predictions.csv (when present)
   recovery:     assets/calibration/recovery/recovery.csv (the two-parameter recovery study)
                 and recovery_budget32.csv (some of it again with twice the budget, when present)
   tests/layout/check_calibration_tables.py [REPO_ROOT] [--print]
@@ -52,7 +52,7 @@ def curve_rows():
 
 
 def prediction_rows():
-    path = os.path.join(kfs, "kfs_predictions.csv")
+    path = os.path.join(root, "assets", "calibration", "kfs_predictions.csv")
     if not os.path.exists(path):
         return []
     return [f"| {r['sigma3_kPa']} | {r['Dr_pct']} % | {r['phi_peak_deg']} ({r['phi_peak_lo95_deg']}–"

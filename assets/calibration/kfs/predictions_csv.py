@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """kfs_predictions.csv from a run of kfs_predict_triaxial.toml: one row per test.
 
-  predictions_csv.py OUT > kfs_predictions.csv
+  predictions_csv.py OUT > ../kfs_predictions.csv
 
 Reads OUT/prediction.csv (`simsols predict`: each quantity's mean over the
 specimens with Student's 95 % half-interval). The peak friction angle is
