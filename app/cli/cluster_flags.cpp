@@ -111,8 +111,9 @@ BatchCluster batch_cluster(const ClusterFlags& f, const std::string& command,
     c.mode = BatchCluster::Mode::task, c.task = *checked.only;
   else if (f.collecting)
     c.mode = BatchCluster::Mode::collect;
+  c.manifest = (fs::path(out_dir) / "slurm" / "manifest.toml").string();
   if (c.mode != BatchCluster::Mode::emit && c.mode != BatchCluster::Mode::here &&
-      fs::exists(fs::path(out_dir) / "slurm" / "manifest.toml"))
+      fs::exists(c.manifest))
     c.job_tests = read_manifest(out_dir).tests;
   c.write_job = [command, args, out_dir](const std::vector<BatchTest>& tests,
                                          const std::string& batch) {

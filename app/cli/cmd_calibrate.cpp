@@ -17,6 +17,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <optional>
 
 #include "app/cli/cluster_flags.h"
 #include "app/cli/commands.h"
@@ -62,30 +64,61 @@ void print_result(const CalibrationSpec& spec, const CalibrationResult& r, const
               out.c_str());
 }
 
-int calibrate(const CalibrateOptions& opt) {
-  const CalibrationSpec spec = read_calibration(opt.file);
-  const std::string out = opt.out_dir.empty() ? "out/calibrate-" + spec.name : opt.out_dir;
-  std::filesystem::create_directories(out);
-  InterruptScope interrupt;
-  CalibrationOptions o;
-  o.device = open_command_device();
-  o.out_dir = out;
-  o.quiet = opt.quiet;
-  o.stop_requested = interrupt.stop_function();
-  const BatchCluster cluster = batch_cluster(opt.cluster, "calibrate", opt.command_line, out);
-  o.cluster = &cluster;
-  const CalibrationResult r = run_calibration(spec, o);
-  if (r.ended) {
-    print_ended(opt.cluster, "calibration " + spec.name);
-    return 0;
-  }
-  if (r.interrupted) {
-    std::printf("calibration interrupted in %s: the same command continues it\n",
-                r.interrupted_dir.c_str());
+// The folder, the cluster's view of the batches and the device of a run:
+// the cluster flags checked first (a cluster run needs --out), the device
+// opened only where tests run here (not to emit or collect a job).
+struct BatchRun {
+  std::string out;
+  BatchCluster cluster;
+  std::shared_ptr<Device> device;
+};
+
+BatchRun batch_run(const CalibrateOptions& opt, const std::string& command,
+                   const std::string& default_out) {
+  const bool on_cluster = opt.cluster.emitting() || opt.cluster.task >= 0;
+  BatchRun b;
+  b.out = opt.out_dir.empty() ? default_out : opt.out_dir;
+  b.cluster = batch_cluster(opt.cluster, command, opt.command_line, on_cluster ? opt.out_dir : b.out);
+  std::filesystem::create_directories(b.out);
+  if (b.cluster.mode == BatchCluster::Mode::here || b.cluster.mode == BatchCluster::Mode::task)
+    b.device = open_command_device();
+  return b;
+}
+
+// The exit status of a run that ends before its report: stopped (Ctrl-C, or
+// the scheduler's signal before a time limit), or a cluster step; nullopt
+// when the report is to be written.
+std::optional<int> ended_early(bool interrupted, bool ended, const std::string& stopped_in,
+                               const ClusterFlags& f, const std::string& what,
+                               const InterruptScope& interrupt) {
+  if (interrupted) {
+    std::printf("%s interrupted in %s: the same command continues it\n", what.c_str(),
+                stopped_in.c_str());
     return interrupt.exit_status();
   }
-  write_calibration_report(spec, r, out);
-  print_result(spec, r, out);
+  if (ended) {
+    print_ended(f, what);
+    return 0;
+  }
+  if (f.task >= 0) {  // an array task writes no report
+    std::printf("%s: every batch has finished; nothing is left for task %lld\n", what.c_str(),
+                f.task);
+    return 0;
+  }
+  return std::nullopt;
+}
+
+int calibrate(const CalibrateOptions& opt) {
+  const CalibrationSpec spec = read_calibration(opt.file);
+  const BatchRun b = batch_run(opt, "calibrate", "out/calibrate-" + spec.name);
+  InterruptScope interrupt;
+  const CalibrationOptions o{b.device, b.out, opt.quiet, interrupt.stop_function(), &b.cluster};
+  const CalibrationResult r = run_calibration(spec, o);
+  if (const auto status = ended_early(r.interrupted, r.ended, r.interrupted_dir, opt.cluster,
+                                      "calibration " + spec.name, interrupt))
+    return *status;
+  write_calibration_report(spec, r, b.out);
+  print_result(spec, r, b.out);
   return 0;
 }
 
@@ -109,24 +142,15 @@ void print_prediction(const PredictionSpec& spec, const PredictionResult& r, con
 
 int predict(const CalibrateOptions& opt) {
   const PredictionSpec spec = read_prediction(opt.file);
-  const std::string out = opt.out_dir.empty() ? "out/predict-" + spec.name : opt.out_dir;
-  std::filesystem::create_directories(out);
+  const BatchRun b = batch_run(opt, "predict", "out/predict-" + spec.name);
   InterruptScope interrupt;
-  const BatchCluster cluster = batch_cluster(opt.cluster, "predict", opt.command_line, out);
-  const CalibrationOptions o{open_command_device(), out, opt.quiet, interrupt.stop_function(),
-                             &cluster};
+  const CalibrationOptions o{b.device, b.out, opt.quiet, interrupt.stop_function(), &b.cluster};
   const PredictionResult r = run_prediction(spec, o);
-  if (r.ended) {
-    print_ended(opt.cluster, "prediction " + spec.name);
-    return 0;
-  }
-  if (r.interrupted) {
-    std::printf("prediction interrupted in %s: the same command continues it\n",
-                r.interrupted_dir.c_str());
-    return interrupt.exit_status();
-  }
-  write_prediction_report(spec, r, out);
-  print_prediction(spec, r, out);
+  if (const auto status = ended_early(r.interrupted, r.ended, r.interrupted_dir, opt.cluster,
+                                      "prediction " + spec.name, interrupt))
+    return *status;
+  write_prediction_report(spec, r, b.out);
+  print_prediction(spec, r, b.out);
   return 0;
 }
 

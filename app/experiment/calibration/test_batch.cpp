@@ -54,8 +54,8 @@ ClusterStep cluster_step(const std::vector<BatchTest>& tests, const BatchOptions
       if (!finished)
         throw UsageError("conflict", "--task",
                          "the batch with tests left (" + o.batch + ", " +
-                             std::to_string(names.size()) + " tests) is not the one the "
-                             "folder's slurm/manifest.toml lists: emit the job again");
+                             std::to_string(names.size()) + " tests) is not the one " +
+                             c.manifest + " lists: emit the job again");
       return {};
     case BatchCluster::Mode::emit:
       if (finished) return {};

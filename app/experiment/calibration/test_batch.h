@@ -35,6 +35,7 @@ struct BatchCluster {
   // --task, --collect: the tests of the job the folder's manifest lists
   // (empty: none written yet).
   std::vector<std::string> job_tests;
+  std::string manifest;  // that manifest's path, for messages
   // Writes the job array of a batch's tests (`batch`: "round0", ...).
   std::function<void(const std::vector<BatchTest>&, const std::string& batch)> write_job;
 };

@@ -617,7 +617,10 @@ TEST(Cli, CalibrationRunsAsAChainOfJobArraysAndEqualsALocalRun) {
          "min = 0.1\nmax = 0.6\n" << target;
   const std::string cal = "calibrate " + (d / "cal.toml").string() + " -q --out ";
   const fs::path out = d / "cluster";
-  Result r = run(cal + out.string() + " --emit slurm");
+  Result r = run("calibrate " + (d / "cal.toml").string() + " --emit slurm");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("'--out'"), std::string::npos) << "a cluster run needs its folder: " << r.out;
+  r = run(cal + out.string() + " --emit slurm");
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(file_text(out / "slurm" / "collect.sbatch").find("submit.sh \"$@\""), std::string::npos)
       << "the collecting job submits the next batch with its own sbatch arguments";
