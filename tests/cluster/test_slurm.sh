@@ -9,8 +9,10 @@
 # stops it, it checkpoints, it runs again and resumes), waits for all,
 # then runs the same campaign locally and compares: every test's rows
 # (shear.csv) byte for byte, every summary and the campaign's summary.csv
-# except the wall times. Every daemon is stopped on the way out, whatever
-# happens.
+# except the wall times. Then a small calibration as a chain of arrays
+# (each collecting job submits the next batch's array, passing on the
+# sbatch arguments), compared with the same calibration run locally.
+# Every daemon is stopped on the way out, whatever happens.
 set -euo pipefail
 export PATH=$PATH:/usr/sbin:/sbin  # the daemons, for a user whose PATH lacks them
 
@@ -86,3 +88,54 @@ for png in d6.35mm_stress.png mohr_coulomb.png; do
   [[ -s $WORK/slurm_run/$png ]] || fail "the collecting job drew no $png"
 done
 echo "PASS: the Slurm array and its collecting job give the local campaign's results"
+
+# A calibration is a chain of arrays (round 0, round 1, the replicates):
+# each collecting job writes and submits the next batch's job with the
+# sbatch arguments it was given; the last writes the report, which must
+# equal a local run's.
+CAL=$WORK/cal
+mkdir -p "$CAL"
+{
+  echo "strain,stress_ratio"
+  for i in $(seq 0 10); do awk -v i="$i" 'BEGIN { printf "%g,%g\n", 0.003 * i, 1.2 * (1 - exp(-0.6 * i)) }'; done
+} > "$CAL/measured.csv"
+cat > "$CAL/cal.toml" <<EOF
+[calibration]
+name = "chain"
+budget = 6
+rounds = 2
+replicates = 2
+points = 5
+[[parameters]]
+name = "mu_s"
+key = "materials.beads.sliding_friction"
+min = 0.1
+max = 0.6
+[[targets]]
+name = "t"
+scene = "$(realpath "$HERE/../../assets/tests/periodic_triaxial_small.toml")"
+data = "measured.csv"
+set = { "periodic_cell.axial_strain" = 0.03 }
+x = { column = "strain", unit = "-", quantity = "axial_strain" }
+[[targets.y]]
+column = "stress_ratio"
+unit = "-"
+quantity = "stress_ratio"
+EOF
+"$SIMSOLS" calibrate "$CAL/cal.toml" --out "$CAL/slurm_run" -q --emit slurm
+grep -qx "batch = 'round0'" "$CAL/slurm_run/slurm/manifest.toml" || fail "the first job is not round 0's"
+"$CAL/slurm_run/slurm/submit.sh" --comment=chain
+deadline=$((SECONDS + 600))
+until [[ -f $CAL/slurm_run/parameters.csv && -z $(squeue -h -o %i) ]]; do
+  ((SECONDS < deadline)) || { squeue; tail -n 20 "$CAL/slurm_run/slurm/logs/collect.out"; fail "the calibration's chain did not finish within 10 minutes"; }
+  sleep 1
+done
+tail -n 8 "$CAL/slurm_run/slurm/logs/collect.out"
+[[ $(grep -c "next batch's job is written" "$CAL/slurm_run/slurm/logs/collect.out") == 2 ]] ||
+  fail "collect.out does not show round 1's and the replicates' jobs written"
+grep -qx "batch = 'replicates'" "$CAL/slurm_run/slurm/manifest.toml" || fail "the last job is not the replicates'"
+"$SIMSOLS" calibrate "$CAL/cal.toml" --out "$CAL/local_run" -q > /dev/null
+for f in parameters.csv design.csv curves.csv; do
+  cmp "$CAL/slurm_run/$f" "$CAL/local_run/$f" || fail "the calibration's $f differs from the local run's"
+done
+echo "PASS: the calibration's chain of arrays gives the local calibration"
