@@ -6,6 +6,7 @@ table row is made here from the shipped files and must stand in the doc.
                 assets/calibration/kfs/calibrated.toml must hold its calibrated values
   curves:       docs/img/kfs_curves.csv (its curves.csv)
   predictions:  assets/calibration/kfs_predictions.csv (when present)
+  oedometer:    assets/calibration/kfs/kfs_oedometer_predictions.csv (when present)
   recovery:     assets/calibration/recovery/recovery.csv (the two-parameter recovery study)
                 and recovery_budget32.csv (some of it again with twice the budget, when present)
   tests/layout/check_calibration_tables.py [REPO_ROOT] [--print]
@@ -62,6 +63,28 @@ def prediction_rows():
             for r in rows(path)]
 
 
+def oedometer_rows():
+    path = os.path.join(kfs, "kfs_oedometer_predictions.csv")
+    if not os.path.exists(path):
+        return []
+    out = []
+    for r in rows(path):
+        at = [f"{r[f'eps_meas_{s}kPa']} / {r[f'eps_pred_{s}kPa']} ± {r[f'pi95_{s}kPa']}" for s in (100, 200, 400)]
+        out.append(f"| {r['test']} | {r['Dr_pct']} % | " + " | ".join(at) +
+                   f" | {r['rms_error_pct']} | {r['band_sd_pct']} | {r['inside_pct']} % |")
+    with open(path) as f:
+        summary = [line[2:].strip() for line in f if line.startswith("# At 400 kPa")]
+    m = re.search(r"error ([0-9.]+) %.*", " ".join(summary)) if summary else None
+    if m:
+        out.append(f"r.m.s. prediction error at 400 kPa {m.group(1)} %")
+    with open(path) as f:
+        text = f.read()
+    m = re.search(r"about a straight line in D_r\) ([0-9.]+) %", text)
+    if m:
+        out.append(f"the tests' own scatter about a straight line in D_r, {m.group(1)} %")
+    return out
+
+
 def recovery_rows(name="recovery.csv"):
     path = os.path.join(root, "assets", "calibration", "recovery", name)
     if not os.path.exists(path):
@@ -94,7 +117,7 @@ def calibrated_agrees():
 
 
 tables = {"density": density_rows(), "parameters": parameter_rows(), "curves": curve_rows(),
-          "predictions": prediction_rows(), "recovery": recovery_rows(),
+          "predictions": prediction_rows(), "oedometer": oedometer_rows(), "recovery": recovery_rows(),
           "recovery, larger budget": recovery_rows("recovery_budget32.csv")}
 if "--print" in sys.argv:
     for name, lines in tables.items():
