@@ -69,19 +69,19 @@ def oedometer_rows():
         return []
     out = []
     for r in rows(path):
-        at = [f"{r[f'eps_meas_{s}kPa']} / {r[f'eps_pred_{s}kPa']} ± {r[f'pi95_{s}kPa']}" for s in (100, 200, 400)]
+        at = [f"{r[f'eps_meas_{s}kPa']} / {r[f'eps_pred_{s}kPa']} ± {r[f'pi95_{s}kPa']}" for s in (100, 200, 380)]
         out.append(f"| {r['test']} | {r['Dr_pct']} % | " + " | ".join(at) +
                    f" | {r['rms_error_pct']} | {r['band_sd_pct']} | {r['inside_pct']} % |")
     with open(path) as f:
-        summary = [line[2:].strip() for line in f if line.startswith("# At 400 kPa")]
+        summary = [line[2:].strip() for line in f if line.startswith("# At 380 kPa")]
     m = re.search(r"error ([0-9.]+) %.*", " ".join(summary)) if summary else None
     if m:
-        out.append(f"r.m.s. prediction error at 400 kPa {m.group(1)} %")
+        out.append(f"the r.m.s. error of the twelve predictions at 380 kPa is {m.group(1)} %")
     with open(path) as f:
         text = f.read()
     m = re.search(r"about a straight line in D_r\) ([0-9.]+) %", text)
     if m:
-        out.append(f"the tests' own scatter about a straight line in D_r, {m.group(1)} %")
+        out.append(f"the tests' own scatter about a straight line in D_r is {m.group(1)} %")
     return out
 
 

@@ -7,6 +7,7 @@
 
 #include "solver/common/csv_table.h"
 #include "solver/common/errors.h"
+#include "solver/io/output.h"
 
 namespace simsols {
 
@@ -35,9 +36,17 @@ std::vector<size_t> kept_rows(const CsvTable& t, const std::string& where,
 
 // Every y less its value at x0 (the first branch that reaches it); NaN
 // throughout when none does.
+// Each y counted from its value at x0, which the curve must reach: a
+// ReadError when x0 lies outside the rows' x's (a run whose first row
+// comes after it, say).
 void make_relative(Curve& c, double x0) {
   for (std::vector<double>& y : c.y) {
     const double y0 = value_at(c.x, y, x0);
+    if (!std::isfinite(y0))
+      throw ReadError("zero_at (" + format_number("%g", x0) + " in SI units) lies outside the x's " +
+                      "of its rows" + (c.x.empty() ? std::string() :
+                      " (the first at " + format_number("%g", c.x.front()) + ")") +
+                      ": give a zero_at every curve reaches");
     for (double& v : y) v -= y0;
   }
 }
@@ -105,7 +114,11 @@ Curve simulated_curve(const CalibrationTarget& target, const ApparatusKind& kind
       factors.push_back(unit_factor(q.unit)->first);
     }
     Curve c = read_curve(t, kept_rows(t, kind.curve_rows ? kind.curve_rows : "", fail), cols, factors);
-    if (target.zero_at) make_relative(c, *target.zero_at * unit_factor(target.x.unit)->first);
+    try {
+      if (target.zero_at) make_relative(c, *target.zero_at * unit_factor(target.x.unit)->first);
+    } catch (const ReadError& e) {
+      fail(e.what());
+    }
     return c;
   }
   throw ReadError(dir + ": no rows file with a column '" + qx.column + "'");
