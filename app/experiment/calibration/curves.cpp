@@ -34,9 +34,8 @@ std::vector<size_t> kept_rows(const CsvTable& t, const std::string& where,
   return out;
 }
 
-// Every y less its value at x0 (the first branch that reaches it); NaN
-// throughout when none does.
-// Each y counted from its value at x0, which the curve must reach: a
+// Each y counted from its value at x0 (on the first branch that reaches
+// it), which the curve must reach: a
 // ReadError when x0 lies outside the rows' x's (a run whose first row
 // comes after it, say).
 void make_relative(Curve& c, double x0) {

@@ -78,6 +78,7 @@ PredictedCurve predicted_curve(const PredictionSpec& spec, size_t t, size_t j,
   p.quantity = test.y[j].quantity;
   p.unit = test.y[j].unit;
   p.x_unit = test.x.unit;
+  p.x_quantity = test.x.quantity;
   p.x = band_points(spec, measured, specimens);
   const double n = double(specimens.size());
   // A new specimen's 95 % prediction interval: mean +- t sd sqrt(1 + 1/n).

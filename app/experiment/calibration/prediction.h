@@ -23,7 +23,7 @@
 namespace simsols {
 
 struct PredictedCurve {
-  std::string test, quantity, unit, x_unit;  // units: the test's columns'
+  std::string test, quantity, unit, x_quantity, x_unit;  // units: the test's columns'
   std::vector<double> x, mean, sd, lo, hi, measured;  // SI; measured NaN without data
   // Half the 95 % prediction interval of one more specimen, t(n-1) sd
   // sqrt(1 + 1/n): where a measurement of the same test should fall.

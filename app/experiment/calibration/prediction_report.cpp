@@ -47,10 +47,7 @@ void write_plot(const PredictionSpec& spec, const PredictedCurve& c, const fs::p
   const double xu = factor(c.x_unit), yu = factor(c.unit);
   plot::Chart chart;
   chart.title = spec.name + ", " + c.test + ": predicted" + (std::isfinite(c.rms_error) ? " and measured" : "");
-  std::string x_name = "x";  // the test's x quantity
-  for (const CalibrationTarget& t : spec.tests)
-    if (t.name == c.test) x_name = t.x.quantity;
-  chart.x_label = x_name + " (" + (c.x_unit == "-" ? std::string("–") : c.x_unit) + ")";
+  chart.x_label = c.x_quantity + " (" + (c.x_unit == "-" ? std::string("–") : c.x_unit) + ")";
   chart.y_label = c.quantity + " (" + (c.unit == "-" ? std::string("–") : c.unit) + ")";
   plot::Series mean, lo, hi, meas;
   mean.label = "mean of " + std::to_string(spec.specimens) + " specimens";
