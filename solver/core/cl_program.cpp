@@ -30,6 +30,7 @@ std::string KernelConfig::build_options() const {
   o += " -DPAIR_RECORD=" + std::to_string(pair_record());
   if (walls) o += " -DHAS_WALLS";
   if (servo) o += " -DHAS_SERVO";
+  if (tilt) o += " -DHAS_TILT";
   if (servo_in_finish()) o += " -DSERVO_IN_FINISH";
   if (prefetch_shares) o += " -DPREFETCH_SHARES";
   if (clumps) o += " -DHAS_CLUMPS";
@@ -120,7 +121,10 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
   const bool pending = scene.apparatus_pending && !scene.periodic;  // a periodic cell adds no walls
   c.walls = !scene.walls.empty() || pending;
   c.servo = pending;
-  for (const Wall& w : scene.walls) c.servo = c.servo || w.servo.enabled;
+  for (const Wall& w : scene.walls) {
+    c.servo = c.servo || w.servo.enabled;
+    c.tilt = c.tilt || w.tilts;
+  }
   c.clumps = !scene.clumps.empty() || (pending && scene.specimen() && scene.specimen()->grain >= 0);
   c.periodic = scene.periodic.has_value();
   if (c.periodic) check_periodic(scene, c);

@@ -36,6 +36,7 @@ struct KernelConfig {
   bool fluid = false;         // slot fluid = drag
   bool walls = true;
   bool servo = false;  // some wall is servo-controlled
+  bool tilt = false;   // some wall may turn (Wall::tilts; walls.cl, HAS_TILT)
   bool clumps = false;  // the scene has clumps (clumps.cl)
   bool periodic = false;  // a periodic cell (periodic.cl)
   int lanes = 1;                   // particles per work item in the contact kernels

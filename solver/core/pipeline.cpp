@@ -135,7 +135,8 @@ void build_wall_slots(const Model& m, State& s) {
   m.device().copy(s.wall_force.get(), old.force.get(), s.wall_force.bytes);
   s.wall_off.mem.swap(s.old_wall_off.mem);
   set_args(m, k.build_wall_near, arg("pos", s.pos), arg("walls", m.wall_buffer()),
-           arg("wall_point", s.wall_point), arg("wall_near", s.wall_near),
+           arg("wall_point", s.wall_point), arg("wall_turn", s.wall_turn),
+           arg("wall_near", s.wall_near),
            arg("skin", Real{m.skin()}), arg("n", s.n), arg("nwalls", m.walls()));
   launch(m, k.build_wall_near, s.n);
   set_args(m, k.wall_widths, arg("wall_near", s.wall_near), arg("width", s.wall_off), arg("n", s.n),
@@ -233,7 +234,7 @@ void finish_particles(const Model& m, State& s) {
            arg("nbr_count", s.nbr_count), arg("nbr_upper", s.nbr_upper), arg("lo_off", s.lo_off),
            arg("mirror", s.mirror), arg("share", s.share), arg("walls", m.wall_buffer()),
            arg("wall_point", s.wall_point), arg("wall_point_lo", s.wall_point_lo),
-           arg("wall_vel", s.wall_vel), arg("wall_off", s.wall_off),
+           arg("wall_turn", s.wall_turn), arg("wall_vel", s.wall_vel), arg("wall_off", s.wall_off),
            arg("wall_spring", s.wall_spring), arg("wall_force", s.wall_force),
            arg("wall_stride", s.wall_slots), arg("pairs", m.pair_buffer()),
            arg("wall_touch", s.wall_touch), arg("wall_near", s.wall_near), arg("servo", s.servo),
@@ -273,8 +274,8 @@ void move_walls(const Model& m, State& s) {
              arg("partial", s.wall_partial), arg("wall_vel", s.wall_vel),
              arg("reading", s.wall_reaction), arg("mean", s.wall_mean),
              arg("wall_point", s.wall_point), arg("wall_point_lo", s.wall_point_lo),
-             arg("flags", s.flags), arg("dt", Real{m.dt()}), arg("skin", Real{m.skin()}),
-             arg("groups", groups), arg("nwalls", m.walls()));
+             arg("wall_turn", s.wall_turn), arg("flags", s.flags), arg("dt", Real{m.dt()}),
+             arg("skin", Real{m.skin()}), arg("groups", groups), arg("nwalls", m.walls()));
     launch_exact(m, k.servo_walls, 1);
   } else {
     set_args(m, k.advance_walls, arg("wall_point", s.wall_point),
@@ -291,8 +292,10 @@ size_t reduce_wall_forces(const Model& m, State& s) {
   const Kernels& k = m.kernels();
   const int chunks = wall_chunks(s);
   set_args(m, k.reduce_walls, arg("wall_near", s.wall_near), arg("wall_off", s.wall_off),
-           arg("wall_force", s.wall_force), arg("partial", s.wall_partial), arg("n", s.n),
-           arg("chunk", kWallChunk), arg("chunks", chunks), arg("nwalls", m.walls()));
+           arg("wall_force", s.wall_force), arg("partial", s.wall_partial), arg("pos", s.pos),
+           arg("walls", m.wall_buffer()), arg("wall_point", s.wall_point),
+           arg("wall_turn", s.wall_turn), arg("n", s.n), arg("chunk", kWallChunk),
+           arg("chunks", chunks), arg("nwalls", m.walls()));
   launch(m, k.reduce_walls, size_t(chunks));
   return static_cast<size_t>(chunks);
 }

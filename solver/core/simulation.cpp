@@ -74,6 +74,11 @@ void Simulation::set_servo(int wall, const WallServo& c) {
   const std::array<double, 8> r = servo_record(c);
   write_real4(&State::servo, 2 * wall, r[0], r[1], r[2], r[3]);
   write_real4(&State::servo, 2 * wall + 1, r[4], r[5], r[6], r[7]);
+  if (state_->tilting) {  // free to turn while a dead weight, else held where it is
+    const double inv_j = tilt_inverse_inertia(model_->scene().walls[size_t(wall)], c);
+    const auto t = read_real4(*model_, state_->wall_turn, wall);
+    write_real4(&State::wall_turn, wall, t[0], inv_j > 0 ? t[1] : 0, inv_j, t[3]);
+  }
   if (!c.enabled) {
     set_wall_velocity(wall, {0, 0, 0});
     const auto r = read_real4(*model_, state_->wall_reaction, wall);
@@ -122,6 +127,14 @@ Vec3 Simulation::wall_velocity(int wall) {
   guard_->before_reading();
   const auto v = read_real4(*model_, state_->wall_vel, wall);
   return {v[0], v[1], v[2]};
+}
+
+Simulation::Tilt Simulation::wall_tilt(int wall) {
+  check_wall(*model_, wall, "wall_tilt");
+  if (!state_->tilting) return {};
+  guard_->before_reading();
+  const auto t = read_real4(*model_, state_->wall_turn, wall);
+  return {t[0], t[1], t[3]};
 }
 
 void Simulation::nudge_particle(size_t slot, const Vec3& dx) {

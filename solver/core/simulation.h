@@ -48,6 +48,13 @@ class Simulation {
   WallServo servo_setting(int wall);
   Vec3 wall_point(int wall);  // current reference point, absolute
   Vec3 wall_velocity(int wall);  // m/s, prescribed or set by its force control
+  // A wall that may tilt (Wall::tilts): its tilt about its axis_v (rad,
+  // right-handed), its rate (rad/s) and the beads' moment on it last step
+  // (N m, counted only while it is free to turn); zeros for other walls.
+  struct Tilt {
+    double angle = 0, rate = 0, moment = 0;
+  };
+  Tilt wall_tilt(int wall);
   // Moves a wall at once (no sweep: the caller makes sure it lands clear of
   // the particles, e.g. a platen lowered onto a specimen).
   void set_wall_point(int wall, const Vec3& point);

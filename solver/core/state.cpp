@@ -10,6 +10,11 @@
 
 namespace simsols {
 
+double tilt_inverse_inertia(const Wall& w, const WallServo& c) {
+  if (!w.tilts || !c.enabled || !(c.mass > 0) || !(w.half_u > 0)) return 0;
+  return 3 / (c.mass * w.half_u * w.half_u);  // J = M (2 half_u)^2 / 12
+}
+
 std::array<double, 8> servo_record(const WallServo& c) {
   return {c.target_force, c.gain, c.max_speed, c.enabled ? 1.0 : 0.0,
           c.integral_time > 0 ? 1 / c.integral_time : 0, c.mass > 0 ? 1 / c.mass : 0,
@@ -193,6 +198,10 @@ void State::make_servo(const Model& model) {
     sv.put4(c[4], c[5], c[6], c[7]);
   }
   servo = make(d, std::max(1, nw) * 2 * r4, nw ? sv.data() : nullptr);
+  tilting = model.config().tilt;
+  RealPacker turn(model.config().double_precision);
+  for (const Wall& wall : model.scene().walls) turn.put4(0, 0, tilt_inverse_inertia(wall, wall.servo), 0);
+  wall_turn = make(d, std::max(1, nw) * r4, nw && tilting ? turn.data() : nullptr);
 }
 
 void State::make_flags(const Model& model, float v2_start) {
@@ -216,7 +225,8 @@ void State::make_step_scratch(const Model& model) {
   const size_t groups = model.global_size(n) / model.local_size();
   obs_partial = make(d, groups * 12 * model.real_size());
   const size_t wall_chunks = std::max<size_t>(1, (n + kWallChunk - 1) / kWallChunk);
-  wall_partial = make(d, std::max(1, nw) * wall_chunks * r4);
+  // with tilting walls, the moments follow the forces (walls.cl, wall_chunk_sums)
+  wall_partial = make(d, std::max(1, nw) * wall_chunks * r4 * (model.config().tilt ? 2 : 1));
   const int zero = 0;
   groups_done = make(d, sizeof zero, &zero);
 }
@@ -256,6 +266,7 @@ std::vector<std::pair<std::string, const Buffer*>> State::all_buffers() const {
           {"wall_reaction", &wall_reaction},
           {"wall_mean", &wall_mean},
           {"servo", &servo},
+          {"wall_turn", &wall_turn},
           {"flags", &flags},
           {"obs_partial", &obs_partial},
           {"wall_partial", &wall_partial},
@@ -288,6 +299,7 @@ std::vector<std::pair<std::string, Buffer*>> State::dynamic_buffers() {
           {"wall_touch", &wall_touch}, {"wall_reaction", &wall_reaction}, {"wall_mean", &wall_mean}, {"servo", &servo},
           {"flags", &flags}};
   if (cell_now.h[0] != 0) all.emplace_back("cell", &cell);  // periodic scenes only
+  if (tilting) all.emplace_back("wall_turn", &wall_turn);  // scenes with a wall that may tilt
   if (clumps > 0)  // scenes without clumps keep their checkpoints' buffer list
     for (auto [name, b] : std::initializer_list<std::pair<std::string, Buffer*>>{
              {"clump_pos", &clump_pos}, {"clump_pos_lo", &clump_pos_lo},

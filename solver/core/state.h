@@ -36,6 +36,9 @@ struct Buffer {
 // A wall's force control as the servo_walls kernel reads it (walls.cl):
 // (target, gain, max_speed, on) and (1/T_i, 1/mass, 0, 0).
 std::array<double, 8> servo_record(const WallServo& servo);
+// 1/J of a wall free to tilt while `servo` drives it (a dead weight on a
+// rectangle with Wall::tilts), else 0: the wall is held at its tilt.
+double tilt_inverse_inertia(const Wall& wall, const WallServo& servo);
 
 class State {
  public:
@@ -76,6 +79,11 @@ class State {
   // wall_mean: per wall the force summed over steps (xyz) and the steps (w),
   // kept when the kernels have servo walls (read_wall_means)
   Buffer servo, wall_reaction, wall_mean;
+  // walls that may tilt (Wall::tilts, HAS_TILT): per wall (tilt in rad,
+  // its rate in rad/s, 1/J while free to turn or 0, the beads' moment last
+  // step in N m), walls.cl; zeros and unread without such a wall
+  Buffer wall_turn;
+  bool tilting = false;  // the kernels have tilting walls (wall_turn is state)
   // flags: FLAG_SLOTS ints, their slots named in solver/kernels/layout.h
   // (list rebuild needed, longest list asked for, max |v|^2 since the last
   // check, late, the runaway mark of guard.h).

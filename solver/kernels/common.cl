@@ -12,6 +12,7 @@
 //                       holds: contact_law.cl, "Per-contact history")
 //   PAIR_RECORD         reals per pair coefficient record (8, or 12 with HAS_CAPILLARY)
 //   HAS_SERVO, HAS_CLUMPS  servo-controlled walls, clumps (clumps.cl)
+//   HAS_TILT           some wall may turn about its axis_v (walls.cl, wall_turn)
 //   SLICE, LANES       list slice width and particles per work item (below)
 //   SERVO_IN_FINISH    CPUs: the walls' step at the end of finish_particles (integrate.cl)
 //   PREFETCH_SHARES    CPUs: finish_particles prefetches the partners' shares (forces.cl)

@@ -124,7 +124,7 @@ __kernel void finish_particles(
     __global const int* nbr_upper, __global const uint* lo_off, __global const int* mirror,
     __global const real4* share,
     __global const real* walls, __global real* wall_point,
-    __global float* wall_point_lo, __global real* wall_vel,
+    __global float* wall_point_lo, __global real* wall_turn, __global real* wall_vel,
     __global const uint* wall_off, __global real* wall_spring, __global real* wall_force,
     int wall_stride, __global const real* pairs,
     __global int* wall_touch, __global const int* wall_near, __global const real* servo,
@@ -141,7 +141,7 @@ __kernel void finish_particles(
                   (__global real4*)torque);
     }
 #ifdef HAS_WALLS
-    wall_contacts(base, pos POS_LO_PASS, vel, omega, walls, wall_point WALL_LO_PASS, wall_vel,
+    wall_contacts(base, pos POS_LO_PASS, vel, omega, walls, wall_point WALL_STATE_PASS, wall_vel,
                   wall_off, wall_spring, wall_force, wall_stride, pairs, force, torque, wall_touch,
                   wall_near, body_offset, contacts_last, dt, rolling_damping, n, nwalls, nmat);
 #endif
@@ -162,7 +162,7 @@ __kernel void finish_particles(
              (__global const real4*)wall_force, (__global real4*)wall_partial,
              (__global real4*)wall_vel, (__global real4*)wall_reaction,
              (__global real4*)wall_mean, (__global real4*)wall_point,
-             (__global float4*)wall_point_lo, flags, dt, skin, n, wall_chunk, wall_groups, 1,
-             nwalls);
+             (__global float4*)wall_point_lo, (__global real4*)wall_turn,
+             (__global const real4*)pos, flags, dt, skin, n, wall_chunk, wall_groups, 1, nwalls);
 #endif
 }

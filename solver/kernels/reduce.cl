@@ -62,10 +62,13 @@ __kernel void reduce_observables(__global const real4* pos POS_LO_CARG,
 // wall (walls.cl's wall_chunk_sums, in index order, deterministic).
 // partial[w * chunks + c]; global size chunks.
 __kernel void reduce_walls(__global const int* wall_near, __global const uint* wall_off,
-                           __global const real4* wall_force, __global real4* partial, int n,
-                           int chunk, int chunks, int nwalls) {
+                           __global const real4* wall_force, __global real4* partial,
+                           __global const real4* pos, __global const real4* walls,
+                           __global const real4* wall_point, __global const real4* wall_turn,
+                           int n, int chunk, int chunks, int nwalls) {
   const int c = get_global_id(0);
   if (c < chunks)
-    wall_chunk_sums(c, wall_near, wall_off, wall_force, partial, n, chunk, chunks, nwalls);
+    wall_chunk_sums(c, wall_near, wall_off, wall_force, partial, pos, walls, wall_point,
+                    wall_turn, n, chunk, chunks, nwalls);
 }
 #endif

@@ -33,18 +33,45 @@
 // over from the previous layout (old_*).
 #ifdef HAS_WALLS
 
+// A wall's state besides its point, where the build has it: the float
+// compensation of the point, and its tilt (HAS_TILT, below).
 #ifdef POS_COMPENSATED
-#define WALL_LO_ARG , __global const float* restrict wall_point_lo
-#define WALL_LO_PASS , wall_point_lo
+#define WALL_LO_ARG_ , __global const float* restrict wall_point_lo
+#define WALL_LO_PASS_ , wall_point_lo
 #else
-#define WALL_LO_ARG
-#define WALL_LO_PASS
+#define WALL_LO_ARG_
+#define WALL_LO_PASS_
+#endif
+#ifdef HAS_TILT
+#define WALL_TURN_ARG_ , __global const real* restrict wall_turn
+#define WALL_TURN_PASS_ , wall_turn
+#else
+#define WALL_TURN_ARG_
+#define WALL_TURN_PASS_
+#endif
+#define WALL_STATE_ARG WALL_LO_ARG_ WALL_TURN_ARG_
+#define WALL_STATE_PASS WALL_LO_PASS_ WALL_TURN_PASS_
+
+#ifdef HAS_TILT
+// Tilting walls (a shear box's loading cap free to tilt): a rectangle may
+// turn about its axis_v through its reference point. wall_turn, a real4
+// per wall: (tilt t in rad, its rate in rad/s, 1/J or 0, the beads' moment
+// about axis_v last step in N m); 1/J > 0 lets the wall turn (the host sets
+// it while the wall is a dead weight, J = M (2 half_u)^2 / 12), 0 holds it
+// at its tilt. The record's normal and axis_u are those at t = 0; turned by
+// Rodrigues' formula (both are normal to axis_v): R x = x cos t + (av x x) sin t.
+INLINE void tilt_axes(real t, real3 av, real3* n, real3* au) {
+  const real c = cos(t), s = sin(t);
+  *n = c * *n + s * cross(av, *n);
+  *au = c * *au + s * cross(av, *au);
+}
 #endif
 
 // Vector from each lane's centre to the closest point of wall w; returns its
-// squared length (>= r^2 or 0: no contact).
-INLINE lane wall_gap(__global const real* walls, __global const real* wall_point WALL_LO_ARG,
-                     int w, LanePos pi, lane ri, v3* to_wall) {
+// squared length (>= r^2 or 0: no contact). to_ref: from the centre to the
+// wall's reference point.
+INLINE lane wall_gap(__global const real* walls, __global const real* wall_point WALL_STATE_ARG,
+                     int w, LanePos pi, lane ri, v3* to_wall, v3* to_ref) {
   const int rec = 4 * WALL_RECORD * w;  // reals
   LanePos wp;
   wp.hi = V3((lane)wall_point[4 * w], (lane)wall_point[4 * w + 1], (lane)wall_point[4 * w + 2]);
@@ -55,13 +82,20 @@ INLINE lane wall_gap(__global const real* walls, __global const real* wall_point
   wp.lo = v_zero();
 #endif
   const v3 d = separation(pi, wp);  // centre -> wall reference point
-  const v3 nrm = V3((lane)walls[rec + 4], (lane)walls[rec + 5], (lane)walls[rec + 6]);
+  *to_ref = d;
+  real3 n = (real3)(walls[rec + 4], walls[rec + 5], walls[rec + 6]);
+  real3 u = (real3)(walls[rec + 8], walls[rec + 9], walls[rec + 10]);
+  const real3 v = (real3)(walls[rec + 12], walls[rec + 13], walls[rec + 14]);
+#ifdef HAS_TILT
+  tilt_axes(wall_turn[4 * w], v, &n, &u);
+#endif
+  const v3 nrm = V3((lane)n.x, (lane)n.y, (lane)n.z);
   if (walls[rec + 3] == (real)0) {
     const lane s = -v_dot(d, nrm);  // signed distance of the centre; behind the plane: ignored
     *to_wall = v_sel(s > -ri, v_mul(-s, nrm), V3(2 * ri, (lane)0, (lane)0));
   } else {
-    const v3 au = V3((lane)walls[rec + 8], (lane)walls[rec + 9], (lane)walls[rec + 10]);
-    const v3 av = V3((lane)walls[rec + 12], (lane)walls[rec + 13], (lane)walls[rec + 14]);
+    const v3 au = V3((lane)u.x, (lane)u.y, (lane)u.z);
+    const v3 av = V3((lane)v.x, (lane)v.y, (lane)v.z);
     const real hu = walls[rec + 11], hv = walls[rec + 15];
     const lane u = clamp(-v_dot(d, au), -hu, hu);
     const lane v = clamp(-v_dot(d, av), -hv, hv);
@@ -88,6 +122,7 @@ INLINE void lane_flags(lmask m, int* out) {
 __kernel void build_wall_near(__global const real4* restrict pos,
                               __global const real4* restrict walls,
                               __global const real4* restrict wall_point,
+                              __global const real4* restrict wall_turn,
                               __global int* restrict wall_near, real skin, int n, int nwalls) {
   const int i = get_global_id(0);
   if (i >= n) return;
@@ -97,12 +132,18 @@ __kernel void build_wall_near(__global const real4* restrict pos,
   for (int w = 0; w < nwalls; ++w) {
     const real3 d = wall_point[w].xyz - pi.xyz;  // centre -> wall reference point
     const real4 shape = walls[WALL_RECORD * w];
-    const real3 nrm = walls[WALL_RECORD * w + 1].xyz;
+    real3 nrm = walls[WALL_RECORD * w + 1].xyz;
+    const real4 av = walls[WALL_RECORD * w + 3];
+    real4 au = walls[WALL_RECORD * w + 2];
+#ifdef HAS_TILT
+    real3 axis = au.xyz;
+    tilt_axes(wall_turn[w].x, av.xyz, &nrm, &axis);
+    au.xyz = axis;
+#endif
     real dist;
     if (shape.w == (real)0) {
       dist = fabs(dot(d, nrm));
     } else {
-      const real4 au = walls[WALL_RECORD * w + 2], av = walls[WALL_RECORD * w + 3];
       const real u = clamp(-dot(d, au.xyz), -au.w, au.w);
       const real v = clamp(-dot(d, av.xyz), -av.w, av.w);
       dist = length(d + u * au.xyz + v * av.xyz);
@@ -179,14 +220,15 @@ INLINE int wall_lanes(int base, int n, __global const int* restrict wall_near,
 // particle touches wall w. Returns whether any lane touches a wall now or
 // did last step.
 INLINE int touched_walls(__global const real* restrict walls,
-                         __global const real* restrict wall_point WALL_LO_ARG, int near,
+                         __global const real* restrict wall_point WALL_STATE_ARG, int near,
                          int nwalls, const Owner* o, const int* valid, const int* mask,
                          const int* was, int* now) {
   int busy = 0;
   for (int w = 0; w < nwalls; ++w) {
     if (!((near >> w) & 1)) continue;
-    v3 to_wall;
-    const lane dist2 = wall_gap(walls, wall_point WALL_LO_PASS, w, o->p, o->r, &to_wall);
+    v3 to_wall, to_ref;
+    const lane dist2 =
+        wall_gap(walls, wall_point WALL_STATE_PASS, w, o->p, o->r, &to_wall, &to_ref);
     int on[LANES];
     lane_flags((dist2 < o->r * o->r) & (dist2 > (real)0), on);
 #pragma unroll
@@ -214,20 +256,27 @@ INLINE int kept_wall_slots(int w, const int* ii, const int* valid, const int* ma
 }
 
 // The contact with wall w: whether it touches (`on`), the normal towards the
-// wall, overlap and lever arm; lanes that do not touch get a stand-in
-// (half the radius along x).
+// wall, overlap and lever arm, and (tilting walls) the contact point from
+// the wall's reference point; lanes that do not touch get a stand-in (half
+// the radius along x).
 typedef struct {
   lmask on;
   v3 nv;
   lane delta, a;
+#ifdef HAS_TILT
+  v3 arm;
+#endif
 } WallContact;
 
 INLINE WallContact wall_contact(__global const real* restrict walls,
-                                __global const real* restrict wall_point WALL_LO_ARG, int w,
+                                __global const real* restrict wall_point WALL_STATE_ARG, int w,
                                 const Owner* o) {
-  v3 to_wall;
-  const lane dist2 = wall_gap(walls, wall_point WALL_LO_PASS, w, o->p, o->r, &to_wall);
+  v3 to_wall, to_ref;
+  const lane dist2 = wall_gap(walls, wall_point WALL_STATE_PASS, w, o->p, o->r, &to_wall, &to_ref);
   WallContact k;
+#ifdef HAS_TILT
+  k.arm = v_sub(to_wall, to_ref);
+#endif
   k.on = (dist2 < o->r * o->r) & (dist2 > (real)0);
   const lane dist = SEL(k.on, sqrt(dist2), (real)0.5 * o->r);
   k.nv = v_sel(k.on, v_mul(1 / dist, to_wall), V3((lane)1, (lane)0, (lane)0));
@@ -296,7 +345,7 @@ INLINE void add_wall_contact(__global real* restrict wall_force, const int* slot
 INLINE void wall_contacts(int base, __global const real* restrict pos POS_LO_SARG_FN,
                           __global const real* restrict vel, __global const real* restrict omega,
                           __global const real* restrict walls,
-                          __global const real* restrict wall_point WALL_LO_ARG,
+                          __global const real* restrict wall_point WALL_STATE_ARG,
                           __global const real* restrict wall_vel,
                           __global const uint* restrict wall_off,
                           __global real* restrict wall_spring, __global real* restrict wall_force,
@@ -314,7 +363,7 @@ INLINE void wall_contacts(int base, __global const real* restrict pos POS_LO_SAR
   Owner own;
   own.p = gather_pos(pos POS_LO_PASS, ii);
   own.r = gather(pos, ii, 3);
-  if (!touched_walls(walls, wall_point WALL_LO_PASS, near, nwalls, &own, valid, mask, was, now))
+  if (!touched_walls(walls, wall_point WALL_STATE_PASS, near, nwalls, &own, valid, mask, was, now))
     return;
 
   gather_motion(&own, vel, omega, body_offset, contacts_last, ii);
@@ -334,8 +383,16 @@ INLINE void wall_contacts(int base, __global const real* restrict pos POS_LO_SAR
   for (int w = 0; w < nwalls; ++w) {
     int keep[LANES], slot[LANES];
     if (!kept_wall_slots(w, ii, valid, mask, now, was, wall_off, keep, slot)) continue;
-    const WallContact k = wall_contact(walls, wall_point WALL_LO_PASS, w, &own);
-    const v3 vw = V3((lane)wall_vel[4 * w], (lane)wall_vel[4 * w + 1], (lane)wall_vel[4 * w + 2]);
+    const WallContact k = wall_contact(walls, wall_point WALL_STATE_PASS, w, &own);
+    v3 vw = V3((lane)wall_vel[4 * w], (lane)wall_vel[4 * w + 1], (lane)wall_vel[4 * w + 2]);
+#ifdef HAS_TILT
+    const real spin = wall_turn[4 * w + 1];  // the wall's surface moves at v + spin av x arm
+    if (spin != (real)0) {
+      const int rec = 4 * WALL_RECORD * w;
+      const v3 av = V3((lane)walls[rec + 12], (lane)walls[rec + 13], (lane)walls[rec + 14]);
+      vw = v_add(vw, v_mul((lane)spin, v_cross(av, k.arm)));
+    }
+#endif
     History h = load_wall_history(wall_spring, wall_stride, slot);
     const ContactResult c = wall_law(&own, k, vw, roll_inertia, w, walls, pairs, nmat, dt,
                                      rolling_damping, &h);
@@ -373,21 +430,56 @@ INLINE void advance_wall(int w, __global real4* wall_point, __global float4* wal
   if (v2 > flags[FLAG_MAX_SPEED2]) atomic_max(&flags[FLAG_MAX_SPEED2], v2);
 }
 
+#ifdef HAS_TILT
+// The moment about axis_v through wall w's reference point of the force f
+// a particle at x exerts on the wall. The contact point lies on the wall's
+// plane, so its arm is x's offset projected onto the plane (a force along
+// the plane then has no moment about an axis in it).
+INLINE real wall_moment(int w, real3 x, real3 f, __global const real4* walls,
+                        __global const real4* wall_point, __global const real4* wall_turn) {
+  real3 n = walls[WALL_RECORD * w + 1].xyz, au = walls[WALL_RECORD * w + 2].xyz;
+  const real3 av = walls[WALL_RECORD * w + 3].xyz;
+  tilt_axes(wall_turn[w].x, av, &n, &au);
+  real3 arm = x - wall_point[w].xyz;
+  arm -= dot(arm, n) * n;
+  return dot(cross(arm, f), av);
+}
+#endif
+
 // The forces of chunk c's particles (`chunk` consecutive indices) on each
 // wall, summed in index order in one pass over the chunk (a particle's wall
 // slots come in the order of its near walls' bits): partial[w * chunks + c].
+// With tilting walls, also the moments on the walls free to turn:
+// partial[(nwalls + w) * chunks + c].x (x = pos, the particles' new
+// positions: their offsets along the wall differ from the step's by v dt).
 INLINE void wall_chunk_sums(int c, __global const int* wall_near, __global const uint* wall_off,
-                            __global const real4* wall_force, __global real4* partial, int n,
-                            int chunk, int chunks, int nwalls) {
+                            __global const real4* wall_force, __global real4* partial,
+                            __global const real4* pos, __global const real4* walls,
+                            __global const real4* wall_point, __global const real4* wall_turn,
+                            int n, int chunk, int chunks, int nwalls) {
   real4 sum[32];  // a wall mask has 32 bits
   for (int w = 0; w < nwalls; ++w) sum[w] = (real4)(0);
+#ifdef HAS_TILT
+  real moment[32];
+  for (int w = 0; w < nwalls; ++w) moment[w] = 0;
+#endif
   const int lo = c * chunk, hi = min(n, lo + chunk);
   for (int i = lo; i < hi; ++i) {
     int r = 0;  // rank of wall w among the near walls: its slot (WALL_SLOT)
-    for (uint m = (uint)wall_near[i]; m != 0; m &= m - 1, ++r)
-      sum[popcount((m & (0u - m)) - 1)] += wall_force[SLOT(wall_off, i, r)];  // lowest bit's wall
+    for (uint m = (uint)wall_near[i]; m != 0; m &= m - 1, ++r) {
+      const int w = popcount((m & (0u - m)) - 1);  // lowest bit's wall
+      const real4 f = wall_force[SLOT(wall_off, i, r)];
+      sum[w] += f;
+#ifdef HAS_TILT
+      if (f.w != (real)0 && wall_turn[w].z > (real)0)
+        moment[w] += wall_moment(w, pos[i].xyz, f.xyz, walls, wall_point, wall_turn);
+#endif
+    }
   }
   for (int w = 0; w < nwalls; ++w) partial[w * chunks + c] = sum[w];
+#ifdef HAS_TILT
+  for (int w = 0; w < nwalls; ++w) partial[(nwalls + w) * chunks + c] = (real4)(moment[w], 0, 0, 0);
+#endif
 }
 
 // All walls, one work item each (scenes without servo walls; servo_walls
@@ -485,17 +577,44 @@ INLINE void servo_wall(int w, __global const real4* walls, __global const real4*
 // advances (advance_wall), controlled or not. CPUs run it at the end of
 // finish_particles (integrate.cl; one pass over the masks costs less than
 // a launch), GPUs as servo_walls after reduce_walls, in parallel.
+#ifdef HAS_TILT
+// A wall free to turn (wall_turn[w].z = 1/J > 0) as a rigid body about its
+// axis_v: J dspin/dt = moment, the same symplectic Euler step as the
+// particles'; its edges' travel (spin dt half_u, or half_v) counts towards
+// the list flags with its point's (advance_wall).
+INLINE void turn_wall(int w, __global const real4* walls, __global const real4* partial,
+                      __global real4* wall_turn, __global real4* wall_point, real dt, int groups,
+                      int nwalls) {
+  real4 t = wall_turn[w];
+  if (t.z == (real)0) return;
+  real moment = 0;
+  for (int g = 0; g < groups; ++g) moment += partial[(nwalls + w) * groups + g].x;
+  t.y += dt * moment * t.z;
+  t.x += dt * t.y;
+  t.w = moment;
+  wall_turn[w] = t;
+  const real reach = fmax(walls[WALL_RECORD * w + 2].w, walls[WALL_RECORD * w + 3].w);
+  wall_point[w].w += fabs(t.y) * dt * reach;
+}
+#endif
+
 INLINE void walls_step(__global const real4* walls, __global const real4* servo,
                        __global const int* wall_near, __global const uint* wall_off,
                        __global const real4* wall_force, __global real4* partial,
                        __global real4* wall_vel, __global real4* reading, __global real4* mean,
                        __global real4* wall_point, __global float4* wall_point_lo,
+                       __global real4* wall_turn, __global const real4* pos,
                        __global volatile int* flags, real dt, real skin, int n, int chunk,
                        int groups, int reduce, int nwalls) {
   for (int c = 0; reduce && c < groups; ++c)
-    wall_chunk_sums(c, wall_near, wall_off, wall_force, partial, n, chunk, groups, nwalls);
+    wall_chunk_sums(c, wall_near, wall_off, wall_force, partial, pos, walls, wall_point,
+                    wall_turn, n, chunk, groups, nwalls);
   for (int w = 0; w < nwalls; ++w)
     servo_wall(w, walls, servo, partial, wall_vel, reading, mean, wall_point, dt, groups, nwalls);
+#ifdef HAS_TILT
+  for (int w = 0; w < nwalls; ++w)
+    turn_wall(w, walls, partial, wall_turn, wall_point, dt, groups, nwalls);
+#endif
   for (int w = 0; w < nwalls; ++w) {
     const int leader = (int)servo[2 * w + 1].z - 1;
     if (leader >= 0) wall_vel[w] = wall_vel[leader];
@@ -508,10 +627,10 @@ __kernel void servo_walls(__global const real4* walls, __global const real4* ser
                           __global real4* partial, __global real4* wall_vel,
                           __global real4* reading, __global real4* mean,
                           __global real4* wall_point, __global float4* wall_point_lo,
-                          __global volatile int* flags, real dt, real skin, int groups,
-                          int nwalls) {
+                          __global real4* wall_turn, __global volatile int* flags, real dt,
+                          real skin, int groups, int nwalls) {
   if (get_global_id(0) != 0) return;
   walls_step(walls, servo, 0, 0, 0, partial, wall_vel, reading, mean, wall_point, wall_point_lo,
-             flags, dt, skin, 0, 0, groups, 0, nwalls);
+             wall_turn, 0, flags, dt, skin, 0, 0, groups, 0, nwalls);
 }
 #endif  // HAS_SERVO

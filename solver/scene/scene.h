@@ -149,6 +149,12 @@ struct Wall {
   double half_v = 0;   // rectangle only, m
   Vec3 velocity{};     // m/s, prescribed
   WallServo servo;     // when enabled, moves to hold a normal force instead
+  // A rectangle free to tilt: while its servo is a dead weight, it also
+  // turns about axis_v through its centre as a rigid plate (moment of
+  // inertia M (2 half_u)^2 / 12) under the beads' moment; otherwise it is
+  // held at the tilt it has (walls.cl, HAS_TILT). Its normal and axis_u
+  // above are those at zero tilt.
+  bool tilts = false;
 };
 
 // Wall geometry on the host, with the wall's reference point at `point`

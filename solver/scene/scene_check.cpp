@@ -189,6 +189,8 @@ void check_wall(const Scene& s, size_t i, std::set<std::string>& names, Found& f
       fail("conflicting_keys", f + ".velocity",
            "a servo-controlled wall moves by itself; remove its velocity");
   }
+  if (w.tilts && w.shape != WallShape::Rectangle)
+    fail("conflicting_keys", f + ".tilts", "only a rectangle may tilt (a plane has no centre to turn about)");
   if (w.shape != WallShape::Rectangle) return;
   check_unit(found, f + ".axis_u", w.axis_u, "bad_vector");
   const double d = dot(w.normal, w.axis_u);

@@ -187,6 +187,78 @@ TEST_P(Walls, RigidGroupHaltsAtItsStop) {
   EXPECT_EQ(g.member_force, 0.0) << "stopped short of the sphere";
 }
 
+// A cap free to tilt (Wall::tilts): a dead-weight plate of 1 N let down on
+// two spheres of different sizes 2a apart on a floor turns until it rests
+// on both: its tilt is the slope of the line through their tops, and the
+// beads' moment on it vanishes. The same plate held (a PI servo: no dead
+// weight, so 1/J = 0) stays level on the larger sphere.
+struct CapRun {
+  double tilt = 0, slope = 0, moment = 0, rate = 0;
+};
+
+CapRun run_cap(Precision p, double r_left, double r_right, bool dead_weight) {
+  Scene s = empty_scene(p, soft(0.5, 0.3, 0.0));
+  s.effects.gravity = {0, 0, -9.81};
+  const double a = 10e-3, top = 2 * std::max(r_left, r_right);
+  s.particles = {sphere(r_left, {-a, 0, r_left}), sphere(r_right, {a, 0, r_right})};
+  Wall cap = rectangle({0, 0, top + 1e-4}, 15e-3, 5e-3);
+  cap.normal = {0, 0, -1};
+  cap.tilts = true;
+  cap.servo.enabled = true;
+  cap.servo.target_force = 1.0;
+  if (dead_weight) {
+    cap.servo.mass = 0.01;
+  } else {
+    cap.servo.gain = 0.015;
+    cap.servo.max_speed = 0.05;
+  }
+  s.walls = {plane("floor", {0, 0, 0}, {0, 0, 1}), cap};
+  Simulation sim(default_device(), s);
+  EXPECT_TRUE(sim.model().config().tilt);
+  sim.advance(60000);
+  CapRun out;
+  const int samples = 100;
+  for (int i = 0; i < samples; ++i) {
+    sim.advance(20);
+    out.moment += sim.wall_tilt(1).moment / samples;
+  }
+  const Simulation::Tilt t = sim.wall_tilt(1);
+  out.tilt = t.angle;
+  out.rate = t.rate;
+  // The plane tangent to both spheres: at tilt t the contact lies r/cos t
+  // above a centre, so tan t (x2 - x1) = z2 - z1 + (r2 - r1) / cos t.
+  const ParticleSnapshot q = sim.snapshot();
+  const double dx = q.position[1][0] - q.position[0][0];
+  const double dz = q.position[1][2] - q.position[0][2];
+  for (int i = 0; i < 20; ++i)
+    out.slope = std::atan((dz + (r_right - r_left) / std::cos(out.slope)) / dx);
+  return out;
+}
+
+TEST_P(Walls, DeadWeightCapTiltsToRestOnBothBeads) {
+  // av = normal x axis_u = -y: a positive tilt raises the cap towards +x
+  const double a = 10e-3;
+  for (const auto& [left, right] : {std::pair{5e-3, 4e-3}, std::pair{4e-3, 5e-3}}) {
+    const CapRun c = run_cap(GetParam(), left, right, true);
+    report("cap tilt (rad)", c.tilt, c.slope);
+    report("beads' moment on the cap (N m)", c.moment, 0);
+    // measured: 2.7e-4 rad from atan((r2 - r1) / a) (the tangent plane
+    // touches the spheres off their tops), 5.7e-6 rad from the tangent
+    // plane through the centres as they sit (the overlaps), moment 1.3e-8
+    // N m in float (0 in double) against F a = 1e-2 N m
+    EXPECT_NEAR(c.tilt, std::atan((right - left) / a), 3e-3) << "near the bare geometry";
+    EXPECT_NEAR(c.tilt, c.slope, 6e-5) << "tangent to both spheres";
+    EXPECT_LT(std::fabs(c.moment), 1e-7) << "moment balance about the centre";
+  }
+}
+
+TEST_P(Walls, HeldCapStaysLevel) {
+  const CapRun c = run_cap(GetParam(), 5e-3, 4e-3, false);
+  EXPECT_EQ(c.tilt, 0.0);
+  EXPECT_EQ(c.rate, 0.0);
+  EXPECT_EQ(c.moment, 0.0) << "a held cap sums no moment";
+}
+
 SIMSOLS_BOTH_PRECISIONS(Walls);
 
 }  // namespace
