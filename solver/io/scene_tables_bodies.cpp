@@ -68,12 +68,12 @@ void read_walls(const Reader& root, Scene& scene) {
   for (size_t i = 0; i < tables.size(); ++i) {
     Reader r(*tables[i], item("walls", i), root.context(),
              {"name", "type", "material", "point", "normal", "axis_u", "half_u", "half_v",
-              "velocity", "servo"});
+              "tilts", "velocity", "servo"});
     Wall w;
     w.name = r.string("name", "wall" + std::to_string(i));
     const bool rectangle = r.choice("type", WallShape::Plane) == WallShape::Rectangle;
     if (!rectangle)
-      r.forbid({"axis_u", "half_u", "half_v"}, "only allowed when type = \"rectangle\"");
+      r.forbid({"axis_u", "half_u", "half_v", "tilts"}, "only allowed when type = \"rectangle\"");
     w.material = r.material("material", scene);
     w.point = r.vec3("point");
     w.normal = normalized(r.vec3("normal"));
@@ -97,6 +97,7 @@ void read_walls(const Reader& root, Scene& scene) {
       w.axis_u = normalized(r.vec3("axis_u"));
       w.half_u = r.number("half_u");
       w.half_v = r.number("half_v");
+      w.tilts = r.boolean("tilts", false);
     }
     scene.walls.push_back(w);
   }

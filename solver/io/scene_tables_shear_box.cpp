@@ -10,7 +10,7 @@ void read_shear_box(const Reader& root, Scene& scene) {
                       {"length", "width", "split_height", "gap", "wall_material", "insert_material", "normal_stress",
                        "shear_speed", "inertial_number", "shear_displacement", "loading",
                        "platen_mass", "servo_gain", "servo_max_speed", "servo_integral_time",
-                       "upper_half", "upper_half_weight", "settle_time", "consolidate_time",
+                       "upper_half", "upper_half_weight", "cap", "settle_time", "consolidate_time",
                        "rows", "specimen"});
   ShearBox b;
   b.length = r.number("length", b.length);
@@ -30,6 +30,7 @@ void read_shear_box(const Reader& root, Scene& scene) {
   b.servo_integral_time = r.number("servo_integral_time", b.servo_integral_time);
   b.upper_half = r.choice("upper_half", ShearBox::UpperHalf::Fixed);
   b.upper_half_weight = r.number("upper_half_weight", b.upper_half_weight);
+  b.cap = r.choice("cap", ShearBox::Cap::Held);
   b.settle_time = r.number("settle_time", b.settle_time);
   b.consolidate_time = r.number("consolidate_time", b.consolidate_time);
   const std::int64_t rows = r.optional_integer("rows").value_or(b.rows);
@@ -66,6 +67,7 @@ void write_shear_box(TableWriter& w) {
     w.text("upper_half", choice_name(b.upper_half));
     w.line("upper_half_weight", b.upper_half_weight);
   }
+  if (b.cap != ShearBox::Cap::Held) w.text("cap", choice_name(b.cap));
   w.line("settle_time", b.settle_time);
   w.line("consolidate_time", b.consolidate_time);
   w.line("rows", std::to_string(b.rows));

@@ -179,6 +179,7 @@ class Writer {
       line("axis_u", w.axis_u);
       line("half_u", w.half_u);
       line("half_v", w.half_v);
+      if (w.tilts) line("tilts", "true");
     }
     if (!is_default_zero(w.velocity)) line("velocity", w.velocity);
     if (w.servo.enabled && w.servo.mass > 0)

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <numbers>
 #include <sstream>
 
 #include "app/experiment/shear_box/shear_plots.h"
@@ -25,7 +26,7 @@ std::string csv_header() {
          "max_dilatancy_angle_deg,max_dilatancy_dynamic,dynamic_events,taylor_min_mu,"
          "wall_load_percent,peak_friction_angle_plane_deg,residual_friction_angle_plane_deg,"
          "max_inertial_number,sigma_band_min_percent,sigma_band_max_percent,sigma_rms_percent,"
-         "valid,start_tau_over_sigma,beads,upper_half_rise_mm,steps,wall_seconds\n";
+         "valid,start_tau_over_sigma,beads,upper_half_rise_mm,cap_tilt_max_deg,steps,wall_seconds\n";
 }
 
 const char* yes_no(bool b) { return b ? "yes" : "no"; }
@@ -47,7 +48,8 @@ std::string csv_row(const CampaignEntry& e) {
     << fmt("%.4g", s.max_inertial_number) << ',' << fmt("%.3f", 100 * s.sigma_band_lo) << ','
     << fmt("%.3f", 100 * s.sigma_band_hi) << ',' << fmt("%.3f", 100 * s.sigma_rms) << ','
     << yes_no(s.valid) << ',' << fmt("%.4f", s.start_ratio) << ',' << e.beads << ','
-    << fmt("%.4g", s.upper_half_rise * 1e3) << ',' << (e.rows.empty() ? 0 : e.rows.back().step)
+    << fmt("%.4g", s.upper_half_rise * 1e3) << ',' << fmt("%.4g", s.cap_tilt_max * 180 / std::numbers::pi)
+    << ',' << (e.rows.empty() ? 0 : e.rows.back().step)
     << ',' << fmt("%.1f", s.wall_seconds) << '\n';  // the wall time last (tests drop it)
   return o.str();
 }

@@ -103,16 +103,17 @@ std::string shear_rows_csv(const std::vector<ShearRow>& rows) {
   std::string out =
       "time_s,step,displacement_mm,shear_force_N,shear_force_upper_N,tau_kPa,tau_corrected_kPa,"
       "normal_force_N,sigma_kPa,dilation_mm,tau_over_sigma,friction_angle_deg,coordination,"
-      "kinetic_energy_J,inertial_number,outside,sigma_target_kPa,sigma_plane_kPa\n";
+      "kinetic_energy_J,inertial_number,outside,sigma_target_kPa,sigma_plane_kPa,cap_tilt_deg\n";
   char buf[512];
   for (const ShearRow& r : rows) {
     std::snprintf(buf, sizeof buf,
-                  "%.9g,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%.9g,%.9g\n",
+                  "%.9g,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%.9g,%.9g,"
+                  "%.6g\n",
                   r.time, static_cast<long long>(r.step), r.displacement * 1e3, r.shear_force,
                   r.shear_force_upper, r.tau * 1e-3, r.tau_corrected * 1e-3, r.normal_force,
                   r.sigma * 1e-3, r.dilation * 1e3, r.sigma > 0 ? r.tau / r.sigma : 0,
                   r.friction_angle, r.coordination, r.kinetic_energy, r.inertial_number,
-                  r.outside, r.sigma_target * 1e-3, r.sigma_plane * 1e-3);
+                  r.outside, r.sigma_target * 1e-3, r.sigma_plane * 1e-3, r.cap_tilt * kRad);
     out += buf;
   }
   return out;
@@ -291,6 +292,7 @@ void analyse_shear_rows(const std::vector<ShearRow>& rows, ShearSummary& out) {
   s.platen_mass = out.platen_mass;
   s.upper_half_floating = out.upper_half_floating;
   s.upper_half_rise = out.upper_half_rise;
+  s.cap_tilting = out.cap_tilting;
   s.wall_seconds = out.wall_seconds;
   out = s;
   if (rows.empty()) return;
@@ -304,6 +306,7 @@ void analyse_shear_rows(const std::vector<ShearRow>& rows, ShearSummary& out) {
     s.max_tau = std::max(s.max_tau, r.tau);
     s.max_inertial_number = std::max(s.max_inertial_number, r.inertial_number);
     s.max_outside = std::max(s.max_outside, r.outside);
+    if (std::fabs(r.cap_tilt) > std::fabs(s.cap_tilt_max)) s.cap_tilt_max = r.cap_tilt;
   }
   sigma_band(rows, s);
   s.quasi_static = s.max_inertial_number < kQuasiStaticInertialNumber;
@@ -379,12 +382,12 @@ std::string shear_summary_text(const ShearSummary& s) {
                 "taylor_min_mu = %.4g\ntaylor_min_displacement_mm = %.6g\ndynamic_events = %d\n"
                 "max_dilatancy_dynamic = %s\nwall_load_percent = %.3f\n"
                 "peak_friction_angle_plane_deg = %.4f\nresidual_friction_angle_plane_deg = %.4f\n"
-                "upper_half = %s\nupper_half_rise_mm = %.6g\n",
+                "upper_half = %s\nupper_half_rise_mm = %.6g\ncap = %s\ncap_tilt_max_deg = %.4g\n",
                 s.critical_state ? "yes" : "no", s.residual_from * 1e3, s.residual_dilation_rate,
                 s.taylor_min, s.taylor_min_displacement * 1e3, s.dynamic_events,
                 s.max_dilatancy_dynamic ? "yes" : "no", s.wall_load_percent, s.peak_angle_plane,
                 s.residual_angle_plane, s.upper_half_floating ? "floating" : "fixed",
-                s.upper_half_rise * 1e3);
+                s.upper_half_rise * 1e3, s.cap_tilting ? "tilting" : "held", s.cap_tilt_max * kRad);
   return std::string(buf) + more;
 }
 
@@ -428,10 +431,10 @@ std::vector<ShearRow> parse_shear_rows_csv(const std::string& text) {
   while (std::getline(in, line)) {
     if (line.empty()) continue;
     const auto f = split(line, ',');
-    // 16: written before sigma_target_kPa, 17: before sigma_plane_kPa
-    if (f.size() < 16 || f.size() > 18)
+    // 16: written before sigma_target_kPa, 17: before sigma_plane_kPa, 18: before cap_tilt_deg
+    if (f.size() < 16 || f.size() > 19)
       throw ReadError("shear.csv row " + std::to_string(rows.size() + 1) + " has " +
-                               std::to_string(f.size()) + " fields, expected 18");
+                               std::to_string(f.size()) + " fields, expected 19");
     const std::string where = "shear.csv row " + std::to_string(rows.size() + 1);
     std::vector<double> v;
     for (const std::string& x : f) v.push_back(to_double(x, where));
@@ -453,6 +456,7 @@ std::vector<ShearRow> parse_shear_rows_csv(const std::string& text) {
     r.outside = static_cast<int>(v[15]);
     if (v.size() > 16) r.sigma_target = v[16] * 1e3;
     if (v.size() > 17) r.sigma_plane = v[17] * 1e3;  // else 0: not recorded
+    if (v.size() > 18) r.cap_tilt = v[18] / kRad;
     rows.push_back(r);
   }
   return rows;
@@ -545,7 +549,8 @@ ShearSummary parse_shear_summary(const std::string& text) {
                 {"wall_load_percent", &s.wall_load_percent, 1},
                 {"peak_friction_angle_plane_deg", &s.peak_angle_plane, 1},
                 {"residual_friction_angle_plane_deg", &s.residual_angle_plane, 1},
-                {"upper_half_rise_mm", &s.upper_half_rise, 1e-3}};
+                {"upper_half_rise_mm", &s.upper_half_rise, 1e-3},
+                {"cap_tilt_max_deg", &s.cap_tilt_max, 1 / kRad}};
   int seen = 0;
   for (const auto& f : fields)
     if (const auto it = kv.find(f.key); it != kv.end()) {
@@ -558,6 +563,7 @@ ShearSummary parse_shear_summary(const std::string& text) {
     s.dynamic_events = static_cast<int>(to_double(it->second, it->first));
   s.critical_state = kv.count("critical_state") && kv.at("critical_state") == "yes";
   s.upper_half_floating = kv.count("upper_half") && kv.at("upper_half") == "floating";
+  s.cap_tilting = kv.count("cap") && kv.at("cap") == "tilting";
   s.max_dilatancy_dynamic =
       kv.count("max_dilatancy_dynamic") && kv.at("max_dilatancy_dynamic") == "yes";
   if (seen < 10) throw ReadError("not a shear-test summary (too few keys)");

@@ -44,6 +44,9 @@ struct ShearRow {
   // (0 in rows written before it was recorded). The grains' own
   // weight above the plane is not counted (0.2 kPa in the paper's box).
   double sigma_plane = 0;
+  // rad, the loading cap's tilt about y (+: its +x end up; ShearBox::cap);
+  // 0 for a held cap and in rows written before it was recorded
+  double cap_tilt = 0;
 };
 
 // A test whose normal stress leaves this band (a fraction of its target, in
@@ -109,6 +112,10 @@ struct ShearSummary {
   // it had risen at the last row (m; negative: it sank, at most the gap).
   bool upper_half_floating = false;
   double upper_half_rise = 0;
+  // The loading cap (ShearBox::cap): free to tilt or held, and its largest
+  // tilt over the rows (rad, signed: the row's tilt of largest magnitude).
+  bool cap_tilting = false;
+  double cap_tilt_max = 0;
   int max_outside = 0;
   double settle_time = 0, consolidate_time = 0;  // s spent in each phase
   double wall_seconds = 0;          // filled in by the caller

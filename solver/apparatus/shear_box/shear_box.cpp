@@ -32,6 +32,10 @@ void check_box(const ShearBox& b, const Scene& scene) {
   check_servo_settings(kCheck, b.servo_gain, b.servo_max_speed, b.servo_integral_time);
   kCheck.require(b.upper_half_weight >= 0 && b.upper_half_weight <= 1e4, "upper_half_weight",
                  b.upper_half_weight, "[0, 1e4] N");
+  if (b.cap == ShearBox::Cap::Tilting && b.loading != ShearBox::Loading::DeadWeight)
+    kCheck.fail("conflicting_keys", "cap",
+                "\"tilting\" needs loading = \"dead_weight\" (a servo-held platen has no mass to "
+                "turn); allowed with loading = \"servo\": \"held\"");
   kCheck.require(b.settle_time >= 0 && b.settle_time <= 100, "settle_time", b.settle_time, "[0, 100] s");
   kCheck.require(b.consolidate_time > 0 && b.consolidate_time <= 100, "consolidate_time",
           b.consolidate_time, "(0, 100] s");
@@ -110,6 +114,7 @@ void add_walls(Scene& scene, ShearBox& b, const SpecimenExtent& e) {
   platen.servo.target_force = b.normal_stress * shear_area(b);
   platen.servo.gain = 1;
   platen.servo.max_speed = b.servo_max_speed;
+  platen.tilts = b.cap == ShearBox::Cap::Tilting;  // free while a dead weight (walls.cl)
   w.push_back(platen);
 }
 

@@ -280,6 +280,7 @@ void ShearProgramme::measure_row() {
   for (int w = kUpperX0; w <= kUpperY1; ++w) upper_z += means[f + w].force[2];
   row.sigma_plane = (row.normal_force + upper_z) / area;
   row.dilation = platen[2] - z0_;
+  row.cap_tilt = sim_.wall_tilt(f + kPlaten).angle;
   row.friction_angle = row.sigma > 0 ? std::atan(row.tau / row.sigma) * kRad : 0;
   const Observables o = sim_.observe();
   row.coordination = o.particles > 0 ? o.contacts / o.particles : 0;
@@ -406,6 +407,7 @@ ShearSummary ShearProgramme::summary() const {
   s.platen_mass = platen_mass();
   s.upper_half_floating = box_.upper_half == ShearBox::UpperHalf::Floating;
   s.upper_half_rise = upper_half_rise();
+  s.cap_tilting = box_.cap == ShearBox::Cap::Tilting;
   analyse_shear_rows(rows_, s);
   return s;
 }

@@ -10,4 +10,7 @@ SIMSOLS_CHOICES(ShearBox::Loading, {ShearBox::Loading::DeadWeight, "dead_weight"
 SIMSOLS_CHOICES(ShearBox::UpperHalf, {ShearBox::UpperHalf::Fixed, "fixed"},
                 {ShearBox::UpperHalf::Floating, "floating"})
 
+// [shear_box] cap
+SIMSOLS_CHOICES(ShearBox::Cap, {ShearBox::Cap::Held, "held"}, {ShearBox::Cap::Tilting, "tilting"})
+
 }  // namespace simsols

@@ -48,6 +48,13 @@ struct ShearBox : ApparatusCell {
   enum class UpperHalf : std::uint8_t { Fixed, Floating };
   UpperHalf upper_half = UpperHalf::Fixed;
   double upper_half_weight = 0;    // N the floating half rests with; 0 = counterweighted
+  // The loading cap (the platen) during shear: held level (the paper's
+  // box) or free to tilt in the shear plane (about y through its centre,
+  // as a cap on a ball seat: a rigid plate of platen_mass turned by the
+  // beads' moment). Tilting needs loading = dead_weight; consolidation
+  // holds it level in both.
+  enum class Cap : std::uint8_t { Held, Tilting };
+  Cap cap = Cap::Held;
   double consolidate_time = 0.1;   // s, longest consolidation under the platen
   int rows = 400;                  // output rows over the shear displacement
 };
@@ -65,5 +72,6 @@ enum ShearBoxWall : int {
 // [shear_box] loading's names (choice_table.h).
 template <> std::span<const Named<ShearBox::Loading>> choices();
 template <> std::span<const Named<ShearBox::UpperHalf>> choices();
+template <> std::span<const Named<ShearBox::Cap>> choices();
 
 }  // namespace simsols

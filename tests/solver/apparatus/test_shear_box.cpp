@@ -102,6 +102,22 @@ TEST(ShearBoxScene, FloatingUpperHalfRoundTrips) {
   EXPECT_EQ(to_toml(a), to_toml(b));
 }
 
+TEST(ShearBoxScene, TiltingCapRoundTripsAndNeedsADeadWeight) {
+  const std::string spec = "material = \"glass\"\ndiameter = 6.35e-3\nlayers = 4";
+  const Scene a = parse_scene(box_toml(spec, "cap = \"tilting\""), "a.toml");
+  EXPECT_EQ(a.apparatus_as<ShearBox>()->cap, ShearBox::Cap::Tilting);
+  EXPECT_TRUE(a.walls[a.apparatus_as<ShearBox>()->first_wall + kPlaten].tilts);
+  const Scene b = parse_scene(to_toml(a), "b.toml");
+  EXPECT_EQ(b.apparatus_as<ShearBox>()->cap, ShearBox::Cap::Tilting);
+  EXPECT_EQ(to_toml(a), to_toml(b));
+  const Scene held = parse_scene(box_toml(spec), "c.toml");
+  EXPECT_FALSE(held.walls[held.apparatus_as<ShearBox>()->first_wall + kPlaten].tilts);
+  EXPECT_EQ(to_toml(held).find("cap ="), std::string::npos) << "older scenes stay as they were";
+  expect_scene_error(box_toml(spec, "cap = \"loose\""), "bad_enum", "shear_box.cap");
+  expect_scene_error(box_toml(spec, "cap = \"tilting\"\nloading = \"servo\""), "conflicting_keys",
+                     "shear_box.cap");
+}
+
 TEST(ShearBoxScene, PourPlacesTheSameNumberOfBeadsWithoutOverlap) {
   const Scene s = parse_scene(
       box_toml("method = \"pour\"\nmaterial = \"glass\"\ndiameter = 6.35e-3\nlayers = 4\nseed = 9"),
@@ -456,6 +472,54 @@ TEST(ShearProgramme, FloatingUpperHalfMovesAsOneBodyCarriedByTheBeads) {
   EXPECT_LT(free.spread, 1e-9);
   EXPECT_DOUBLE_EQ(free.reported_rise, free.rise);
   EXPECT_LT(std::fabs(free.group_share), 0.05 * std::fabs(held.group_share));  // 0.0004 of 0.09 seen
+}
+
+// A loading cap free to tilt (ShearBox::cap, walls.cl): while shearing it
+// turns under the beads' moment, which its small inertia keeps near zero
+// (the mean over the shear against the load times the cap's half length);
+// the rows record its tilt and the summary its largest. A held cap stays
+// level in every row.
+struct CapRun {
+  double max_tilt = 0, summary_max = 0, mean_moment = 0, load = 0, half_length = 0;
+};
+
+CapRun run_cap(ShearBox::Cap cap) {
+  Scene s = small_box(160e3, 1.5e-3);
+  ShearBox& b = *s.apparatus_as<ShearBox>();
+  b.cap = cap;
+  s.walls[b.first_wall + kPlaten].tilts = cap == ShearBox::Cap::Tilting;
+  Simulation sim(default_device(), s);
+  ShearProgramme test(sim);
+  const int platen = b.first_wall + kPlaten;
+  CapRun out;
+  int n = 0;
+  while (!test.done()) {
+    if (!test.advance(1 << 20) || test.phase() != ShearPhase::Shear) continue;
+    out.mean_moment += sim.wall_tilt(platen).moment;
+    out.load += sim.wall_reactions()[platen].force[2];
+    ++n;
+  }
+  out.mean_moment /= n;
+  out.load /= n;
+  for (const ShearRow& r : test.rows())
+    if (std::fabs(r.cap_tilt) > std::fabs(out.max_tilt)) out.max_tilt = r.cap_tilt;
+  out.summary_max = test.summary().cap_tilt_max;
+  out.half_length = b.length / 2;
+  return out;
+}
+
+TEST(ShearProgramme, TiltingCapTurnsAndAHeldOneStaysLevel) {
+  const CapRun held = run_cap(ShearBox::Cap::Held);
+  const CapRun free = run_cap(ShearBox::Cap::Tilting);
+  std::printf("[measure] cap: tilting turned %.4f deg at most, mean moment %.3g N m against "
+              "load x half length %.3g N m\n",
+              free.max_tilt * 180 / std::numbers::pi, free.mean_moment, free.load * free.half_length);
+  EXPECT_EQ(held.max_tilt, 0.0);
+  EXPECT_EQ(held.mean_moment, 0.0);
+  EXPECT_GT(std::fabs(free.max_tilt), 1e-5) << "the beads turn a free cap";  // 1.8e-4 rad seen
+  EXPECT_DOUBLE_EQ(free.summary_max, free.max_tilt);
+  // 3.6e-6 of the load x half length seen
+  EXPECT_LT(std::fabs(free.mean_moment), 4e-5 * free.load * free.half_length);
 }
 
 TEST(ShearProgramme, SameTestTwiceGivesTheSameCsv) {

@@ -4,7 +4,12 @@
 #include <cmath>
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
 #include <vector>
+
+#include "solver/io/checkpoint.h"
 
 #include "tests/support/test_support.h"
 
@@ -196,7 +201,7 @@ struct CapRun {
   double tilt = 0, slope = 0, moment = 0, rate = 0;
 };
 
-CapRun run_cap(Precision p, double r_left, double r_right, bool dead_weight) {
+Scene cap_scene(Precision p, double r_left, double r_right, bool dead_weight) {
   Scene s = empty_scene(p, soft(0.5, 0.3, 0.0));
   s.effects.gravity = {0, 0, -9.81};
   const double a = 10e-3, top = 2 * std::max(r_left, r_right);
@@ -213,7 +218,11 @@ CapRun run_cap(Precision p, double r_left, double r_right, bool dead_weight) {
     cap.servo.max_speed = 0.05;
   }
   s.walls = {plane("floor", {0, 0, 0}, {0, 0, 1}), cap};
-  Simulation sim(default_device(), s);
+  return s;
+}
+
+CapRun run_cap(Precision p, double r_left, double r_right, bool dead_weight) {
+  Simulation sim(default_device(), cap_scene(p, r_left, r_right, dead_weight));
   EXPECT_TRUE(sim.model().config().tilt);
   sim.advance(60000);
   CapRun out;
@@ -257,6 +266,23 @@ TEST_P(Walls, HeldCapStaysLevel) {
   EXPECT_EQ(c.tilt, 0.0);
   EXPECT_EQ(c.rate, 0.0);
   EXPECT_EQ(c.moment, 0.0) << "a held cap sums no moment";
+}
+
+// The tilt is state: a checkpoint taken while the cap turns resumes it bit
+// for bit, and the scene it stores keeps the wall's `tilts`.
+TEST_P(Walls, TiltingCapResumesFromACheckpoint) {
+  Simulation a(default_device(), cap_scene(GetParam(), 5e-3, 4e-3, true));
+  a.advance(4000);
+  const std::string path = (std::filesystem::temp_directory_path() / "simsols_cap.bin").string();
+  save_checkpoint(a, path);
+  a.advance(2000);
+  std::unique_ptr<Simulation> b = load_checkpoint(default_device(), path);
+  b->advance(2000);
+  EXPECT_NE(a.wall_tilt(1).rate, 0.0) << "checkpointed while turning";
+  EXPECT_EQ(a.hash(), b->hash());
+  EXPECT_EQ(a.wall_tilt(1).angle, b->wall_tilt(1).angle);
+  EXPECT_EQ(a.wall_tilt(1).rate, b->wall_tilt(1).rate);
+  std::filesystem::remove(path);
 }
 
 SIMSOLS_BOTH_PRECISIONS(Walls);
