@@ -200,6 +200,10 @@ void ShearProgramme::enter(ShearPhase p) {
       row_steps_ = std::max<std::int64_t>(1, shear_steps_ / box_.rows);
       shear_steps_ = row_steps_ * box_.rows;
       measure_row();  // at rest: the means over the last equilibrium check
+      if (dead_weight() && !loaded_) {  // consolidation ended on its time cap before the
+        loaded_ = true;                 // servo handed over: the hanger takes the load now,
+        apply_servo(true);              // so a dead-weight box always shears under its weight
+      }
       move_lower_half(speed_);
       float_upper_half(true);
       next_row_ = now + row_steps_;
