@@ -77,7 +77,7 @@ void Simulation::set_servo(int wall, const WallServo& c) {
   if (state_->tilting) {  // free to turn while a dead weight, else held where it is
     const double inv_j = tilt_inverse_inertia(model_->scene().walls[size_t(wall)], c);
     const auto t = read_real4(*model_, state_->wall_turn, wall);
-    write_real4(&State::wall_turn, wall, t[0], inv_j > 0 ? t[1] : 0, inv_j, t[3]);
+    write_real4(&State::wall_turn, wall, t[0], inv_j > 0 ? t[1] : 0, inv_j, inv_j > 0 ? t[3] : 0);
   }
   if (!c.enabled) {
     set_wall_velocity(wall, {0, 0, 0});

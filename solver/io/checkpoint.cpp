@@ -248,12 +248,16 @@ std::unique_ptr<Simulation> load_checkpoint(std::shared_ptr<Device> device, cons
   const int up = r.pod<std::int32_t>();
   const int lo = r.pod<std::int32_t>();
   const int walls = r.pod<std::int32_t>();
-  const std::int64_t most = std::int64_t(s.n) * 256;  // MAX_CAP in neighbors.cl
+  // slots come in whole slices (neighbors.cl), so a scene of a few
+  // particles on one particle per work item has a slice's worth
+  const std::int64_t padded = std::int64_t(s.slices) * sim->model().config().slice;
+  const std::int64_t most = padded * 256;  // MAX_CAP in neighbors.cl
   if (up < 0 || lo < 0 || up > most || lo > most)
     r.fail("neighbour-list capacity " + std::to_string(up) + ", " + std::to_string(lo) +
-           " out of range (0 to 256 per particle)");
-  if (walls < 0 || walls > std::int64_t(s.n) * 32)
-    r.fail("wall-slot capacity " + std::to_string(walls) + " out of range (0 to 32 per particle)");
+           " out of range (0 to 256 per particle, particles counted in whole slices)");
+  if (walls < 0 || walls > padded * 32)
+    r.fail("wall-slot capacity " + std::to_string(walls) +
+           " out of range (0 to 32 per particle, particles counted in whole slices)");
   s.resize_slots(sim->model(), up, lo, walls);
   read_buffers(r, *sim, version);
   derive_state(sim->model(), sim->state());

@@ -84,18 +84,18 @@ INLINE lane wall_gap(__global const real* walls, __global const real* wall_point
   const v3 d = separation(pi, wp);  // centre -> wall reference point
   *to_ref = d;
   real3 n = (real3)(walls[rec + 4], walls[rec + 5], walls[rec + 6]);
-  real3 u = (real3)(walls[rec + 8], walls[rec + 9], walls[rec + 10]);
-  const real3 v = (real3)(walls[rec + 12], walls[rec + 13], walls[rec + 14]);
+  real3 axis_u = (real3)(walls[rec + 8], walls[rec + 9], walls[rec + 10]);
+  const real3 axis_v = (real3)(walls[rec + 12], walls[rec + 13], walls[rec + 14]);
 #ifdef HAS_TILT
-  tilt_axes(wall_turn[4 * w], v, &n, &u);
+  tilt_axes(wall_turn[4 * w], axis_v, &n, &axis_u);
 #endif
   const v3 nrm = V3((lane)n.x, (lane)n.y, (lane)n.z);
   if (walls[rec + 3] == (real)0) {
     const lane s = -v_dot(d, nrm);  // signed distance of the centre; behind the plane: ignored
     *to_wall = v_sel(s > -ri, v_mul(-s, nrm), V3(2 * ri, (lane)0, (lane)0));
   } else {
-    const v3 au = V3((lane)u.x, (lane)u.y, (lane)u.z);
-    const v3 av = V3((lane)v.x, (lane)v.y, (lane)v.z);
+    const v3 au = V3((lane)axis_u.x, (lane)axis_u.y, (lane)axis_u.z);
+    const v3 av = V3((lane)axis_v.x, (lane)axis_v.y, (lane)axis_v.z);
     const real hu = walls[rec + 11], hv = walls[rec + 15];
     const lane u = clamp(-v_dot(d, au), -hu, hu);
     const lane v = clamp(-v_dot(d, av), -hv, hv);
@@ -432,17 +432,19 @@ INLINE void advance_wall(int w, __global real4* wall_point, __global float4* wal
 
 #ifdef HAS_TILT
 // The moment about axis_v through wall w's reference point of the force f
-// a particle at x exerts on the wall. The contact point lies on the wall's
-// plane, so its arm is x's offset projected onto the plane (a force along
-// the plane then has no moment about an axis in it).
+// a particle at x exerts on the wall. The contact point is the plate's
+// point closest to x (wall_gap): x's offset projected onto the plane and
+// clamped to the rectangle, so a force along the plane has no moment about
+// an axis in it, and a bead past an edge pushes at the edge.
 INLINE real wall_moment(int w, real3 x, real3 f, __global const real4* walls,
                         __global const real4* wall_point, __global const real4* wall_turn) {
   real3 n = walls[WALL_RECORD * w + 1].xyz, au = walls[WALL_RECORD * w + 2].xyz;
-  const real3 av = walls[WALL_RECORD * w + 3].xyz;
-  tilt_axes(wall_turn[w].x, av, &n, &au);
-  real3 arm = x - wall_point[w].xyz;
-  arm -= dot(arm, n) * n;
-  return dot(cross(arm, f), av);
+  const real4 av = walls[WALL_RECORD * w + 3];
+  tilt_axes(wall_turn[w].x, av.xyz, &n, &au);
+  const real3 d = x - wall_point[w].xyz;
+  const real u = clamp(dot(d, au), -walls[WALL_RECORD * w + 2].w, walls[WALL_RECORD * w + 2].w);
+  const real v = clamp(dot(d, av.xyz), -av.w, av.w);
+  return dot(cross(u * au + v * av.xyz, f), av.xyz);
 }
 #endif
 
@@ -570,21 +572,17 @@ INLINE void servo_wall(int w, __global const real4* walls, __global const real4*
   wall_vel[w] = (real4)(v * n, 0);
 }
 
-// The walls' whole step, by one work item: the forces on them (with
-// `reduce` set, the chunk sums of reduce_walls, computed here; else
-// reduce_walls ran before), every wall's servo step, then every wall
-// (a group's members at their leader's velocity)
-// advances (advance_wall), controlled or not. CPUs run it at the end of
-// finish_particles (integrate.cl; one pass over the masks costs less than
-// a launch), GPUs as servo_walls after reduce_walls, in parallel.
 #ifdef HAS_TILT
 // A wall free to turn (wall_turn[w].z = 1/J > 0) as a rigid body about its
 // axis_v: J dspin/dt = moment, the same symplectic Euler step as the
-// particles'; its edges' travel (spin dt half_u, or half_v) counts towards
-// the list flags with its point's (advance_wall).
+// particles'. Turning about axis_v moves the plate's points along its normal
+// by up to spin dt half_u: that travel counts towards the list flags with
+// its point's (advance_wall, next), and the edge's speed with the point's
+// towards the host's check interval.
 INLINE void turn_wall(int w, __global const real4* walls, __global const real4* partial,
-                      __global real4* wall_turn, __global real4* wall_point, real dt, int groups,
-                      int nwalls) {
+                      __global real4* wall_turn, __global real4* wall_point,
+                      __global const real4* wall_vel, __global volatile int* flags, real dt,
+                      int groups, int nwalls) {
   real4 t = wall_turn[w];
   if (t.z == (real)0) return;
   real moment = 0;
@@ -593,10 +591,21 @@ INLINE void turn_wall(int w, __global const real4* walls, __global const real4* 
   t.x += dt * t.y;
   t.w = moment;
   wall_turn[w] = t;
-  const real reach = fmax(walls[WALL_RECORD * w + 2].w, walls[WALL_RECORD * w + 3].w);
-  wall_point[w].w += fabs(t.y) * dt * reach;
+  const real edge = fabs(t.y) * walls[WALL_RECORD * w + 2].w;  // half_u's speed
+  wall_point[w].w += edge * dt;
+  const real speed = length(wall_vel[w].xyz) + edge;
+  const int v2 = as_int((float)(speed * speed));
+  if (v2 > flags[FLAG_MAX_SPEED2]) atomic_max(&flags[FLAG_MAX_SPEED2], v2);
 }
 #endif
+
+// The walls' whole step, by one work item: the forces on them (with
+// `reduce` set, the chunk sums of reduce_walls, computed here; else
+// reduce_walls ran before), every wall's servo step, then every wall
+// (a group's members at their leader's velocity)
+// advances (advance_wall), controlled or not. CPUs run it at the end of
+// finish_particles (integrate.cl; one pass over the masks costs less than
+// a launch), GPUs as servo_walls after reduce_walls, in parallel.
 
 INLINE void walls_step(__global const real4* walls, __global const real4* servo,
                        __global const int* wall_near, __global const uint* wall_off,
@@ -613,7 +622,7 @@ INLINE void walls_step(__global const real4* walls, __global const real4* servo,
     servo_wall(w, walls, servo, partial, wall_vel, reading, mean, wall_point, dt, groups, nwalls);
 #ifdef HAS_TILT
   for (int w = 0; w < nwalls; ++w)
-    turn_wall(w, walls, partial, wall_turn, wall_point, dt, groups, nwalls);
+    turn_wall(w, walls, partial, wall_turn, wall_point, wall_vel, flags, dt, groups, nwalls);
 #endif
   for (int w = 0; w < nwalls; ++w) {
     const int leader = (int)servo[2 * w + 1].z - 1;
