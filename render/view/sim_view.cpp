@@ -149,13 +149,10 @@ FrameGeometry SimulationView::geometry() {
       const glm::dvec3 p = to_glm(points[i]) - origin, n = to_glm(w.normal);
       WallQuad q;
       if (w.shape == WallShape::Rectangle) {
-        const glm::dvec3 axis_v = glm::cross(n, to_glm(w.axis_u));
-        glm::dvec3 axis_u = to_glm(w.axis_u);
-        if (w.tilts) {  // turned about axis_v as it stands (walls.cl, tilt_axes)
-          const double t = sim_.wall_tilt(static_cast<int>(i)).angle;
-          axis_u = std::cos(t) * axis_u + std::sin(t) * glm::cross(axis_v, axis_u);
-        }
-        glm::dvec3 c = p, u = axis_u * w.half_u, v = axis_v * w.half_v;
+        // a tilting wall (a turned cap) as it stands
+        const Wall now = w.tilts ? tilted_wall(w, sim_.wall_tilt(static_cast<int>(i)).angle) : w;
+        const glm::dvec3 axis_u = to_glm(now.axis_u);
+        glm::dvec3 c = p, u = axis_u * w.half_u, v = glm::cross(to_glm(now.normal), axis_u) * w.half_v;
         clip_extent(c, u, clip_lo_, clip_hi_);
         clip_extent(c, v, clip_lo_, clip_hi_);
         q.centre = glm::vec3(c);

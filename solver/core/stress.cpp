@@ -22,6 +22,9 @@ ContactSample sample_contacts(Simulation& sim) {
   s.beads = sim.snapshot();
   s.contacts = sim.contacts();
   s.wall_points = wall_points(sim.model(), sim.state());
+  s.walls = sim.scene().walls;
+  for (size_t w = 0; w < s.walls.size(); ++w)
+    if (s.walls[w].tilts) s.walls[w] = tilted_wall(s.walls[w], sim.wall_tilt(int(w)).angle);
   s.body_centre = s.beads.position;
   const std::vector<Particle>& particles = sim.scene().particles;
   if (!sim.scene().clumps.empty()) {

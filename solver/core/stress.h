@@ -38,6 +38,7 @@ struct ContactSample {
   ParticleSnapshot beads;
   std::vector<ContactForce> contacts;
   std::vector<Vec3> wall_points;
+  std::vector<Wall> walls;  // the scene's walls as they stand (tilted_wall: a turned cap)
   std::vector<Vec3> body_centre;  // per bead: its grain's centroid (a free bead's own centre)
 };
 ContactSample sample_contacts(Simulation& sim);

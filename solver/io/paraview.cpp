@@ -161,8 +161,9 @@ std::string walls_vtp(const ContactSample& sample, const Scene& scene, double ti
     if (c.b < 0 && size_t(-1 - c.b) < n) force[-1 - c.b] = add(force[-1 - c.b], c.force, -1);
   for (size_t w = 0; w < n; ++w) {
     const Vec3 at = w < sample.wall_points.size() ? sample.wall_points[w] : scene.walls[w].point;
-    for (const Vec3& q : wall_quad(scene.walls[w], at, sample.beads)) p.points.push_back(q);
-    normal[w] = scene.walls[w].normal;
+    const Wall& now = w < sample.walls.size() ? sample.walls[w] : scene.walls[w];
+    for (const Vec3& q : wall_quad(now, at, sample.beads)) p.points.push_back(q);
+    normal[w] = now.normal;
     index[w] = static_cast<int>(w);
   }
   p.cell_data = {ints("wall", index), vec3s("normal", normal), vec3s("force", force)};
@@ -184,7 +185,8 @@ std::string contacts_vtp(const ContactSample& sample, const Scene& scene, double
       other = b.position[c.b];
     } else {
       const size_t w = size_t(-1 - c.b);
-      other = wall_closest_point(scene.walls[w], sample.wall_points[w], a);
+      other = wall_closest_point(w < sample.walls.size() ? sample.walls[w] : scene.walls[w],
+                                 sample.wall_points[w], a);
     }
     Vec3 n = unit(add(other, a, -1));  // from the first bead towards what it touches
     if (dot(n, n) == 0 && c.b < 0) n = add(Vec3{0, 0, 0}, scene.walls[-1 - c.b].normal, -1);

@@ -77,6 +77,16 @@ Vec3 wall_closest_point(const Wall& w, const Vec3& p, const Vec3& x) {
   return {p[0] + a * u[0] + b * v[0], p[1] + a * u[1] + b * v[1], p[2] + a * u[2] + b * v[2]};
 }
 
+Wall tilted_wall(const Wall& w, double tilt) {
+  if (tilt == 0) return w;
+  const Vec3 v = cross(w.normal, w.axis_u);
+  const double c = std::cos(tilt), s = std::sin(tilt);
+  Wall t = w;
+  t.normal = sub(scale(c, w.normal), scale(-s, cross(v, w.normal)));
+  t.axis_u = sub(scale(c, w.axis_u), scale(-s, cross(v, w.axis_u)));
+  return t;
+}
+
 double wall_distance(const Wall& w, const Vec3& p, const Vec3& x) {
   if (w.shape == WallShape::Plane) return dot(sub(x, p), w.normal);
   return norm(sub(x, wall_closest_point(w, p, x)));

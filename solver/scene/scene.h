@@ -163,6 +163,9 @@ struct Wall {
 // solver: the distance to a plane is signed, negative behind it (such a
 // bead is ignored); a rectangle is a two-sided plate (distance >= 0).
 Vec3 wall_closest_point(const Wall& w, const Vec3& point, const Vec3& x);
+// Wall w as it stands at `tilt` rad about its axis_v (Wall::tilts): its
+// normal and axis_u turned as the kernels turn them (walls.cl, tilt_axes).
+Wall tilted_wall(const Wall& w, double tilt);
 double wall_distance(const Wall& w, const Vec3& point, const Vec3& x);
 
 // The contact and body-force model as named slots, each with a `none`

@@ -199,6 +199,7 @@ TEST_P(Walls, RigidGroupHaltsAtItsStop) {
 // weight, so 1/J = 0) stays level on the larger sphere.
 struct CapRun {
   double tilt = 0, slope = 0, moment = 0, rate = 0;
+  double overlap[2] = {0, 0};  // each sphere's overlap with the cap on the host's geometry (m)
 };
 
 Scene cap_scene(Precision p, double r_left, double r_right, bool dead_weight) {
@@ -241,6 +242,10 @@ CapRun run_cap(Precision p, double r_left, double r_right, bool dead_weight) {
   const double dz = q.position[1][2] - q.position[0][2];
   for (int i = 0; i < 20; ++i)
     out.slope = std::atan((dz + (r_right - r_left) / std::cos(out.slope)) / dx);
+  const Wall now = tilted_wall(sim.scene().walls[1], t.angle);
+  const Vec3 at = wall_points(sim.model(), sim.state())[1];
+  for (int k = 0; k < 2; ++k)
+    out.overlap[k] = q.radius[k] - wall_distance(now, at, q.position[k]);
   return out;
 }
 
@@ -258,6 +263,13 @@ TEST_P(Walls, DeadWeightCapTiltsToRestOnBothBeads) {
     EXPECT_NEAR(c.tilt, std::atan((right - left) / a), 3e-3) << "near the bare geometry";
     EXPECT_NEAR(c.tilt, c.slope, 6e-5) << "tangent to both spheres";
     EXPECT_LT(std::fabs(c.moment), 1e-7) << "moment balance about the centre";
+    // the host's tilted_wall is the kernels' cap: each sphere touches it by
+    // its contact's overlap (7.4e-6 m seen), where a cap turned the wrong
+    // way or not at all would miss one by ~2 mm
+    for (double overlap : c.overlap) {
+      EXPECT_GT(overlap, 0.0);
+      EXPECT_LT(overlap, 1e-4);
+    }
   }
 }
 
