@@ -137,16 +137,22 @@ __kernel void pack_beads(__global const real4* pos, __global const real4* pos_lo
 // walls.cl's wall_gap, written for one particle (the wall is known to be
 // touched, so a plane needs no "behind the plane" case).
 INLINE real3 to_wall(__global const real4* walls, __global const real4* wall_point,
-                     __global const real4* wall_point_lo, int w, real4 x, real4 x_lo) {
+                     __global const real4* wall_point_lo, __global const real4* wall_turn, int w,
+                     real4 x, real4 x_lo) {
   const real3 d = diff_pos(wall_point[w], LO_AT(wall_point_lo, w), x, x_lo);
   const real4 head = walls[WALL_RECORD * w];
-  const real3 nrm = walls[WALL_RECORD * w + 1].xyz;
+  real3 nrm = walls[WALL_RECORD * w + 1].xyz;
+  real4 au = walls[WALL_RECORD * w + 2];
+  const real4 av = walls[WALL_RECORD * w + 3];
+#ifdef HAS_TILT
+  real3 axis = au.xyz;  // a tilting wall as it stands
+  tilt_axes(wall_turn[w].x, av.xyz, &nrm, &axis);
+  au.xyz = axis;
+#endif
   if (head.w == (real)0) {
     const real s = -dot(d, nrm);
     return -s * nrm;
   }
-  const real4 au = walls[WALL_RECORD * w + 2];
-  const real4 av = walls[WALL_RECORD * w + 3];
   const real u = clamp(-dot(d, au.xyz), -au.w, au.w);
   const real v = clamp(-dot(d, av.xyz), -av.w, av.w);
   return d + (u * au.xyz + v * av.xyz);
@@ -180,6 +186,7 @@ __kernel void pack_contacts(__global const real4* pos, __global const real4* pos
                             __global const real4* pair_force, __global const real4* walls,
                             __global const real4* wall_point,
                             __global const real4* wall_point_lo,
+                            __global const real4* wall_turn,
                             __global const int* wall_near, __global const uint* wall_off,
                             __global const real4* wall_force, real4 origin, real4 origin_lo,
                             __global float4* segments, volatile __global int* counter,
@@ -213,7 +220,7 @@ __kernel void pack_contacts(__global const real4* pos, __global const real4* pos
       if (!((mask >> w) & 1)) continue;
       const real4 f = wall_force[WALL_SLOT(wall_off, i, mask, w)];
       if (f.w == (real)0) continue;
-      const real3 t = to_wall(walls, wall_point, wall_point_lo, w, x, x_lo);
+      const real3 t = to_wall(walls, wall_point, wall_point_lo, wall_turn, w, x, x_lo);
       const real fn = normal_part(f.xyz, t);
       emit(segments, counter, capacity, a, a + t, fn, 1.0f);
       count += 1;

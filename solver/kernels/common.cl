@@ -91,6 +91,17 @@ typedef float4 real4;
 //   [3] axis_v                           w: half_v
 #define WALL_RECORD 4
 
+#ifdef HAS_TILT
+// A tilting wall's normal n and axis_u turned by t about its axis_v
+// (walls.cl): both are normal to av, so Rodrigues' formula is
+// R x = x cos t + (av x x) sin t. The render packing uses it too.
+INLINE void tilt_axes(real t, real3 av, real3* n, real3* au) {
+  const real c = cos(t), s = sin(t);
+  *n = c * *n + s * cross(av, *n);
+  *au = c * *au + s * cross(av, *au);
+}
+#endif
+
 // Separation vector b - a of two compensated positions.
 INLINE real3 rel_pos(real4 a, real4 b
 #ifdef POS_COMPENSATED

@@ -52,20 +52,13 @@
 #define WALL_STATE_ARG WALL_LO_ARG_ WALL_TURN_ARG_
 #define WALL_STATE_PASS WALL_LO_PASS_ WALL_TURN_PASS_
 
-#ifdef HAS_TILT
-// Tilting walls (a shear box's loading cap free to tilt): a rectangle may
-// turn about its axis_v through its reference point. wall_turn, a real4
-// per wall: (tilt t in rad, its rate in rad/s, 1/J or 0, the beads' moment
-// about axis_v last step in N m); 1/J > 0 lets the wall turn (the host sets
-// it while the wall is a dead weight, J = M (2 half_u)^2 / 12), 0 holds it
-// at its tilt. The record's normal and axis_u are those at t = 0; turned by
-// Rodrigues' formula (both are normal to axis_v): R x = x cos t + (av x x) sin t.
-INLINE void tilt_axes(real t, real3 av, real3* n, real3* au) {
-  const real c = cos(t), s = sin(t);
-  *n = c * *n + s * cross(av, *n);
-  *au = c * *au + s * cross(av, *au);
-}
-#endif
+// Tilting walls (a shear box's loading cap free to tilt, HAS_TILT): a
+// rectangle may turn about its axis_v through its reference point.
+// wall_turn, a real4 per wall: (tilt t in rad, its rate in rad/s, 1/J or 0,
+// the beads' moment about axis_v last step in N m); 1/J > 0 lets the wall
+// turn (the host sets it while the wall is a dead weight, J = M (2 half_u)^2
+// / 12), 0 holds it at its tilt. The record's normal and axis_u are those
+// at t = 0, turned by tilt_axes (common.cl).
 
 // Vector from each lane's centre to the closest point of wall w; returns its
 // squared length (>= r^2 or 0: no contact). to_ref: from the centre to the

@@ -128,6 +128,32 @@ Wall plane(const std::string& name, Vec3 point, Vec3 normal) {
   return w;
 }
 
+Scene tilting_cap_scene(Precision p, double r_left, double r_right, bool dead_weight) {
+  Scene s = empty_scene(p, soft(0.5, 0.3, 0.0));
+  s.effects.gravity = {0, 0, -9.81};
+  const double a = 10e-3, top = 2 * std::max(r_left, r_right);
+  s.particles = {sphere(r_left, {-a, 0, r_left}), sphere(r_right, {a, 0, r_right})};
+  Wall cap;
+  cap.name = "cap";
+  cap.shape = WallShape::Rectangle;
+  cap.point = {0, 0, top + 1e-4};
+  cap.normal = {0, 0, -1};
+  cap.axis_u = {1, 0, 0};
+  cap.half_u = 15e-3;
+  cap.half_v = 5e-3;
+  cap.tilts = true;
+  cap.servo.enabled = true;
+  cap.servo.target_force = 1.0;
+  if (dead_weight) {
+    cap.servo.mass = 0.01;
+  } else {
+    cap.servo.gain = 0.015;
+    cap.servo.max_speed = 0.05;
+  }
+  s.walls = {plane("floor", {0, 0, 0}, {0, 0, 1}), cap};
+  return s;
+}
+
 double mass(const Scene& s, const Particle& p) {
   return s.materials[p.material].density * 4.0 / 3.0 * std::numbers::pi * std::pow(p.radius, 3);
 }

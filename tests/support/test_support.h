@@ -49,6 +49,12 @@ Scene empty_scene(Precision p, const Material& m);
 Particle sphere(double radius, Vec3 position, Vec3 velocity = {}, Vec3 omega = {});
 Wall plane(const std::string& name, Vec3 point, Vec3 normal);
 
+// A cap free to tilt (Wall::tilts) over two spheres of radii r_left and
+// r_right, 20 mm apart on a floor, soft polymer, gravity: a 30 x 10 mm plate
+// (wall 1) just above the taller, loaded with 1 N as a dead weight of
+// 0.01 kg or, without one, by a PI servo (then held level).
+Scene tilting_cap_scene(Precision p, double r_left, double r_right, bool dead_weight);
+
 double mass(const Scene& s, const Particle& p);
 
 // The suite's reduced direct shear specimen: the paper's 6.35 mm glass

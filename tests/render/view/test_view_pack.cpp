@@ -341,6 +341,29 @@ TEST_P(ViewPack, SettledBoxBeadsContactsOriginAndBands) {
     EXPECT_EQ(std::count(layers.values.begin(), layers.values.end(), float(k)), 9) << k;
 }
 
+// A cap that has tilted (Wall::tilts): the segments of its contacts end on
+// the plate as it stands, a contact's overlap from each sphere's surface
+// (where the untilted plate would put them about 1 mm off for the smaller).
+TEST_P(ViewPack, WallSegmentsEndOnATiltedCap) {
+  Simulation sim(default_device(), testing::tilting_cap_scene(GetParam(), 5e-3, 4e-3, true));
+  sim.advance(60000);
+  ASSERT_LT(sim.wall_tilt(1).angle, -0.09);
+  ViewPacker view(sim);
+  const ViewPacker::HostContacts c = view.pack_contacts_host(64);
+  const ParticleSnapshot p = sim.snapshot();
+  int on_cap = 0;
+  for (size_t k = 0; k < c.stats.count; ++k) {
+    const float* s = &c.segments[8 * k];
+    if (s[7] != 1.0f || s[6] + view.origin()[2] < 5e-3) continue;  // the cap's, not the floor's
+    const Vec3 a{s[0] + view.origin()[0], s[1] + view.origin()[1], s[2] + view.origin()[2]};
+    const Vec3 b{s[4] + view.origin()[0], s[5] + view.origin()[1], s[6] + view.origin()[2]};
+    const size_t i = a[0] < 0 ? 0 : 1;
+    EXPECT_NEAR(norm(sub(b, a)), p.radius[i], 1e-4) << "sphere " << i;  // overlap 7e-6 m
+    ++on_cap;
+  }
+  EXPECT_EQ(on_cap, 2);
+}
+
 TEST_P(ViewPack, ReferenceFollowsTheStateOrTheCaller) {
   const Scene scene = cluster_scene(GetParam());
   Simulation sim(default_device(), scene);

@@ -202,28 +202,8 @@ struct CapRun {
   double overlap[2] = {0, 0};  // each sphere's overlap with the cap on the host's geometry (m)
 };
 
-Scene cap_scene(Precision p, double r_left, double r_right, bool dead_weight) {
-  Scene s = empty_scene(p, soft(0.5, 0.3, 0.0));
-  s.effects.gravity = {0, 0, -9.81};
-  const double a = 10e-3, top = 2 * std::max(r_left, r_right);
-  s.particles = {sphere(r_left, {-a, 0, r_left}), sphere(r_right, {a, 0, r_right})};
-  Wall cap = rectangle({0, 0, top + 1e-4}, 15e-3, 5e-3);
-  cap.normal = {0, 0, -1};
-  cap.tilts = true;
-  cap.servo.enabled = true;
-  cap.servo.target_force = 1.0;
-  if (dead_weight) {
-    cap.servo.mass = 0.01;
-  } else {
-    cap.servo.gain = 0.015;
-    cap.servo.max_speed = 0.05;
-  }
-  s.walls = {plane("floor", {0, 0, 0}, {0, 0, 1}), cap};
-  return s;
-}
-
 CapRun run_cap(Precision p, double r_left, double r_right, bool dead_weight) {
-  Simulation sim(default_device(), cap_scene(p, r_left, r_right, dead_weight));
+  Simulation sim(default_device(), tilting_cap_scene(p, r_left, r_right, dead_weight));
   EXPECT_TRUE(sim.model().config().tilt);
   sim.advance(60000);
   CapRun out;
@@ -283,7 +263,7 @@ TEST_P(Walls, HeldCapStaysLevel) {
 // The tilt is state: a checkpoint taken while the cap turns resumes it bit
 // for bit, and the scene it stores keeps the wall's `tilts`.
 TEST_P(Walls, TiltingCapResumesFromACheckpoint) {
-  Simulation a(default_device(), cap_scene(GetParam(), 5e-3, 4e-3, true));
+  Simulation a(default_device(), tilting_cap_scene(GetParam(), 5e-3, 4e-3, true));
   a.advance(4000);
   const std::string path = (std::filesystem::temp_directory_path() / "simsols_cap.bin").string();
   save_checkpoint(a, path);
