@@ -34,6 +34,7 @@ std::string KernelConfig::build_options() const {
   if (servo_in_finish()) o += " -DSERVO_IN_FINISH";
   if (prefetch_shares) o += " -DPREFETCH_SHARES";
   if (clumps) o += " -DHAS_CLUMPS";
+  if (membrane) o += " -DHAS_MEMBRANE";
   if (periodic) o += " -DHAS_PERIODIC";
   o += " -DSLICE=" + std::to_string(slice);
   o += " -DLANES=" + std::to_string(lanes);
@@ -75,6 +76,7 @@ void check_periodic(const Scene& scene, const KernelConfig& c) {
     refuse("numerics.precision", "a periodic cell runs in double precision (\"double\")");
   if (c.walls) refuse("walls", "a periodic cell has no walls");
   if (c.clumps) refuse("clumps", "clumps in a periodic cell are not supported");
+  if (c.membrane) refuse("membrane", "a periodic cell has no membrane");
   if (c.gravity) refuse("effects.gravity", "a periodic cell has no gravity (set it to [0, 0, 0])");
 }
 
@@ -126,6 +128,7 @@ KernelConfig make_kernel_config(const Scene& scene, const Device& device) {
     c.tilt = c.tilt || w.tilts;
   }
   c.clumps = !scene.clumps.empty() || (pending && scene.specimen() && scene.specimen()->grain >= 0);
+  c.membrane = scene.membrane.count() > 0;
   c.periodic = scene.periodic.has_value();
   if (c.periodic) check_periodic(scene, c);
   // CPUs: SIMD lanes, 8 floats or 4 doubles per work item (256-bit

@@ -38,6 +38,7 @@ struct KernelConfig {
   bool servo = false;  // some wall is servo-controlled
   bool tilt = false;   // some wall may turn (Wall::tilts; walls.cl, HAS_TILT)
   bool clumps = false;  // the scene has clumps (clumps.cl)
+  bool membrane = false;  // the scene has a membrane of bonded beads (membrane.cl)
   bool periodic = false;  // a periodic cell (periodic.cl)
   int lanes = 1;                   // particles per work item in the contact kernels
   int slice = 32;                  // particles per slice of the neighbour lists (neighbors.cl)

@@ -44,6 +44,7 @@ Model::Model(std::shared_ptr<Device> device, const Scene& scene)
   }
   if (config().servo) kernels_.servo_walls = p.kernel("servo_walls");
   if (config().clumps) kernels_.move_clumps = p.kernel("move_clumps");
+  if (config().membrane) kernels_.membrane_forces = p.kernel("membrane_forces");
 
   rayleigh_dt_ = rayleigh_time_step(scene_);
   dt_ = effective_time_step(scene_);
@@ -98,7 +99,11 @@ void Model::make_clumps() {
   for (const Grain& g : s.grains) grain_bodies_.push_back(grain_body(g));
   const bool dbl = config().double_precision;
   RealPacker inertia(dbl), offsets(dbl);
-  std::vector<std::int32_t> members, body(s.clumps.empty() ? 1 : n, -1);  // a stand-in entry without clumps
+  // body: each particle's group (common.cl, HAS_GROUPS), a stand-in entry without one
+  const bool groups = !s.clumps.empty() || s.membrane.count() > 0;
+  std::vector<std::int32_t> members, body(groups ? n : 1, -1);
+  for (int k = 0; k < s.membrane.count(); ++k)  // the membrane is the group after the clumps
+    body[size_t(s.membrane.first + k)] = static_cast<std::int32_t>(s.clumps.size());
   std::vector<Vec3> offset(n, Vec3{});
   std::vector<double> body_mass = particle_mass_;  // a free sphere is its own body
   for (size_t c = 0; c < s.clumps.size(); ++c) {

@@ -26,6 +26,7 @@ struct Kernels {
       carry_wall_slots, reset_wall_travel;
   Kernel reduce_observables, reduce_walls, servo_walls;
   Kernel move_clumps;
+  Kernel membrane_forces;
   Kernel wrap_positions;
 };
 

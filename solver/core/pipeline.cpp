@@ -224,6 +224,14 @@ void contact_forces(const Model& m, State& s) {
   launch(m, k.pair_forces, lane_groups(m, s.n));
 }
 
+void membrane_forces(const Model& m, State& s) {
+  if (!m.config().membrane) return;
+  const Kernels& k = m.kernels();
+  set_args(m, k.membrane_forces, arg("pos", s.pos), arg("pos_lo", s.pos_lo), arg("vel", s.vel),
+           arg("membrane", s.membrane), arg("membrane_force", s.membrane_force));
+  launch(m, k.membrane_forces, size_t(s.membrane_beads));
+}
+
 void finish_particles(const Model& m, State& s) {
   const Kernels& k = m.kernels();
   const Effects& e = m.scene().effects;
@@ -240,6 +248,7 @@ void finish_particles(const Model& m, State& s) {
            arg("wall_touch", s.wall_touch), arg("wall_near", s.wall_near), arg("servo", s.servo),
            arg("wall_partial", s.wall_partial), arg("wall_reaction", s.wall_reaction),
            arg("wall_mean", s.wall_mean), arg("body_offset", m.body_offset_buffer()),
+           arg("membrane", s.membrane), arg("membrane_force", s.membrane_force),
            arg("cell", s.cell), arg("gravity", gravity_arg(m)),
            arg("fluid", fluid_arg(m)), arg("fluid_viscosity", Real{e.fluid_params.viscosity}),
            arg("dt", Real{m.dt()}), arg("rolling_damping", Real{e.rolling_damping}),
@@ -312,6 +321,7 @@ void derive_state(const Model& m, State& s) {
 void step(const Model& m, State& s) {
   detect_contacts(m, s);
   contact_forces(m, s);
+  membrane_forces(m, s);
   finish_particles(m, s);
   move_clumps(m, s);
   move_walls(m, s);

@@ -7,6 +7,8 @@
 //                                               grid.cl, neighbors.cl, walls.cl
 //   contact_forces    particle-particle forces and torques, each pair once
 //                                                                  forces.cl
+//   membrane_forces   per membrane bead: its bonds and the cell pressure;
+//                     returns early without a membrane          membrane.cl
 //   finish_particles  per particle, one launch: the partners' shares
 //                     collected, wall contacts (near walls only), leapfrog
 //                     kick-drift                forces.cl, walls.cl, integrate.cl
@@ -23,9 +25,9 @@
 //                     (host only: the record the kernels read); returns
 //                     early without one          periodic_box.h, periodic.cl
 //
-// step() runs the six in this order: two kernel launches per step on CPUs,
-// three or four on GPUs, one more with clumps (plus a list build now and
-// then).
+// step() runs the seven in this order: two kernel launches per step on CPUs,
+// three or four on GPUs, one more with clumps, one more with a membrane
+// (plus a list build now and then).
 // Stages only enqueue kernels on the device's in-order queue;
 // detect_contacts reads the flags back every few steps (check_interval).
 // Reductions for observables are in observe.h.
@@ -45,6 +47,7 @@ void detect_contacts(const Model& model, State& state);
 // readable, with the lists they were computed on.
 void request_rebuild(const Model& model, State& state);
 void contact_forces(const Model& model, State& state);
+void membrane_forces(const Model& model, State& state);
 void finish_particles(const Model& model, State& state);
 void move_clumps(const Model& model, State& state);
 void move_walls(const Model& model, State& state);

@@ -1,6 +1,7 @@
 #include "solver/core/simulation.h"
 
 #include <array>
+#include <cmath>
 #include <stdexcept>
 #include <vector>
 
@@ -152,6 +153,56 @@ void Simulation::nudge_particle(size_t slot, const Vec3& dx) {
     guard_->write(&State::pos_lo, slot * sizeof fresh, fresh, sizeof fresh);
   }
   write_real4(&State::pos, slot, at[0], at[1], at[2], p[3]);
+}
+
+void Simulation::set_membrane(const MembraneSetting& m) {
+  const Membrane& mem = model_->scene().membrane;
+  if (mem.count() == 0) throw std::logic_error("set_membrane: the scene has no membrane");
+  // a bond's dashpot: the fraction of critical for the reduced mass m/2
+  const double mass = model_->scene().mass(model_->scene().particles[size_t(mem.first)]);
+  const auto dashpot = [&](double k) { return 2 * mem.damping * std::sqrt(k * mass / 2); };
+  write_real4(&State::membrane, 0, m.pressure, m.held ? 1 : 0, m.k_hoop, m.k_axial);
+  write_real4(&State::membrane, 1, m.rest_hoop, m.rest_axial, dashpot(m.k_hoop), dashpot(m.k_axial));
+}
+
+Simulation::MembraneSetting Simulation::membrane_setting() {
+  if (model_->scene().membrane.count() == 0)
+    throw std::logic_error("membrane_setting: the scene has no membrane");
+  guard_->before_reading();
+  const auto a = read_real4(*model_, state_->membrane, 0);
+  const auto b = read_real4(*model_, state_->membrane, 1);
+  return {a[0], a[1] != 0, b[0], b[1], a[2], a[3]};
+}
+
+void Simulation::place_particles(size_t first, const std::vector<Vec3>& at) {
+  const size_t n = static_cast<size_t>(model_->particles());
+  if (first > n || at.size() > n - first)
+    throw std::out_of_range("place_particles: particles " + std::to_string(first) + " to " +
+                            std::to_string(first + at.size()) + " do not all exist");
+  if (at.empty()) return;
+  guard_->before_reading();
+  const size_t m = at.size();
+  const bool dbl = model_->config().double_precision;
+  std::vector<double> pos = read_reals(*model_, state_->pos, 4 * (first + m));
+  std::vector<double> vel = read_reals(*model_, state_->vel, 4 * (first + m));
+  std::vector<double> omega = read_reals(*model_, state_->omega, 4 * (first + m));
+  RealPacker p(dbl), v(dbl), w(dbl);
+  std::vector<float> lo;
+  const Vec3& o = model_->origin();
+  for (size_t k = 0; k < m; ++k) {
+    const size_t i = first + k;
+    const double rel[3] = {at[k][0] - o[0], at[k][1] - o[1], at[k][2] - o[2]};
+    p.put4(rel[0], rel[1], rel[2], pos[4 * i + 3]);
+    v.put4(0, 0, 0, vel[4 * i + 3]);      // w: the mass
+    w.put4(0, 0, 0, omega[4 * i + 3]);    // w: the material
+    for (double x : rel) lo.push_back(float_remainder(x));
+    lo.push_back(0);
+  }
+  guard_->write(&State::pos, first * p.size() / m, p.data(), p.size());
+  guard_->write(&State::vel, first * v.size() / m, v.data(), v.size());
+  guard_->write(&State::omega, first * w.size() / m, w.data(), w.size());
+  if (!dbl) guard_->write(&State::pos_lo, first * 4 * sizeof(float), lo.data(), lo.size() * sizeof(float));
+  guard_->rebuild_lists();
 }
 
 void Simulation::scale_radii(double factor) {

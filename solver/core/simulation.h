@@ -68,6 +68,22 @@ class Simulation {
   void override_friction(const std::optional<Model::FrictionOverride>& friction) {
     model_->override_friction(friction);
   }
+  // The membrane's setting (scene.h, Membrane; membrane.cl): the cell
+  // pressure (Pa, inwards), whether every bead is held, and each
+  // direction's bond rest length (m) and stiffness (N/m); the dashpots
+  // follow from Membrane::damping. Throws std::logic_error without one.
+  struct MembraneSetting {
+    double pressure = 0;
+    bool held = true;
+    double rest_hoop = 0, rest_axial = 0;  // m
+    double k_hoop = 0, k_axial = 0;        // N/m
+  };
+  void set_membrane(const MembraneSetting& setting);
+  MembraneSetting membrane_setting();
+  // Puts particles first, first + 1, ... at `positions` (absolute), at rest,
+  // and rebuilds the lists before the next step (a membrane wrapped about a
+  // specimen). Throws std::out_of_range past the last particle.
+  void place_particles(size_t first, const std::vector<Vec3>& positions);
   // Moves the particle in state slot `slot` by dx at once (the accuracy
   // study's round-off twin at the start of shearing).
   void nudge_particle(size_t slot, const Vec3& dx);

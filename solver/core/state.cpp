@@ -59,6 +59,7 @@ State::State(const Model& model) {
   make_step_scratch(model);
   make_clumps(model);
   make_cell(model);
+  make_membrane(model);
 }
 
 void State::make_cell(const Model& model) {
@@ -70,6 +71,18 @@ void State::make_cell(const Model& model) {
   cell_now.since_build = identity3();
   cell_now.corner = sub(box->corner, model.origin());
   write_cell(model, *this);
+}
+
+void State::make_membrane(const Model& model) {
+  const Membrane& m = model.scene().membrane;
+  membrane_beads = m.count();
+  RealPacker r(model.config().double_precision);
+  // held, no pressure until the apparatus sets them
+  r.put4(0, 1, m.stiffness, m.stiffness);
+  r.put4(0, 0, 0, 0);
+  r.put4(m.first, m.rows, m.cols, m.platen_wall);
+  membrane = make(model.device(), r.bytes().size(), r.data());
+  membrane_force = make(model.device(), std::max(1, membrane_beads) * 4 * model.real_size());
 }
 
 void State::make_clumps(const Model& model) {
@@ -277,7 +290,9 @@ std::vector<std::pair<std::string, const Buffer*>> State::all_buffers() const {
           {"clump_quat", &clump_quat},
           {"clump_vel", &clump_vel},
           {"clump_mom", &clump_mom},
-          {"cell", &cell}};
+          {"cell", &cell},
+          {"membrane", &membrane},
+          {"membrane_force", &membrane_force}};
 }
 
 size_t State::device_bytes() const {
@@ -300,6 +315,7 @@ std::vector<std::pair<std::string, Buffer*>> State::dynamic_buffers() {
           {"flags", &flags}};
   if (cell_now.h[0] != 0) all.emplace_back("cell", &cell);  // periodic scenes only
   if (tilting) all.emplace_back("wall_turn", &wall_turn);  // scenes with a wall that may tilt
+  if (membrane_beads > 0) all.emplace_back("membrane", &membrane);  // scenes with a membrane
   if (clumps > 0)  // scenes without clumps keep their checkpoints' buffer list
     for (auto [name, b] : std::initializer_list<std::pair<std::string, Buffer*>>{
              {"clump_pos", &clump_pos}, {"clump_pos_lo", &clump_pos_lo},

@@ -84,6 +84,12 @@ class State {
   // step in N m), walls.cl; zeros and unread without such a wall
   Buffer wall_turn;
   bool tilting = false;  // the kernels have tilting walls (wall_turn is state)
+  // a membrane (scene.h, Membrane; membrane.cl): its record of three real4
+  // (pressure, held, stiffness, rest lengths, dashpots, lattice), set at run
+  // time (Simulation::set_membrane), state; and each bead's bond and
+  // pressure force of this step (scratch). Stand-ins without a membrane.
+  Buffer membrane, membrane_force;
+  int membrane_beads = 0;
   // flags: FLAG_SLOTS ints, their slots named in solver/kernels/layout.h
   // (list rebuild needed, longest list asked for, max |v|^2 since the last
   // check, late, the runaway mark of guard.h).
@@ -192,6 +198,7 @@ class State {
   void make_clumps(const Model& model);
   // The periodic cell's record from the scene's (zeros without one).
   void make_cell(const Model& model);
+  void make_membrane(const Model& model);
 };
 
 // Slot k of particle i's list given its slice offsets: SLOT in common.cl.

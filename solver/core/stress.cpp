@@ -62,4 +62,49 @@ Tensor3 love_weber_slab(const ContactSample& sample, const std::vector<Wall>& wa
   return s;
 }
 
+Tensor3 love_weber_inside(const ContactSample& sample, size_t inside, double volume) {
+  const ParticleSnapshot& snap = sample.beads;
+  const std::vector<Vec3>& centre = sample.body_centre.empty() ? snap.position : sample.body_centre;
+  Tensor3 s{};
+  const auto add = [&](const Vec3& f, const Vec3& from, const Vec3& to) {
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) s[i][j] -= f[i] * (to[j] - from[j]);
+  };
+  for (const ContactForce& c : sample.contacts) {
+    const size_t a = size_t(c.a);
+    const bool a_in = a < inside, b_in = c.b >= 0 && size_t(c.b) < inside;
+    if (c.b < 0) {
+      if (a_in)
+        add(c.force, centre[a],
+            wall_closest_point(sample.walls[-1 - c.b], sample.wall_points[-1 - c.b], snap.position[a]));
+      continue;
+    }
+    if (!a_in && !b_in) continue;
+    const size_t b = size_t(c.b);
+    if (a_in && b_in) {
+      add(c.force, centre[a], centre[b]);
+      continue;
+    }
+    // one inside, one outside: the force on the inside bead, to the contact point
+    const size_t in = a_in ? a : b, out = a_in ? b : a;
+    const Vec3 f = a_in ? c.force : Vec3{-c.force[0], -c.force[1], -c.force[2]};
+    const double share = snap.radius[in] / (snap.radius[in] + snap.radius[out]);
+    const Vec3& xi = snap.position[in];
+    const Vec3& xo = snap.position[out];
+    add(f, centre[in], {xi[0] + share * (xo[0] - xi[0]), xi[1] + share * (xo[1] - xi[1]),
+                        xi[2] + share * (xo[2] - xi[2])});
+  }
+  for (auto& row : s)
+    for (double& v : row) v /= volume;
+  return s;
+}
+
+ContactSample beads_inside(const ContactSample& sample, size_t inside) {
+  ContactSample out = sample;
+  std::erase_if(out.contacts, [&](const ContactForce& c) {
+    return size_t(c.a) >= inside || (c.b >= 0 && size_t(c.b) >= inside);
+  });
+  return out;
+}
+
 }  // namespace simsols

@@ -48,4 +48,13 @@ Tensor3 love_weber_slab(const ContactSample& sample, const std::vector<Wall>& wa
                         double z_hi, double area);
 Tensor3 love_weber_slab(Simulation& sim, double z_lo, double z_hi, double area);
 
+// The beads [0, inside) of a volume (m^3) wrapped by others (a membrane's
+// beads, past `inside`): a contact with an outside bead is a boundary
+// force at the contact point (on the line of centres, in proportion to
+// the radii), as a wall's is; contacts among outside beads do not count.
+Tensor3 love_weber_inside(const ContactSample& sample, size_t inside, double volume);
+
+// The sample without the beads from `inside` on and their contacts.
+ContactSample beads_inside(const ContactSample& sample, size_t inside);
+
 }  // namespace simsols

@@ -28,6 +28,7 @@ void read_materials(const Reader& root, Scene& scene);     // [[materials]]
 void read_interactions(const Reader& root, Scene& scene);  // [[interactions]]
 void read_particles(const Reader& root, Scene& scene);     // [[particles]]
 void read_walls(const Reader& root, Scene& scene);         // [[walls]]
+void read_membrane(const Reader& root, Scene& scene);      // [membrane]
 // [[grains]] and [[clumps]]: each clump's member spheres appended to the
 // particles (solver/scene/clump.h).
 void read_clumps(const Reader& root, Scene& scene);

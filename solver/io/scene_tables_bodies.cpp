@@ -1,4 +1,5 @@
-// [scene], [[materials]], [[interactions]], [[particles]], [[walls]]: what
+// [scene], [[materials]], [[interactions]], [[particles]], [[walls]],
+// [membrane]: what
 // a scene is made of, read table by table (docs/scene-format.md).
 #include "solver/io/scene_tables.h"
 
@@ -101,6 +102,31 @@ void read_walls(const Reader& root, Scene& scene) {
     }
     scene.walls.push_back(w);
   }
+}
+
+// [membrane]: particles already listed, tied into a membrane (scene.h,
+// Membrane). An apparatus that builds one (triaxial cell = "membrane")
+// writes its table instead.
+void read_membrane(const Reader& root, Scene& scene) {
+  if (!root.has("membrane")) return;
+  Reader r = root.sub("membrane", {"first", "rows", "cols", "stiffness", "damping", "platen_wall"});
+  Membrane& m = scene.membrane;
+  const std::int64_t n = std::ssize(scene.particles);
+  const std::int64_t first = r.integer("first"), rows = r.integer("rows"), cols = r.integer("cols");
+  r.check_range("first", double(first), first >= 0 && first < n, "[0, particles - 1]");
+  r.check_range("rows", double(rows), rows >= 3 && cols >= 3 && rows * cols <= n - first,
+                "[3, ...], with cols >= 3 and rows x cols particles from first on");
+  m.first = int(first);
+  m.rows = int(rows);
+  m.cols = int(cols);
+  m.stiffness = r.number("stiffness");
+  r.check_range("stiffness", m.stiffness, m.stiffness > 0 && m.stiffness < 1e9, "(0, 1e9) N/m");
+  m.damping = r.number("damping", 0.5);
+  r.check_range("damping", m.damping, m.damping >= 0 && m.damping <= 1, "[0, 1] of critical");
+  const std::int64_t platen = r.optional_integer("platen_wall").value_or(-1);
+  r.check_range("platen_wall", double(platen), platen >= -1 && platen < std::ssize(scene.walls),
+                "[-1, walls - 1] (-1: the last row held still)");
+  m.platen_wall = int(platen);
 }
 
 }  // namespace simsols::scene_toml

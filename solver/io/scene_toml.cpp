@@ -22,7 +22,7 @@ using namespace scene_toml;
 // The tables a scene may have: the fixed ones and one per apparatus kind.
 std::vector<std::string> top_level_keys() {
   std::vector<std::string> keys = {"scene", "materials", "interactions", "particles", "generators",
-                                   "grains", "clumps", "walls", "effects", "numerics", "output"};
+                                   "grains", "clumps", "walls", "membrane", "effects", "numerics", "output"};
   for (const ApparatusKind& k : apparatus_kinds()) keys.emplace_back(k.name);
   keys.emplace_back("view");
   return keys;
@@ -88,6 +88,7 @@ class Loader {
     read_generators(r, scene_);
     read_clumps(r, scene_);
     read_walls(r, scene_);
+    read_membrane(r, scene_);
     read_effects(r, scene_);
     if (auto issue = one_apparatus(root)) {
       where.note(scene_, std::move(*issue));

@@ -132,9 +132,15 @@ class Writer {
     write_numerics();
     write_outputs();
     write_view();
-    for (size_t i = 0; i < s_.particles.size(); ++i)
-      if (s_.particles[i].clump < 0) write(s_.particles[i], i);
+    // an apparatus rebuilds its membrane; otherwise its beads are particles
+    const Membrane& m = s_.membrane;
+    const bool built = s_.has_apparatus();
+    for (size_t i = 0; i < s_.particles.size(); ++i) {
+      const bool bead = int(i) >= m.first && int(i) < m.first + m.count();
+      if (s_.particles[i].clump < 0 && !(built && bead)) write(s_.particles[i], i);
+    }
     write_clumps();
+    if (m.count() > 0 && !built) write_membrane();
     return out_.str();
   }
 
@@ -288,6 +294,17 @@ class Writer {
       if (!is_default_zero(c.velocity)) line("velocity", c.velocity);
       if (!is_default_zero(c.angular_velocity)) line("angular_velocity", c.angular_velocity);
     }
+  }
+
+  void write_membrane() {
+    const Membrane& m = s_.membrane;
+    header("[membrane]");
+    line("first", std::to_string(m.first));
+    line("rows", std::to_string(m.rows));
+    line("cols", std::to_string(m.cols));
+    line("stiffness", m.stiffness);
+    line("damping", m.damping);
+    if (m.platen_wall >= 0) line("platen_wall", std::to_string(m.platen_wall));
   }
 
   void write(const Particle& p, size_t i) {

@@ -12,6 +12,7 @@
 //                       holds: contact_law.cl, "Per-contact history")
 //   PAIR_RECORD         reals per pair coefficient record (8, or 12 with HAS_CAPILLARY)
 //   HAS_SERVO, HAS_CLUMPS  servo-controlled walls, clumps (clumps.cl)
+//   HAS_MEMBRANE       a membrane of bonded beads (membrane.cl)
 //   HAS_TILT           some wall may turn about its axis_v (walls.cl, wall_turn)
 //   SLICE, LANES       list slice width and particles per work item (below)
 //   SERVO_IN_FINISH    CPUs: the walls' step at the end of finish_particles (integrate.cl)
@@ -67,6 +68,12 @@ typedef float4 real4;
 // Wall w's slot of particle i (walls.cl): rank r of bit w among the bits of
 // its near-wall mask. observe.h's WallSlots::slot() is the host's copy.
 #define WALL_SLOT(off, i, mask, w) SLOT(off, i, (int)popcount((mask) & ((1 << (w)) - 1)))
+
+// Particles of one group never touch each other (neighbors.cl): a clump's
+// members, a membrane's beads (Model's body buffer).
+#if defined(HAS_CLUMPS) || defined(HAS_MEMBRANE)
+#define HAS_GROUPS 1
+#endif
 
 // Per-pair coefficient record: PAIR_RECORD reals, see contact_law.cl.
 #ifndef PAIR_RECORD

@@ -102,8 +102,9 @@ INLINE void integrate_one(int i, __global real4* pos, __global float4* pos_lo,
 // per particle once the pair forces are known. A work item takes the LANES
 // particles of the pair stage (forces.cl) and, in this order, collects the
 // shares their partners left (collect_one, forces.cl), adds their wall
-// contacts (wall_contacts, walls.cl) and integrates them (integrate_one,
-// above). Each particle is read and written by its own work item only, so
+// contacts (wall_contacts, walls.cl) and a membrane bead's bonds and
+// pressure or its hold (membrane_one, membrane.cl), and integrates them
+// (integrate_one, above). Each particle is read and written by its own work item only, so
 // the three parts see each other's writes in program order, and the sums
 // are those of three separate kernels, bit for bit. pos_lo and
 // wall_point_lo are unused in double runs; the wall arguments without walls.
@@ -129,7 +130,8 @@ __kernel void finish_particles(
     int wall_stride, __global const real* pairs,
     __global int* wall_touch, __global const int* wall_near, __global const real* servo,
     __global real* wall_partial, __global real* wall_reaction, __global real* wall_mean,
-    __global const real* body_offset, __global const real* cell, real4 gravity, real4 fluid,
+    __global const real* body_offset, __global const real* membrane,
+    __global const real* membrane_force, __global const real* cell, real4 gravity, real4 fluid,
     real fluid_viscosity, real dt, real rolling_damping, real skin,
     int stride, int n, int nwalls, int nmat, int wall_chunk, int wall_groups) {
   const int base = get_global_id(0) * LANES;
@@ -144,6 +146,14 @@ __kernel void finish_particles(
     wall_contacts(base, pos POS_LO_PASS, vel, omega, walls, wall_point WALL_STATE_PASS, wall_vel,
                   wall_off, wall_spring, wall_force, wall_stride, pairs, force, torque, wall_touch,
                   wall_near, body_offset, contacts_last, dt, rolling_damping, n, nwalls, nmat);
+#endif
+#ifdef HAS_MEMBRANE
+    for (int l = 0; l < count; ++l)
+      membrane_one(base + l, (__global const real4*)membrane,
+                   (__global const real4*)membrane_force, (__global const real4*)pos,
+                   (__global const real4*)vel, (__global const real4*)omega,
+                   (__global real4*)force, (__global real4*)torque,
+                   (__global const real4*)wall_vel, gravity, dt);
 #endif
     for (int l = 0; l < count; ++l)
       integrate_one(base + l, (__global real4*)pos, (__global float4*)pos_lo,

@@ -38,8 +38,8 @@ INLINE int find_neighbors(int i, real4 pi POS_LO_CARG_FN, __global const uint* c
                           __global const real4* pos, __global const int* body,
                           __global const real* cell, real inv_cell, real skin, uint table,
                           int* list) {
-#ifdef HAS_CLUMPS
-  const int own = body[i];  // a clump's members never touch each other (clumps.cl)
+#ifdef HAS_GROUPS
+  const int own = body[i];  // a clump's members, a membrane's beads never touch each other
 #endif
   const int3 ci = grid_cell(pi.xyz, inv_cell, cell);
   int len = 0;
@@ -59,7 +59,7 @@ INLINE int find_neighbors(int i, real4 pi POS_LO_CARG_FN, __global const uint* c
         for (uint s = s0; s < s1; ++s) {
           const int j = sorted[s];
           if (j == i) continue;
-#ifdef HAS_CLUMPS
+#ifdef HAS_GROUPS
           if (own >= 0 && body[j] == own) continue;
 #endif
           const real4 pj = pos[j];

@@ -269,6 +269,26 @@ struct Outputs {
   bool dump_vtk = true;
 };
 
+// A flexible membrane of bonded beads (kernels/membrane.cl): the particles
+// [first, first + rows * cols), row by row, each row a closed ring of
+// `cols` beads about the z axis, counter-clockwise seen from above. Beads
+// of one membrane never touch each other; each is tied to its four lattice
+// neighbours by springs that pull but do not push (a membrane folds rather
+// than carrying compression), and an interior bead carries the cell
+// pressure on its share of the surface. The first and last rows are sealed
+// to the floor and to the platen wall (held, the last moving with the
+// platen). The pressure, the bonds' rest lengths and whether the whole
+// membrane is held are state (Simulation::set_membrane); an apparatus
+// builds the record (triaxial.h, cell = "membrane").
+struct Membrane {
+  int first = -1;  // first bead; -1: the scene has no membrane
+  int rows = 0, cols = 0;
+  int platen_wall = -1;  // the wall the last row moves with; -1: held still
+  double stiffness = 0;  // N/m, the membrane's E t (both directions)
+  double damping = 0.5;  // the bonds' dashpots, fraction of critical
+  int count() const { return first >= 0 ? rows * cols : 0; }
+};
+
 // The specimen and the apparatus cell every apparatus shares (specimen.h),
 // the kinds' descriptions and the Apparatus variant (apparatus/kinds.h).
 
@@ -282,6 +302,7 @@ struct Scene {
   std::vector<Clump> clumps;  // rigid bodies of member particles
   std::vector<Wall> walls;
   std::optional<PeriodicBox> periodic;
+  Membrane membrane;  // built by an apparatus (triaxial cell = "membrane")
   Effects effects;
   Numerics numerics;
   Outputs outputs;
@@ -309,6 +330,10 @@ struct Scene {
   int material_index(const std::string& name) const;  // -1 when absent
   double mass(const Particle& p) const;  // kg, a solid sphere of its material
   double total_mass() const;             // kg, of every particle
+  // The particles that are not a membrane's beads, which an apparatus appends last.
+  size_t specimen_count() const {
+    return membrane.count() > 0 ? size_t(membrane.first) : particles.size();
+  }
   bool has_gravity() const;
   // The apparatus when it is an A (one of apparatus/kinds.h), else nullptr.
   template <class A>

@@ -48,6 +48,9 @@ TriaxialRunResult finished_triaxial_test(const fs::path& dir, const std::string&
                                    {"wall_seconds", &s.wall_seconds}})
     if (const auto it = keys.find(key); it != keys.end()) *field = std::stod(it->second);
   s.bead_diameter *= 1e-3;
+  if (const auto it = keys.find("cell"); it != keys.end()) s.membrane = it->second == "membrane";
+  if (const auto it = keys.find("max_membrane_stress_kPa"); it != keys.end())
+    s.max_membrane_stress = std::stod(it->second) * 1e3;
   analyse_triaxial_rows(r.rows, s);
   // Today's analysis of the rows, written back when it reads them otherwise.
   if (const std::string now = triaxial_summary_text(s); now != text) {

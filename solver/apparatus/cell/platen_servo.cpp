@@ -20,14 +20,16 @@ SpecimenStats specimen_stats(const Scene& scene, int wall_material) {
   SpecimenStats s;
   double d = 0, mass = 0;
   const std::vector<double> solid = solid_volumes(scene);  // clumps' overlaps once
-  for (size_t i = 0; i < scene.particles.size(); ++i) {
+  const size_t beads = scene.specimen_count();  // a membrane's beads are no part of it
+  for (size_t i = 0; i < beads; ++i) {
     const Particle& p = scene.particles[i];
     d += 2 * p.radius;
     mass += p.clump < 0 ? scene.materials[p.material].density * 4.0 / 3.0 * kPi * std::pow(p.radius, 3)
                         : scene.materials[p.material].density * solid[i];
     s.volume += solid[i];
   }
-  const double n = static_cast<double>(scene.particles.size());
+  const double n = static_cast<double>(beads);
+  s.count = n;
   s.diameter = d / n;
   s.bead_mass = mass / n;
   s.density = scene.materials[scene.particles[0].material].density;
@@ -36,7 +38,8 @@ SpecimenStats specimen_stats(const Scene& scene, int wall_material) {
   s.k_hertz = 4.0 / 3.0 * e_star * std::sqrt(s.diameter / 2);
   s.mass = mass;
   double top = 0;
-  for (const Particle& p : scene.particles) top = std::max(top, p.position[2] + p.radius);
+  for (size_t i = 0; i < beads; ++i)
+    top = std::max(top, scene.particles[i].position[2] + scene.particles[i].radius);
   s.layers = std::max(1.0, top / s.diameter);
   return s;
 }

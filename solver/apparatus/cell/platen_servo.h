@@ -22,6 +22,7 @@ struct SpecimenStats {
   double bead_mass = 0;      // kg, mean
   double density = 0;        // kg/m^3, of the first bead
   double mass = 0;           // kg, all beads
+  double count = 0;          // the beads (a membrane's not counted)
   double volume = 0;         // m^3, all beads (the solids' volume)
   double layers = 1;         // height of the beads' top over the diameter (>= 1)
   double k_hertz = 0;        // N/m^1.5, the bead-platen Hertz constant 4/3 E* sqrt(d/2)

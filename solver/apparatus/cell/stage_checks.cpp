@@ -11,7 +11,7 @@ bool settled_under_gravity(Simulation& sim, const SpecimenStats& stats, double e
   if (elapsed >= cap) return true;
   if (sim.scene().has_gravity() && elapsed < 2e-3) return false;
   const Observables o = sim.observe();
-  const double scale = o.particles * stats.bead_mass * 9.81 * stats.diameter;
+  const double scale = stats.count * stats.bead_mass * 9.81 * stats.diameter;
   return o.kinetic() < 1e-4 * scale;
 }
 
@@ -23,7 +23,7 @@ void preparation_friction(Simulation& sim, const Specimen& specimen, bool settli
 }
 
 double rms_bead_speed(const Observables& o, const SpecimenStats& stats) {
-  return std::sqrt(2 * o.kinetic_translational / (o.particles * stats.bead_mass));
+  return std::sqrt(2 * o.kinetic_translational / (stats.count * stats.bead_mass));
 }
 
 int platen_wall(const Scene& s) {

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "solver/apparatus/cell/cell_walls.h"
 #include "solver/apparatus/cell/platen_servo.h"
 #include "solver/apparatus/specimen/specimen.h"
+#include "solver/apparatus/triaxial/membrane_cell.h"
 
 namespace simsols {
 namespace {
@@ -30,6 +32,10 @@ void check_fields(const Triaxial& t, const Scene& scene) {
                  t.consolidate_time, "(0, 100] s");
   check_servo_settings(kCheck, t.servo_gain, t.servo_max_speed, t.servo_integral_time);
   kCheck.require(t.rows >= 10 && t.rows <= 1000000, "rows", t.rows, "[10, 1000000]");
+  kCheck.require(t.membrane_stiffness > 0 && t.membrane_stiffness <= 1e6, "membrane_stiffness",
+                 t.membrane_stiffness, "(0, 1e6] N/m");
+  kCheck.require(t.membrane_bead >= 0.25 && t.membrane_bead <= 1, "membrane_bead", t.membrane_bead,
+                 "[0.25, 1] of the smallest bead's diameter");
   check_wall_room(scene, kTriaxialWalls, kCheck, "triaxial cell");
 }
 
@@ -53,6 +59,43 @@ void add_walls(Scene& scene, Triaxial& t, double top, double r_max) {
   scene.walls.insert(scene.walls.end(), w.begin(), w.end());
 }
 
+// The membrane's beads: a copy of the specimen's material whose density
+// keeps the Rayleigh time step of the smallest bead (rho / f^2 for beads f
+// times its size), on the lattice of a rounded rectangle r_m outside the
+// footprint, rows about d_m apart over the height the specimen will have
+// at a porosity of 0.4. They wait, held, above the cell until the
+// programme wraps them about the consolidated specimen
+// (triaxial_programme.cpp).
+void add_membrane(Scene& scene, const Triaxial& t, const SpecimenExtent& e) {
+  const double f = t.membrane_bead;
+  Material m = scene.materials[size_t(scene.particles.front().material)];
+  m.name = "membrane";
+  m.density /= f * f;
+  scene.materials.push_back(m);
+  const double dm = 2 * e.r_min * f, rm = dm / 2;
+  const double L = t.length, W = t.width;
+  const double perimeter = 2 * (L + W) + 2 * std::numbers::pi * rm;
+  double solids = 0;
+  for (const Particle& p : scene.particles) solids += 4.0 / 3.0 * std::numbers::pi * std::pow(p.radius, 3);
+  const double height = solids / (L * W * 0.6);
+  Membrane& mem = scene.membrane;
+  mem.first = static_cast<int>(scene.particles.size());
+  mem.cols = std::max(8, static_cast<int>(std::lround(perimeter / dm)));
+  mem.rows = std::max(3, static_cast<int>(std::lround(height / dm)) + 1);
+  mem.stiffness = t.membrane_stiffness;
+  mem.platen_wall = t.first_wall + kTriPlaten;
+  const double park = e.top + 2 * height + 4 * e.r_max;  // above the platen, out of reach
+  const std::vector<Vec3> ring = membrane_ring(0, L, 0, W, rm, mem.cols);
+  for (int r = 0; r < mem.rows; ++r)
+    for (const Vec3& x : ring) {
+      Particle p;
+      p.material = static_cast<int>(scene.materials.size()) - 1;
+      p.radius = rm;
+      p.position = {x[0], x[1], park + r * dm};
+      scene.particles.push_back(p);
+    }
+}
+
 void build(Scene& scene) {
   Triaxial& t = *scene.apparatus_as<Triaxial>();
   check_fields(t, scene);
@@ -62,6 +105,7 @@ void build(Scene& scene) {
   if (!resolve_wall_material(scene, t.wall_material))
     kCheck.fail("unknown_material", "wall_material", "the plates' material does not exist");
   add_walls(scene, t, e.top, e.r_max);
+  if (t.cell == Triaxial::Cell::Membrane) add_membrane(scene, t, e);
 }
 
 }  // namespace

@@ -17,7 +17,9 @@
 namespace simsols {
 
 // Appends the apparatus (and the specimen) to `scene`; returns the first
-// problem, with its field under "triaxial".
+// problem, with its field under "triaxial". With cell = "membrane" it
+// also appends the membrane's beads after the specimen's (scene.h,
+// Membrane), held above the cell.
 std::optional<SceneIssue> build_triaxial(Scene& scene);
 
 // The inertial number of an axial strain rate and back:

@@ -174,6 +174,8 @@ std::string triaxial_summary_text(const TriaxialSummary& s) {
   key("wall_internal_gap_percent", 100 * s.wall_internal_gap);
   key("median_wall_internal_gap_percent", 100 * s.median_wall_internal_gap);
   key("max_inertial_number", s.max_inertial_number);
+  o << "cell = " << (s.membrane ? "membrane" : "rigid") << "\n";
+  if (s.membrane) key("max_membrane_stress_kPa", s.max_membrane_stress * 1e-3);
   key("settle_time_s", s.settle_time);
   key("consolidate_time_s", s.consolidate_time);
   key("wall_seconds", s.wall_seconds);

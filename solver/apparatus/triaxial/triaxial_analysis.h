@@ -77,6 +77,10 @@ struct TriaxialSummary {
   double wall_internal_gap = 0;
   double median_wall_internal_gap = 0;  // the median over the rows
   double max_inertial_number = 0;
+  // cell = "membrane": its hoop tension's largest share of the lateral
+  // stress at a row (Pa; membrane_cell.h), which sigma_x and sigma_y include
+  bool membrane = false;
+  double max_membrane_stress = 0;
   double settle_time = 0, consolidate_time = 0;  // s
   double wall_seconds = 0;          // filled in by the caller
 };

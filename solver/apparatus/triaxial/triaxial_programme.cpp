@@ -8,6 +8,7 @@
 
 #include "solver/apparatus/specimen/packing.h"
 #include "solver/apparatus/cell/stage_checks.h"
+#include "solver/apparatus/triaxial/membrane_cell.h"
 #include "solver/apparatus/triaxial/triaxial.h"
 #include "solver/core/stress.h"
 #include "solver/common/errors.h"
@@ -30,6 +31,7 @@ const Triaxial& triaxial_of(const Simulation& sim) {
 
 TriaxialProgramme::TriaxialProgramme(Simulation& sim) : sim_(sim), tri_(triaxial_of(sim)) {
   stats_ = specimen_stats(sim.scene(), tri_.wall_material);
+  membrane_ = tri_.cell == Triaxial::Cell::Membrane;
   sigma3_ = tri_.confining_stress;
   rate_ = tri_.strain_rate > 0 ? tri_.strain_rate
                                : triaxial_strain_rate(tri_.inertial_number, stats_.diameter,
@@ -81,6 +83,7 @@ void TriaxialProgramme::apply_servos(const std::array<double, 3>& stress, bool p
   const int walls[3][2] = {{kTriX0, kTriX1}, {kTriY0, kTriY1}, {kTriPlaten, -1}};
   for (int axis = 0; axis < 3; ++axis) {
     if (axis == 2 && !platen) continue;
+    if (axis < 2 && wrapped()) continue;  // the membrane holds the sides
     SpecimenStats s = stats_;
     s.layers = std::max(1.0, extent[axis] / stats_.diameter);
     const PlatenServo tuned = tune_platen_servo(s, area[axis], stress[axis], sim_.dt(),
@@ -94,6 +97,33 @@ void TriaxialProgramme::apply_servos(const std::array<double, 3>& stress, bool p
     for (int w : walls[axis])
       if (w >= 0) sim_.set_servo(tri_.first_wall + w, servo);
   }
+}
+
+// The side plates hand the specimen to the membrane: its beads wrapped
+// where the plates touched it (membrane_cell.h), under the confining
+// stress; the plates step back out of reach, their servos off.
+void TriaxialProgramme::wrap_membrane(const Cell& c) {
+  const Membrane& m = sim_.scene().membrane;
+  const double rm = sim_.scene().particles[size_t(m.first)].radius;
+  const MembraneWrap w = wrap_cuboid(m, rm, sigma3_, {c.x0, c.x1, c.y0, c.y1, c.z0, c.z1});
+  sim_.place_particles(size_t(m.first), w.positions);
+  sim_.set_membrane(w.setting);
+  const double away = c.lx() + c.ly();
+  for (int k = kTriX0; k <= kTriY1; ++k) {
+    const int wall = tri_.first_wall + k;
+    const Vec3 n = sim_.scene().walls[size_t(wall)].normal;  // into the cell
+    const Vec3 at = sim_.wall_point(wall);
+    sim_.set_servo(wall, WallServo{});
+    sim_.set_wall_point(wall, {at[0] - away * n[0], at[1] - away * n[1], at[2] - away * n[2]});
+  }
+}
+
+TriaxialProgramme::Wrapped TriaxialProgramme::wrapped_shape(const Cell& c) {
+  const Membrane& m = sim_.scene().membrane;
+  const double rm = sim_.scene().particles[size_t(m.first)].radius;
+  const MembraneShape s = measure_membrane(sim_.snapshot().position, m, rm, c.z0, c.z1,
+                                           sim_.membrane_setting());
+  return {s.volume, s.area, s.hoop_stress};
 }
 
 void TriaxialProgramme::enter(Stage s) {
@@ -124,6 +154,10 @@ void TriaxialProgramme::enter(Stage s) {
   const Cell c = cell();
   h0_ = c.lz();
   v0_ = c.lx() * c.ly() * c.lz();
+  if (membrane_) {
+    wrap_membrane(c);
+    v0_ = wrapped_shape(c).volume;
+  }
   compress_steps_ = std::max<std::int64_t>(
       tri_.rows, std::llround(tri_.axial_strain / (rate_ * sim_.dt())));
   row_steps_ = std::max<std::int64_t>(1, compress_steps_ / tri_.rows);
@@ -135,9 +169,14 @@ void TriaxialProgramme::enter(Stage s) {
   next_row_ = now + row_steps_;
 }
 
-std::array<double, 3> TriaxialProgramme::wall_stresses(const Cell& c) {
+std::array<double, 3> TriaxialProgramme::wall_stresses(const Cell& c, const Wrapped* shape) {
   const auto means = sim_.read_wall_means();
   const int f = tri_.first_wall;
+  if (wrapped()) {
+    const Wrapped w = shape ? *shape : wrapped_shape(c);
+    const double side = sigma3_ + w.hoop_stress;
+    return {side, side, means[f + kTriPlaten].force[2] / w.area};
+  }
   const double fx = means[f + kTriX1].force[0] - means[f + kTriX0].force[0];
   const double fy = means[f + kTriY1].force[1] - means[f + kTriY0].force[1];
   return {fx / (2 * c.ly() * c.lz()), fy / (2 * c.lx() * c.lz()),
@@ -169,6 +208,11 @@ void TriaxialProgramme::set_confining_stress(double pascals) {
     apply_servos(targets(0), true);
   } else if (stage_ == Stage::Compress) {
     apply_servos(targets(last_sigma_z_), false);
+    if (wrapped()) {
+      Simulation::MembraneSetting m = sim_.membrane_setting();
+      m.pressure = pascals;
+      sim_.set_membrane(m);
+    }
   }
 }
 
@@ -214,19 +258,21 @@ TriaxialProgramme::AtRest TriaxialProgramme::at_rest() {
   const ContactSample sample = sample_contacts(sim_);
   int pairs = 0;
   for (const ContactForce& f : sample.contacts) pairs += f.b >= 0;
-  const size_t n = sample.beads.position.size();
-  a.bead_coordination = n > 0 ? 2.0 * pairs / double(n) : 0;
+  const double n = stats_.count;  // a waiting membrane's beads touch nothing
+  a.bead_coordination = n > 0 ? 2.0 * pairs / n : 0;
   return a;
 }
 
 void TriaxialProgramme::measure_row(const std::array<double, 3>* at_rest) {
   const Cell c = cell();
-  const std::array<double, 3> s = at_rest ? *at_rest : wall_stresses(c);
+  const bool wrap = wrapped();
+  const Wrapped w = wrap ? wrapped_shape(c) : Wrapped{c.lx() * c.ly() * c.lz(), c.lx() * c.ly(), 0};
+  const std::array<double, 3> s = at_rest ? *at_rest : wall_stresses(c, &w);
   TriaxialRow r;
   r.time = sim_.time();
   r.step = sim_.steps();
   r.axial_strain = (h0_ - c.lz()) / h0_;
-  r.volumetric_strain = (v0_ - c.lx() * c.ly() * c.lz()) / v0_;
+  r.volumetric_strain = (v0_ - w.volume) / v0_;
   r.sigma_x = s[0];
   r.sigma_y = s[1];
   r.sigma_z = s[2];
@@ -234,23 +280,32 @@ void TriaxialProgramme::measure_row(const std::array<double, 3>* at_rest) {
   r.q = std::sqrt(0.5 * ((s[0] - s[1]) * (s[0] - s[1]) + (s[1] - s[2]) * (s[1] - s[2]) +
                          (s[2] - s[0]) * (s[2] - s[0])));
   r.friction_angle = mobilised_friction_angle(s[0], s[1], s[2]);
-  r.void_ratio = c.lx() * c.ly() * c.lz() / stats_.volume - 1;
+  r.void_ratio = w.volume / stats_.volume - 1;
   const Observables o = sim_.observe();
   r.coordination = o.particles > 0 ? o.contacts / o.particles : 0;
   r.kinetic_energy = o.kinetic();
   const ContactSample sample = sample_contacts(sim_);
-  const Tensor3 lw = love_weber_slab(sample, sim_.scene().walls, c.z0, c.z1, c.lx() * c.ly());
+  const size_t beads = size_t(stats_.count);
+  const Tensor3 lw = wrap ? love_weber_inside(sample, beads, w.volume)
+                          : love_weber_slab(sample, sim_.scene().walls, c.z0, c.z1, w.area);
   r.lw_x = lw[0][0];
   r.lw_y = lw[1][1];
   r.lw_z = lw[2][2];
   const std::vector<WallReaction> now = sim_.wall_reactions();
   const int f = tri_.first_wall;
-  const double sx = (now[f + kTriX1].force[0] - now[f + kTriX0].force[0]) / (2 * c.ly() * c.lz());
-  const double sy = (now[f + kTriY1].force[1] - now[f + kTriY0].force[1]) / (2 * c.lx() * c.lz());
-  const double sz = now[f + kTriPlaten].force[2] / (c.lx() * c.ly());
+  double sx = 0, sy = 0;
+  if (wrap) {
+    sx = sy = sigma3_ + w.hoop_stress;
+    r.coordination = inside_coordination(sample, beads);
+    max_hoop_stress_ = std::max(max_hoop_stress_, w.hoop_stress);
+  } else {
+    sx = (now[f + kTriX1].force[0] - now[f + kTriX0].force[0]) / (2 * c.ly() * c.lz());
+    sy = (now[f + kTriY1].force[1] - now[f + kTriY0].force[1]) / (2 * c.lx() * c.lz());
+  }
+  const double sz = now[f + kTriPlaten].force[2] / w.area;
   if (r.p > 0)
     r.lw_gap = std::max({std::fabs(r.lw_x - sx), std::fabs(r.lw_y - sy), std::fabs(r.lw_z - sz)}) / r.p;
-  r.fabric_anisotropy = fabric_anisotropy(sample);
+  r.fabric_anisotropy = fabric_anisotropy(wrap ? beads_inside(sample, beads) : sample);
   r.inertial_number =
       r.p > 0 ? triaxial_inertial_number(rate_, stats_.diameter, stats_.density, r.p) : 0;
   last_sigma_z_ = s[2];
@@ -361,6 +416,8 @@ TriaxialSummary TriaxialProgramme::summary() const {
   s.bead_diameter = stats_.diameter;
   s.settle_time = settle_seconds_;
   s.consolidate_time = consolidate_seconds_;
+  s.membrane = membrane_;
+  s.max_membrane_stress = max_hoop_stress_;
   analyse_triaxial_rows(rows_, s);
   return s;
 }
@@ -368,11 +425,11 @@ TriaxialSummary TriaxialProgramme::summary() const {
 std::string TriaxialProgramme::save_state() const {
   std::ostringstream o;
   o.precision(17);
-  o << "triaxial_test 2\n"
+  o << "triaxial_test 3\n"
     << started_ << ' ' << static_cast<int>(stage_) << ' ' << stage_start_ << ' ' << next_check_
     << ' ' << next_row_ << ' ' << row_steps_ << ' ' << compress_steps_ << ' ' << quiet_checks_
     << ' ' << rate_ << ' ' << h0_ << ' ' << v0_ << ' ' << last_sigma_z_ << ' ' << settle_seconds_
-    << ' ' << consolidate_seconds_ << ' ' << sigma3_ << ' ' << hold_ << '\n'
+    << ' ' << consolidate_seconds_ << ' ' << sigma3_ << ' ' << hold_ << ' ' << max_hoop_stress_ << '\n'
     << rows_.size() << '\n';
   for (const TriaxialRow& r : rows_)
     o << r.time << ' ' << r.step << ' ' << r.axial_strain << ' ' << r.volumetric_strain << ' '
@@ -389,12 +446,13 @@ void TriaxialProgramme::restore_state(const std::string& text) {
   int version = 0, stage = 0;
   size_t count = 0;
   in >> tag >> version;
-  if (tag != "triaxial_test" || version < 1 || version > 2)
+  if (tag != "triaxial_test" || version < 1 || version > 3)
     throw ReadError("the checkpoint holds no triaxial-test state");
   in >> started_ >> stage >> stage_start_ >> next_check_ >> next_row_ >> row_steps_ >>
       compress_steps_ >> quiet_checks_ >> rate_ >> h0_ >> v0_ >> last_sigma_z_ >>
       settle_seconds_ >> consolidate_seconds_;
   if (version >= 2) in >> sigma3_ >> hold_;  // version 1: the scene's, no hold
+  if (version >= 3) in >> max_hoop_stress_;
   in >> count;
   if (!in || stage < 0 || stage > 3 || count > 10000000)
     throw ReadError("malformed triaxial-test state");

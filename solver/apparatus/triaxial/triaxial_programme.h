@@ -107,13 +107,24 @@ class TriaxialProgramme : public ApparatusProgramme {
     double lz() const { return z1 - z0; }
   };
   Cell cell();
+  // The membrane (cell = "membrane") once it holds the specimen: the
+  // volume inside it, its mean cross-section (volume / height) and the
+  // radial stress its hoop tension adds to the cell pressure.
+  struct Wrapped {
+    double volume = 0, area = 0, hoop_stress = 0;
+  };
+  bool wrapped() const { return membrane_ && stage_ >= Stage::Compress; }
+  Wrapped wrapped_shape(const Cell& c);
+  void wrap_membrane(const Cell& c);  // the hand-over from the plates to the membrane
   void enter(Stage s);
   // The plates' targets (Pa) for the stage: x, y and z (z unused while
   // compressing).
   std::array<double, 3> targets(double sigma_z) const;
   void apply_servos(const std::array<double, 3>& stress, bool platen);
   bool consolidated();
-  std::array<double, 3> wall_stresses(const Cell& c);
+  // Pa, x y z: the plates' mean stresses since the last read, or with the
+  // membrane the cell pressure plus its hoop share and the platen's.
+  std::array<double, 3> wall_stresses(const Cell& c, const Wrapped* w = nullptr);
   // A row; `at_rest` gives the plates' stresses of the last consolidation
   // check (the row at rest), else they are the means since the last row.
   void measure_row(const std::array<double, 3>* at_rest = nullptr);
@@ -123,6 +134,8 @@ class TriaxialProgramme : public ApparatusProgramme {
 
   Simulation& sim_;
   const Triaxial& tri_;
+  bool membrane_ = false;  // cell = "membrane"
+  double max_hoop_stress_ = 0;  // Pa, the membrane's largest share of sigma_3 at a row
   SpecimenStats stats_;
   bool started_ = false;
   Stage stage_ = Stage::Settle;

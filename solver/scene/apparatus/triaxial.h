@@ -23,11 +23,20 @@ namespace simsols {
 //                    below 5 % of it: the sides keep the specimen closed);
 //   true_triaxial    sigma3 (x) at confining_stress, sigma2 (y) at
 //                    sigma3 + b (sigma1 - sigma3).
+// The sides are the cell's `cell`:
+//   rigid     the four servo-controlled plates throughout;
+//   membrane  the plates consolidate the specimen, then hand it to a
+//             flexible membrane of bonded beads (scene.h, Membrane) under
+//             the cell pressure for the compression (constant_sigma3 only).
 // build_triaxial() (apparatus/triaxial.h) turns this into six walls (and
 // particles) and resolves the automatic values (0 below).
 struct Triaxial : ApparatusCell {
   Triaxial() { length = 30e-3; width = 30e-3; settle_time = 0.02; }  // inside at the start
   enum class Path : std::uint8_t { ConstantSigma3, ConstantP, TrueTriaxial };
+  enum class Cell : std::uint8_t { Rigid, Membrane };
+  Cell cell = Cell::Rigid;
+  double membrane_stiffness = 420;  // N/m, the membrane's E t (docs/triaxial.md)
+  double membrane_bead = 0.5;       // the membrane beads' diameter / the smallest bead's
   double confining_stress = 100e3; // Pa, p'0 and sigma3
   Path path = Path::ConstantSigma3;
   double b_value = 0.5;            // true_triaxial: (sigma2 - sigma3) / (sigma1 - sigma3), [0, 1]
@@ -46,7 +55,8 @@ enum TriaxialWall : int {
   kTriFloor = 0, kTriX0, kTriX1, kTriY0, kTriY1, kTriPlaten, kTriaxialWalls
 };
 
-// [triaxial] path's names (choice_table.h).
+// [triaxial] path's and cell's names (choice_table.h).
 template <> std::span<const Named<Triaxial::Path>> choices();
+template <> std::span<const Named<Triaxial::Cell>> choices();
 
 }  // namespace simsols

@@ -1,0 +1,64 @@
+// The triaxial cell's membrane (cell = "membrane"): where its beads go when
+// it takes the consolidated specimen over from the side plates, and what is
+// read from them while it holds it.
+//
+// The membrane (scene.h, Membrane; kernels/membrane.cl) is a lattice of
+// rows x cols beads of radius r_m. Wrapped about the cuboid the plates
+// leave, its rings follow the rectangle grown by r_m (sides and quarter
+// circles about the corners: the beads touch the specimen where the plates
+// did), its rows run from r_m above the floor to r_m below the platen, and
+// its bonds are at rest: the hoop rest length is the ring's mean chord, the
+// axial one the row pitch, each direction's spring E t times the other
+// spacing over its own (a sheet of E t, membrane.cl).
+//
+// Measured from the beads' positions:
+//   the volume inside: per ring the area of its polygon of centres shrunk
+//     by r_m (A - P r_m + pi r_m^2, exact for a convex ring), integrated
+//     over z by trapezoids between the rings' mean heights, plus the
+//     slabs of r_m between the end rings and the floor and platen;
+//   the mean cross-section: that volume over the height;
+//   the hoop share of the radial stress: a ring of perimeter P under a
+//     hoop tension T (N/m: the mean bond force over the local row pitch)
+//     presses on what it wraps with 2 pi T / P on average (the mean
+//     curvature of a closed curve is 2 pi / P), averaged over the interior
+//     rings. It adds to the cell pressure, as the membrane correction of
+//     laboratory practice says.
+#pragma once
+
+#include <vector>
+
+#include "solver/common/vec3.h"
+#include "solver/core/simulation.h"
+#include "solver/core/stress.h"
+
+namespace simsols {
+
+// n points (z = 0) evenly along the rectangle [x0, x1] x [y0, y1] grown by
+// `offset`: its four sides and quarter circles about its corners,
+// counter-clockwise seen from above, starting at the middle of the x1 side.
+std::vector<Vec3> membrane_ring(double x0, double x1, double y0, double y1, double offset, int n);
+
+struct CuboidExtent {
+  double x0, x1, y0, y1, z0, z1;
+};
+
+struct MembraneWrap {
+  std::vector<Vec3> positions;              // the beads, row by row
+  Simulation::MembraneSetting setting;      // free, at `pressure`, bonds at rest
+};
+MembraneWrap wrap_cuboid(const Membrane& m, double bead_radius, double pressure, const CuboidExtent& box);
+
+struct MembraneShape {
+  double volume = 0;       // m^3, inside the membrane
+  double area = 0;         // m^2, volume / height
+  double hoop_stress = 0;  // Pa, the hoop tension's share of the radial stress
+};
+// `position`: every particle's (a snapshot); z0, z1: the floor and the platen.
+MembraneShape measure_membrane(const std::vector<Vec3>& position, const Membrane& m, double bead_radius,
+                               double z0, double z1, const Simulation::MembraneSetting& setting);
+
+// Contacts per bead of the beads [0, inside): bead pairs count for both,
+// contacts with the membrane or a wall for the bead.
+double inside_coordination(const ContactSample& sample, size_t inside);
+
+}  // namespace simsols
