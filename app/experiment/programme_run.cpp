@@ -140,7 +140,7 @@ ProgrammeRunState drive_programme(Simulation& sim, ProgrammeOutputs& out,
   warn_late_builds(sim);
   state.finished = test.done();
   state.steps = sim.steps();
-  state.particles = sim.model().particles();
+  state.particles = static_cast<int>(sim.scene().specimen_count());  // not a membrane's beads
   state.dt = sim.dt();
   if (state.finished) out.write_results(sim, dir, state.wall_seconds);
   // The state reached, finished or stopped, is the series' last frame: a

@@ -15,7 +15,10 @@
 //     no compression); k and l0 per direction (hoop, axial)
 //   pressure:  -p (t_c x t_r) / 4,  t_c = x(r, c+1) - x(r, c-1),
 //     t_r = x(r+1, c) - x(r-1, c): the outward normal times the bead's
-//     share of the surface (central differences span two spacings each)
+//     share of the surface (central differences span two spacings each),
+//     that share capped at twice its share at rest, l0_hoop l0_axial: a
+//     bead pushed into a hole between grains spreads its neighbours, and
+//     an uncapped share would push it on the harder the further it goes
 // For the square lattice of spacings s_c (hoop) and s_r (axial) that
 // represents a sheet of E t (N/m): k_hoop = E t s_r / s_c, k_axial =
 // E t s_c / s_r, a Poisson ratio of 0 (triaxial_programme.cpp sets them).
@@ -71,7 +74,10 @@ __kernel void membrane_forces(__global const real4* pos POS_LO_CARG, __global co
     f += bond_pull(i, up, pos POS_LO_PASS, vel, m0.w, m1.w, m1.y);
     const real3 tc = rel_pos(pos[left], pos[right] LO(left) LO(right));
     const real3 tr = rel_pos(pos[down], pos[up] LO(down) LO(up));
-    f -= cross(tc, tr) * (m0.x / 4);
+    const real3 share = cross(tc, tr) / 4;
+    const real most = 2 * m1.x * m1.y;  // twice the bead's share at rest
+    const real a = length(share);
+    f -= share * (a > most ? m0.x * most / a : m0.x);
   }
   membrane_force[k] = (real4)(f, 0);
 }

@@ -311,27 +311,32 @@ void check_outputs(const Scene& s, Found& found) {
 
 // O(N): a grid over the particles' box (dense cell lists, sphere_grid.h),
 // cells one mean diameter wide, each sphere checked against those within
-// its radius plus the largest. The spheres of one clump overlap by design.
+// its radius plus the largest. The spheres of one clump overlap by design,
+// the beads of a membrane may (they never touch each other).
 void check_particle_overlaps(const Scene& s) {
-  // centre, radius and clump, packed: the particles themselves are too
-  // large for the cache at a million beads
+  // centre, radius and group (a clump's, or the membrane's after them),
+  // packed: the particles themselves are too large for the cache at a
+  // million beads
   struct Packed {
     Vec3 c;
     double r;
-    int clump;
+    int group;
   };
+  const int membrane = static_cast<int>(s.clumps.size());
   std::vector<Packed> packed;
   packed.reserve(s.particles.size());
   double r_max = 0, r_sum = 0;
   Vec3 lo{}, hi{};
-  for (const Particle& p : s.particles) {
+  for (size_t i = 0; i < s.particles.size(); ++i) {
+    const Particle& p = s.particles[i];
+    const bool bead = int(i) >= s.membrane.first && int(i) < s.membrane.first + s.membrane.count();
     r_max = std::max(r_max, p.radius);
     r_sum += p.radius;
     for (int k = 0; k < 3; ++k) {
       lo[k] = packed.empty() ? p.position[k] : std::min(lo[k], p.position[k]);
       hi[k] = packed.empty() ? p.position[k] : std::max(hi[k], p.position[k]);
     }
-    packed.push_back({p.position, p.radius, p.clump});
+    packed.push_back({p.position, p.radius, bead ? membrane : p.clump});
   }
   // cells one mean diameter wide, each sphere's search as wide as it may touch
   SphereGrid grid(2 * r_sum / double(packed.size()), packed.size(), lo, hi);
@@ -341,7 +346,7 @@ void check_particle_overlaps(const Scene& s) {
       const Packed& q = packed[static_cast<size_t>(j)];
       const double d2 = dot(sub(p.c, q.c), sub(p.c, q.c)), reach = p.r + q.r;
       if (d2 >= reach * reach) return false;  // apart or touching
-      if (p.clump >= 0 && p.clump == q.clump) return false;  // one rigid grain
+      if (p.group >= 0 && p.group == q.group) return false;  // one rigid grain, one membrane
       const double overlap = reach - std::sqrt(d2);
       const double limit = kMaxOverlapFraction * std::min(p.r, q.r);
       if (overlap > limit)

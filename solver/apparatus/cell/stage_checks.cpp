@@ -35,8 +35,8 @@ int platen_wall(const Scene& s) {
 double specimen_top(Simulation& sim) {
   const ParticleSnapshot snap = sim.snapshot();
   double top = 0;
-  for (size_t i = 0; i < snap.position.size(); ++i)
-    top = std::max(top, snap.position[i][2] + snap.radius[i]);
+  const size_t beads = sim.scene().specimen_count();  // not a waiting membrane's
+  for (size_t i = 0; i < beads; ++i) top = std::max(top, snap.position[i][2] + snap.radius[i]);
   return top;
 }
 

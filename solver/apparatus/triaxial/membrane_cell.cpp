@@ -80,20 +80,31 @@ MembraneShape measure_membrane(const std::vector<Vec3>& x, const Membrane& m, do
                                double z1, const Simulation::MembraneSetting& s) {
   std::vector<Ring> rings;
   for (int r = 0; r < m.rows; ++r) rings.push_back(measure_ring(x, m.first + r * m.cols, m.cols, s));
-  const auto inner = [&](const Ring& g) {
-    return g.area - g.perimeter * rm + std::numbers::pi * rm * rm;
-  };
   MembraneShape out;
-  out.volume = rm * (inner(rings.front()) + inner(rings.back()));
-  for (size_t r = 0; r + 1 < rings.size(); ++r)
-    out.volume += 0.5 * (inner(rings[r]) + inner(rings[r + 1])) * (rings[r + 1].z - rings[r].z);
+  // below the first ring and above the last, its own area
+  out.volume = rings.front().area * std::max(0.0, std::min(rings.front().z, z1) - z0) +
+               rings.back().area * std::max(0.0, z1 - std::max(rings.back().z, z0));
+  for (size_t r = 0; r + 1 < rings.size(); ++r) {  // the area linear between rings, within [z0, z1]
+    const double za = rings[r].z, zb = rings[r + 1].z;
+    const double lo = std::max(za, z0), hi = std::min(zb, z1);
+    if (!(hi > lo) || !(zb > za)) continue;
+    const double aa = rings[r].area, ab = rings[r + 1].area;
+    const auto at = [&](double z) { return aa + (ab - aa) * (z - za) / (zb - za); };
+    out.volume += 0.5 * (at(lo) + at(hi)) * (hi - lo);
+  }
+  for (const Ring& g : rings)  // the half of each bead inside the surface of centres
+    if (g.z > z0 && g.z < z1) out.volume -= m.cols * 2.0 / 3.0 * std::numbers::pi * rm * rm * rm;
+  // the end rings are sealed to the floor and the platen: no hoop tension of their own
   out.area = out.volume / (z1 - z0);
   double hoop = 0;
+  int counted = 0;
   for (size_t r = 1; r + 1 < rings.size(); ++r) {
     const double pitch = 0.5 * (rings[r + 1].z - rings[r - 1].z);
-    if (pitch > 0) hoop += 2 * std::numbers::pi * rings[r].bond_force / pitch / rings[r].perimeter;
+    if (!(pitch > 0)) continue;
+    hoop += 2 * std::numbers::pi * rings[r].bond_force / pitch / rings[r].perimeter;
+    ++counted;
   }
-  out.hoop_stress = rings.size() > 2 ? hoop / double(rings.size() - 2) : 0;
+  out.hoop_stress = counted > 0 ? hoop / counted : 0;
   return out;
 }
 

@@ -59,19 +59,23 @@ void add_walls(Scene& scene, Triaxial& t, double top, double r_max) {
   scene.walls.insert(scene.walls.end(), w.begin(), w.end());
 }
 
-// The membrane's beads: a copy of the specimen's material whose density
-// keeps the Rayleigh time step of the smallest bead (rho / f^2 for beads f
-// times its size), on the lattice of a rounded rectangle r_m outside the
+// The membrane's beads: of the material named "membrane", else a copy of
+// the specimen's whose density keeps the Rayleigh time step of the
+// smallest bead (rho / f^2 for beads f times its size), on the lattice of a rounded rectangle r_m outside the
 // footprint, rows about d_m apart over the height the specimen will have
-// at a porosity of 0.4. They wait, held, above the cell until the
+// at a porosity of 0.4. They wait, held, above the cell's plates until the
 // programme wraps them about the consolidated specimen
 // (triaxial_programme.cpp).
 void add_membrane(Scene& scene, const Triaxial& t, const SpecimenExtent& e) {
   const double f = t.membrane_bead;
-  Material m = scene.materials[size_t(scene.particles.front().material)];
-  m.name = "membrane";
-  m.density /= f * f;
-  scene.materials.push_back(m);
+  int material = scene.material_index("membrane");  // a scene written back has it
+  if (material < 0) {
+    Material m = scene.materials[size_t(scene.particles.front().material)];
+    m.name = "membrane";
+    m.density /= f * f;
+    scene.materials.push_back(m);
+    material = static_cast<int>(scene.materials.size()) - 1;
+  }
   const double dm = 2 * e.r_min * f, rm = dm / 2;
   const double L = t.length, W = t.width;
   const double perimeter = 2 * (L + W) + 2 * std::numbers::pi * rm;
@@ -81,15 +85,20 @@ void add_membrane(Scene& scene, const Triaxial& t, const SpecimenExtent& e) {
   Membrane& mem = scene.membrane;
   mem.first = static_cast<int>(scene.particles.size());
   mem.cols = std::max(8, static_cast<int>(std::lround(perimeter / dm)));
-  mem.rows = std::max(3, static_cast<int>(std::lround(height / dm)) + 1);
+  mem.rows = std::max(3, static_cast<int>(std::lround((height - dm) / dm)) + 1);
   mem.stiffness = t.membrane_stiffness;
   mem.platen_wall = t.first_wall + kTriPlaten;
-  const double park = e.top + 2 * height + 4 * e.r_max;  // above the platen, out of reach
+  double park = e.top + 2 * height;  // above every plate, out of reach
+  for (const Wall& w : scene.walls) {
+    const Vec3 v = cross(w.normal, w.axis_u);
+    park = std::max(park, w.point[2] + std::fabs(w.axis_u[2]) * w.half_u + std::fabs(v[2]) * w.half_v);
+  }
+  park += 2 * dm + e.r_max;
   const std::vector<Vec3> ring = membrane_ring(0, L, 0, W, rm, mem.cols);
   for (int r = 0; r < mem.rows; ++r)
     for (const Vec3& x : ring) {
       Particle p;
-      p.material = static_cast<int>(scene.materials.size()) - 1;
+      p.material = material;
       p.radius = rm;
       p.position = {x[0], x[1], park + r * dm};
       scene.particles.push_back(p);

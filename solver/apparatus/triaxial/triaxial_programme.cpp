@@ -78,7 +78,8 @@ std::array<double, 3> TriaxialProgramme::targets(double sigma_z) const {
 // plates' current areas.
 void TriaxialProgramme::apply_servos(const std::array<double, 3>& stress, bool platen) {
   const Cell c = cell();
-  const double area[3] = {c.ly() * c.lz(), c.lx() * c.lz(), c.lx() * c.ly()};
+  const double area[3] = {c.ly() * c.lz(), c.lx() * c.lz(),
+                          wrapped() ? wrapped_shape(c).area : c.lx() * c.ly()};
   const double extent[3] = {c.lx(), c.ly(), c.lz()};
   const int walls[3][2] = {{kTriX0, kTriX1}, {kTriY0, kTriY1}, {kTriPlaten, -1}};
   for (int axis = 0; axis < 3; ++axis) {
@@ -108,6 +109,7 @@ void TriaxialProgramme::wrap_membrane(const Cell& c) {
   const MembraneWrap w = wrap_cuboid(m, rm, sigma3_, {c.x0, c.x1, c.y0, c.y1, c.z0, c.z1});
   sim_.place_particles(size_t(m.first), w.positions);
   sim_.set_membrane(w.setting);
+  wrap_step_ = sim_.steps();
   const double away = c.lx() + c.ly();
   for (int k = kTriX0; k <= kTriY1; ++k) {
     const int wall = tri_.first_wall + k;
@@ -153,11 +155,7 @@ void TriaxialProgramme::enter(Stage s) {
   // Compress: the row at rest, then the platen moves down.
   const Cell c = cell();
   h0_ = c.lz();
-  v0_ = c.lx() * c.ly() * c.lz();
-  if (membrane_) {
-    wrap_membrane(c);
-    v0_ = wrapped_shape(c).volume;
-  }
+  v0_ = wrapped() ? wrapped_shape(c).volume : c.lx() * c.ly() * c.lz();
   compress_steps_ = std::max<std::int64_t>(
       tri_.rows, std::llround(tri_.axial_strain / (rate_ * sim_.dt())));
   row_steps_ = std::max<std::int64_t>(1, compress_steps_ / tri_.rows);
@@ -192,12 +190,21 @@ bool TriaxialProgramme::consolidated() {
   const double v_rms = rms_bead_speed(o, stats_);
   const double scale = c.lz() / stats_.diameter * std::sqrt(p0 / stats_.density);
   bool quiet = v_rms < kBeadsInertial * scale;
-  for (double v : s) quiet = quiet && std::fabs(v - p0) < kForceError * p0;
+  // the plates' stresses; a membrane holds the sides at the cell pressure
+  for (int axis = wrapped() ? 2 : 0; axis < 3; ++axis)
+    quiet = quiet && std::fabs(s[size_t(axis)] - p0) < kForceError * p0;
   quiet_checks_ = quiet ? quiet_checks_ + 1 : 0;
+  const std::int64_t since = wrapped() ? wrap_step_ : stage_start_;
+  const bool done = quiet_checks_ >= 2 || (sim_.steps() - since) * sim_.dt() >= tri_.consolidate_time;
+  if (done && membrane_ && !wrapped()) {  // the plates hand over: consolidate again under the membrane
+    wrap_membrane(c);
+    quiet_checks_ = 0;
+    apply_servos(targets(0), true);
+    return false;
+  }
   apply_servos(targets(0), true);  // the areas changed
   if (hold_) return false;
-  return quiet_checks_ >= 2 ||
-         (sim_.steps() - stage_start_) * sim_.dt() >= tri_.consolidate_time;
+  return done;
 }
 
 void TriaxialProgramme::set_confining_stress(double pascals) {
@@ -429,7 +436,8 @@ std::string TriaxialProgramme::save_state() const {
     << started_ << ' ' << static_cast<int>(stage_) << ' ' << stage_start_ << ' ' << next_check_
     << ' ' << next_row_ << ' ' << row_steps_ << ' ' << compress_steps_ << ' ' << quiet_checks_
     << ' ' << rate_ << ' ' << h0_ << ' ' << v0_ << ' ' << last_sigma_z_ << ' ' << settle_seconds_
-    << ' ' << consolidate_seconds_ << ' ' << sigma3_ << ' ' << hold_ << ' ' << max_hoop_stress_ << '\n'
+    << ' ' << consolidate_seconds_ << ' ' << sigma3_ << ' ' << hold_ << ' ' << max_hoop_stress_
+    << ' ' << wrap_step_ << '\n'
     << rows_.size() << '\n';
   for (const TriaxialRow& r : rows_)
     o << r.time << ' ' << r.step << ' ' << r.axial_strain << ' ' << r.volumetric_strain << ' '
@@ -452,7 +460,7 @@ void TriaxialProgramme::restore_state(const std::string& text) {
       compress_steps_ >> quiet_checks_ >> rate_ >> h0_ >> v0_ >> last_sigma_z_ >>
       settle_seconds_ >> consolidate_seconds_;
   if (version >= 2) in >> sigma3_ >> hold_;  // version 1: the scene's, no hold
-  if (version >= 3) in >> max_hoop_stress_;
+  if (version >= 3) in >> max_hoop_stress_ >> wrap_step_;
   in >> count;
   if (!in || stage < 0 || stage > 3 || count > 10000000)
     throw ReadError("malformed triaxial-test state");

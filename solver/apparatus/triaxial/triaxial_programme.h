@@ -10,7 +10,12 @@
 //                current area, renewed at every check) until equilibrium:
 //                twice in a row 0.5 ms apart every plate's mean stress
 //                within 1 % of its target and the beads' RMS speed below
-//                1e-4 (H/d) sqrt(p/rho) (or consolidate_time);
+//                1e-4 (H/d) sqrt(p/rho) (or consolidate_time); with
+//                cell = "membrane" the plates then hand the specimen to
+//                the membrane at the confining stress (membrane_cell.h),
+//                step back, and the specimen consolidates again under it
+//                (the platen's area the mean cross-section inside it) to
+//                the same criterion, the sides left out of it;
 //   compress     a first row at rest, then the platen moves down at the
 //                strain rate (from the inertial number unless given) while
 //                the sides hold the stress path's lateral stresses (on a
@@ -78,7 +83,9 @@ class TriaxialProgramme : public ApparatusProgramme {
   bool holding() const { return hold_; }
   // True once consolidate has met its equilibrium criterion at the current
   // confining stress (it stays true while holding).
-  bool consolidated_now() const { return stage_ == Stage::Consolidate && quiet_checks_ >= 2; }
+  bool consolidated_now() const {
+    return stage_ == Stage::Consolidate && quiet_checks_ >= 2 && wrapped() == membrane_;
+  }
   // Leaves consolidate for compress; false when the test is not consolidating.
   bool start_compression();
   double confining_stress() const { return sigma3_; }
@@ -113,7 +120,7 @@ class TriaxialProgramme : public ApparatusProgramme {
   struct Wrapped {
     double volume = 0, area = 0, hoop_stress = 0;
   };
-  bool wrapped() const { return membrane_ && stage_ >= Stage::Compress; }
+  bool wrapped() const { return wrap_step_ >= 0; }
   Wrapped wrapped_shape(const Cell& c);
   void wrap_membrane(const Cell& c);  // the hand-over from the plates to the membrane
   void enter(Stage s);
@@ -136,6 +143,7 @@ class TriaxialProgramme : public ApparatusProgramme {
   const Triaxial& tri_;
   bool membrane_ = false;  // cell = "membrane"
   double max_hoop_stress_ = 0;  // Pa, the membrane's largest share of sigma_3 at a row
+  std::int64_t wrap_step_ = -1;  // the step the membrane took over; -1: not (yet)
   SpecimenStats stats_;
   bool started_ = false;
   Stage stage_ = Stage::Settle;
