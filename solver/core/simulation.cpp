@@ -163,6 +163,8 @@ void Simulation::set_membrane(const MembraneSetting& m) {
   const auto dashpot = [&](double k) { return 2 * mem.damping * std::sqrt(k * mass / 2); };
   write_real4(&State::membrane, 0, m.pressure, m.held ? 1 : 0, m.k_hoop, m.k_axial);
   write_real4(&State::membrane, 1, m.rest_hoop, m.rest_axial, dashpot(m.k_hoop), dashpot(m.k_axial));
+  const Vec3& o = model_->origin();
+  write_real4(&State::membrane, 3, m.axis_x - o[0], m.axis_y - o[1], 0, 0);
 }
 
 Simulation::MembraneSetting Simulation::membrane_setting() {
@@ -171,7 +173,9 @@ Simulation::MembraneSetting Simulation::membrane_setting() {
   guard_->before_reading();
   const auto a = read_real4(*model_, state_->membrane, 0);
   const auto b = read_real4(*model_, state_->membrane, 1);
-  return {a[0], a[1] != 0, b[0], b[1], a[2], a[3]};
+  const auto c = read_real4(*model_, state_->membrane, 3);
+  const Vec3& o = model_->origin();
+  return {a[0], a[1] != 0, b[0], b[1], a[2], a[3], c[0] + o[0], c[1] + o[1]};
 }
 
 void Simulation::place_particles(size_t first, const std::vector<Vec3>& at) {

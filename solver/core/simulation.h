@@ -69,14 +69,15 @@ class Simulation {
     model_->override_friction(friction);
   }
   // The membrane's setting (scene.h, Membrane; membrane.cl): the cell
-  // pressure (Pa, inwards), whether every bead is held, and each
-  // direction's bond rest length (m) and stiffness (N/m); the dashpots
+  // pressure (Pa, inwards), whether every bead is held, each direction's
+  // bond rest length (m) and stiffness (N/m), and its axis; the dashpots
   // follow from Membrane::damping. Throws std::logic_error without one.
   struct MembraneSetting {
     double pressure = 0;
     bool held = true;
     double rest_hoop = 0, rest_axial = 0;  // m
     double k_hoop = 0, k_axial = 0;        // N/m
+    double axis_x = 0, axis_y = 0;         // m: the vertical line it is wrapped about
   };
   void set_membrane(const MembraneSetting& setting);
   MembraneSetting membrane_setting();

@@ -81,6 +81,7 @@ void State::make_membrane(const Model& model) {
   r.put4(0, 1, m.stiffness, m.stiffness);
   r.put4(0, 0, 0, 0);
   r.put4(m.first, m.rows, m.cols, m.platen_wall);
+  r.put4(0, 0, 0, 0);
   membrane = make(model.device(), r.bytes().size(), r.data());
   membrane_force = make(model.device(), std::max(1, membrane_beads) * 4 * model.real_size());
 }

@@ -10,7 +10,7 @@ void read_triaxial(const Reader& root, Scene& scene) {
                        "axial_strain", "strain_rate", "inertial_number", "settle_time",
                        "consolidate_time", "servo_gain", "servo_max_speed",
                        "servo_integral_time", "rows", "cell", "membrane_stiffness",
-                       "membrane_bead", "specimen"});
+                       "membrane_spacing", "specimen"});
   Triaxial t;
   t.length = r.number("length", t.length);
   t.width = r.number("width", t.width);
@@ -22,12 +22,12 @@ void read_triaxial(const Reader& root, Scene& scene) {
   t.b_value = r.number("b_value", t.b_value);
   t.cell = r.choice("cell", t.cell);
   if (t.cell == Triaxial::Cell::Rigid)
-    r.forbid({"membrane_stiffness", "membrane_bead"}, "only allowed when cell = \"membrane\"");
+    r.forbid({"membrane_stiffness", "membrane_spacing"}, "only allowed when cell = \"membrane\"");
   else if (t.path != Triaxial::Path::ConstantSigma3)
     r.fail("conflicting_keys", "cell",
            "a membrane holds one cell pressure: use path = \"constant_sigma3\" with cell = \"membrane\"");
   t.membrane_stiffness = r.number("membrane_stiffness", t.membrane_stiffness);
-  t.membrane_bead = r.number("membrane_bead", t.membrane_bead);
+  t.membrane_spacing = r.number("membrane_spacing", t.membrane_spacing);
   t.axial_strain = r.number("axial_strain", t.axial_strain);
   t.strain_rate = r.number("strain_rate", t.strain_rate);
   t.inertial_number = r.number("inertial_number", t.inertial_number);
@@ -57,7 +57,7 @@ void write_triaxial(TableWriter& w) {
   if (t.cell == Triaxial::Cell::Membrane) {
     w.text("cell", choice_name(t.cell));
     w.line("membrane_stiffness", t.membrane_stiffness);
-    w.line("membrane_bead", t.membrane_bead);
+    w.line("membrane_spacing", t.membrane_spacing);
   }
   w.line("axial_strain", t.axial_strain);
   w.line("strain_rate", t.strain_rate);

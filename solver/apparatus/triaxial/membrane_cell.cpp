@@ -51,6 +51,8 @@ MembraneWrap wrap_cuboid(const Membrane& m, double rm, double pressure, const Cu
   w.setting.rest_axial = pitch;
   w.setting.k_hoop = m.stiffness * pitch / chord;
   w.setting.k_axial = m.stiffness * chord / pitch;
+  w.setting.axis_x = 0.5 * (b.x0 + b.x1);
+  w.setting.axis_y = 0.5 * (b.y0 + b.y1);
   return w;
 }
 
@@ -67,8 +69,8 @@ Ring measure_ring(const std::vector<Vec3>& x, int first, int cols, const Simulat
     const Vec3& b = x[size_t(first + (c + 1) % cols)];
     g.area += 0.5 * (a[0] * b[1] - b[0] * a[1]);
     const double l = std::hypot(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
-    g.perimeter += l;
-    g.bond_force += s.k_hoop * std::max(0.0, l - s.rest_hoop) / cols;
+    g.perimeter += std::hypot(b[0] - a[0], b[1] - a[1]);
+    g.bond_force += s.k_hoop * (l - s.rest_hoop) / cols;
     g.z += a[2] / cols;
   }
   return g;
@@ -80,20 +82,22 @@ MembraneShape measure_membrane(const std::vector<Vec3>& x, const Membrane& m, do
                                double z1, const Simulation::MembraneSetting& s) {
   std::vector<Ring> rings;
   for (int r = 0; r < m.rows; ++r) rings.push_back(measure_ring(x, m.first + r * m.cols, m.cols, s));
+  // the inner face of overlapping beads: the ring of centres shrunk by r_m
+  const auto inner = [&](const Ring& g) {
+    return g.area - g.perimeter * rm + std::numbers::pi * rm * rm;
+  };
   MembraneShape out;
   // below the first ring and above the last, its own area
-  out.volume = rings.front().area * std::max(0.0, std::min(rings.front().z, z1) - z0) +
-               rings.back().area * std::max(0.0, z1 - std::max(rings.back().z, z0));
+  out.volume = inner(rings.front()) * std::max(0.0, std::min(rings.front().z, z1) - z0) +
+               inner(rings.back()) * std::max(0.0, z1 - std::max(rings.back().z, z0));
   for (size_t r = 0; r + 1 < rings.size(); ++r) {  // the area linear between rings, within [z0, z1]
     const double za = rings[r].z, zb = rings[r + 1].z;
     const double lo = std::max(za, z0), hi = std::min(zb, z1);
     if (!(hi > lo) || !(zb > za)) continue;
-    const double aa = rings[r].area, ab = rings[r + 1].area;
+    const double aa = inner(rings[r]), ab = inner(rings[r + 1]);
     const auto at = [&](double z) { return aa + (ab - aa) * (z - za) / (zb - za); };
     out.volume += 0.5 * (at(lo) + at(hi)) * (hi - lo);
   }
-  for (const Ring& g : rings)  // the half of each bead inside the surface of centres
-    if (g.z > z0 && g.z < z1) out.volume -= m.cols * 2.0 / 3.0 * std::numbers::pi * rm * rm * rm;
   // the end rings are sealed to the floor and the platen: no hoop tension of their own
   out.area = out.volume / (z1 - z0);
   double hoop = 0;

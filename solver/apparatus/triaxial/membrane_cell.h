@@ -6,25 +6,22 @@
 // rows x cols beads of radius r_m. Wrapped about the cuboid the plates
 // leave, its rings follow the rectangle grown by r_m (sides and quarter
 // circles about the corners: the beads touch the specimen where the plates
-// did), its rows run from r_m above the floor to r_m below the platen (the
-// end rows, held, seal the corners as a laboratory membrane is clamped to
-// the pedestal and the top cap: with them a bead outside the plates' faces
-// a frictionless membrane let grains out under its first free row), and
+// did), its rows run from r_m above the floor to r_m below the platen: the
+// end rows are sealed to the plates in height only and carry the pressure
+// like the others (end rows held still across held the specimen's ends in
+// a rigid collar, and the sides of a specimen of 5.5 diameters carried 40 %
+// more than the cell pressure by 3 % of axial strain), and
 // its bonds are at rest: the hoop rest length is the ring's mean chord, the
 // axial one the row pitch, each direction's spring E t times the other
 // spacing over its own (a sheet of E t, membrane.cl).
 //
 // Measured from the beads' positions:
-//   the volume inside: per ring the area of its polygon of centres,
-//     linear in z between the rings' mean heights (the end rings' own area
-//     out to the floor and the platen), integrated from the floor to the
-//     platen, less the half of each bead between them that
-//     lies inside that surface (as the laboratory subtracts the membrane's
-//     own volume from the cell fluid's). A bead lattice dips into the
-//     voids between the grains it wraps, so the volume inside its beads'
-//     inner faces (A - P r_m) would leave out the grains' surface voids:
-//     measured on 150 beads of 6.35 mm, that volume read e = 0.39, and the
-//     specimen's Love-Weber stress 20 % above the cell pressure;
+//   the volume inside: per ring the area inside its beads' inner face,
+//     the polygon of centres shrunk by r_m (A - P r_m + pi r_m^2, exact for
+//     a convex ring; the beads overlap their neighbours, so the face is
+//     nearly smooth), linear in z between the rings' mean heights (the end
+//     rings' own area out to the floor and the platen), integrated from
+//     the floor to the platen;
 //   the mean cross-section: that volume over the height;
 //   the hoop share of the radial stress: a ring of perimeter P under a
 //     hoop tension T (N/m: the mean bond force over the local row pitch)

@@ -34,7 +34,7 @@ void check_fields(const Triaxial& t, const Scene& scene) {
   kCheck.require(t.rows >= 10 && t.rows <= 1000000, "rows", t.rows, "[10, 1000000]");
   kCheck.require(t.membrane_stiffness > 0 && t.membrane_stiffness <= 1e6, "membrane_stiffness",
                  t.membrane_stiffness, "(0, 1e6] N/m");
-  kCheck.require(t.membrane_bead >= 0.25 && t.membrane_bead <= 1, "membrane_bead", t.membrane_bead,
+  kCheck.require(t.membrane_spacing >= 0.25 && t.membrane_spacing <= 1, "membrane_spacing", t.membrane_spacing,
                  "[0.25, 1] of the smallest bead's diameter");
   check_wall_room(scene, kTriaxialWalls, kCheck, "triaxial cell");
 }
@@ -59,24 +59,27 @@ void add_walls(Scene& scene, Triaxial& t, double top, double r_max) {
   scene.walls.insert(scene.walls.end(), w.begin(), w.end());
 }
 
-// The membrane's beads: of the material named "membrane", else a copy of
-// the specimen's whose density keeps the Rayleigh time step of the
-// smallest bead (rho / f^2 for beads f times its size), on the lattice of a rounded rectangle r_m outside the
-// footprint, rows about d_m apart over the height the specimen will have
-// at a porosity of 0.4. They wait, held, above the cell's plates until the
-// programme wraps them about the consolidated specimen
+// The membrane's beads, on a lattice of spacing s = membrane_spacing times
+// the smallest bead's diameter, each of radius s: they overlap their
+// neighbours by half, so the lattice has no holes until its bonds stretch
+// by 40 % (with touching beads the grains of a specimen at 100 kPa parted
+// a frictionless membrane and left it). Of the material named "membrane",
+// else a copy of the specimen's whose density keeps the Rayleigh time step
+// of the smallest bead (rho (r_min / s)^2). On a rounded rectangle s
+// outside the footprint, rows about s apart over the height the specimen
+// will have at a porosity of 0.4. They wait, held, above the cell's plates
+// until the programme wraps them about the consolidated specimen
 // (triaxial_programme.cpp).
 void add_membrane(Scene& scene, const Triaxial& t, const SpecimenExtent& e) {
-  const double f = t.membrane_bead;
+  const double dm = 2 * e.r_min * t.membrane_spacing, rm = dm;  // spacing, radius
   int material = scene.material_index("membrane");  // a scene written back has it
   if (material < 0) {
     Material m = scene.materials[size_t(scene.particles.front().material)];
     m.name = "membrane";
-    m.density /= f * f;
+    m.density *= (e.r_min / rm) * (e.r_min / rm);
     scene.materials.push_back(m);
     material = static_cast<int>(scene.materials.size()) - 1;
   }
-  const double dm = 2 * e.r_min * f, rm = dm / 2;
   const double L = t.length, W = t.width;
   const double perimeter = 2 * (L + W) + 2 * std::numbers::pi * rm;
   double solids = 0;
@@ -85,7 +88,7 @@ void add_membrane(Scene& scene, const Triaxial& t, const SpecimenExtent& e) {
   Membrane& mem = scene.membrane;
   mem.first = static_cast<int>(scene.particles.size());
   mem.cols = std::max(8, static_cast<int>(std::lround(perimeter / dm)));
-  mem.rows = std::max(3, static_cast<int>(std::lround((height - dm) / dm)) + 1);
+  mem.rows = std::max(3, static_cast<int>(std::lround((height - 2 * rm) / dm)) + 1);
   mem.stiffness = t.membrane_stiffness;
   mem.platen_wall = t.first_wall + kTriPlaten;
   double park = e.top + 2 * height;  // above every plate, out of reach
@@ -93,7 +96,7 @@ void add_membrane(Scene& scene, const Triaxial& t, const SpecimenExtent& e) {
     const Vec3 v = cross(w.normal, w.axis_u);
     park = std::max(park, w.point[2] + std::fabs(w.axis_u[2]) * w.half_u + std::fabs(v[2]) * w.half_v);
   }
-  park += 2 * dm + e.r_max;
+  park += 2 * rm + e.r_max;
   const std::vector<Vec3> ring = membrane_ring(0, L, 0, W, rm, mem.cols);
   for (int r = 0; r < mem.rows; ++r)
     for (const Vec3& x : ring) {

@@ -77,8 +77,9 @@ struct TriaxialSummary {
   double wall_internal_gap = 0;
   double median_wall_internal_gap = 0;  // the median over the rows
   double max_inertial_number = 0;
-  // cell = "membrane": its hoop tension's largest share of the lateral
-  // stress at a row (Pa; membrane_cell.h), which sigma_x and sigma_y include
+  // cell = "membrane": its hoop tension's share of the lateral stress at a
+  // row, the largest in size (Pa, signed: negative where the membrane is
+  // compressed; membrane_cell.h), which sigma_x and sigma_y include
   bool membrane = false;
   double max_membrane_stress = 0;
   double settle_time = 0, consolidate_time = 0;  // s

@@ -304,7 +304,7 @@ void TriaxialProgramme::measure_row(const std::array<double, 3>* at_rest) {
   if (wrap) {
     sx = sy = sigma3_ + w.hoop_stress;
     r.coordination = inside_coordination(sample, beads);
-    max_hoop_stress_ = std::max(max_hoop_stress_, w.hoop_stress);
+    if (std::fabs(w.hoop_stress) > std::fabs(max_hoop_stress_)) max_hoop_stress_ = w.hoop_stress;
   } else {
     sx = (now[f + kTriX1].force[0] - now[f + kTriX0].force[0]) / (2 * c.ly() * c.lz());
     sy = (now[f + kTriY1].force[1] - now[f + kTriY0].force[1]) / (2 * c.lx() * c.lz());

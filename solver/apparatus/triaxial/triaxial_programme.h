@@ -142,7 +142,7 @@ class TriaxialProgramme : public ApparatusProgramme {
   Simulation& sim_;
   const Triaxial& tri_;
   bool membrane_ = false;  // cell = "membrane"
-  double max_hoop_stress_ = 0;  // Pa, the membrane's largest share of sigma_3 at a row
+  double max_hoop_stress_ = 0;  // Pa, the membrane's share of sigma_3 largest in size at a row (signed)
   std::int64_t wrap_step_ = -1;  // the step the membrane took over; -1: not (yet)
   SpecimenStats stats_;
   bool started_ = false;

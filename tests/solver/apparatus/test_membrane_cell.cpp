@@ -56,30 +56,29 @@ TEST(MembraneScene, BuiltAboveTheCellAndRoundTrip) {
   ASSERT_EQ(m.first, 150);
   EXPECT_EQ(a.particles.size(), size_t(m.first + m.rows * m.cols));
   EXPECT_EQ(a.specimen_count(), 150u);
-  EXPECT_DOUBLE_EQ(a.particles[size_t(m.first)].radius, 0.25 * 6.35e-3);
+  EXPECT_DOUBLE_EQ(a.particles[size_t(m.first)].radius, 0.5 * 6.35e-3);  // spacing 0.5 d, radius the spacing
   const Scene b = parse_scene(to_toml(a), "b.toml");
   EXPECT_EQ(to_toml(a), to_toml(b));
   EXPECT_EQ(b.membrane.count(), m.count());
 }
 
 TEST(MembraneScene, BadValuesNameTheField) {
-  expect_scene_error(membrane_toml("membrane_bead = 2"), "out_of_range", "triaxial.membrane_bead");
+  expect_scene_error(membrane_toml("membrane_spacing = 2"), "out_of_range", "triaxial.membrane_spacing");
   expect_scene_error(membrane_toml("membrane_stiffness = 0"), "out_of_range",
                      "triaxial.membrane_stiffness");
   expect_scene_error(membrane_toml("path = \"constant_p\""), "conflicting_keys", "triaxial.cell");
   expect_scene_error(testing::triaxial_cell_toml(testing::glass_toml("0.3"),
-                                                 "membrane_bead = 0.5\n", "double"),
-                     "unknown_key", "triaxial.membrane_bead");
+                                                 "membrane_spacing = 0.5\n", "double"),
+                     "unknown_key", "triaxial.membrane_spacing");
 }
 
 // Consolidated by the plates, the specimen is handed to the membrane and
 // consolidated again under it: its beads then lie between the floor and the
 // platen, the platen holds the confining stress on the mean cross-section
 // inside the membrane, the volume carries on without a jump, and the
-// membrane's hoop tension adds a few kPa to the cell pressure. The stress
-// the contacts carry inside (Love-Weber) is printed, not asserted: on this
-// specimen of 5.5 bead diameters it reads the sides 20 % below the cell
-// pressure at rest (docs/triaxial.md, "The membrane cell").
+// membrane's hoop tension changes the cell pressure by little; the
+// contacts inside (Love-Weber) carry the cell pressure on the sides and
+// the platen's stress at rest.
 TEST(MembraneProgramme, TakesTheSpecimenOverFromThePlates) {
   const Scene scene = parse_scene(membrane_toml(), "m.toml");
   Simulation sim(default_device(), scene);
@@ -103,12 +102,20 @@ TEST(MembraneProgramme, TakesTheSpecimenOverFromThePlates) {
                 r.lw_z * 1e-3);
   const TriaxialSummary s = test.summary();
   std::printf("[measure] the membrane's hoop share up to %.3f kPa\n", s.max_membrane_stress * 1e-3);
+  // Measured: the hoop share -0.47 kPa (the membrane a little compressed);
+  // the contacts inside carry the sides' stress within 1.9 % at every row
+  // and the platen's within 0.2 % at rest (9 % in the first row of
+  // loading, the platen's means against one instant); no jump in volume.
   EXPECT_TRUE(s.membrane);
   EXPECT_NEAR(rows.front().sigma_z, 100e3, 1e3);     // consolidated under the membrane
-  EXPECT_LT(std::fabs(rows[1].volumetric_strain), 0.005);  // measured 0.09 %: no jump
-  EXPECT_GT(s.max_membrane_stress, 0);               // measured 2.7 kPa
-  EXPECT_LT(s.max_membrane_stress, 10e3);
-  for (const TriaxialRow& r : rows) EXPECT_NEAR(r.sigma_x, 100e3 + s.max_membrane_stress, 3e3);
+  EXPECT_NEAR(rows.front().lw_z, rows.front().sigma_z, 2e3);
+  EXPECT_LT(std::fabs(rows[1].volumetric_strain), 0.005);
+  EXPECT_LT(std::fabs(s.max_membrane_stress), 5e3);
+  for (const TriaxialRow& r : rows) {
+    EXPECT_NEAR(r.sigma_x, 100e3, std::fabs(s.max_membrane_stress) + 1);
+    EXPECT_NEAR(r.lw_x, r.sigma_x, 0.1 * r.sigma_x);
+    EXPECT_NEAR(r.lw_y, r.sigma_y, 0.1 * r.sigma_y);
+  }
   EXPECT_GT(s.peak_angle, 10);  // a frictional packing carries a deviator
 }
 
