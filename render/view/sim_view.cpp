@@ -82,16 +82,17 @@ SimulationView::SimulationView(const Gl& gl, Simulation& sim)
   bridge_ = std::make_unique<ParticleBridge>(gl, buffers_, packer_, sim.model().device());
 }
 
-// Bounds: the beads and the rectangles (walls at `wall_at`), these no
-// further than half the specimen's size beyond it (the triaxial cell's
-// plates are much larger than the specimen so they can slide past each
-// other: the view frames the specimen, not them).
+// Bounds: the specimen's beads (not a membrane's, which waits above the
+// cell until it is wrapped about them) and the rectangles (walls at
+// `wall_at`), these no further than half the specimen's size beyond it (the
+// triaxial cell's plates are much larger than the specimen so they can
+// slide past each other: the view frames the specimen, not them).
 void SimulationView::set_bounds(const std::vector<Vec3>& centres, const std::vector<double>& radii,
                                 const std::vector<Vec3>& wall_at) {
   const Scene& scene = sim_.scene();
   const glm::dvec3 origin = to_glm(packer_.origin());
   glm::dvec3 lo(1e300), hi(-1e300);
-  for (size_t i = 0; i < centres.size(); ++i) {
+  for (size_t i = 0; i < std::min(centres.size(), scene.specimen_count()); ++i) {
     lo = glm::min(lo, to_glm(centres[i]) - radii[i]);
     hi = glm::max(hi, to_glm(centres[i]) + radii[i]);
   }

@@ -36,7 +36,7 @@ struct Triaxial : ApparatusCell {
   enum class Cell : std::uint8_t { Rigid, Membrane };
   Cell cell = Cell::Rigid;
   double membrane_stiffness = 420;  // N/m, the membrane's E t (docs/triaxial.md)
-  double membrane_spacing = 0.5;       // the membrane beads' diameter / the smallest bead's
+  double membrane_spacing = 0.5;    // its lattice spacing / the smallest bead's diameter (beads of radius the spacing)
   double confining_stress = 100e3; // Pa, p'0 and sigma3
   Path path = Path::ConstantSigma3;
   double b_value = 0.5;            // true_triaxial: (sigma2 - sigma3) / (sigma1 - sigma3), [0, 1]

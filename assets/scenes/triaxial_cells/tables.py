@@ -1,0 +1,140 @@
+#!/usr/bin/env python3
+"""The rigid and the membrane triaxial cell on the same specimens
+(docs/triaxial.md, "The membrane cell"), from the runs' summary.txt and
+triaxial.csv.
+
+Each seed's specimen is run in both cells (the scenes differ only in
+`cell`; the specimen is poured and consolidated by the plates in both):
+
+    for s in 1 2 3 4 5; do
+      sed "s/^seed = 1/seed = $s/" assets/scenes/triaxial.toml > rigid.toml
+      sed "s/^seed = 1/seed = $s/" assets/scenes/triaxial_cells/membrane.toml > membrane.toml
+      simsols run rigid.toml --out RUNS/rigid/s$s -q
+      simsols run membrane.toml --out RUNS/membrane/s$s -q
+    done
+    python3 assets/scenes/triaxial_cells/tables.py RUNS
+
+writes docs/img/triaxial_cells_tests.csv (every test) and
+docs/img/triaxial_cells.csv (each cell's mean with its 95 % interval over
+the seeds, and the membrane's paired change, membrane - rigid, seed by
+seed). tests/layout/check_triaxial_cells_tables.py checks the docs' table
+against both, the means and intervals recomputed from the tests.
+"""
+import csv
+import math
+import os
+import sys
+
+# Student's t, 97.5 % quantile, by degrees of freedom (statistical tables)
+T975 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306,
+        9: 2.262, 10: 2.228}
+CELLS = ["rigid", "membrane"]
+# column of the tables, key of summary.txt (None: from triaxial.csv)
+MEASURES = [("initial_void_ratio", "initial_void_ratio"),
+            ("peak_deg", "peak_friction_angle_deg"),
+            ("peak_axial_strain", "peak_axial_strain"),
+            ("critical_deg", "critical_friction_angle_deg"),
+            ("critical_void_ratio", "critical_void_ratio"),
+            ("max_dilatancy_deg", "max_dilatancy_angle_deg"),
+            ("final_volumetric_strain", None),
+            ("median_wall_internal_gap_percent", "median_wall_internal_gap_percent")]
+
+
+def summary(path):
+    out = {}
+    for line in open(path):
+        if "=" in line and not line.startswith("#"):
+            k, v = line.split("=", 1)
+            out[k.strip()] = v.strip()
+    return out
+
+
+def final_volumetric_strain(path):
+    rows = list(csv.DictReader(open(path)))
+    return float(rows[-1]["volumetric_strain"])
+
+
+def mean_ci(values):
+    n = len(values)
+    m = sum(values) / n
+    if n < 2:
+        return m, float("nan")
+    sd = math.sqrt(sum((v - m) ** 2 for v in values) / (n - 1))
+    return m, T975[n - 1] * sd / math.sqrt(n)
+
+
+def tests(runs):
+    out = []
+    for cell in CELLS:
+        for seed_dir in sorted(os.listdir(os.path.join(runs, cell))):
+            d = os.path.join(runs, cell, seed_dir)
+            if not os.path.exists(os.path.join(d, "summary.txt")):
+                continue
+            s = summary(os.path.join(d, "summary.txt"))
+            row = {"cell": cell, "seed": seed_dir.lstrip("s")}
+            for col, key in MEASURES:  # rounded as written: the ensemble is of what the table shows
+                v = final_volumetric_strain(os.path.join(d, "triaxial.csv")) if key is None else float(s[key])
+                row[col] = round(v, DIGITS[col])
+            out.append(row)
+    return out
+
+
+def fmt(v, digits):
+    return f"{v:.{digits}f}"
+
+
+DIGITS = {"initial_void_ratio": 3, "peak_deg": 2, "peak_axial_strain": 3, "critical_deg": 2,
+          "critical_void_ratio": 3, "max_dilatancy_deg": 2, "final_volumetric_strain": 4,
+          "median_wall_internal_gap_percent": 2}
+
+
+def ensemble(rows):
+    """Each cell's mean and interval, and the paired change membrane - rigid."""
+    out = []
+    by = {c: {r["seed"]: r for r in rows if r["cell"] == c} for c in CELLS}
+    seeds = sorted(set(by["rigid"]) & set(by["membrane"]), key=int)
+    for cell in CELLS + ["membrane - rigid"]:
+        row = {"cell": cell, "specimens": len(seeds)}
+        for col, _ in MEASURES:
+            if cell == "membrane - rigid":
+                values = [by["membrane"][s][col] - by["rigid"][s][col] for s in seeds]
+            else:
+                values = [by[cell][s][col] for s in seeds]
+            m, ci = mean_ci(values)
+            row[col] = fmt(m, DIGITS[col])
+            row[col + "_ci95"] = fmt(ci, DIGITS[col])
+        out.append(row)
+    return out
+
+
+def write(path, rows, header):
+    with open(path, "w", newline="") as f:
+        f.write(header)
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        w.writerows(rows)
+
+
+def main():
+    runs = sys.argv[1]
+    root = os.path.join(os.path.dirname(__file__), "..", "..", "..")
+    rows = tests(runs)
+    shown = [{k: (fmt(v, DIGITS[k]) if k in DIGITS else v) for k, v in r.items()} for r in rows]
+    note = ("# Rigid and membrane triaxial cell, the same specimens (docs/triaxial.md); "
+            "angles in deg, strains as fractions, gap in % of p'; "
+            "written by assets/scenes/triaxial_cells/tables.py\n")
+    write(os.path.join(root, "docs/img/triaxial_cells_tests.csv"), shown, note)
+    table = ensemble(rows)
+    write(os.path.join(root, "docs/img/triaxial_cells.csv"), table,
+          note.replace("the same specimens", "means and 95 % t-intervals over the specimens"))
+    # the docs' table, as tests/layout/check_triaxial_cells_tables.py reads it
+    print("| cell | specimens | e after consolidation | peak φ′ (°) | εa at peak | critical φ′ (°) "
+          "| e critical | ψ max (°) | εv at the end | walls vs contacts, median (% of p′) |")
+    print("|---" * 10 + "|")
+    for r in table:
+        print("| " + " | ".join([r["cell"], str(r["specimens"])] +
+                                [f"{r[c]} ± {r[c + '_ci95']}" for c, _ in MEASURES]) + " |")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,50 @@
+#!/usr/bin/env python3
+"""One source for docs/triaxial.md's "Rigid against membrane": each row of
+its table is docs/img/triaxial_cells.csv, whose means and 95 % intervals
+(each cell's, and the paired membrane - rigid change) are recomputed here
+from the tests in docs/img/triaxial_cells_tests.csv.
+  tests/layout/check_triaxial_cells_tables.py [REPO_ROOT]"""
+import csv
+import math
+import os
+import sys
+
+root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
+doc = open(os.path.join(root, "docs/triaxial.md"), encoding="utf-8").read()
+section = doc[doc.index("### Rigid against membrane"):]
+section = section[:section.index("\n## ")]
+T975 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262}
+COLUMNS = ["initial_void_ratio", "peak_deg", "peak_axial_strain", "critical_deg", "critical_void_ratio",
+           "max_dilatancy_deg", "final_volumetric_strain", "median_wall_internal_gap_percent"]
+bad = []
+
+
+def rows(name):
+    return list(csv.DictReader(l for l in open(os.path.join(root, "docs/img", name)) if not l.startswith("#")))
+
+
+tests = rows("triaxial_cells_tests.csv")
+by = {c: {r["seed"]: r for r in tests if r["cell"] == c} for c in ("rigid", "membrane")}
+seeds = sorted(set(by["rigid"]) & set(by["membrane"]), key=int)
+for r in rows("triaxial_cells.csv"):
+    cells = [r["cell"], r["specimens"]] + [f"{r[c]} ± {r[c + '_ci95']}" for c in COLUMNS]
+    line = "| " + " | ".join(cells) + " |"
+    if line not in section:
+        bad.append(f"the table lacks {line}")
+    for c in COLUMNS:
+        if r["cell"] == "membrane - rigid":
+            v = [float(by["membrane"][s][c]) - float(by["rigid"][s][c]) for s in seeds]
+        else:
+            v = [float(by[r["cell"]][s][c]) for s in seeds]
+        m = sum(v) / len(v)
+        ci = T975[len(v) - 1] * math.sqrt(sum((x - m) ** 2 for x in v) / (len(v) - 1) / len(v))
+        digits = len(r[c].split(".")[1]) if "." in r[c] else 0
+        tol = 0.6 * 10 ** -digits + 1e-9
+        if abs(m - float(r[c])) > tol or abs(ci - float(r[c + "_ci95"])) > tol:
+            bad.append(f"{r['cell']} {c}: the tests give {m:.4f} ± {ci:.4f}, the table {r[c]} ± {r[c + '_ci95']}")
+    if int(r["specimens"]) != len(seeds):
+        bad.append(f"{r['cell']}: {r['specimens']} specimens, the tests have {len(seeds)}")
+if bad:
+    print("\n".join(bad))
+    sys.exit(1)
+print(f"triaxial cells table: {len(seeds)} specimens in both cells, rows and intervals agree")
