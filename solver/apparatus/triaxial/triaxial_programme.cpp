@@ -484,7 +484,9 @@ std::string TriaxialProgramme::summary_text(double wall_seconds) const {
 
 std::string TriaxialProgramme::describe() const {
   char buf[128];
-  std::snprintf(buf, sizeof buf, "axial strain rate %.3g 1/s, five servo plates", strain_rate());
+  std::snprintf(buf, sizeof buf, "axial strain rate %.3g 1/s, %s", strain_rate(),
+                membrane_ ? "a servo platen, the sides a membrane from the hand-over"
+                          : "five servo plates");
   return buf;
 }
 
