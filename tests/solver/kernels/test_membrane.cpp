@@ -9,6 +9,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <numbers>
+#include <string>
+
+#include <unistd.h>
 
 #include "solver/io/checkpoint.h"
 #include "tests/support/test_support.h"
@@ -119,7 +122,10 @@ TEST_P(Membrane, HeldItStaysAndItsLastRowFollowsThePlaten) {
 }
 
 TEST_P(Membrane, ResumesFromACheckpointBitForBit) {
-  const auto dir = std::filesystem::temp_directory_path() / "simsols_membrane_ckpt";
+  // one folder per test and process: ctest runs the precisions (and the GPU form) side by side
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("simsols_membrane_ckpt_" + std::string(testing::precision_name(GetParam())) + "_" +
+                    std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::string file = (dir / "m.ckpt").string();
   Simulation a(default_device(), tube(GetParam()));
