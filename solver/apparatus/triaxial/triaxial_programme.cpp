@@ -76,10 +76,14 @@ std::array<double, 3> TriaxialProgramme::targets(double sigma_z) const {
 
 // Each servo plate's force target and tuning for the stresses, on the
 // plates' current areas.
-void TriaxialProgramme::apply_servos(const std::array<double, 3>& stress, bool platen) {
+void TriaxialProgramme::apply_servos(const std::array<double, 3>& stress, bool platen,
+                                     const Wrapped* shape) {
   const Cell c = cell();
-  const double area[3] = {c.ly() * c.lz(), c.lx() * c.lz(),
-                          wrapped() ? wrapped_shape(c).area : c.lx() * c.ly()};
+  // under the membrane the platen's area is read from its beads, only when the platen is set
+  const double platen_area = !platen || !wrapped() ? c.lx() * c.ly()
+                             : shape               ? shape->area
+                                                   : wrapped_shape(c).area;
+  const double area[3] = {c.ly() * c.lz(), c.lx() * c.lz(), platen_area};
   const double extent[3] = {c.lx(), c.ly(), c.lz()};
   const int walls[3][2] = {{kTriX0, kTriX1}, {kTriY0, kTriY1}, {kTriPlaten, -1}};
   for (int axis = 0; axis < 3; ++axis) {
@@ -183,7 +187,8 @@ std::array<double, 3> TriaxialProgramme::wall_stresses(const Cell& c, const Wrap
 
 bool TriaxialProgramme::consolidated() {
   const Cell c = cell();
-  const std::array<double, 3> s = wall_stresses(c);
+  const Wrapped w = wrapped() ? wrapped_shape(c) : Wrapped{};
+  const std::array<double, 3> s = wall_stresses(c, wrapped() ? &w : nullptr);
   consolidated_stress_ = s;
   const double p0 = sigma3_;
   const Observables o = sim_.observe();
@@ -202,7 +207,7 @@ bool TriaxialProgramme::consolidated() {
     apply_servos(targets(0), true);
     return false;
   }
-  apply_servos(targets(0), true);  // the areas changed
+  apply_servos(targets(0), true, wrapped() ? &w : nullptr);  // the areas changed
   if (hold_) return false;
   return done;
 }

@@ -127,7 +127,9 @@ class TriaxialProgramme : public ApparatusProgramme {
   // The plates' targets (Pa) for the stage: x, y and z (z unused while
   // compressing).
   std::array<double, 3> targets(double sigma_z) const;
-  void apply_servos(const std::array<double, 3>& stress, bool platen);
+  // `shape`: the membrane's, when the caller has just read it (else read
+  // here, only when the platen is set).
+  void apply_servos(const std::array<double, 3>& stress, bool platen, const Wrapped* shape = nullptr);
   bool consolidated();
   // Pa, x y z: the plates' mean stresses since the last read, or with the
   // membrane the cell pressure plus its hoop share and the platen's.
