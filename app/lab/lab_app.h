@@ -58,6 +58,7 @@ class LabApp {
   LabExperiment& experiment() { return *exp_; }
   void fit_view();
   void draw_profile();
+  void draw_build_choices();
   void refit_on_stage();
   void save_screenshot(const std::string& path);
   void save_frame(const std::string& path);  // the viewport only (or the Alioscopy image)

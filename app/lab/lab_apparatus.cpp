@@ -56,6 +56,17 @@ std::unique_ptr<LabApparatus> make_lab_apparatus(Simulation& sim) {
   return i < 0 ? nullptr : kBenches[i].make(sim);
 }
 
+std::string LabApparatus::choose(const std::string& key, const std::string&, Scene& scene) {
+  std::string list;
+  for (const LabChoice& c : choices(scene)) {
+    list += (list.empty() ? "" : ", ") + c.key + " (";
+    for (size_t i = 0; i < c.options.size(); ++i) list += (i ? "|" : "") + c.options[i];
+    list += ")";
+  }
+  return std::string("the ") + kind() + " has no choice '" + key + "'" +
+         (list.empty() ? "; it has none" : "; its choices: " + list);
+}
+
 std::string unknown_setting(const LabApparatus& a, const std::string& key) {
   std::string list;
   for (const LabSetting& s : a.settings())

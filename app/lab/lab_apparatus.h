@@ -61,6 +61,16 @@ struct LabSetting {
   double value = 0;
 };
 
+// One choice of how the apparatus is built (the triaxial's cell): `key`
+// for scripts (choose cell membrane), the panel's label, the options and
+// the one the scene has now. It changes the scene and applies when the
+// specimen is prepared again.
+struct LabChoice {
+  std::string key, label;
+  std::vector<std::string> options;
+  int current = 0;
+};
+
 class LabApparatus {
  public:
   virtual ~LabApparatus() = default;
@@ -87,6 +97,12 @@ class LabApparatus {
   // Sets a setting (value in its unit) on the running test and in `scene`
   // (for the next prepare). Error text naming the key and range, or "".
   virtual std::string set(const std::string& key, double value, Scene& scene) = 0;
+
+  // The apparatus' build choices as `scene` (the next prepare's) has them.
+  virtual std::vector<LabChoice> choices(const Scene&) const { return {}; }
+  // Sets a choice on `scene` (not yet placed). Error text naming the key
+  // and its options, or "".
+  virtual std::string choose(const std::string& key, const std::string& option, Scene& scene);
 
   virtual std::size_t rows() const = 0;
   virtual double inertial_number() const = 0;  // of the last row, 0 before

@@ -226,6 +226,23 @@ std::string LabExperiment::set_materials(const std::vector<std::pair<std::string
   return note.empty() ? "" : "not a material of this scene, not set: " + note;
 }
 
+std::vector<LabChoice> LabExperiment::choices() const {
+  return app_ ? app_->choices(scene_) : std::vector<LabChoice>{};
+}
+
+std::string LabExperiment::choose(const std::string& key, const std::string& option) {
+  if (!app_) return "prepare a specimen first";
+  Scene sc = scene_;
+  if (std::string e = app_->choose(key, option, sc); !e.empty()) return e;
+  try {
+    validate_scene(sc, label_);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  scene_ = std::move(sc);
+  return {};
+}
+
 std::string LabExperiment::set(const std::string& key, double value) {
   if (!app_) return "prepare a specimen first";
   const LabStage before = stage();
@@ -267,6 +284,10 @@ std::int64_t LabExperiment::advance(double budget, const std::atomic<bool>* keep
       test.advance(n);  // returns at each new row and stage change
     } catch (const RunawayError& e) {
       // the simulation is at the step before the fault: paused there
+      running_ = false;
+      fault_ = e.what();
+      break;
+    } catch (const InputError& e) {  // a specimen the apparatus cannot take (a membrane too short)
       running_ = false;
       fault_ = e.what();
       break;

@@ -84,6 +84,10 @@ class LabExperiment {
   std::string set_materials(const std::vector<std::pair<std::string, double>>& values);
   // A live setting by key (LabApparatus::settings), in its unit.
   std::string set(const std::string& key, double value);
+  // The apparatus' build choices (LabApparatus::choices; none before the
+  // first prepare) and one of them set on the next prepare's scene.
+  std::vector<LabChoice> choices() const;
+  std::string choose(const std::string& key, const std::string& option);
 
   // Finishes a background build when it is ready; call once per frame.
   // Returns a build error, if any.

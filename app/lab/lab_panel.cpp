@@ -80,6 +80,7 @@ void LabApp::draw_stage_and_message(LabStage stage) {
 // the time step and the effect slots, then Prepare / Reset.
 void LabApp::draw_specimen(LabStage stage) {
   draw_apparatus_choice();
+  draw_build_choices();
   draw_preset_and_scene_file();
   draw_precision_and_time_step();
   if (draw_effect_slots()) {
@@ -106,6 +107,23 @@ void LabApp::draw_apparatus_choice() {
     const std::string err = exp_->load_default(benches[size_t(apparatus_)]);
     act(err);
     if (err.empty()) act(exp_->prepare());
+  }
+}
+
+// The apparatus' own build choices (the triaxial's cell): choosing one
+// prepares the specimen again with it.
+void LabApp::draw_build_choices() {
+  for (const LabChoice& c : exp_->choices()) {
+    ImGui::SetNextItemWidth(150);
+    if (!ImGui::BeginCombo(c.label.c_str(), c.options[size_t(c.current)].c_str())) continue;
+    for (size_t i = 0; i < c.options.size(); ++i)
+      if (ImGui::Selectable(c.options[i].c_str(), int(i) == c.current) && int(i) != c.current) {
+        message_.clear();
+        const std::string err = exp_->choose(c.key, c.options[i]);
+        act(err);
+        if (err.empty()) act(exp_->prepare());
+      }
+    ImGui::EndCombo();
   }
 }
 

@@ -36,6 +36,7 @@ const LabApp::Script::Command LabApp::Script::kCommands[] = {
     {"material", "CALIBRATED.toml [TARGET]", &Script::use_material},
     {"precision", "float|double", &Script::choose_precision},
     {"profile", "paper|fast", &Script::choose_profile},
+    {"choose", "KEY OPTION", &Script::choose_build},
     {"effect", "SLOT CHOICE", &Script::choose_effect},
     {"prepare", "", &Script::prepare},
     {"load", "[KPA]", &Script::apply_load},

@@ -58,6 +58,7 @@ struct LabApp::Script {
   void use_material(const Line& line);         // material CALIBRATED.toml [TARGET]
   void choose_precision(const Line& line);     // precision float|double
   void choose_profile(const Line& line);       // profile paper|fast
+  void choose_build(const Line& line);         // choose cell membrane (the next prepare's)
   void choose_effect(const Line& line);        // effect SLOT CHOICE
   void prepare(const Line& line);              // prepare
   void apply_load(const Line& line);           // load [KPA]

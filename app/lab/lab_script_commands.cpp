@@ -106,6 +106,14 @@ void LabApp::Script::choose_profile(const Line& line) {
   fail(line, "profile " + names, 2);
 }
 
+// the apparatus' build choices: choose KEY OPTION (applies at the next prepare)
+void LabApp::Script::choose_build(const Line& line) {
+  char key[32] = {0}, option[32] = {0};
+  if (std::sscanf(line.argument.c_str(), "%31s %31s", key, option) != 2)
+    return fail(line, "choose KEY OPTION (the apparatus' choices: docs/lab.md)", 2);
+  succeeded(line, experiment().choose(key, option));
+}
+
 // the panel's slot choices: effect SLOT CHOICE (applies at the next prepare)
 void LabApp::Script::choose_effect(const Line& line) {
   char slot[32] = {0}, choice[32] = {0};

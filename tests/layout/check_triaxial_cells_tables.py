@@ -15,7 +15,8 @@ section = doc[doc.index("### Rigid against membrane"):]
 section = section[:section.index("\n## ")]
 T975 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262}
 COLUMNS = ["initial_void_ratio", "peak_deg", "peak_axial_strain", "critical_deg", "critical_void_ratio",
-           "max_dilatancy_deg", "final_volumetric_strain", "median_wall_internal_gap_percent"]
+           "max_dilatancy_deg", "final_volumetric_strain", "median_wall_internal_gap_percent",
+           "end_membrane_axial_kPa", "end_membrane_shell_kPa"]
 bad = []
 
 

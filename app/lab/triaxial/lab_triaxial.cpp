@@ -1,7 +1,9 @@
 // The triaxial test in the lab (lab_apparatus.h): "Apply σ₃" settles the
 // beads and consolidates them isotropically, then the five servo plates
-// hold σ₃ (TriaxialProgramme::hold_when_consolidated) until "start
-// compression"; σ₃ and the strain rate can be changed at any stage.
+// (or, in the membrane cell, the platen and the membrane) hold σ₃
+// (TriaxialProgramme::hold_when_consolidated) until "start compression";
+// σ₃ and the strain rate can be changed at any stage, the cell (rigid
+// plates or a membrane) before the specimen is prepared again.
 #include <cstdio>
 #include <sstream>
 
@@ -15,7 +17,7 @@ namespace {
 
 class LabTriaxial : public LabApparatus {
  public:
-  explicit LabTriaxial(Simulation& sim) : test_(sim) { test_.hold_when_consolidated(true); }
+  explicit LabTriaxial(Simulation& sim) : sim_(sim), test_(sim) { test_.hold_when_consolidated(true); }
 
   const char* kind() const override { return "triaxial"; }
   LoadingProgramme& programme() override { return test_; }
@@ -77,6 +79,12 @@ class LabTriaxial : public LabApparatus {
     return unknown_setting(*this, key);
   }
 
+  std::vector<LabChoice> choices(const Scene& scene) const override {
+    const Triaxial* t = scene.apparatus_as<Triaxial>();
+    return {{"cell", "cell", {"rigid", "membrane"}, t && t->cell == Triaxial::Cell::Membrane ? 1 : 0}};
+  }
+  std::string choose(const std::string& key, const std::string& option, Scene& scene) override;
+
   std::size_t rows() const override { return test_.rows().size(); }
   double inertial_number() const override {
     return test_.rows().empty() ? 0 : test_.rows().back().inertial_number;
@@ -92,8 +100,23 @@ class LabTriaxial : public LabApparatus {
   }
 
  private:
+  Simulation& sim_;
   TriaxialProgramme test_;
 };
+
+// The cell of the next prepare: a membrane holds the sides at σ₃, so it
+// runs the constant-σ₃ path only (as `simsols run` refuses the others).
+std::string LabTriaxial::choose(const std::string& key, const std::string& option, Scene& scene) {
+  if (key != "cell") return LabApparatus::choose(key, option, scene);
+  Triaxial* t = scene.apparatus_as<Triaxial>();
+  if (!t || scene.placed()) return "cell: this scene's cell is built already; open it again to change it";
+  if (option != "rigid" && option != "membrane") return "cell " + option + ": the cell is rigid|membrane";
+  if (option == "membrane" && t->path != Triaxial::Path::ConstantSigma3)
+    return "cell membrane: a membrane holds σ₃ constant; this scene's path is another "
+           "([triaxial] path, docs/triaxial.md)";
+  t->cell = option == "membrane" ? Triaxial::Cell::Membrane : Triaxial::Cell::Rigid;
+  return {};
+}
 
 // Before compression: the plates at the last equilibrium check; then the
 // last row.
@@ -121,6 +144,8 @@ std::string LabTriaxial::progress_text() const {
 std::string LabTriaxial::state_lines() {
   std::ostringstream o;
   o.precision(10);
+  const Triaxial* t = sim_.scene().apparatus_as<Triaxial>();
+  o << "cell = " << (t && t->cell == Triaxial::Cell::Membrane ? "membrane" : "rigid") << "\n";
   o << "rows = " << test_.rows().size() << "\nsigma3_target_kpa = "
     << test_.confining_stress() * 1e-3 << "\nstrain_rate = " << test_.strain_rate()
     << "\nconsolidated = " << (test_.consolidated_now() ? 1 : 0) << "\n";

@@ -37,7 +37,11 @@ MEASURES = [("initial_void_ratio", "initial_void_ratio"),
             ("critical_void_ratio", "critical_void_ratio"),
             ("max_dilatancy_deg", "max_dilatancy_angle_deg"),
             ("final_volumetric_strain", None),
-            ("median_wall_internal_gap_percent", "median_wall_internal_gap_percent")]
+            ("median_wall_internal_gap_percent", "median_wall_internal_gap_percent"),
+            # the membrane's share of the platen's stress at the end, measured
+            # and as the shell estimate gives it (0 in the rigid cell)
+            ("end_membrane_axial_kPa", "end_membrane_axial_kPa"),
+            ("end_membrane_shell_kPa", "end_membrane_shell_kPa")]
 
 
 def summary(path):
@@ -73,7 +77,7 @@ def tests(runs):
             s = summary(os.path.join(d, "summary.txt"))
             row = {"cell": cell, "seed": seed_dir.lstrip("s")}
             for col, key in MEASURES:  # rounded as written: the ensemble is of what the table shows
-                v = final_volumetric_strain(os.path.join(d, "triaxial.csv")) if key is None else float(s[key])
+                v = final_volumetric_strain(os.path.join(d, "triaxial.csv")) if key is None else float(s.get(key, 0))
                 row[col] = round(v, DIGITS[col])
             out.append(row)
     return out
@@ -85,7 +89,8 @@ def fmt(v, digits):
 
 DIGITS = {"initial_void_ratio": 3, "peak_deg": 2, "peak_axial_strain": 3, "critical_deg": 2,
           "critical_void_ratio": 3, "max_dilatancy_deg": 2, "final_volumetric_strain": 4,
-          "median_wall_internal_gap_percent": 2}
+          "median_wall_internal_gap_percent": 2, "end_membrane_axial_kPa": 2,
+          "end_membrane_shell_kPa": 2}
 
 
 def ensemble(rows):
@@ -121,7 +126,7 @@ def main():
     rows = tests(runs)
     shown = [{k: (fmt(v, DIGITS[k]) if k in DIGITS else v) for k, v in r.items()} for r in rows]
     note = ("# Rigid and membrane triaxial cell, the same specimens (docs/triaxial.md); "
-            "angles in deg, strains as fractions, gap in % of p'; "
+            "angles in deg, strains as fractions, gap in % of p', shares in kPa; "
             "written by assets/scenes/triaxial_cells/tables.py\n")
     write(os.path.join(root, "docs/img/triaxial_cells_tests.csv"), shown, note)
     table = ensemble(rows)
@@ -129,8 +134,9 @@ def main():
           note.replace("the same specimens", "means and 95 % t-intervals over the specimens"))
     # the docs' table, as tests/layout/check_triaxial_cells_tables.py reads it
     print("| cell | specimens | e after consolidation | peak φ′ (°) | εa at peak | critical φ′ (°) "
-          "| e critical | ψ max (°) | εv at the end | walls vs contacts, median (% of p′) |")
-    print("|---" * 10 + "|")
+          "| e critical | ψ max (°) | εv at the end | walls vs contacts, median (% of p′) "
+          "| membrane's axial share at the end (kPa) | shell estimate (kPa) |")
+    print("|---" * 12 + "|")
     for r in table:
         print("| " + " | ".join([r["cell"], str(r["specimens"])] +
                                 [f"{r[c]} ± {r[c + '_ci95']}" for c, _ in MEASURES]) + " |")

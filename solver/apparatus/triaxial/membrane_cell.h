@@ -63,6 +63,23 @@ struct MembraneShape {
 MembraneShape measure_membrane(const std::vector<Vec3>& position, const Membrane& m, double bead_radius,
                                double z0, double z1, const Simulation::MembraneSetting& setting);
 
+// The membrane's share of the platen's axial stress (Pa): the axial load
+// it carries through the grains it grips, (1/V) sum f_z (z_c - z0) over the
+// contacts between a membrane bead and a bead of [0, inside) (f on the
+// inside bead, z_c the contact point, z0 the floor). The platen's force
+// over the mean cross-section is the specimen's own axial stress plus this
+// share (the Love-Weber stress from the boundary forces), so the specimen's
+// is the platen's minus it: the membrane correction of laboratory
+// practice, measured here rather than estimated. Positive where the
+// membrane carries compression.
+double membrane_axial_share(const ContactSample& sample, size_t inside, double volume, double z0);
+
+// The same share as laboratory practice estimates it, a cylindrical shell
+// of sheet stiffness E t (N/m) shortened with the specimen by the axial
+// strain: it carries E t strain pi D over the area pi D^2 / 4, D the
+// diameter of the mean cross-section `area` (m^2). Pa.
+double membrane_shell_share(double stiffness, double axial_strain, double area);
+
 // Contacts per bead of the beads [0, inside): bead pairs count for both,
 // contacts with the membrane or a wall for the bead.
 double inside_coordination(const ContactSample& sample, size_t inside);

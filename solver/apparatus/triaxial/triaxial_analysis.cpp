@@ -104,6 +104,8 @@ void analyse_triaxial_rows(const std::vector<TriaxialRow>& rows, TriaxialSummary
     gaps.push_back(r.lw_gap);
   }
   s.median_wall_internal_gap = median(std::move(gaps));
+  s.end_membrane_axial = rows.back().membrane_axial;
+  s.end_membrane_shell = rows.back().membrane_shell;
   const double from = 0.8 * rows.back().axial_strain * (1 - 1e-7);
   int n = 0;
   for (const TriaxialRow& r : rows)
@@ -131,17 +133,17 @@ std::string triaxial_rows_csv(const std::vector<TriaxialRow>& rows) {
   std::string out =
       "time_s,step,axial_strain,volumetric_strain,sigma_x_kPa,sigma_y_kPa,sigma_z_kPa,p_kPa,q_kPa,"
       "q_over_p,friction_angle_deg,void_ratio,coordination,lw_x_kPa,lw_y_kPa,lw_z_kPa,"
-      "lw_gap,fabric_anisotropy,kinetic_energy_J,inertial_number\n";
+      "lw_gap,fabric_anisotropy,kinetic_energy_J,inertial_number,membrane_axial_kPa,membrane_shell_kPa\n";
   char buf[512];
   for (const TriaxialRow& r : rows) {
     std::snprintf(buf, sizeof buf,
                   "%.9g,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,"
-                  "%.9g,%.9g,%.9g,%.9g\n",
+                  "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n",
                   r.time, static_cast<long long>(r.step), r.axial_strain, r.volumetric_strain,
                   r.sigma_x * 1e-3, r.sigma_y * 1e-3, r.sigma_z * 1e-3, r.p * 1e-3, r.q * 1e-3,
                   r.p > 0 ? r.q / r.p : 0, r.friction_angle, r.void_ratio, r.coordination,
                   r.lw_x * 1e-3, r.lw_y * 1e-3, r.lw_z * 1e-3, r.lw_gap, r.fabric_anisotropy,
-                  r.kinetic_energy, r.inertial_number);
+                  r.kinetic_energy, r.inertial_number, r.membrane_axial * 1e-3, r.membrane_shell * 1e-3);
     out += buf;
   }
   return out;
@@ -175,7 +177,11 @@ std::string triaxial_summary_text(const TriaxialSummary& s) {
   key("median_wall_internal_gap_percent", 100 * s.median_wall_internal_gap);
   key("max_inertial_number", s.max_inertial_number);
   o << "cell = " << (s.membrane ? "membrane" : "rigid") << "\n";
-  if (s.membrane) key("max_membrane_stress_kPa", s.max_membrane_stress * 1e-3);
+  if (s.membrane) {
+    key("max_membrane_stress_kPa", s.max_membrane_stress * 1e-3);
+    key("end_membrane_axial_kPa", s.end_membrane_axial * 1e-3);
+    key("end_membrane_shell_kPa", s.end_membrane_shell * 1e-3);
+  }
   key("settle_time_s", s.settle_time);
   key("consolidate_time_s", s.consolidate_time);
   key("wall_seconds", s.wall_seconds);
@@ -188,10 +194,11 @@ constexpr const char* kColumns[] = {
     "time_s", "step", "axial_strain", "volumetric_strain", "sigma_x_kPa", "sigma_y_kPa",
     "sigma_z_kPa", "p_kPa", "q_kPa", "q_over_p", "friction_angle_deg", "void_ratio",
     "coordination", "lw_x_kPa", "lw_y_kPa", "lw_z_kPa", "lw_gap", "fabric_anisotropy",
-    "kinetic_energy_J", "inertial_number"};
+    "kinetic_energy_J", "inertial_number", "membrane_axial_kPa", "membrane_shell_kPa"};
 constexpr size_t kColumnCount = sizeof kColumns / sizeof kColumns[0];
+constexpr size_t kColumnsBeforeMembrane = kColumnCount - 2;  // the files of the rigid cell only
 
-std::vector<double> csv_numbers(const std::string& line, size_t row) {
+std::vector<double> csv_numbers(const std::string& line, size_t row, size_t columns) {
   std::vector<double> v;
   std::istringstream in(line);
   std::string field;
@@ -209,10 +216,10 @@ std::vector<double> csv_numbers(const std::string& line, size_t row) {
                                "' is not a number");
     v.push_back(x);
   }
-  if (v.size() != kColumnCount)
+  if (v.size() != columns)
     throw ReadError("triaxial.csv row " + std::to_string(row) + " has " +
                              std::to_string(v.size()) + " fields, expected " +
-                             std::to_string(kColumnCount));
+                             std::to_string(columns));
   return v;
 }
 
@@ -220,14 +227,18 @@ std::vector<double> csv_numbers(const std::string& line, size_t row) {
 
 std::vector<TriaxialRow> parse_triaxial_rows_csv(const std::string& text) {
   std::istringstream in(text);
-  std::string line, header;
-  for (size_t i = 0; i < kColumnCount; ++i) header += std::string(i ? "," : "") + kColumns[i];
+  std::string line, header, older;
+  for (size_t i = 0; i < kColumnCount; ++i) {
+    header += std::string(i ? "," : "") + kColumns[i];
+    if (i + 1 == kColumnsBeforeMembrane) older = header;
+  }
   std::getline(in, line);
-  if (line != header) throw ReadError("not a triaxial.csv (its header differs)");
+  if (line != header && line != older) throw ReadError("not a triaxial.csv (its header differs)");
+  const size_t columns = line == header ? kColumnCount : kColumnsBeforeMembrane;
   std::vector<TriaxialRow> rows;
   while (std::getline(in, line)) {
     if (line.empty()) continue;
-    const std::vector<double> v = csv_numbers(line, rows.size() + 1);
+    const std::vector<double> v = csv_numbers(line, rows.size() + 1, columns);
     TriaxialRow r;
     r.time = v[0];
     r.step = static_cast<std::int64_t>(v[1]);
@@ -248,6 +259,10 @@ std::vector<TriaxialRow> parse_triaxial_rows_csv(const std::string& text) {
     r.fabric_anisotropy = v[17];
     r.kinetic_energy = v[18];
     r.inertial_number = v[19];
+    if (columns == kColumnCount) {
+      r.membrane_axial = v[20] * 1e3;
+      r.membrane_shell = v[21] * 1e3;
+    }
     rows.push_back(r);
   }
   return rows;

@@ -45,7 +45,9 @@ struct TriaxialRow {
   std::int64_t step = 0;
   double axial_strain = 0;       // compression positive
   double volumetric_strain = 0;  // compression positive
-  double sigma_x = 0, sigma_y = 0, sigma_z = 0;  // Pa, the plates' mean stresses
+  // Pa, the plates' mean stresses; in a membrane the sides' are the cell
+  // pressure and the hoop share, sigma_z the platen's less membrane_axial
+  double sigma_x = 0, sigma_y = 0, sigma_z = 0;
   double p = 0, q = 0;           // Pa
   double friction_angle = 0;     // deg, mobilised
   double void_ratio = 0;
@@ -58,6 +60,10 @@ struct TriaxialRow {
   double fabric_anisotropy = 0;  // (15/2)(phi_zz - (phi_xx + phi_yy)/2), phi = <n n> over bead pairs
   double kinetic_energy = 0;     // J
   double inertial_number = 0;    // strain_rate d sqrt(rho / p')
+  // cell = "membrane": the membrane's share of the platen's stress, as
+  // measured (subtracted from sigma_z) and as the shell estimate of
+  // practice would give it (Pa; membrane_cell.h); 0 in the rigid cell
+  double membrane_axial = 0, membrane_shell = 0;
 };
 
 struct TriaxialSummary {
@@ -82,6 +88,8 @@ struct TriaxialSummary {
   // compressed; membrane_cell.h), which sigma_x and sigma_y include
   bool membrane = false;
   double max_membrane_stress = 0;
+  // the last row's membrane_axial and membrane_shell (Pa)
+  double end_membrane_axial = 0, end_membrane_shell = 0;
   double settle_time = 0, consolidate_time = 0;  // s
   double wall_seconds = 0;          // filled in by the caller
 };

@@ -1,8 +1,9 @@
 // The triaxial cell's membrane (membrane_cell.h, cell = "membrane"): the
 // ring it is wrapped on, the scene table, and a small poured specimen
 // consolidated by the plates, handed to the membrane and compressed, whose
-// lateral stress inside (Love-Weber) is compared with the cell pressure
-// plus the membrane's hoop share.
+// stress inside (Love-Weber) is compared with the cell pressure plus the
+// membrane's hoop share and with the platen's less the membrane's axial
+// share.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -79,6 +80,24 @@ TEST(MembraneScene, BadValuesNameTheField) {
 // membrane's hoop tension changes the cell pressure by little; the
 // contacts inside (Love-Weber) carry the cell pressure on the sides and
 // the platen's stress at rest.
+TEST(MembraneShare, TheAxialLoadItCarriesThroughTheGrainsAndTheShellEstimate) {
+  // one bead inside at z = 1 m, two membrane beads touching it, one above
+  // pushing it down, one below (listed the other way round) pushing it up
+  ContactSample sample;
+  sample.beads.position = {{0, 0, 1}, {1, 0, 1.5}, {1, 0, 0.25}};
+  sample.beads.radius = {0.5, 0.5, 0.25};
+  sample.contacts = {{0, 1, {-1, 0, -2}},   // on bead 0: at z_c = 1.25
+                     {2, 0, {1, 0, -3}}};   // on bead 0: +3 at z_c = 1 - 0.75 * 2 / 3 = 0.5
+  // (1/V) sum f_z (z_c - z0), V = 2 m^3, z0 = 0: (-2 * 1.25 + 3 * 0.5) / 2
+  EXPECT_NEAR(membrane_axial_share(sample, 1, 2.0, 0.0), -0.5, 1e-12);
+  EXPECT_NEAR(membrane_axial_share(sample, 1, 2.0, 1.0), (-2 * 0.25 + 3 * -0.5) / 2, 1e-12);
+  // contacts between membrane beads do not count
+  sample.contacts.push_back({1, 2, {0, 0, 7}});
+  EXPECT_NEAR(membrane_axial_share(sample, 1, 2.0, 0.0), -0.5, 1e-12);
+  // a shell of E t = 420 N/m, D = 40 mm, shortened 10 %: 4 E t eps / D
+  EXPECT_NEAR(membrane_shell_share(420, 0.1, std::numbers::pi / 4 * 0.04 * 0.04), 4200, 1e-9);
+}
+
 TEST(MembraneProgramme, TakesTheSpecimenOverFromThePlates) {
   const Scene scene = parse_scene(membrane_toml(), "m.toml");
   Simulation sim(default_device(), scene);
@@ -97,9 +116,10 @@ TEST(MembraneProgramme, TakesTheSpecimenOverFromThePlates) {
   ASSERT_EQ(rows.size(), 16u);
   for (const TriaxialRow& r : rows)
     std::printf("[measure] eps_a %.4f eps_v %.4f e %.4f: sides %.2f, Love-Weber %.2f %.2f; "
-                "platen %.2f, Love-Weber %.2f kPa\n", r.axial_strain, r.volumetric_strain,
-                r.void_ratio, r.sigma_x * 1e-3, r.lw_x * 1e-3, r.lw_y * 1e-3, r.sigma_z * 1e-3,
-                r.lw_z * 1e-3);
+                "platen less the membrane's %.2f (shell %.2f) %.2f, Love-Weber %.2f kPa; gap %.4f\n",
+                r.axial_strain, r.volumetric_strain, r.void_ratio, r.sigma_x * 1e-3, r.lw_x * 1e-3,
+                r.lw_y * 1e-3, r.membrane_axial * 1e-3, r.membrane_shell * 1e-3, r.sigma_z * 1e-3,
+                r.lw_z * 1e-3, r.lw_gap);
   const TriaxialSummary s = test.summary();
   std::printf("[measure] the membrane's hoop share up to %.3f kPa\n", s.max_membrane_stress * 1e-3);
   // Measured: the hoop share -0.47 kPa (the membrane a little compressed);
@@ -112,6 +132,9 @@ TEST(MembraneProgramme, TakesTheSpecimenOverFromThePlates) {
   EXPECT_LT(std::fabs(rows[1].volumetric_strain), 0.005);
   EXPECT_LT(std::fabs(s.max_membrane_stress), 5e3);
   for (const TriaxialRow& r : rows) {
+    // the platen less the membrane's share against the contacts, and the
+    // sides, at the row's last step: 1.8 % of p' at most
+    EXPECT_LT(r.lw_gap, 0.15);
     EXPECT_NEAR(r.sigma_x, 100e3, std::fabs(s.max_membrane_stress) + 1);
     EXPECT_NEAR(r.lw_x, r.sigma_x, 0.1 * r.sigma_x);
     EXPECT_NEAR(r.lw_y, r.sigma_y, 0.1 * r.sigma_y);
