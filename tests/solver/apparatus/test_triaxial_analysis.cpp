@@ -81,13 +81,25 @@ TEST(TriaxialAnalysis, RowsReadBackAsWritten) {
   r.fabric_anisotropy = 0.21;
   r.kinetic_energy = 1.5e-7;
   r.inertial_number = 4e-4;
+  r.membrane_axial = 5.25e3;
+  r.membrane_shell = 4.5e3;
   const std::vector<TriaxialRow> back = parse_triaxial_rows_csv(triaxial_rows_csv({r, r}));
   ASSERT_EQ(back.size(), 2u);
   EXPECT_EQ(back[1].step, r.step);
   EXPECT_DOUBLE_EQ(back[1].sigma_z, r.sigma_z);
   EXPECT_DOUBLE_EQ(back[1].volumetric_strain, r.volumetric_strain);
   EXPECT_DOUBLE_EQ(back[1].inertial_number, r.inertial_number);
+  EXPECT_DOUBLE_EQ(back[1].membrane_axial, r.membrane_axial);
+  EXPECT_DOUBLE_EQ(back[1].membrane_shell, r.membrane_shell);
   EXPECT_EQ(triaxial_rows_csv(back), triaxial_rows_csv({r, r}));
+  // a file from before the membrane's columns: read, with zeros there
+  std::string older = triaxial_rows_csv({r});
+  older.replace(older.find(",membrane_axial_kPa,membrane_shell_kPa"), 38, "");
+  older.replace(older.rfind(",5.25,4.5"), 9, "");  // kPa
+  const std::vector<TriaxialRow> old_rows = parse_triaxial_rows_csv(older);
+  ASSERT_EQ(old_rows.size(), 1u);
+  EXPECT_DOUBLE_EQ(old_rows[0].sigma_z, r.sigma_z);
+  EXPECT_EQ(old_rows[0].membrane_axial, 0);
   std::string bad = triaxial_rows_csv({r});
   bad.replace(bad.rfind("0.61"), 4, "x.61");
   try {
