@@ -102,7 +102,12 @@ TEST(MembraneProgramme, TakesTheSpecimenOverFromThePlates) {
   const Scene scene = parse_scene(membrane_toml(), "m.toml");
   Simulation sim(default_device(), scene);
   TriaxialProgramme test(sim);
-  while (test.stage() != TriaxialProgramme::Stage::Compress) test.advance(1 << 14);
+  test.hold_when_consolidated(true);  // as the lab holds it: consolidated under the membrane, then held
+  while (!test.consolidated_now()) test.advance(1 << 14);
+  EXPECT_NEAR(test.checked_stress()[2], 100e3, 1e3) << "the platen holds sigma3";
+  test.advance(1 << 14);
+  EXPECT_EQ(test.stage(), TriaxialProgramme::Stage::Consolidate) << "held";
+  ASSERT_TRUE(test.start_compression());
   const Membrane& m = scene.membrane;
   const double platen = sim.wall_point(scene.apparatus_as<Triaxial>()->first_wall + kTriPlaten)[2];
   const ParticleSnapshot q = sim.snapshot();
