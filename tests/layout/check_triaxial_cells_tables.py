@@ -25,16 +25,19 @@ def rows(name):
 
 
 tests = rows("triaxial_cells_tests.csv")
-by = {c: {r["seed"]: r for r in tests if r["cell"] == c} for c in ("rigid", "membrane")}
-seeds = sorted(set(by["rigid"]) & set(by["membrane"]), key=int)
+by = {}
+for r in tests:
+    by.setdefault(r["cell"], {})[r["seed"]] = r
+seeds = sorted(set.intersection(*(set(v) for v in by.values())), key=int)
 for r in rows("triaxial_cells.csv"):
     cells = [r["cell"], r["specimens"]] + [f"{r[c]} ± {r[c + '_ci95']}" for c in COLUMNS]
     line = "| " + " | ".join(cells) + " |"
     if line not in section:
         bad.append(f"the table lacks {line}")
     for c in COLUMNS:
-        if r["cell"] == "membrane - rigid":
-            v = [float(by["membrane"][s][c]) - float(by["rigid"][s][c]) for s in seeds]
+        if " - " in r["cell"]:
+            a, b = r["cell"].split(" - ")
+            v = [float(by[a][s][c]) - float(by[b][s][c]) for s in seeds]
         else:
             v = [float(by[r["cell"]][s][c]) for s in seeds]
         m = sum(v) / len(v)

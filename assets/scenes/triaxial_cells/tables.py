@@ -11,13 +11,16 @@ Each seed's specimen is run in both cells (the scenes differ only in
       sed "s/^seed = 1/seed = $s/" assets/scenes/triaxial_cells/membrane.toml > membrane.toml
       simsols run rigid.toml --out RUNS/rigid/s$s -q
       simsols run membrane.toml --out RUNS/membrane/s$s -q
+      sed 's/^cell = "membrane".*/cell = "membrane"\nmembrane_spacing = 0.25/' membrane.toml > fine.toml
+      simsols run fine.toml --out RUNS/membrane_fine/s$s -q
     done
     python3 assets/scenes/triaxial_cells/tables.py RUNS
 
 writes docs/img/triaxial_cells_tests.csv (every test) and
 docs/img/triaxial_cells.csv (each cell's mean with its 95 % interval over
 the seeds, and the membrane's paired change, membrane - rigid, seed by
-seed). tests/layout/check_triaxial_cells_tables.py checks the docs' table
+seed, and the finer membrane's, membrane_fine - membrane; a cell whose
+folder is missing is left out). tests/layout/check_triaxial_cells_tables.py checks the docs' table
 against both, the means and intervals recomputed from the tests.
 """
 import csv
@@ -28,7 +31,8 @@ import sys
 # Student's t, 97.5 % quantile, by degrees of freedom (statistical tables)
 T975 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306,
         9: 2.262, 10: 2.228}
-CELLS = ["rigid", "membrane"]
+CELLS = ["rigid", "membrane", "membrane_fine"]  # membrane_fine: membrane_spacing = 0.25
+PAIRS = [("membrane", "rigid"), ("membrane_fine", "membrane")]  # paired changes, seed by seed
 # column of the tables, key of summary.txt (None: from triaxial.csv)
 MEASURES = [("initial_void_ratio", "initial_void_ratio"),
             ("peak_deg", "peak_friction_angle_deg"),
@@ -70,6 +74,8 @@ def mean_ci(values):
 def tests(runs):
     out = []
     for cell in CELLS:
+        if not os.path.isdir(os.path.join(runs, cell)):
+            continue
         for seed_dir in sorted(os.listdir(os.path.join(runs, cell))):
             d = os.path.join(runs, cell, seed_dir)
             if not os.path.exists(os.path.join(d, "summary.txt")):
@@ -94,15 +100,18 @@ DIGITS = {"initial_void_ratio": 3, "peak_deg": 2, "peak_axial_strain": 3, "criti
 
 
 def ensemble(rows):
-    """Each cell's mean and interval, and the paired change membrane - rigid."""
+    """Each cell's mean and interval, and the paired changes (PAIRS)."""
     out = []
     by = {c: {r["seed"]: r for r in rows if r["cell"] == c} for c in CELLS}
-    seeds = sorted(set(by["rigid"]) & set(by["membrane"]), key=int)
-    for cell in CELLS + ["membrane - rigid"]:
+    cells = [c for c in CELLS if by[c]]
+    seeds = sorted(set.intersection(*(set(by[c]) for c in cells)), key=int)
+    pairs = [p for p in PAIRS if p[0] in cells and p[1] in cells]
+    for cell in cells + [f"{a} - {b}" for a, b in pairs]:
         row = {"cell": cell, "specimens": len(seeds)}
         for col, _ in MEASURES:
-            if cell == "membrane - rigid":
-                values = [by["membrane"][s][col] - by["rigid"][s][col] for s in seeds]
+            if " - " in cell:
+                a, b = cell.split(" - ")
+                values = [by[a][s][col] - by[b][s][col] for s in seeds]
             else:
                 values = [by[cell][s][col] for s in seeds]
             m, ci = mean_ci(values)
