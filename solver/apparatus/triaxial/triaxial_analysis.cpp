@@ -15,6 +15,15 @@
 namespace simsols {
 namespace {
 
+// triaxial.csv's columns, in order (written and read back below)
+constexpr const char* kColumns[] = {
+    "time_s", "step", "axial_strain", "volumetric_strain", "sigma_x_kPa", "sigma_y_kPa",
+    "sigma_z_kPa", "p_kPa", "q_kPa", "q_over_p", "friction_angle_deg", "void_ratio",
+    "coordination", "lw_x_kPa", "lw_y_kPa", "lw_z_kPa", "lw_gap", "fabric_anisotropy",
+    "kinetic_energy_J", "inertial_number", "membrane_axial_kPa", "membrane_shell_kPa"};
+constexpr size_t kColumnCount = sizeof kColumns / sizeof kColumns[0];
+constexpr size_t kColumnsBeforeMembrane = kColumnCount - 2;  // files written before the membrane's columns
+
 constexpr double kDeg = 180.0 / 3.14159265358979323846;
 constexpr double kDilatancyWindow = 0.01;  // axial strain
 
@@ -130,10 +139,9 @@ void analyse_triaxial_rows(const std::vector<TriaxialRow>& rows, TriaxialSummary
 }
 
 std::string triaxial_rows_csv(const std::vector<TriaxialRow>& rows) {
-  std::string out =
-      "time_s,step,axial_strain,volumetric_strain,sigma_x_kPa,sigma_y_kPa,sigma_z_kPa,p_kPa,q_kPa,"
-      "q_over_p,friction_angle_deg,void_ratio,coordination,lw_x_kPa,lw_y_kPa,lw_z_kPa,"
-      "lw_gap,fabric_anisotropy,kinetic_energy_J,inertial_number,membrane_axial_kPa,membrane_shell_kPa\n";
+  std::string out;
+  for (size_t i = 0; i < kColumnCount; ++i) out += std::string(i ? "," : "") + kColumns[i];
+  out += "\n";
   char buf[512];
   for (const TriaxialRow& r : rows) {
     std::snprintf(buf, sizeof buf,
@@ -190,13 +198,6 @@ std::string triaxial_summary_text(const TriaxialSummary& s) {
 
 namespace {
 
-constexpr const char* kColumns[] = {
-    "time_s", "step", "axial_strain", "volumetric_strain", "sigma_x_kPa", "sigma_y_kPa",
-    "sigma_z_kPa", "p_kPa", "q_kPa", "q_over_p", "friction_angle_deg", "void_ratio",
-    "coordination", "lw_x_kPa", "lw_y_kPa", "lw_z_kPa", "lw_gap", "fabric_anisotropy",
-    "kinetic_energy_J", "inertial_number", "membrane_axial_kPa", "membrane_shell_kPa"};
-constexpr size_t kColumnCount = sizeof kColumns / sizeof kColumns[0];
-constexpr size_t kColumnsBeforeMembrane = kColumnCount - 2;  // the files of the rigid cell only
 
 std::vector<double> csv_numbers(const std::string& line, size_t row, size_t columns) {
   std::vector<double> v;
