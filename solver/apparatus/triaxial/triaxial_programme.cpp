@@ -224,14 +224,12 @@ bool TriaxialProgramme::consolidated() {
   // or, failing that, after ten times consolidate_time (wrap_membrane
   // refuses a specimen taller than its rows can cover)
   const bool hand_over = consolidated_ || elapsed >= kHandOverWait * tri_.consolidate_time;
-  if (membrane_ && !wrapped()) {
-    if (!hand_over) {
-      apply_servos(targets(0), true);
-      return false;
+  if (membrane_ && !wrapped()) {  // the plates consolidate until they hand over
+    if (hand_over) {
+      wrap_membrane(c);  // then again under the membrane
+      quiet_checks_ = 0;
+      consolidated_ = false;
     }
-    wrap_membrane(c);  // consolidate again under the membrane
-    quiet_checks_ = 0;
-    consolidated_ = false;
     apply_servos(targets(0), true);
     return false;
   }
