@@ -136,7 +136,7 @@ void build_wall_slots(const Model& m, State& s) {
   s.wall_off.mem.swap(s.old_wall_off.mem);
   set_args(m, k.build_wall_near, arg("pos", s.pos), arg("walls", m.wall_buffer()),
            arg("wall_point", s.wall_point), arg("wall_turn", s.wall_turn),
-           arg("wall_near", s.wall_near),
+           arg("membrane", s.membrane), arg("wall_near", s.wall_near),
            arg("skin", Real{m.skin()}), arg("n", s.n), arg("nwalls", m.walls()));
   launch(m, k.build_wall_near, s.n);
   set_args(m, k.wall_widths, arg("wall_near", s.wall_near), arg("width", s.wall_off), arg("n", s.n),

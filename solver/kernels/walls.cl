@@ -116,6 +116,7 @@ __kernel void build_wall_near(__global const real4* restrict pos,
                               __global const real4* restrict walls,
                               __global const real4* restrict wall_point,
                               __global const real4* restrict wall_turn,
+                              __global const real4* restrict membrane,
                               __global int* restrict wall_near, real skin, int n, int nwalls) {
   const int i = get_global_id(0);
   if (i >= n) return;
@@ -143,6 +144,16 @@ __kernel void build_wall_near(__global const real4* restrict pos,
     }
     if (dist < reach) mask |= 1 << w;
   }
+#ifdef HAS_MEMBRANE
+  // A membrane's last row is sealed to its platen (membrane.cl): part of the
+  // cap, not beads pressing on it. The row's height follows the platen one
+  // step late (the servo moves the platen after the beads), so a contact
+  // between them would feed the servo's own last step back to it: at a
+  // tangent contact in float the platen chattered at its speed cap.
+  const real4 m2 = membrane[2];
+  const int k = i - (int)m2.x, rows = (int)m2.y, cols = (int)m2.z, platen = (int)m2.w;
+  if (platen >= 0 && k >= (rows - 1) * cols && k < rows * cols) mask &= ~(1 << platen);
+#endif
   wall_near[i] = mask;
 }
 
