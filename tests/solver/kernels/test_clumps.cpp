@@ -5,6 +5,8 @@
 // there, and a checkpoint resumes it bit for bit.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -354,7 +356,10 @@ TEST(Clumps, ACheckpointResumesAClumpBitForBit) {
   const Scene scene = parse_scene(free_lump(1, 2000, "float"), "lump.toml");
   Simulation a(default_device(), scene);
   a.advance(500);
-  const std::string path = (std::filesystem::temp_directory_path() / "simsols_clump.bin").string();
+  // one file per process: ctest runs the GPU form beside this one
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("simsols_clump_" + std::to_string(::getpid()) + ".bin"))
+          .string();
   save_checkpoint(a, path);
   a.advance(500);
   std::unique_ptr<Simulation> b = load_checkpoint(default_device(), path);

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "solver/io/checkpoint.h"
 
 #include "tests/support/test_support.h"
@@ -265,7 +267,11 @@ TEST_P(Walls, HeldCapStaysLevel) {
 TEST_P(Walls, TiltingCapResumesFromACheckpoint) {
   Simulation a(default_device(), tilting_cap_scene(GetParam(), 5e-3, 4e-3, true));
   a.advance(4000);
-  const std::string path = (std::filesystem::temp_directory_path() / "simsols_cap.bin").string();
+  // one file per precision and process: ctest runs them (and the GPU form) side by side
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("simsols_cap_" + std::string(precision_name(GetParam())) + "_" +
+                             std::to_string(::getpid()) + ".bin"))
+                               .string();
   save_checkpoint(a, path);
   a.advance(2000);
   std::unique_ptr<Simulation> b = load_checkpoint(default_device(), path);
