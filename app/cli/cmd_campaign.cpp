@@ -79,7 +79,7 @@ CommandRunner add_campaign_command(CLI::App& app) {
   CLI::Option* seeds = cmd->add_option(
       "--seeds", opt->seeds,
       "Specimens per point: the base's seed and the next (a periodic cell: default 3; a shear "
-      "campaign: default 1, its strengths then an example, not an ensemble)");
+      "or triaxial campaign: default 1, its strengths then an example, not an ensemble)");
   cmd->add_flag("--quiet,-q", opt->quiet, "No progress lines");
   add_cluster_flags(cmd, opt->cluster);
   return [=] {

@@ -8,19 +8,21 @@
 
 namespace simsols {
 
-// The triaxial tests at several confining stresses, on one prepared specimen.
+// The triaxial tests at several confining stresses, on one prepared
+// specimen, or on each of --seeds specimens.
 int triaxial_campaign(const CampaignOptions& opt, const Scene& given, const std::string& base_name) {
   Scene base = given;
   for (const auto& [given, flag] : {std::pair{opt.sizes_given, "--sizes"},
                                     {opt.layers_given, "--layers"},
                                     {opt.displacement_given, "--displacement"},
-                                    {opt.inertial_given, "--inertial-numbers"},
-                                    {opt.seeds_given, "--seeds"}})
+                                    {opt.inertial_given, "--inertial-numbers"}})
     if (given)
       throw UsageError("not_applicable", flag,
-                       "is not a triaxial campaign's flag; a triaxial campaign varies --stresses (sigma_3)");
+                       "is not a triaxial campaign's flag; a triaxial campaign varies --stresses "
+                       "(sigma_3) and --seeds");
   TriaxialCampaignSpec spec;
   if (opt.stresses_given) spec.stresses_kpa = opt.stresses_kpa;
+  spec.seeds = opt.seeds_given ? opt.seeds : 1;
   spec.precision = precision_flag(opt.precision);
   refuse_profile(opt, base_name);
   InterruptScope interrupt;
@@ -30,6 +32,11 @@ int triaxial_campaign(const CampaignOptions& opt, const Scene& given, const std:
                                      specimen->preparation.void_ratio ||
                                      specimen->preparation.tamping_layers > 0 ||
                                      specimen->preparation.expansion);
+  if (searches && spec.seeds > 1)
+    throw SceneError("not_applicable", base_name, 0, "triaxial.specimen.preparation",
+                     "--seeds needs a specimen each campaign prepares by itself (pour or layers); "
+                     "prepare each seed's scene with simsols run and campaign over its "
+                     "scene.resolved.toml");
   if (searches && (opt.cluster.emitting() || run.only || run.collect))
     throw SceneError("not_applicable", base_name, 0, "triaxial.specimen.preparation",
                      "a cluster campaign needs its specimen prepared once first: run the base "

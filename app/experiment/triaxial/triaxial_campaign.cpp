@@ -29,6 +29,22 @@ void check_spec(const Scene& base, const std::string& base_name, const TriaxialC
     if (!(s > 0 && s <= 1e6))
       throw UsageError("out_of_range", "--stresses",
                        fmt("%g", s) + " kPa is out of range, allowed (0, 1e6] kPa");
+  if (spec.seeds < 1 || spec.seeds > 100)
+    throw UsageError("out_of_range", "--seeds",
+                     std::to_string(spec.seeds) + " is out of range, allowed [1, 100]");
+}
+
+// Specimen k of the campaign: the base itself (k = 0), else the base's
+// scene text read again with its specimen seed k further on and placed.
+Scene specimen_scene(const Scene& base, const std::string& base_name, int k) {
+  if (k == 0) return base;
+  if (base.source_text.empty())
+    throw UsageError("not_applicable", "--seeds",
+                     "needs the base scene's text to place further specimens; give a scene file");
+  Scene sc = read_scene_text(base.source_text, base.source_path.empty() ? base_name : base.source_path);
+  sc.cell()->specimen.seed += k;
+  place_scene(sc);
+  return sc;
 }
 
 }  // namespace
@@ -96,18 +112,25 @@ std::vector<TriaxialCampaignTest> plan_triaxial_campaign(const Scene& base,
                                                          const std::string& out_dir) {
   check_spec(base, base_name, spec);
   std::vector<TriaxialCampaignTest> tests;
-  for (double s : spec.stresses_kpa) {
-    TriaxialCampaignTest t;
-    t.s_kpa = s;
-    t.scene = base;
-    t.scene.apparatus_as<Triaxial>()->confining_stress = s * 1e3;
-    if (spec.precision) t.scene.numerics.precision = *spec.precision;
-    t.scene.name = base.name + "_s3_" + fmt("%g", s) + "kPa";
-    t.scene.source_text.clear();  // scene.toml is then the resolved scene
-    validate_scene(t.scene, base_name + " (" + t.scene.name + ")");
-    t.dir = fs::path(out_dir) / ("s3_" + fmt("%g", s) + "kPa");
-    t.cost = expected_particle_steps(t.scene);
-    tests.push_back(std::move(t));
+  for (int k = 0; k < spec.seeds; ++k) {  // one specimen's tests after another
+    const Scene specimen = specimen_scene(base, base_name, k);
+    for (double s : spec.stresses_kpa) {
+      TriaxialCampaignTest t;
+      t.s_kpa = s;
+      t.scene = specimen;
+      Triaxial& tri = *t.scene.apparatus_as<Triaxial>();
+      tri.confining_stress = s * 1e3;
+      t.seed = tri.specimen.seed;
+      if (spec.precision) t.scene.numerics.precision = *spec.precision;
+      const std::string folder =
+          "s3_" + fmt("%g", s) + "kPa" + (k > 0 ? "_s" + std::to_string(t.seed) : "");
+      t.scene.name = base.name + "_" + folder;
+      t.scene.source_text.clear();  // scene.toml is then the resolved scene
+      validate_scene(t.scene, base_name + " (" + t.scene.name + ")");
+      t.dir = fs::path(out_dir) / folder;
+      t.cost = expected_particle_steps(t.scene);
+      tests.push_back(std::move(t));
+    }
   }
   return tests;
 }
@@ -127,8 +150,8 @@ CampaignOutcome run_triaxial_campaign(std::vector<TriaxialCampaignTest>& tests,
   if (outcome.interrupted || !run.writes_report()) return outcome;
   std::vector<TriaxialCampaignEntry> entries;
   for (const TriaxialCampaignTest& t : tests)
-    entries.push_back({t.s_kpa, static_cast<int>(t.scene.particles.size()), t.result.rows,
-                       t.result.summary});
+    entries.push_back({t.s_kpa, t.seed, static_cast<int>(t.scene.particles.size()),
+                       t.result.rows, t.result.summary});
   write_triaxial_campaign_report(out_dir, base_name, entries, outcome.seconds);
   return outcome;
 }

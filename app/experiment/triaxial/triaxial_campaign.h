@@ -1,10 +1,14 @@
 // A triaxial campaign: the same specimen consolidated to several confining
 // stresses sigma_3 and compressed, one test after the other into one
-// folder, then the strength read across them as a laboratory reads it.
+// folder, then the strength read across them as a laboratory reads it;
+// with `seeds` > 1, the same again on further specimens (the base's
+// specimen seed and the next ones), and the strength as the mean of the
+// specimens' envelopes with its 95 % interval.
 //
 // Every test runs from the base scene with [triaxial] confining_stress
-// replaced, in OUT/s3_<stress>kPa/ (apparatus_run.h), from the same bead
-// positions. Resumable as the shear campaign is (campaign.h): a test whose
+// replaced, in OUT/s3_<stress>kPa/ (the first specimen) or
+// OUT/s3_<stress>kPa_s<seed>/ (the others; apparatus_run.h), each
+// specimen's tests from the same bead positions. Resumable as the shear campaign is (campaign.h): a test whose
 // summary.txt exists is kept (its rows analysed again), an interrupted one
 // continues from its checkpoint. Afterwards (triaxial_campaign_report.h):
 // the curves on common axes, the Mohr circles at the peak and at the
@@ -26,12 +30,14 @@ namespace simsols {
 struct TriaxialCampaignSpec {
   std::vector<double> stresses_kpa{50, 100, 200};  // sigma_3
   std::optional<Precision> precision;              // nullopt = the base scene's
+  int seeds = 1;                                   // specimens, [1, 100]
 };
 
 using TriaxialRunResult = TestRunResult<TriaxialProgramme>;
 
 struct TriaxialCampaignTest {
   double s_kpa = 0;
+  std::int64_t seed = 0;  // its specimen's
   Scene scene;
   std::filesystem::path dir;
   double cost = 0;  // estimated particle-steps

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 
 #include "app/experiment/shear_box/campaign_report.h"
+#include "app/experiment/shear_box/study_stats.h"
 #include "render/plot/chart.h"
 #include "solver/io/output.h"
 
@@ -20,8 +22,8 @@ std::string csv_row(const TriaxialCampaignEntry& e) {
   const TriaxialSummary& s = e.summary;
   char buf[512];
   std::snprintf(buf, sizeof buf,
-                "%g,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
-                e.s_kpa, e.beads, s.initial_void_ratio, s.peak_angle, s.max_angle, s.peak_q_over_p,
+                "%g,%lld,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
+                e.s_kpa, static_cast<long long>(e.seed), e.beads, s.initial_void_ratio, s.peak_angle, s.max_angle, s.peak_q_over_p,
                 100 * s.peak_axial_strain, s.peak_sigma1 * 1e-3, s.peak_sigma3 * 1e-3,
                 s.critical_angle, s.critical_void_ratio, s.critical_p * 1e-3,
                 s.critical_sigma1 * 1e-3, s.critical_sigma3 * 1e-3, s.max_dilatancy_angle,
@@ -33,18 +35,29 @@ std::string md_row(const TriaxialCampaignEntry& e) {
   const TriaxialSummary& s = e.summary;
   char buf[512];
   std::snprintf(buf, sizeof buf,
-                "| %g | %d | %.3f | %.2f | %.2f | %.3f | %.1f | %.2f | %.3f | %.1f | %.2f | %.1f / %.1f "
-                "| %.0f |\n",
-                e.s_kpa, e.beads, s.initial_void_ratio, s.peak_angle, s.max_angle, s.peak_q_over_p,
+                "| %g | %lld | %d | %.3f | %.2f | %.2f | %.3f | %.1f | %.2f | %.3f | %.1f | %.2f | %.1f / "
+                "%.1f | %.0f |\n",
+                e.s_kpa, static_cast<long long>(e.seed), e.beads, s.initial_void_ratio, s.peak_angle, s.max_angle, s.peak_q_over_p,
                 100 * s.peak_axial_strain, s.critical_angle, s.critical_void_ratio,
                 s.critical_p * 1e-3, s.max_dilatancy_angle, 100 * s.median_wall_internal_gap,
                 100 * s.wall_internal_gap, s.wall_seconds);
   return buf;
 }
 
-plot::Series curve(const TriaxialCampaignEntry& e, double (*y)(const TriaxialRow&)) {
+// A test's label in the plots: its stress, and its seed when there are several.
+std::string test_label(const TriaxialCampaignEntry& e, bool seeds) {
+  return "σ3 = " + fmt("%g", e.s_kpa) + " kPa" + (seeds ? ", seed " + std::to_string(e.seed) : "");
+}
+
+bool several_seeds(const std::vector<TriaxialCampaignEntry>& entries) {
+  for (const TriaxialCampaignEntry& e : entries)
+    if (e.seed != entries.front().seed) return true;
+  return false;
+}
+
+plot::Series curve(const TriaxialCampaignEntry& e, bool seeds, double (*y)(const TriaxialRow&)) {
   plot::Series s;
-  s.label = "σ3 = " + fmt("%g", e.s_kpa) + " kPa";
+  s.label = test_label(e, seeds);
   for (const TriaxialRow& r : e.rows) {
     s.x.push_back(100 * r.axial_strain);
     s.y.push_back(y(r));
@@ -60,9 +73,12 @@ void write_curves(const fs::path& out, const std::string& title,
   eta.x_label = vol.x_label = "Axial strain εa (%)";
   eta.y_label = "q/p′";
   vol.y_label = "Volumetric strain εv (%)";
+  const bool seeds = several_seeds(entries);
   for (const TriaxialCampaignEntry& e : entries) {
-    eta.series.push_back(curve(e, [](const TriaxialRow& r) { return r.p > 0 ? r.q / r.p : NAN; }));
-    vol.series.push_back(curve(e, [](const TriaxialRow& r) { return 100 * r.volumetric_strain; }));
+    eta.series.push_back(
+        curve(e, seeds, [](const TriaxialRow& r) { return r.p > 0 ? r.q / r.p : NAN; }));
+    vol.series.push_back(
+        curve(e, seeds, [](const TriaxialRow& r) { return 100 * r.volumetric_strain; }));
   }
   plot::write_chart_png(eta, (out / "stress_ratio.png").string());
   plot::write_chart_png(vol, (out / "volumetric.png").string());
@@ -88,12 +104,12 @@ void write_mohr_plot(const fs::path& png, const std::string& which,
   c.title = "Mohr circles at the " + which + " and the envelope";
   c.x_label = "Normal stress σ′ (kPa)";
   c.y_label = "Shear stress τ (kPa)";
-  const bool peak = which == "peak";
+  const bool peak = which == "peak", seeds = several_seeds(entries);
   double s_max = 0;
   for (const TriaxialCampaignEntry& e : entries) {
     const double s1 = 1e-3 * (peak ? e.summary.peak_sigma1 : e.summary.critical_sigma1);
     const double s3 = 1e-3 * (peak ? e.summary.peak_sigma3 : e.summary.critical_sigma3);
-    c.series.push_back(half_circle("σ3 = " + fmt("%g", e.s_kpa) + " kPa", s1, s3));
+    c.series.push_back(half_circle(test_label(e, seeds), s1, s3));
     s_max = std::max(s_max, s1);
   }
   const double x_hi = 1.05 * s_max;
@@ -126,9 +142,10 @@ void write_csl_plot(const fs::path& png, const std::vector<TriaxialCampaignEntry
   c.y_label = "Void ratio e";
   c.x_log = true;
   double p_lo = 1e300, p_hi = 0;
+  const bool seeds = several_seeds(entries);
   for (const TriaxialCampaignEntry& e : entries) {
     plot::Series path;
-    path.label = "σ3 = " + fmt("%g", e.s_kpa) + " kPa";
+    path.label = test_label(e, seeds);
     for (const TriaxialRow& r : e.rows) {
       path.x.push_back(r.p * 1e-3);
       path.y.push_back(r.void_ratio);
@@ -164,17 +181,130 @@ std::string describe_csl(const CriticalStateLine& c) {
   return buf;
 }
 
+// One specimen's fits over its tests: the envelopes at the peak and at the
+// critical state, and its critical state line.
+struct SpecimenFits {
+  std::int64_t seed = 0;
+  MohrCoulomb peak, critical;
+  CriticalStateLine csl;
+};
+
+std::vector<SpecimenFits> specimen_fits(const std::vector<TriaxialCampaignEntry>& entries) {
+  std::map<std::int64_t, std::vector<const TriaxialCampaignEntry*>> by_seed;
+  for (const TriaxialCampaignEntry& e : entries) by_seed[e.seed].push_back(&e);
+  std::vector<SpecimenFits> fits;
+  for (const auto& [seed, tests] : by_seed) {
+    std::vector<double> p1, p3, c1, c3, cp, ce;
+    for (const TriaxialCampaignEntry* e : tests) {
+      p1.push_back(e->summary.peak_sigma1);
+      p3.push_back(e->summary.peak_sigma3);
+      c1.push_back(e->summary.critical_sigma1);
+      c3.push_back(e->summary.critical_sigma3);
+      cp.push_back(e->summary.critical_p);
+      ce.push_back(e->summary.critical_void_ratio);
+    }
+    fits.push_back({seed, fit_mohr_circles(p1, p3), fit_mohr_circles(c1, c3),
+                    fit_critical_state_line(cp, ce)});
+  }
+  return fits;
+}
+
+// What the campaign reports of one strength: one specimen's fit with its
+// standard errors, or, over several, the mean of the specimens' fits with
+// its 95 % Student interval (the specimens are the replicates; the tests of
+// one specimen share its packing and are not independent).
+struct Strength {
+  MohrCoulomb line;  // drawn: one specimen's fit, or the mean's phi and c
+  int specimens = 0;
+  double phi_hw = NAN, c_hw = NAN;  // deg, kPa
+  std::string text;
+};
+
+Strength strength(const std::vector<SpecimenFits>& fits, MohrCoulomb SpecimenFits::*which) {
+  Strength st;
+  std::vector<double> phis, cs;
+  for (const SpecimenFits& f : fits)
+    if ((f.*which).points >= 2) {
+      st.line = f.*which;
+      phis.push_back(st.line.phi_deg);
+      cs.push_back(st.line.cohesion * 1e-3);
+    }
+  st.specimens = static_cast<int>(phis.size());
+  if (st.specimens == 0) {
+    st.text = "needs two or more tests";
+  } else if (st.specimens == 1) {
+    st.phi_hw = st.line.phi_se_deg;
+    st.c_hw = st.line.cohesion_se * 1e-3;
+    st.text = describe_fit(st.line) + "; one specimen: its fit's standard errors, not an interval "
+              "on the material (--seeds)";
+  } else {
+    const Interval ip = mean_ci95(phis), ic = mean_ci95(cs);
+    st.line.phi_deg = ip.mean;
+    st.line.tan_phi = std::tan(ip.mean * kPi / 180);
+    st.line.cohesion = ic.mean * 1e3;
+    st.phi_hw = ip.half_width;
+    st.c_hw = ic.half_width;
+    st.text = "phi = " + fmt("%.2f", ip.mean) + " +- " + fmt("%.2f", ip.half_width) + " deg, c = " +
+              fmt("%.2f", ic.mean) + " +- " + fmt("%.2f", ic.half_width) + " kPa (mean of " +
+              std::to_string(st.specimens) + " specimens' fits +- 95 % interval)";
+  }
+  return st;
+}
+
+// The critical state line: one specimen's, or the mean of the specimens'
+// Gamma and lambda with their 95 % intervals.
+CriticalStateLine mean_line(const std::vector<SpecimenFits>& fits, std::string& text) {
+  std::vector<double> g, l;
+  CriticalStateLine one;
+  for (const SpecimenFits& f : fits)
+    if (f.csl.points >= 2) {
+      one = f.csl;
+      g.push_back(f.csl.gamma);
+      l.push_back(f.csl.lambda);
+    }
+  if (g.size() < 2) {
+    text = describe_csl(one);
+    return one;
+  }
+  const Interval ig = mean_ci95(g), il = mean_ci95(l);
+  text = "Γ = " + fmt("%.4f", ig.mean) + " ± " + fmt("%.4f", ig.half_width) + ", λ = " +
+         fmt("%.5f", il.mean) + " ± " + fmt("%.5f", il.half_width) + " (mean of " +
+         std::to_string(g.size()) + " specimens' lines ± 95 % interval)";
+  one.gamma = ig.mean;
+  one.lambda = il.mean;
+  one.points = 2;
+  return one;
+}
+
+// envelopes.csv: each strength's phi and c with their spread (ci95 over
+// specimens, or se for one specimen's fit), as the shear campaign writes it.
+std::string envelopes_csv(const Strength& peak, const Strength& critical) {
+  std::string csv = "strength,specimens,phi_deg,phi_spread_deg,c_kPa,c_spread_kPa,spread\n";
+  for (const auto& [name, st] : {std::pair<const char*, const Strength*>{"peak", &peak},
+                                 {"critical", &critical}}) {
+    csv += std::string(name) + "," + std::to_string(st->specimens);
+    if (st->specimens == 0) {
+      csv += ",,,,,\n";
+      continue;
+    }
+    csv += "," + fmt("%.6f", st->line.phi_deg) + "," + fmt("%.6f", st->phi_hw) + "," +
+           fmt("%.6f", st->line.cohesion * 1e-3) + "," + fmt("%.6f", st->c_hw) + "," +
+           (st->specimens > 1 ? "ci95" : "se") + "\n";
+  }
+  return csv;
+}
+
 }  // namespace
 
 void write_triaxial_campaign_report(const std::string& out_dir, const std::string& base_name,
                                     const std::vector<TriaxialCampaignEntry>& entries,
                                     double wall_seconds) {
   const fs::path out = out_dir;
-  std::vector<double> p1, p3, c1, c3, cp, ce;
   std::string csv =
-      "sigma3_kPa,beads,e0,peak_phi_deg,max_phi_deg,peak_q_over_p,peak_axial_strain_percent,peak_sigma1_kPa,"
-      "peak_sigma3_kPa,critical_phi_deg,critical_void_ratio,critical_p_kPa,critical_sigma1_kPa,"
-      "critical_sigma3_kPa,max_dilatancy_deg,wall_internal_gap_percent,wall_seconds\n";
+      "sigma3_kPa,seed,beads,e0,peak_phi_deg,max_phi_deg,peak_q_over_p,peak_axial_strain_percent,"
+      "peak_sigma1_kPa,peak_sigma3_kPa,critical_phi_deg,critical_void_ratio,critical_p_kPa,"
+      "critical_sigma1_kPa,critical_sigma3_kPa,max_dilatancy_deg,wall_internal_gap_percent,"
+      "wall_seconds\n";
   std::string md = "# Triaxial campaign\n\nBase scene: `" + base_name + "`; " +
                    std::to_string(entries.size()) + " tests; wall time of the tests run now: " +
                    fmt("%.0f", wall_seconds) +
@@ -183,35 +313,32 @@ void write_triaxial_campaign_report(const std::string& out_dir, const std::strin
                    "make it); critical state: the mean over the last 20 % of the axial strain; "
                    "plates vs Love-Weber stress: the median and the largest gap over the rows, "
                    "as % of p′ (docs/triaxial.md).\n\n"
-                   "| σ3 (kPa) | beads | e0 | φ peak (°) | φ largest (°) | q/p′ peak | εa peak (%) "
+                   "| σ3 (kPa) | seed | beads | e0 | φ peak (°) | φ largest (°) | q/p′ peak | εa peak (%) "
                    "| φ cs (°) | e cs | p′ cs (kPa) | ψ max (°) | plates vs LW, median / largest "
                    "(%) | wall (s) |\n"
-                   "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+                   "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const TriaxialCampaignEntry& e : entries) {
     csv += csv_row(e);
     md += md_row(e);
-    p1.push_back(e.summary.peak_sigma1);
-    p3.push_back(e.summary.peak_sigma3);
-    c1.push_back(e.summary.critical_sigma1);
-    c3.push_back(e.summary.critical_sigma3);
-    cp.push_back(e.summary.critical_p);
-    ce.push_back(e.summary.critical_void_ratio);
   }
-  const MohrCoulomb peak = fit_mohr_circles(p1, p3), critical = fit_mohr_circles(c1, c3);
-  const CriticalStateLine csl = fit_critical_state_line(cp, ce);
-  const auto fit_text = [](const MohrCoulomb& m) {
-    return m.points >= 2 ? describe_fit(m) : std::string("needs two or more tests");
-  };
-  md += "\n## Envelopes tangent to the Mohr circles, τ = c + σ′ tan φ (± one standard error)\n\n"
-        "- peak: " + fit_text(peak) + "\n- critical state: " + fit_text(critical) +
-        "\n\n## Critical state line, e = Γ − λ ln(p′ / 1 kPa)\n\n- " + describe_csl(csl) + "\n";
-  std::printf("Mohr-Coulomb envelope (peak): %s\n", fit_text(peak).c_str());
-  std::printf("Mohr-Coulomb envelope (critical state): %s\n", fit_text(critical).c_str());
-  std::printf("critical state line: %s\n", describe_csl(csl).c_str());
+  const std::vector<SpecimenFits> fits = specimen_fits(entries);
+  const Strength peak = strength(fits, &SpecimenFits::peak);
+  const Strength critical = strength(fits, &SpecimenFits::critical);
+  std::string csl_text;
+  const CriticalStateLine csl = mean_line(fits, csl_text);
+  md += "\n## Envelopes tangent to the Mohr circles, τ = c + σ′ tan φ\n\n"
+        "Each specimen's envelope is fitted to its own tests; over several specimens the "
+        "strength is the mean of their fits with its 95 % interval.\n\n"
+        "- peak: " + peak.text + "\n- critical state: " + critical.text +
+        "\n\n## Critical state line, e = Γ − λ ln(p′ / 1 kPa)\n\n- " + csl_text + "\n";
+  std::printf("Mohr-Coulomb envelope (peak): %s\n", peak.text.c_str());
+  std::printf("Mohr-Coulomb envelope (critical state): %s\n", critical.text.c_str());
+  std::printf("critical state line: %s\n", csl_text.c_str());
   write_curves(out, "Triaxial campaign", entries);
-  write_mohr_plot(out / "mohr_peak.png", "peak", entries, peak);
-  write_mohr_plot(out / "mohr_critical.png", "critical state", entries, critical);
+  write_mohr_plot(out / "mohr_peak.png", "peak", entries, peak.line);
+  write_mohr_plot(out / "mohr_critical.png", "critical state", entries, critical.line);
   write_csl_plot(out / "csl.png", entries, csl);
+  write_file_atomic((out / "envelopes.csv").string(), envelopes_csv(peak, critical));
   write_file_atomic((out / "summary.csv").string(), csv);
   write_file_atomic((out / "summary.md").string(), md);
 }

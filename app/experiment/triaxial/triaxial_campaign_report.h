@@ -14,6 +14,7 @@
 // fit_critical_state_line); two tests give the line through them, said so.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,7 @@ namespace simsols {
 
 struct TriaxialCampaignEntry {
   double s_kpa = 0;
+  std::int64_t seed = 0;  // its specimen's
   int beads = 0;
   std::vector<TriaxialRow> rows;
   TriaxialSummary summary;

@@ -249,12 +249,15 @@ TEST(Cli, TriaxialCampaignFitsTheEnvelopeAndResumes) {
   ASSERT_EQ(first.status, 0) << first.out;
   EXPECT_NE(first.out.find("Mohr-Coulomb envelope (peak): phi = "), std::string::npos) << first.out;
   EXPECT_NE(first.out.find("critical state line: "), std::string::npos) << first.out;
-  for (const char* f : {"summary.md", "summary.csv", "mohr_peak.png", "mohr_critical.png",
-                        "csl.png", "stress_ratio.png", "volumetric.png",
+  for (const char* f : {"summary.md", "summary.csv", "envelopes.csv", "mohr_peak.png",
+                        "mohr_critical.png", "csl.png", "stress_ratio.png", "volumetric.png",
                         "s3_50kPa/triaxial.csv", "s3_150kPa/summary.txt"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
   const std::string table = read(out / "summary.csv");
   EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 3) << table;
+  EXPECT_EQ(table.rfind("sigma3_kPa,seed,", 0), 0u) << table;
+  // one specimen: its fit's standard errors, said so
+  EXPECT_NE(read(out / "envelopes.csv").find(",se\n"), std::string::npos);
   EXPECT_NE(read(out / "s3_150kPa/summary.txt").find("confining_stress_kPa = 150"),
             std::string::npos);
   const Result again = run(args);
