@@ -62,6 +62,24 @@ Tensor3 love_weber_slab(const ContactSample& sample, const std::vector<Wall>& wa
   return s;
 }
 
+std::optional<BoundaryContact> boundary_contact(const ContactSample& sample, const ContactForce& c,
+                                                size_t inside) {
+  if (c.b < 0) return std::nullopt;
+  const bool a_in = size_t(c.a) < inside, b_in = size_t(c.b) < inside;
+  if (a_in == b_in) return std::nullopt;
+  const ParticleSnapshot& snap = sample.beads;
+  const size_t in = a_in ? size_t(c.a) : size_t(c.b), out = a_in ? size_t(c.b) : size_t(c.a);
+  const double share = snap.radius[in] / (snap.radius[in] + snap.radius[out]);
+  const Vec3& xi = snap.position[in];
+  const Vec3& xo = snap.position[out];
+  BoundaryContact k;
+  k.bead = in;
+  k.force = a_in ? c.force : Vec3{-c.force[0], -c.force[1], -c.force[2]};
+  k.point = {xi[0] + share * (xo[0] - xi[0]), xi[1] + share * (xo[1] - xi[1]),
+             xi[2] + share * (xo[2] - xi[2])};
+  return k;
+}
+
 Tensor3 love_weber_inside(const ContactSample& sample, size_t inside, double volume) {
   const ParticleSnapshot& snap = sample.beads;
   const std::vector<Vec3>& centre = sample.body_centre.empty() ? snap.position : sample.body_centre;
@@ -79,20 +97,11 @@ Tensor3 love_weber_inside(const ContactSample& sample, size_t inside, double vol
             wall_closest_point(sample.walls[-1 - c.b], sample.wall_points[-1 - c.b], snap.position[a]));
       continue;
     }
-    if (!a_in && !b_in) continue;
-    const size_t b = size_t(c.b);
     if (a_in && b_in) {
-      add(c.force, centre[a], centre[b]);
-      continue;
+      add(c.force, centre[a], centre[size_t(c.b)]);
+    } else if (const auto k = boundary_contact(sample, c, inside)) {
+      add(k->force, centre[k->bead], k->point);  // a boundary force at its contact point
     }
-    // one inside, one outside: the force on the inside bead, to the contact point
-    const size_t in = a_in ? a : b, out = a_in ? b : a;
-    const Vec3 f = a_in ? c.force : Vec3{-c.force[0], -c.force[1], -c.force[2]};
-    const double share = snap.radius[in] / (snap.radius[in] + snap.radius[out]);
-    const Vec3& xi = snap.position[in];
-    const Vec3& xo = snap.position[out];
-    add(f, centre[in], {xi[0] + share * (xo[0] - xi[0]), xi[1] + share * (xo[1] - xi[1]),
-                        xi[2] + share * (xo[2] - xi[2])});
   }
   for (auto& row : s)
     for (double& v : row) v /= volume;

@@ -23,6 +23,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "solver/core/simulation.h"
@@ -53,6 +54,17 @@ Tensor3 love_weber_slab(Simulation& sim, double z_lo, double z_hi, double area);
 // force at the contact point (on the line of centres, in proportion to
 // the radii), as a wall's is; contacts among outside beads do not count.
 Tensor3 love_weber_inside(const ContactSample& sample, size_t inside, double volume);
+
+// Contact c when it joins a bead inside (index < inside) and one outside:
+// the inside bead, the force on it and the contact point on the line of
+// centres, in proportion to the radii; nullopt for any other contact.
+struct BoundaryContact {
+  size_t bead = 0;
+  Vec3 force{};  // N, on the inside bead
+  Vec3 point{};  // m
+};
+std::optional<BoundaryContact> boundary_contact(const ContactSample& sample, const ContactForce& c,
+                                                size_t inside);
 
 // The sample without the beads from `inside` on and their contacts.
 ContactSample beads_inside(const ContactSample& sample, size_t inside);

@@ -113,18 +113,9 @@ MembraneShape measure_membrane(const std::vector<Vec3>& x, const Membrane& m, do
 }
 
 double membrane_axial_share(const ContactSample& sample, size_t inside, double volume, double z0) {
-  const ParticleSnapshot& snap = sample.beads;
   double moment = 0;  // N m
-  for (const ContactForce& c : sample.contacts) {
-    if (c.b < 0) continue;
-    const bool a_in = size_t(c.a) < inside, b_in = size_t(c.b) < inside;
-    if (a_in == b_in) continue;
-    const size_t in = a_in ? size_t(c.a) : size_t(c.b), out = a_in ? size_t(c.b) : size_t(c.a);
-    const double fz = a_in ? c.force[2] : -c.force[2];  // on the inside bead
-    const double share = snap.radius[in] / (snap.radius[in] + snap.radius[out]);
-    const double zc = snap.position[in][2] + share * (snap.position[out][2] - snap.position[in][2]);
-    moment += fz * (zc - z0);
-  }
+  for (const ContactForce& c : sample.contacts)
+    if (const auto k = boundary_contact(sample, c, inside)) moment += k->force[2] * (k->point[2] - z0);
   return volume > 0 ? moment / volume : 0;
 }
 
