@@ -5,6 +5,7 @@
 // σ₃ and the strain rate can be changed at any stage, the cell (rigid
 // plates or a membrane) before the specimen is prepared again.
 #include <cstdio>
+#include <optional>
 #include <sstream>
 
 #include "app/experiment/triaxial/triaxial_plots.h"
@@ -81,7 +82,11 @@ class LabTriaxial : public LabApparatus {
 
   std::vector<LabChoice> choices(const Scene& scene) const override {
     const Triaxial* t = scene.apparatus_as<Triaxial>();
-    return {{"cell", "cell", {"rigid", "membrane"}, t && t->cell == Triaxial::Cell::Membrane ? 1 : 0}};
+    const auto cells = simsols::choices<Triaxial::Cell>();  // the scene's own names for them
+    int current = 0;
+    for (size_t k = 0; k < cells.size(); ++k)
+      if (t && cells[k].value == t->cell) current = static_cast<int>(k);
+    return {{"cell", "cell", choice_names<Triaxial::Cell>(), current}};
   }
   std::string choose(const std::string& key, const std::string& option, Scene& scene) override;
 
@@ -110,11 +115,16 @@ std::string LabTriaxial::choose(const std::string& key, const std::string& optio
   if (key != "cell") return LabApparatus::choose(key, option, scene);
   Triaxial* t = scene.apparatus_as<Triaxial>();
   if (!t || scene.placed()) return "cell: this scene's cell is built already; open it again to change it";
-  if (option != "rigid" && option != "membrane") return "cell " + option + ": the cell is rigid|membrane";
-  if (option == "membrane" && t->path != Triaxial::Path::ConstantSigma3)
-    return "cell membrane: a membrane holds σ₃ constant; this scene's path is another "
+  const std::optional<Triaxial::Cell> cell = parse_choice<Triaxial::Cell>(option);
+  if (!cell) {
+    std::string names;
+    for (const std::string& n : choice_names<Triaxial::Cell>()) names += (names.empty() ? "" : "|") + n;
+    return "cell " + option + ": the cell is " + names;
+  }
+  if (*cell == Triaxial::Cell::Membrane && t->path != Triaxial::Path::ConstantSigma3)
+    return "cell " + option + ": a membrane holds σ₃ constant; this scene's path is another "
            "([triaxial] path, docs/triaxial.md)";
-  t->cell = option == "membrane" ? Triaxial::Cell::Membrane : Triaxial::Cell::Rigid;
+  t->cell = *cell;
   return {};
 }
 
@@ -145,7 +155,7 @@ std::string LabTriaxial::state_lines() {
   std::ostringstream o;
   o.precision(10);
   const Triaxial* t = sim_.scene().apparatus_as<Triaxial>();
-  o << "cell = " << (t && t->cell == Triaxial::Cell::Membrane ? "membrane" : "rigid") << "\n";
+  o << "cell = " << choice_name(t ? t->cell : Triaxial::Cell::Rigid) << "\n";
   o << "rows = " << test_.rows().size() << "\nsigma3_target_kpa = "
     << test_.confining_stress() * 1e-3 << "\nstrain_rate = " << test_.strain_rate()
     << "\nconsolidated = " << (test_.consolidated_now() ? 1 : 0) << "\n";

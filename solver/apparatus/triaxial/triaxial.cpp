@@ -67,7 +67,7 @@ void add_walls(Scene& scene, Triaxial& t, double top, double r_max) {
 // else a copy of the specimen's whose density keeps the Rayleigh time step
 // of the smallest bead (rho (r_min / s)^2). On a rounded rectangle s
 // outside the footprint, rows about s apart over the height the specimen
-// will have at a porosity of 0.4. They wait, held, above the cell's plates
+// will have at kMembranePlannedPorosity. They wait, held, above the cell's plates
 // until the programme wraps them about the consolidated specimen
 // (triaxial_programme.cpp).
 void add_membrane(Scene& scene, const Triaxial& t, const SpecimenExtent& e) {
@@ -84,7 +84,7 @@ void add_membrane(Scene& scene, const Triaxial& t, const SpecimenExtent& e) {
   const double perimeter = 2 * (L + W) + 2 * std::numbers::pi * rm;
   double solids = 0;
   for (const Particle& p : scene.particles) solids += 4.0 / 3.0 * std::numbers::pi * std::pow(p.radius, 3);
-  const double height = solids / (L * W * 0.6);
+  const double height = solids / (L * W * (1 - kMembranePlannedPorosity));
   Membrane& mem = scene.membrane;
   mem.first = static_cast<int>(scene.particles.size());
   mem.cols = std::max(8, static_cast<int>(std::lround(perimeter / dm)));

@@ -22,6 +22,10 @@ namespace simsols {
 // Membrane), held above the cell.
 std::optional<SceneIssue> build_triaxial(Scene& scene);
 
+// The porosity the membrane's rows are planned for at scene build: they
+// cover the height the specimen will have at this porosity.
+inline constexpr double kMembranePlannedPorosity = 0.4;
+
 // The inertial number of an axial strain rate and back:
 // I = rate d sqrt(rho / p).
 double triaxial_inertial_number(double strain_rate, double d, double density, double p);

@@ -115,11 +115,11 @@ void TriaxialProgramme::wrap_membrane(const Cell& c) {
   if (pitch > 2 * rm) {  // the rows would not touch: the grains pass between them
     char what[400];
     std::snprintf(what, sizeof what,
-                  "the membrane's %d rows were planned for a specimen of porosity 0.4; the plates "
+                  "the membrane's %d rows were planned for a specimen of porosity %.2g; the plates "
                   "consolidated one %.1f mm tall and %.1f x %.1f mm across (e = %.2f), over which "
                   "they would stand %.1f mm apart, farther than their diameter %.1f mm, and the "
                   "grains would pass between them: let the pour settle longer, or prepare it denser",
-                  m.rows, c.lz() * 1e3, c.lx() * 1e3, c.ly() * 1e3,
+                  m.rows, kMembranePlannedPorosity, c.lz() * 1e3, c.lx() * 1e3, c.ly() * 1e3,
                   c.lx() * c.ly() * c.lz() / stats_.volume - 1, pitch * 1e3, 2 * rm * 1e3);
     throw InputError("membrane_too_short", sim_.scene().source_path, 0, "triaxial.settle_time", what);
   }
