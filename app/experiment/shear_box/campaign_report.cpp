@@ -143,23 +143,13 @@ Envelope fit_envelope(double d_mm, const std::vector<const CampaignEntry*>& test
     e.csv_row = head + ",,,,,\n";
     return e;
   }
-  double phi = fits[0].phi_deg, phi_hw = fits[0].phi_se_deg, c = fits[0].cohesion * 1e-3,
-         c_hw = fits[0].cohesion_se * 1e-3;
-  std::string how = fits[0].exact ? "one specimen, two points: no error estimate"
-                                  : "one specimen: ± one standard error of its fit, R² = " +
-                                        fmt("%.4f", fits[0].r2);
-  if (fits.size() > 1) {
-    std::vector<double> phis, cs;
-    double r2 = 0;
-    for (const MohrCoulomb& f : fits) {
-      phis.push_back(f.phi_deg);
-      cs.push_back(f.cohesion * 1e-3);
-      r2 += f.r2 / static_cast<double>(fits.size());
-    }
-    const Interval ip = mean_ci95(phis), ic = mean_ci95(cs);
-    phi = ip.mean, phi_hw = ip.half_width, c = ic.mean, c_hw = ic.half_width;
-    how = "mean of the specimens' fits ± 95 % interval; their mean R² = " + fmt("%.4f", r2);
-  }
+  const SpecimensEnvelope env = specimens_envelope(fits);
+  const double phi = env.phi_deg, phi_hw = env.phi_spread_deg, c = env.c_kpa, c_hw = env.c_spread_kpa;
+  const std::string how =
+      env.ci95() ? "mean of the specimens' fits ± 95 % interval; their mean R² = " + fmt("%.4f", env.mean_r2)
+      : fits[0].exact
+          ? "one specimen, two points: no error estimate"
+          : "one specimen: ± one standard error of its fit, R² = " + fmt("%.4f", fits[0].r2);
   e.series.tan_phi = std::tan(phi * std::acos(-1.0) / 180);
   e.series.cohesion = c * 1e3;
   e.fitted = true;
@@ -187,6 +177,33 @@ const char* kTestsIntro =
     "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 
 }  // namespace
+
+SpecimensEnvelope specimens_envelope(const std::vector<MohrCoulomb>& fits) {
+  SpecimensEnvelope e;
+  e.specimens = static_cast<int>(fits.size());
+  if (fits.empty()) return e;
+  if (fits.size() == 1) {
+    const MohrCoulomb& f = fits[0];
+    e.phi_deg = f.phi_deg;
+    e.phi_spread_deg = f.phi_se_deg;
+    e.c_kpa = f.cohesion * 1e-3;
+    e.c_spread_kpa = f.cohesion_se * 1e-3;
+    e.mean_r2 = f.r2;
+    return e;
+  }
+  std::vector<double> phis, cs;
+  for (const MohrCoulomb& f : fits) {
+    phis.push_back(f.phi_deg);
+    cs.push_back(f.cohesion * 1e-3);
+    e.mean_r2 += f.r2 / static_cast<double>(fits.size());
+  }
+  const Interval ip = mean_ci95(phis), ic = mean_ci95(cs);
+  e.phi_deg = ip.mean;
+  e.phi_spread_deg = ip.half_width;
+  e.c_kpa = ic.mean;
+  e.c_spread_kpa = ic.half_width;
+  return e;
+}
 
 std::string describe_fit(const MohrCoulomb& m) {
   char buf[200];

@@ -47,4 +47,16 @@ void write_campaign_report(const std::string& out_dir, const std::string& base_n
 // for two points, "... (2 points: the line through them, no error estimate)".
 std::string describe_fit(const MohrCoulomb& fit);
 
+// An envelope over specimens from each specimen's own fit (each with two
+// or more points): one fit's phi and c with their standard errors, or the
+// mean of the fits' phi and c with its 95 % Student interval. The shear
+// and the triaxial campaigns report their envelopes with it.
+struct SpecimensEnvelope {
+  int specimens = 0;
+  double phi_deg = 0, phi_spread_deg = 0, c_kpa = 0, c_spread_kpa = 0;
+  double mean_r2 = 0;
+  bool ci95() const { return specimens > 1; }  // else the spreads are one fit's standard errors
+};
+SpecimensEnvelope specimens_envelope(const std::vector<MohrCoulomb>& fits);
+
 }  // namespace simsols

@@ -214,39 +214,32 @@ std::vector<SpecimenFits> specimen_fits(const std::vector<TriaxialCampaignEntry>
 // its 95 % Student interval (the specimens are the replicates; the tests of
 // one specimen share its packing and are not independent).
 struct Strength {
-  MohrCoulomb line;  // drawn: one specimen's fit, or the mean's phi and c
-  int specimens = 0;
-  double phi_hw = NAN, c_hw = NAN;  // deg, kPa
+  SpecimensEnvelope env;  // shear_box/campaign_report.h
+  MohrCoulomb line;       // drawn: one specimen's fit, or the mean's phi and c
   std::string text;
 };
 
 Strength strength(const std::vector<SpecimenFits>& fits, MohrCoulomb SpecimenFits::*which) {
   Strength st;
-  std::vector<double> phis, cs;
+  std::vector<MohrCoulomb> fitted;
   for (const SpecimenFits& f : fits)
-    if ((f.*which).points >= 2) {
-      st.line = f.*which;
-      phis.push_back(st.line.phi_deg);
-      cs.push_back(st.line.cohesion * 1e-3);
-    }
-  st.specimens = static_cast<int>(phis.size());
-  if (st.specimens == 0) {
+    if ((f.*which).points >= 2) fitted.push_back(f.*which);
+  st.env = specimens_envelope(fitted);
+  if (fitted.empty()) {
     st.text = "needs two or more tests";
-  } else if (st.specimens == 1) {
-    st.phi_hw = st.line.phi_se_deg;
-    st.c_hw = st.line.cohesion_se * 1e-3;
+  } else if (!st.env.ci95()) {
+    st.line = fitted[0];
     st.text = describe_fit(st.line) + "; one specimen: its fit's standard errors, not an interval "
               "on the material (--seeds)";
   } else {
-    const Interval ip = mean_ci95(phis), ic = mean_ci95(cs);
-    st.line.phi_deg = ip.mean;
-    st.line.tan_phi = std::tan(ip.mean * kPi / 180);
-    st.line.cohesion = ic.mean * 1e3;
-    st.phi_hw = ip.half_width;
-    st.c_hw = ic.half_width;
-    st.text = "phi = " + fmt("%.2f", ip.mean) + " +- " + fmt("%.2f", ip.half_width) + " deg, c = " +
-              fmt("%.2f", ic.mean) + " +- " + fmt("%.2f", ic.half_width) + " kPa (mean of " +
-              std::to_string(st.specimens) + " specimens' fits +- 95 % interval)";
+    const SpecimensEnvelope& e = st.env;
+    st.line = fitted.back();  // its point count: drawn
+    st.line.phi_deg = e.phi_deg;
+    st.line.tan_phi = std::tan(e.phi_deg * kPi / 180);
+    st.line.cohesion = e.c_kpa * 1e3;
+    st.text = "phi = " + fmt("%.2f", e.phi_deg) + " +- " + fmt("%.2f", e.phi_spread_deg) +
+              " deg, c = " + fmt("%.2f", e.c_kpa) + " +- " + fmt("%.2f", e.c_spread_kpa) +
+              " kPa (mean of " + std::to_string(e.specimens) + " specimens' fits +- 95 % interval)";
   }
   return st;
 }
@@ -282,14 +275,15 @@ std::string envelopes_csv(const Strength& peak, const Strength& critical) {
   std::string csv = "strength,specimens,phi_deg,phi_spread_deg,c_kPa,c_spread_kPa,spread\n";
   for (const auto& [name, st] : {std::pair<const char*, const Strength*>{"peak", &peak},
                                  {"critical", &critical}}) {
-    csv += std::string(name) + "," + std::to_string(st->specimens);
-    if (st->specimens == 0) {
+    const SpecimensEnvelope& e = st->env;
+    csv += std::string(name) + "," + std::to_string(e.specimens);
+    if (e.specimens == 0) {
       csv += ",,,,,\n";
       continue;
     }
-    csv += "," + fmt("%.6f", st->line.phi_deg) + "," + fmt("%.6f", st->phi_hw) + "," +
-           fmt("%.6f", st->line.cohesion * 1e-3) + "," + fmt("%.6f", st->c_hw) + "," +
-           (st->specimens > 1 ? "ci95" : "se") + "\n";
+    csv += "," + fmt("%.6f", e.phi_deg) + "," + fmt("%.6f", e.phi_spread_deg) + "," +
+           fmt("%.6f", e.c_kpa) + "," + fmt("%.6f", e.c_spread_kpa) + "," +
+           (e.ci95() ? "ci95" : "se") + "\n";
   }
   return csv;
 }

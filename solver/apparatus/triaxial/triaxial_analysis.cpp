@@ -198,7 +198,6 @@ std::string triaxial_summary_text(const TriaxialSummary& s) {
 
 namespace {
 
-
 std::vector<double> csv_numbers(const std::string& line, size_t row, size_t columns) {
   std::vector<double> v;
   std::istringstream in(line);
