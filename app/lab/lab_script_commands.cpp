@@ -26,18 +26,11 @@ bool pick(E& field, const std::string& choice) {
   return v.has_value();
 }
 
-template <typename E>
-std::string names() {
-  std::string s;
-  for (const std::string& n : choice_names<E>()) s += (s.empty() ? "" : "|") + n;
-  return s;
-}
-
 // "damping viscous|none; tangential mindlin|none; ...": what `effect` takes.
 std::string effect_choices() {
-  return "damping " + names<DampingModel>() + "; tangential " + names<TangentialModel>() +
-         "; rolling " + names<RollingModel>() + "; cohesion " + names<CohesionModel>() +
-         "; fluid " + names<FluidModel>();
+  return "damping " + choice_names_joined<DampingModel>() + "; tangential " + choice_names_joined<TangentialModel>() +
+         "; rolling " + choice_names_joined<RollingModel>() + "; cohesion " + choice_names_joined<CohesionModel>() +
+         "; fluid " + choice_names_joined<FluidModel>();
 }
 
 bool set_slot(Effects& e, const std::string& slot, const std::string& choice) {
@@ -93,7 +86,7 @@ void LabApp::Script::use_material(const Line& line) {
 
 void LabApp::Script::choose_precision(const Line& line) {
   const std::optional<Precision> p = parse_choice<Precision>(line.argument);
-  if (!p) return fail(line, "precision " + names<Precision>(), 2);
+  if (!p) return fail(line, "precision " + choice_names_joined<Precision>(), 2);
   experiment().set_precision(*p);
 }
 

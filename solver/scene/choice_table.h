@@ -47,6 +47,14 @@ std::vector<std::string> choice_names() {
   return names;
 }
 
+// Every allowed name joined by '|' ("rigid|membrane"), as messages list them.
+template <class E>
+std::string choice_names_joined() {
+  std::string s;
+  for (const Named<E>& c : choices<E>()) s += (s.empty() ? "" : "|") + std::string(c.name);
+  return s;
+}
+
 }  // namespace simsols
 
 // Defines the table of enumeration E, inside namespace simsols:

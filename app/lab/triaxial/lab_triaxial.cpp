@@ -116,11 +116,7 @@ std::string LabTriaxial::choose(const std::string& key, const std::string& optio
   Triaxial* t = scene.apparatus_as<Triaxial>();
   if (!t || scene.placed()) return "cell: this scene's cell is built already; open it again to change it";
   const std::optional<Triaxial::Cell> cell = parse_choice<Triaxial::Cell>(option);
-  if (!cell) {
-    std::string names;
-    for (const std::string& n : choice_names<Triaxial::Cell>()) names += (names.empty() ? "" : "|") + n;
-    return "cell " + option + ": the cell is " + names;
-  }
+  if (!cell) return "cell " + option + ": the cell is " + choice_names_joined<Triaxial::Cell>();
   if (*cell == Triaxial::Cell::Membrane && t->path != Triaxial::Path::ConstantSigma3)
     return "cell " + option + ": a membrane holds σ₃ constant; this scene's path is another "
            "([triaxial] path, docs/triaxial.md)";

@@ -8,7 +8,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -17,6 +16,7 @@
 
 #include "app/experiment/shear_box/study_stats.h"
 #include "app/experiment/triaxial/triaxial_campaign_report.h"
+#include "solver/io/output.h"
 
 namespace simsols {
 namespace {
@@ -57,12 +57,7 @@ TriaxialCampaignEntry entry(double s3_kpa, std::int64_t seed, double phi_deg, do
   return e;
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+std::string slurp(const fs::path& p) { return read_text(p.string()); }  // output.h
 
 // envelopes.csv's row for `strength`, split at the commas.
 std::vector<std::string> row(const std::string& csv, const std::string& strength) {
