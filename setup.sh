@@ -191,7 +191,9 @@ cmd_test() {
   build
   link_python_module
   say "Running the test suite (ctest --preset $PRESET)"
-  # Serial on purpose: each test drives PoCL, which already uses every core.
+  # Two tests at a time, each with one PoCL worker thread (the preset's
+  # POCL_MAX_PTHREAD_COUNT=1): two cores, two tests, no thread waiting
+  # for a core.
   local rc=0
   ctest --preset "$PRESET" || rc=$?
   if ((rc == 0)); then say "All tests passed"; else say "Tests failed (ctest exit status $rc)"; fi

@@ -152,7 +152,7 @@ std::optional<StudyPreset> study_preset(const std::string& name, int ensemble) {
                make("time step", "dt 3.0 (forced)", 3.0)};
     // the poured specimen in the paper's box, its rain not quite settled
     p.poured_box_scale = 1;
-    p.poured_settle_time = 0.1;
+    p.poured_settle_time = 0.06;
     for (StudySettings s : {make("reference", "reference: dt 0.2 double", 0.2, D),
                             make("time step", "dt 0.4", 0.4)}) {
       s.specimen = StudySpecimen::Poured;

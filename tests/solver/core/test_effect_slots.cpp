@@ -86,6 +86,9 @@ TEST_P(EffectSlots, HistoryMemoryFollowsTheSlots) {
                         {TangentialModel::MindlinDeresiewicz, RollingModel::SpringDashpot, undamped, 3}};
   const size_t real = GetParam() == Precision::Double ? 8 : 4;
   for (const Case& c : cases) {
+    // in double, the empty layout and the widest (three planes): the byte
+    // counts scale with the real's size, and each case costs a kernel build
+    if (real == 8 && c.planes != 0 && c.planes != 3) continue;
     Scene s = tumbling_pile(GetParam());
     s.effects.tangential = c.t;
     s.effects.rolling = c.r;

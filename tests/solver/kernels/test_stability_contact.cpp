@@ -563,10 +563,10 @@ bool contact_force(Simulation& sim, int a, int b, Vec3* f) {
 
 TEST_P(ReformedContact, StartsFromZeroHistory) {
   const Precision prec = GetParam();
-  const double v = 2, spin = 1600;
+  const double v = 5, spin = 4000;
   const std::vector<Particle> start = {
-      sphere(kR, {-2 * kR, 0, 0}, {v, 0.2, 0}, {0, 0, spin}),
-      sphere(kR, {2 * kR, 0.4 * kR, 0}, {-v, -0.2, 0}, {spin, 0, -spin})};
+      sphere(kR, {-2 * kR, 0, 0}, {v, 0.5, 0}, {0, 0, spin}),
+      sphere(kR, {2 * kR, 0.4 * kR, 0}, {-v, -0.5, 0}, {spin, 0, -spin})};
   Simulation sim(default_device(), channel_scene(prec, start));
   // (pair or wall) -> touching on the previous step, contacts seen, checked
   struct Track {
