@@ -58,6 +58,9 @@ PACKAGES=(
   python3-dev
   python3-numpy
   python3-pytest
+  # SciPy: Student's t quantiles in the scripts that check the docs' tables
+  # against their CSVs (tests/layout/ensemble_stats.py)
+  python3-scipy
   # a private one-node Slurm for the cluster test (tests/cluster): slurm-wlm
   # is the controller, node daemon and clients; munge authenticates them
   slurm-wlm

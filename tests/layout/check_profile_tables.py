@@ -13,20 +13,14 @@ specimens: | lever | tests | steps ratio | Δ peak | Δ residual | Δ ψ |).
   tests/layout/check_profile_tables.py [REPO_ROOT] [--write]
 --write rewrites profiles.csv from the per-test CSVs instead."""
 import csv
-import math
 import os
 import sys
+
+from ensemble_stats import mean_ci
 
 root = sys.argv[1] if len(sys.argv) > 1 and not sys.argv[1].startswith("--") else \
     os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 img = os.path.join(root, "docs", "img")
-T975 = [0, 12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179,
-        2.160, 2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064, 2.060,
-        2.056, 2.052, 2.048, 2.045, 2.042]
-
-
-def t975(dof):  # Student's t(0.975, dof); 1.96 + 2.4/dof beyond the table (within 0.002)
-    return T975[dof] if dof < len(T975) else 1.96 + 2.4 / dof
 
 
 def rows(name):
@@ -39,10 +33,7 @@ def paired(pairs):
     for name, col in (("peak_diff", "peak_friction_angle_deg"), ("residual_diff", "residual_friction_angle_deg"),
                       ("dilatancy_diff", "max_dilatancy_angle_deg")):
         d = [float(f[col]) - float(p[col]) for p, f in pairs]
-        n = len(d)
-        m = sum(d) / n
-        sd = math.sqrt(sum((x - m) ** 2 for x in d) / (n - 1))
-        out[name] = (m, t975(n - 1) * sd / math.sqrt(n))
+        out[name] = mean_ci(d)
     out["step_ratio"] = sum(float(p["steps"]) for p, _ in pairs) / sum(float(f["steps"]) for _, f in pairs)
     return out
 

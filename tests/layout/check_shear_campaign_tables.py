@@ -12,6 +12,8 @@ import math
 import os
 import sys
 
+from ensemble_stats import mean_ci
+
 root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
 
 
@@ -73,7 +75,6 @@ if not any(f"μ_w = {median:.3f}" in r["choice"] for r in rows_of("apparatus_cho
 
 # the paired changes: the same seeds, each choice's value minus its
 # baseline's, mean +- t(0.975, n-1) sd / sqrt(n)
-T975 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262}
 
 
 def paired(choice, base, key):
@@ -81,10 +82,7 @@ def paired(choice, base, key):
     for r in rows_of("apparatus_choices_tests.csv"):
         by.setdefault(r["choice"], {})[r["seed"]] = float(r[key])
     d = [by[choice][k] - by[base][k] for k in sorted(by[base]) if k in by[choice]]
-    n = len(d)
-    mean = sum(d) / n
-    sd = math.sqrt(sum((x - mean) ** 2 for x in d) / (n - 1))
-    return mean, T975[n - 1] * sd / math.sqrt(n)
+    return mean_ci(d)
 
 
 # each choice against the box it differs from in that one setting (paired_with)

@@ -9,16 +9,15 @@ docs/accuracy.md's residuals of the fixed-thickness box are that study's.
   tests/layout/check_size_study_tables.py [REPO_ROOT]"""
 import csv
 import glob
-import math
 import os
 import re
 import sys
 
+from ensemble_stats import mean_ci
+
 root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
 doc = open(os.path.join(root, "docs/size-study.md"), encoding="utf-8").read()
 bad = []
-# Student's t (97.5 %) for 1..9 degrees of freedom
-T975 = [12.706205, 4.302653, 3.182446, 2.776445, 2.570582, 2.446912, 2.364624, 2.306004, 2.262157]
 
 
 def g3(v):
@@ -73,8 +72,7 @@ for name in names:
         for h in heads:
             v = [float(t[h]) for t in group]
             n = len(v)
-            m = sum(v) / n
-            half = T975[n - 2] * math.sqrt(sum((x - m) ** 2 for x in v) / (n - 1) / n) if 1 < n <= 10 else float("nan")
+            m, half = mean_ci(v)
             if abs(m - float(r[h])) > 1e-4 * max(1, abs(m)) or (
                     n > 1 and abs(half - float(r[h + "_ci95"])) > 1e-4 * max(1, half)):
                 bad.append(f"size_{name} x{r['scale']} {h}: tests give {m:.6g} ± {half:.6g}, "

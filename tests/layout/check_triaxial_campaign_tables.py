@@ -12,9 +12,10 @@ import math
 import os
 import sys
 
+from ensemble_stats import mean_ci
+
 args = [a for a in sys.argv[1:] if a != "--print"]
 root = args[0] if args else os.path.join(os.path.dirname(__file__), "..", "..")
-T975 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262}
 # column of the tests' CSV, digits, the table's heading
 COLUMNS = [("e0", 3, "e₀"), ("peak_phi_deg", 2, "peak φ′ (°)"), ("critical_phi_deg", 2, "critical φ′ (°)"),
            ("critical_void_ratio", 3, "e_cs"), ("critical_p_kPa", 1, "p′_cs (kPa)"),
@@ -23,13 +24,6 @@ COLUMNS = [("e0", 3, "e₀"), ("peak_phi_deg", 2, "peak φ′ (°)"), ("critical
 
 def rows(name):
     return list(csv.DictReader(l for l in open(os.path.join(root, "docs/img", name)) if not l.startswith("#")))
-
-
-def mean_ci(v):
-    m = sum(v) / len(v)
-    if len(v) < 2:
-        return m, float("nan")
-    return m, T975[len(v) - 1] * math.sqrt(sum((x - m) ** 2 for x in v) / (len(v) - 1) / len(v))
 
 
 def fit_circles(s1, s3):

@@ -5,15 +5,15 @@ its table is docs/img/triaxial_cells.csv, whose means and 95 % intervals
 from the tests in docs/img/triaxial_cells_tests.csv.
   tests/layout/check_triaxial_cells_tables.py [REPO_ROOT]"""
 import csv
-import math
 import os
 import sys
+
+from ensemble_stats import mean_ci
 
 root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
 doc = open(os.path.join(root, "docs/triaxial.md"), encoding="utf-8").read()
 section = doc[doc.index("### Rigid against membrane"):]
 section = section[:section.index("\n## ")]
-T975 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262}
 COLUMNS = ["initial_void_ratio", "peak_deg", "peak_axial_strain", "critical_deg", "critical_void_ratio",
            "max_dilatancy_deg", "final_volumetric_strain", "median_wall_internal_gap_percent",
            "end_membrane_axial_kPa", "end_membrane_shell_kPa"]
@@ -40,8 +40,7 @@ for r in rows("triaxial_cells.csv"):
             v = [float(by[a][s][c]) - float(by[b][s][c]) for s in seeds]
         else:
             v = [float(by[r["cell"]][s][c]) for s in seeds]
-        m = sum(v) / len(v)
-        ci = T975[len(v) - 1] * math.sqrt(sum((x - m) ** 2 for x in v) / (len(v) - 1) / len(v))
+        m, ci = mean_ci(v)
         digits = len(r[c].split(".")[1]) if "." in r[c] else 0
         tol = 0.6 * 10 ** -digits + 1e-9
         if abs(m - float(r[c])) > tol or abs(ci - float(r[c + "_ci95"])) > tol:

@@ -24,13 +24,14 @@ folder is missing is left out). tests/layout/check_triaxial_cells_tables.py chec
 against both, the means and intervals recomputed from the tests.
 """
 import csv
-import math
 import os
 import sys
 
-# Student's t, 97.5 % quantile, by degrees of freedom (statistical tables)
-T975 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306,
-        9: 2.262, 10: 2.228}
+# the mean and Student's 95 % interval, as the docs' table checks compute them
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
+                                "tests", "layout"))
+from ensemble_stats import mean_ci  # noqa: E402
+
 CELLS = ["rigid", "membrane", "membrane_fine"]  # membrane_fine: membrane_spacing = 0.25
 PAIRS = [("membrane", "rigid"), ("membrane_fine", "membrane")]  # paired changes, seed by seed
 # column of the tables, key of summary.txt (None: from triaxial.csv)
@@ -60,15 +61,6 @@ def summary(path):
 def final_volumetric_strain(path):
     rows = list(csv.DictReader(open(path)))
     return float(rows[-1]["volumetric_strain"])
-
-
-def mean_ci(values):
-    n = len(values)
-    m = sum(values) / n
-    if n < 2:
-        return m, float("nan")
-    sd = math.sqrt(sum((v - m) ** 2 for v in values) / (n - 1))
-    return m, T975[n - 1] * sd / math.sqrt(n)
 
 
 def tests(runs):
