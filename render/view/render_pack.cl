@@ -26,6 +26,7 @@
 #define FIELD_CONTACTS 4
 #define FIELD_ROTATION 5
 #define FIELD_GRAIN 6
+#define FIELD_NONAFFINE 7
 
 // Compensation term of record i (a float4 buffer in float runs; double runs
 // have none and pass a placeholder that is never read).
@@ -68,13 +69,16 @@ INLINE real3 diff_pos(real4 b, real4 b_lo, real4 a, real4 a_lo) {
 // model origin; band: the band height. body: each particle's clump, -1 for
 // a free sphere (Model::body_buffer; a one-entry stand-in, never read,
 // without HAS_CLUMPS); clumps: their number. Grain: c for the members of
-// clump c, clumps + i for a free sphere i.
+// clump c, clumps + i for a free sphere i. affine_a0..a2 (rows of A),
+// affine_centre (relative to the model origin) and affine_mean: the affine
+// displacement field NonAffine takes off (ViewPacker's affine_fit).
 __kernel void pack_beads(__global const real4* pos, __global const real4* pos_lo,
                          __global const real4* vel, __global const real4* omega,
                          __global const real4* force, __global const real4* ref,
                          __global const real4* ref_lo, __global const int* body, int clumps,
                          real4 origin, real4 origin_lo,
-                         int field, real z0, real z0_lo, real band,
+                         int field, real z0, real z0_lo, real band, real4 affine_a0,
+                         real4 affine_a1, real4 affine_a2, real4 affine_centre, real4 affine_mean,
                          __global float4* beads, __global float* values,
                          __global float* partial, int n, __local float* scratch) {
   const int i = get_global_id(0);
@@ -110,6 +114,13 @@ __kernel void pack_beads(__global const real4* pos, __global const real4* pos_lo
       case FIELD_ROTATION:
         v = length(omega[i].xyz);
         break;
+      case FIELD_NONAFFINE: {
+        const real3 r = ref[i].xyz - affine_centre.xyz;
+        const real3 fit = (real3)(dot(affine_a0.xyz, r), dot(affine_a1.xyz, r),
+                                  dot(affine_a2.xyz, r)) + affine_mean.xyz;
+        v = length(diff_pos(x, x_lo, ref[i], LO_AT(ref_lo, i)) - fit);
+        break;
+      }
       case FIELD_GRAIN: {
         int grain = clumps + i;
 #ifdef HAS_CLUMPS

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <Eigen/Dense>
+
 #include "solver/core/kernel_args.h"
 #include "solver/core/real_packer.h"
 
@@ -18,8 +20,8 @@ std::span<const KernelFile> render_kernel_files();
 namespace {
 
 constexpr const char* kNames[] = {"size",     "layer",    "speed", "displacement",
-                                  "contacts", "rotation", "grain"};
-constexpr const char* kUnits[] = {"m", "", "m/s", "m", "", "rad/s", ""};
+                                  "contacts", "rotation", "grain", "nonaffine"};
+constexpr const char* kUnits[] = {"m", "", "m/s", "m", "", "rad/s", "", "m"};
 
 // A point relative to the model origin, split for the device: hi in the
 // device precision and, in float runs, lo = what the float could not hold
@@ -74,6 +76,40 @@ std::vector<Vec3> initial_positions(const Scene& scene) {
 }
 
 }  // namespace
+
+AffineFit affine_fit(const std::vector<Vec3>& reference, const std::vector<Vec3>& current) {
+  if (reference.empty() || reference.size() != current.size())
+    throw std::invalid_argument("affine_fit: " + std::to_string(reference.size()) +
+                                " reference points and " + std::to_string(current.size()) +
+                                " current ones (the same number, at least one)");
+  const double n = static_cast<double>(reference.size());
+  Eigen::Vector3d c = Eigen::Vector3d::Zero(), mean = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < reference.size(); ++i)
+    for (int a = 0; a < 3; ++a) {
+      c[a] += reference[i][a] / n;
+      mean[a] += (current[i][a] - reference[i][a]) / n;
+    }
+  // normal equations: (X^T X) A^T = X^T U, X the centred reference points,
+  // U the displacements less their mean
+  Eigen::Matrix3d xx = Eigen::Matrix3d::Zero(), xu = Eigen::Matrix3d::Zero();
+  for (size_t i = 0; i < reference.size(); ++i) {
+    Eigen::Vector3d x, u;
+    for (int a = 0; a < 3; ++a) {
+      x[a] = reference[i][a] - c[a];
+      u[a] = current[i][a] - reference[i][a] - mean[a];
+    }
+    xx += x * x.transpose();
+    xu += x * u.transpose();
+  }
+  const Eigen::Matrix3d at = xx.completeOrthogonalDecomposition().solve(xu);
+  AffineFit f;
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) f.a[r][k] = at(k, r);
+    f.centre[r] = c[r];
+    f.mean[r] = mean[r];
+  }
+  return f;
+}
 
 const char* to_string(ColorField f) { return kNames[static_cast<int>(f)]; }
 
@@ -163,6 +199,7 @@ void ViewPacker::write_reference(const std::vector<Vec3>& p) {
   }
   m.device().write(ref_.get(), hi.size(), hi.data());
   if (!dbl) m.device().write(ref_lo_.get(), lo.size(), lo.data());
+  ref_host_ = p;
 }
 
 void ViewPacker::follow_reference_bottom(const std::vector<Vec3>& p) {
@@ -182,7 +219,8 @@ void ViewPacker::set_reference() {
     check(clEnqueueCopyBuffer(q, s.pos_lo.get(), ref_lo_.get(), 0, 0, ref_lo_.bytes, 0, nullptr,
                               nullptr),
           "clEnqueueCopyBuffer(reference lo)");
-  if (!user_bands_) follow_reference_bottom(download(m, s).position);
+  ref_host_ = download(m, s).position;
+  if (!user_bands_) follow_reference_bottom(ref_host_);
 }
 
 void ViewPacker::set_reference(const std::vector<Vec3>& absolute_positions) {
@@ -204,6 +242,11 @@ void ViewPacker::set_layer_bands(double z0, double band) {
   user_bands_ = true;
 }
 
+AffineFit ViewPacker::field_fit(ColorField field) {
+  if (field != ColorField::NonAffine) return {};
+  return affine_fit(ref_host_, download(sim_.model(), sim_.state()).position);
+}
+
 ViewPacker::Range ViewPacker::pack_beads(ColorField field, cl_mem beads, cl_mem values) {
   require_buffer(beads, size_t(n_) * 4 * sizeof(float), "beads");
   require_buffer(values, size_t(n_) * sizeof(float), "values");
@@ -212,12 +255,17 @@ ViewPacker::Range ViewPacker::pack_beads(ColorField field, cl_mem beads, cl_mem 
   State& s = sim_.state();
   const Split o = split(m, origin_);
   const Split z0 = split(m, {origin_[0], origin_[1], z0_});
+  const AffineFit fit = field_fit(field);
+  const Split centre = split(m, fit.centre);
+  const Real4 a0{fit.a[0][0], fit.a[0][1], fit.a[0][2], 0}, a1{fit.a[1][0], fit.a[1][1], fit.a[1][2], 0},
+      a2{fit.a[2][0], fit.a[2][1], fit.a[2][2], 0}, mean{fit.mean[0], fit.mean[1], fit.mean[2], 0};
   set_args(m, pack_beads_, arg("pos", s.pos), arg("pos_lo", s.pos_lo), arg("vel", s.vel),
            arg("omega", s.omega), arg("force", s.force), arg("ref", ref_), arg("ref_lo", ref_lo_),
            arg("body", m.body_buffer()), arg("clumps", m.clumps()), arg("origin", o.hi),
            arg("origin_lo", o.lo), arg("field", static_cast<int>(field)),
            arg("z0", Real{z0.hi.z}), arg("z0_lo", Real{z0.lo.z}), arg("band", Real{band_}),
-           arg("beads", beads), arg("values", values), arg("partial", bead_partial_), arg("n", n_),
+           arg("affine_a0", a0), arg("affine_a1", a1), arg("affine_a2", a2),
+           arg("affine_centre", centre.hi), arg("affine_mean", mean), arg("beads", beads), arg("values", values), arg("partial", bead_partial_), arg("n", n_),
            arg("scratch", Local{m.local_size() * 2 * sizeof(float)}));
   launch(m, pack_beads_, n_);
   const size_t groups = m.global_size(n_) / m.local_size();

@@ -52,20 +52,38 @@ namespace simsols {
 //                 number of clumps), so every grain has its own number and
 //                 the members of a clump share theirs. Exact in float up to
 //                 C + i = 2^24.
-enum class ColorField { Size, Layer, Speed, Displacement, Contacts, Rotation, Grain };
+//   NonAffine     |u - (A (x_ref - c) + u_mean)|, u = x - x_ref: the
+//                 displacement less the affine field that fits all beads'
+//                 displacements best (least squares over the beads; c the
+//                 reference centroid; affine_fit below). What the
+//                 specimen's homogeneous strain does not explain: a shear
+//                 band, a sliding block, a rattler.
+enum class ColorField { Size, Layer, Speed, Displacement, Contacts, Rotation, Grain, NonAffine };
 inline constexpr ColorField kColorFields[] = {
     ColorField::Size,     ColorField::Layer,    ColorField::Speed, ColorField::Displacement,
-    ColorField::Contacts, ColorField::Rotation, ColorField::Grain};
+    ColorField::Contacts, ColorField::Rotation, ColorField::Grain, ColorField::NonAffine};
 
 const char* to_string(ColorField f);  // "size", "layer", "speed", ...
 // The field named `s` (as to_string writes it, any case); nullopt otherwise.
 std::optional<ColorField> parse_color_field(std::string_view s);
-const char* unit_of(ColorField f);    // "m", "", "m/s", "m", "", "rad/s", "" (for legends)
-// "size, layer, speed, displacement, contacts, rotation, grain": for help and errors.
+const char* unit_of(ColorField f);    // "m", "", "m/s", "m", "", "rad/s", "", "m" (for legends)
+// "size, layer, speed, displacement, contacts, rotation, grain, nonaffine":
+// for help and errors.
 std::string color_field_names();
 // The colouring a scene is drawn with when none is asked for: grain for
 // scenes with clumps (each grain in its own colour), layer otherwise.
 ColorField default_color_field(const Scene& scene);
+
+// The affine displacement field u(x_ref) = A (x_ref - centre) + mean that
+// fits displacements u_i = current_i - reference_i best in least squares
+// (A by the normal equations, a pseudo-inverse when the reference points
+// are coplanar). Both lists absolute, the same length (std::invalid_argument
+// otherwise, or when empty).
+struct AffineFit {
+  double a[3][3] = {};  // A, row-major
+  Vec3 centre{}, mean{};
+};
+AffineFit affine_fit(const std::vector<Vec3>& reference, const std::vector<Vec3>& current);
 
 class ViewPacker {
  public:
@@ -139,6 +157,9 @@ class ViewPacker {
  private:
   void write_reference(const std::vector<Vec3>& absolute_positions);
   void follow_reference_bottom(const std::vector<Vec3>& absolute_positions);
+  // The affine field of the current state against the reference (NonAffine);
+  // zero for the other fields.
+  AffineFit field_fit(ColorField field);
 
   Simulation& sim_;
   int n_ = 0;
@@ -150,6 +171,7 @@ class ViewPacker {
   // reference positions relative to the model origin (+ float compensation),
   // group partials, the segment counter
   Buffer ref_, ref_lo_, bead_partial_, contact_partial_, counter_;
+  std::vector<Vec3> ref_host_;  // the reference positions, absolute (NonAffine's fit)
 };
 
 }  // namespace simsols

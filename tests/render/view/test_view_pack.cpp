@@ -88,6 +88,14 @@ std::vector<double> host_field(ColorField f, const ParticleSnapshot& p,
       case ColorField::Contacts: v[i] = p.contacts[i]; break;
       case ColorField::Rotation: v[i] = norm(p.angular_velocity[i]); break;
       case ColorField::Grain: v[i] = double(i); break;  // no clumps: each bead its own grain
+      case ColorField::NonAffine: {
+        const AffineFit a = affine_fit(ref, p.position);
+        Vec3 r = sub(ref[i], a.centre), fit{};
+        for (int k = 0; k < 3; ++k)
+          fit[k] = a.a[k][0] * r[0] + a.a[k][1] * r[1] + a.a[k][2] * r[2] + a.mean[k];
+        v[i] = norm(sub(sub(p.position[i], ref[i]), fit));
+        break;
+      }
     }
   }
   return v;
@@ -243,6 +251,8 @@ TEST(ViewPackNames, FieldsRoundTripWithUnits) {
   EXPECT_STREQ(unit_of(ColorField::Contacts), "");
   EXPECT_STREQ(unit_of(ColorField::Rotation), "rad/s");
   EXPECT_STREQ(unit_of(ColorField::Grain), "");
+  EXPECT_STREQ(unit_of(ColorField::NonAffine), "m");
+  EXPECT_EQ(parse_color_field("nonaffine"), ColorField::NonAffine);
   EXPECT_EQ(parse_color_field("Grain"), ColorField::Grain);
 }
 
@@ -409,6 +419,59 @@ TEST_P(ViewPack, ReferenceFollowsTheStateOrTheCaller) {
                 host_field(ColorField::Speed, after, ref, 0, 1), ColorField::Speed);
   expect_values(view.pack_beads_host(ColorField::Rotation),
                 host_field(ColorField::Rotation, after, ref, 0, 1), ColorField::Rotation);
+}
+
+// The affine fit recovers an affine displacement field exactly, from points
+// in a plane too (a pseudo-inverse), and refuses lists that do not pair.
+TEST(ViewPackNames, AffineFitRecoversAnAffineField) {
+  const double g[3][3] = {{0.01, 0.02, 0}, {0, -0.01, 0.03}, {0.005, 0, 0.02}};
+  for (const bool plane : {false, true}) {
+    std::vector<Vec3> ref, cur;
+    for (int i = 0; i < 20; ++i) {
+      const Vec3 x{1e-3 * std::sin(1.3 * i), 2e-3 * std::cos(0.7 * i), plane ? 0.0 : 1e-3 * (i % 5)};
+      Vec3 u{};
+      for (int k = 0; k < 3; ++k) u[k] = g[k][0] * x[0] + g[k][1] * x[1] + g[k][2] * x[2] + 1e-4 * k;
+      ref.push_back(x);
+      cur.push_back({x[0] + u[0], x[1] + u[1], x[2] + u[2]});
+    }
+    const AffineFit f = affine_fit(ref, cur);
+    for (size_t i = 0; i < ref.size(); ++i)
+      for (int k = 0; k < 3; ++k) {
+        const Vec3 r = sub(ref[i], f.centre);
+        const double fit = f.a[k][0] * r[0] + f.a[k][1] * r[1] + f.a[k][2] * r[2] + f.mean[k];
+        EXPECT_NEAR(fit, cur[i][k] - ref[i][k], 1e-15) << (plane ? "plane, " : "") << "point " << i;
+      }
+    if (!plane) {
+      EXPECT_NEAR(f.a[1][2], 0.03, 1e-12);
+    }
+  }
+  EXPECT_THROW(affine_fit({{0, 0, 0}}, {}), std::invalid_argument);
+  EXPECT_THROW(affine_fit({}, {}), std::invalid_argument);
+}
+
+// NonAffine: beads whose reference is an affine image of where they are
+// now show nothing, however far they moved; one bead's reference moved
+// 0.2 mm more stands out, as the host computes it.
+TEST_P(ViewPack, NonAffineShowsWhatTheBestAffineFieldLeaves) {
+  Simulation sim(default_device(), cluster_scene(GetParam()));
+  sim.advance(1);
+  ViewPacker view(sim);
+  const ParticleSnapshot now = sim.snapshot();
+  std::vector<Vec3> ref;
+  for (const Vec3& x : now.position)
+    ref.push_back({x[0] + 0.02 * (x[0] - kOffset[0]) + 0.03 * (x[2] - kOffset[2]) + 1e-4,
+                   x[1] - 0.01 * (x[1] - kOffset[1]) - 2e-4, x[2] + 0.015 * (x[0] - kOffset[0])});
+  view.set_reference(ref);
+  const ViewPacker::HostBeads affine = view.pack_beads_host(ColorField::NonAffine);
+  EXPECT_GT(view.pack_beads_host(ColorField::Displacement).range.min, 1e-4);
+  EXPECT_LT(affine.range.max, 1e-8) << "an affine field leaves nothing";
+  ref[3][0] += 2e-4;
+  view.set_reference(ref);
+  const ViewPacker::HostBeads one = view.pack_beads_host(ColorField::NonAffine);
+  expect_values(one, host_field(ColorField::NonAffine, now, ref, 0, 1), ColorField::NonAffine);
+  EXPECT_EQ(one.range.max, one.values[3]) << "the bead moved on its own stands out";
+  // (8 beads: the fit's 12 parameters take up about half of the 0.2 mm)
+  EXPECT_GT(one.values[3], 5e-5);
 }
 
 TEST_P(ViewPack, BadArgumentsAreRefused) {
