@@ -115,14 +115,15 @@ void heap_profile(Simulation& sim, double d, ReposeResult& r) {
 // Runs the collapse until the heap's surface rests: no strip's top moved
 // more than d/20 in 0.05 s, twice running (beads that roll off over the
 // floor, never stopped without rolling resistance, are no part of the
-// heap), or for 2 s. The profile then in `r`; the simulated time taken.
-double until_heap_rests(Simulation& sim, double d, const ShapeLog& log, ReposeResult& r) {
+// heap), or for `limit` s. The profile then in `r`; the simulated time taken.
+double until_heap_rests(Simulation& sim, double d, double limit, const ShapeLog& log,
+                        ReposeResult& r) {
   const double t0 = sim.time();
   const std::int64_t chunk = std::max<std::int64_t>(1, std::llround(0.05 / sim.dt()));
   Ticker ticker;
   heap_profile(sim, d, r);
   int still = 0;
-  while (sim.time() - t0 < 2.0 && still < 2) {
+  while (sim.time() - t0 < limit && still < 2) {
     const std::vector<double> before = r.top;
     sim.advance(chunk);
     heap_profile(sim, d, r);
@@ -132,8 +133,8 @@ double until_heap_rests(Simulation& sim, double d, const ShapeLog& log, ReposeRe
     still = sim.time() - t0 > 0.1 && moved < d / 20 ? still + 1 : 0;
     if (ticker.due() && log) {
       char line[160];
-      std::snprintf(line, sizeof line, "collapse, t = %.3f s of at most 2 s, heap %.1f deg, step %lld, %.0f s",
-                    sim.time() - t0, r.angle, static_cast<long long>(sim.steps()), ticker.elapsed());
+      std::snprintf(line, sizeof line, "collapse, t = %.3f s of at most %g s, heap %.1f deg, step %lld, %.0f s",
+                    sim.time() - t0, limit, r.angle, static_cast<long long>(sim.steps()), ticker.elapsed());
       log(line);
     }
   }
@@ -152,7 +153,7 @@ ReposeResult run_repose(const ShapePreset& p, const Scene& scene, const std::sha
   r.fill_time = until_at_rest(sim, 0.05, 0.6, weight_d, "column settling", log);
   const int gate = static_cast<int>(scene.walls.size()) - 1;
   sim.set_wall_point(gate, {10.0, 0, 0});  // taken away: far beyond any run-out
-  r.collapse_time = until_heap_rests(sim, p.diameter, log, r);
+  r.collapse_time = until_heap_rests(sim, p.diameter, p.collapse_limit, log, r);
   if (p.hold > 0) {  // the rested heap, watched longer: does it slump?
     ReposeResult later;
     sim.advance(std::llround(p.hold / sim.dt()));

@@ -63,6 +63,7 @@ struct ShapePreset {
   double shear_fraction = 0.15;  // of the box' length
   bool shear = true;
   double hold = 0;  // s: the rested heap watched this much longer (its slump)
+  double collapse_limit = 2.0;  // s: the collapse ends here if the heap has not rested
 };
 ShapePreset shape_preset(const std::string& name);  // throws UsageError for an unknown one
 
