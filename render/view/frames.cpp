@@ -195,7 +195,12 @@ void FrameExporter::attach(Simulation& sim, const FrameFlags& flags) {
 }
 
 void FrameExporter::set_reference() {
-  if (sim_) sim_->view->packer().set_reference();
+  if (!sim_) return;
+  sim_->view->packer().set_reference();
+  // the specimen as it is now (a pour rains from three times its height):
+  // the camera frames it again, as the lab does when a stage ends
+  sim_->view->refit_bounds();
+  camera_.fit(sim_->view->lo(), sim_->view->hi(), double(opt_.width) / opt_.height);
 }
 
 void FrameExporter::set_caption(std::string title, std::string state) {

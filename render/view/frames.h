@@ -96,7 +96,8 @@ class FrameExporter {
   // Starts drawing `sim` (fits the camera to the specimen and its box),
   // with the options resolved again against its scene's [view] hints.
   void attach(Simulation& sim, const FrameFlags& flags);
-  // The reference for the displacement field: the current positions.
+  // The reference for the displacement fields: the current positions; the
+  // camera is fitted again to the specimen and its box as they are now.
   void set_reference();
   // The caption of the next frames (with the legend: not under
   // --no-legend): the test's title and its state, to which the step and
