@@ -224,6 +224,17 @@ double ratio_within(const std::vector<SizePoint>& points, size_t headline, const
   return from;
 }
 
+// Where no size and every larger one is within `tolerance`: the sizes that
+// are, one by one ("at L/d = 14.2 only, not at the larger ones"), or none.
+static std::string sizes_within(const std::vector<SizePoint>& points, size_t headline, const Interval& bulk,
+                         double tolerance) {
+  std::string at;
+  for (const SizePoint& p : points)
+    if (std::fabs(p.values[headline].mean - bulk.mean) <= tolerance)
+      at += (at.empty() ? "" : ", ") + fmt("%.1f", p.ratio);
+  return at.empty() ? "at none of these sizes" : "at L/d = " + at + " only, not at the larger ones";
+}
+
 std::string size_summary_markdown(const ApparatusKind& kind, const std::vector<SizePoint>& points,
                                   const std::optional<BulkValue>& bulk) {
   std::ostringstream o;
@@ -252,7 +263,7 @@ std::string size_summary_markdown(const ApparatusKind& kind, const std::vector<S
     }
     const double from = ratio_within(points, h, *b, 1.0);
     o << "\n" << kind.headlines[h].symbol << ": the mean within 1° of the bulk value "
-      << (std::isnan(from) ? "at none of these sizes" : "from L/d = " + fmt("%.1f", from) + " on");
+      << (std::isnan(from) ? sizes_within(points, h, *b, 1.0) : "from L/d = " + fmt("%.1f", from) + " on");
     double widest = 0;  // of the differences' intervals from there on
     for (const SizePoint& p : points)
       if (p.ratio >= from) widest = std::max(widest, std::hypot(p.values[h].half_width, b->half_width));
