@@ -39,8 +39,8 @@ done
 eval "$(bash "$HERE/local_slurm.sh" start "$CLUSTER")"
 echo "cluster up: $SLURM_CONF"
 
-# the paper's 6.35 mm test (the built-in base) at two stresses, sheared 0.5 mm
-ARGS=(campaign --sizes 6.35 --stresses 80,160 --displacement 0.5)
+# the paper's 6.35 mm test (the built-in base) at two stresses, sheared 0.3 mm
+ARGS=(campaign --sizes 6.35 --stresses 80,160 --displacement 0.3)
 "$SIMSOLS" "${ARGS[@]}" --out "$WORK/slurm_run" --emit slurm
 [[ -x $WORK/slurm_run/slurm/submit.sh ]] || fail "no submit.sh"
 grep -q '^#SBATCH --array=0-1$' "$WORK/slurm_run/slurm/array.sbatch" || fail "not a 2-task array"

@@ -140,10 +140,10 @@ std::optional<StudyPreset> study_preset(const std::string& name, int ensemble) {
     p.cases = joined(sweep(), poured_sweep(true));
     p.ensemble = 5;
   } else if (name == "ci") {
-    // reduced: two layers, 0.6 mm of shear, few cases
+    // reduced: two layers, 0.3 mm of shear, few cases
     p.layers = 2;
     const Precision D = Precision::Double;
-    p.displacement_mm = 0.4;
+    p.displacement_mm = 0.3;
     p.rows = 20;
     p.cases = {make("reference", "reference: dt 0.15 double", 0.15, D),
                make("time step", "dt 0.2", 0.2),
@@ -152,7 +152,7 @@ std::optional<StudyPreset> study_preset(const std::string& name, int ensemble) {
                make("time step", "dt 3.0 (forced)", 3.0)};
     // the poured specimen in a box 0.7 x the paper's, its rain not quite settled
     p.poured_box_scale = 0.7;
-    p.poured_settle_time = 0.06;
+    p.poured_settle_time = 0.05;
     for (StudySettings s : {make("reference", "reference: dt 0.2 double", 0.2, D),
                             make("time step", "dt 0.4", 0.4)}) {
       s.specimen = StudySpecimen::Poured;
