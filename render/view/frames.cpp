@@ -191,6 +191,10 @@ void FrameExporter::attach(Simulation& sim, const FrameFlags& flags) {
   sim_->sim = &sim;
   sim_->view = std::make_unique<render::SimulationView>(context_->gl(), sim);
   camera_.set_preset(opt_.view);
+  fit_camera();
+}
+
+void FrameExporter::fit_camera() {
   camera_.fit(sim_->view->lo(), sim_->view->hi(), double(opt_.width) / opt_.height);
 }
 
@@ -200,7 +204,7 @@ void FrameExporter::set_reference() {
   // the specimen as it is now (a pour rains from three times its height):
   // the camera frames it again, as the lab does when a stage ends
   sim_->view->refit_bounds();
-  camera_.fit(sim_->view->lo(), sim_->view->hi(), double(opt_.width) / opt_.height);
+  fit_camera();
 }
 
 void FrameExporter::set_caption(std::string title, std::string state) {

@@ -116,6 +116,7 @@ class FrameExporter {
   std::string describe() const;
 
  private:
+  void fit_camera();  // to the attached view's bounds, at the frame's aspect
   void write_alioscopy(const std::string& path);
   // The caption and the scale bar.
   void annotate(plot::Image& img) const;
