@@ -25,7 +25,8 @@ bad=0 checked=0
 for dir in "${!allowed[@]}"; do
   [[ -d $dir ]] || { echo "check_layers: $dir is missing" >&2; bad=1; continue; }
   while IFS=: read -r file line text; do
-    target=$(sed -E 's/.*#include "([a-z_]+\/[a-z_]+)\/.*/\1/' <<<"$text")
+    [[ $text =~ \#include\ \"([a-z_]+/[a-z_]+)/ ]] || continue
+    target=${BASH_REMATCH[1]}
     checked=$((checked + 1))
     [[ $target == "$dir" ]] && continue
     if [[ " ${allowed[$dir]} " != *" $target "* ]]; then

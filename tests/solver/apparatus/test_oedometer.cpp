@@ -144,36 +144,39 @@ TEST(OedometerAnalysis, IndicesAreTheSlopesOfStraightLines) {
   EXPECT_NEAR(back[3].void_ratio, rows[3].void_ratio, 1e-8);
 }
 
-// Runs the programme to the end, or (stop_at > 0) to that many rows, then
-// checkpoints, reloads and finishes from the checkpoint.
-std::vector<OedometerRow> run(const Scene& scene, size_t stop_at, std::uint64_t* hash) {
-  auto sim = std::make_unique<Simulation>(default_device(), scene);
-  auto test = std::make_unique<OedometerProgramme>(*sim);
-  while (!test->done()) {
-    test->advance(1 << 20);
-    if (stop_at > 0 && test->rows().size() == stop_at) {
-      const std::string path =
-          (std::filesystem::temp_directory_path() / ("oed_" + std::to_string(getpid()) + ".bin"))
-              .string();
-      save_checkpoint(*sim, path, test->save_state());
-      std::string state;
-      auto again = load_checkpoint(default_device(), path, &state);
-      std::filesystem::remove(path);
-      auto resumed = std::make_unique<OedometerProgramme>(*again);
-      resumed->restore_state(state);
-      test = std::move(resumed);
-      sim = std::move(again);
-      stop_at = 0;
+// Runs the programme to the end; with `save_in_step` > 0 it also writes a
+// checkpoint to `path` at that load step's second row (and goes on). The
+// final state's hash in `*hash`.
+std::vector<OedometerRow> run(Simulation& sim, OedometerProgramme& test, int save_in_step,
+                              const std::string& path, std::uint64_t* hash) {
+  while (!test.done()) {
+    test.advance(1 << 20);
+    const auto& rows = test.rows();
+    const auto in_step = std::count_if(rows.begin(), rows.end(), [&](const OedometerRow& r) {
+      return r.load_step == save_in_step;
+    });
+    if (save_in_step > 0 && in_step == 2) {
+      save_checkpoint(sim, path, test.save_state());
+      save_in_step = 0;
     }
   }
-  *hash = sim->hash();
-  return test->rows();
+  *hash = sim.hash();
+  return test.rows();
 }
 
 TEST(OedometerProgramme, LoadsAndUnloadsInEquilibriumAndResumesExactly) {
   const Scene scene = parse_scene(oedometer_toml("step_time = 0.2"), "oed.toml");
   std::uint64_t hash = 0, hash_resumed = 0;
-  const std::vector<OedometerRow> rows = run(scene, 0, &hash);
+  // The run writes a checkpoint two rows into its last step (the unloading)
+  // and goes straight on to the end.
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("oed_" + std::to_string(getpid()) + ".bin")).string();
+  std::vector<OedometerRow> rows;
+  {
+    Simulation sim(default_device(), scene);
+    OedometerProgramme test(sim);
+    rows = run(sim, test, 4, path, &hash);
+  }
   const OedometerSummary s = analyse_oedometer(rows, 2, 0);
   ASSERT_EQ(s.steps.size(), 4u);
   const Oedometer& o = *scene.apparatus_as<Oedometer>();
@@ -202,13 +205,16 @@ TEST(OedometerProgramme, LoadsAndUnloadsInEquilibriumAndResumesExactly) {
   EXPECT_GT(s.cs, 0);
   std::printf("[measure] Cc %.5f, Cs %.5f, K0 %.3f, side friction %.5f\n", s.cc, s.cs, s.k0_nc,
               s.side_friction);
-  // Interrupted after the first step's rows and resumed from a checkpoint:
-  // the same rows and the same final state.
-  const size_t stop_at = static_cast<size_t>(std::find_if(rows.begin(), rows.end(), [](auto& r) {
-                                               return r.end_of_step != 0;
-                                             }) - rows.begin()) + 2;
-  const std::vector<OedometerRow> resumed = run(scene, stop_at, &hash_resumed);
-  EXPECT_EQ(oedometer_rows_csv(resumed), oedometer_rows_csv(rows));
+  // Resumed from the checkpoint taken in the unloading step: the same rows
+  // and the same final state as the run that went straight on.
+  ASSERT_TRUE(std::filesystem::exists(path)) << "no checkpoint in the unloading step";
+  std::string state;
+  auto again = load_checkpoint(default_device(), path, &state);
+  std::filesystem::remove(path);
+  OedometerProgramme resumed(*again);
+  resumed.restore_state(state);
+  EXPECT_EQ(oedometer_rows_csv(run(*again, resumed, 0, path, &hash_resumed)),
+            oedometer_rows_csv(rows));
   EXPECT_EQ(hash_resumed, hash);
 }
 
