@@ -144,7 +144,7 @@ SensitivityPreset sensitivity_preset(const std::string& name) {
     p.box_length = 33.46e-3;  // 5 x 5 beads a layer (assets/tests/shear_small.toml)
     p.box_width = 33.40e-3;
     p.layers = 2;
-    p.displacement_mm = 0.3;
+    p.displacement_mm = 0.2;
     p.settle_time = 0.07;
     p.consolidate_time = 0.04;  // its 50 beads do not reach the equilibrium criterion
     p.seeds = 2;

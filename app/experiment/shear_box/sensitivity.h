@@ -81,7 +81,7 @@ struct SensitivityPreset {
   // The box, length x width (m); the paper's 60.23 x 60.07 mm by default.
   double box_length = 60.23e-3, box_width = 60.07e-3;
 };
-// "paper" (default) or "ci" (a small box and 0.3 mm of shear: checks that
+// "paper" (default) or "ci" (a small box and 0.2 mm of shear: checks that
 // it runs, not figures); UsageError naming --preset otherwise.
 SensitivityPreset sensitivity_preset(const std::string& name);
 

@@ -1,6 +1,6 @@
 """The sensitivity study from Python and from the command line
 (app/experiment/shear_box/sensitivity.h), on its ci preset: a small poured box and
-0.3 mm of shear, so it checks that the study runs and reports, not the
+0.2 mm of shear, so it checks that the study runs and reports, not the
 paper's figures (docs/sensitivity.md has those).
 
 - simsols.study_sensitivity runs every test and returns the effects; they
