@@ -214,11 +214,16 @@ std::vector<SizePoint> size_points(const ApparatusKind& kind, const std::vector<
   return out;
 }
 
+// Whether a size's mean headline is within `tolerance` of the bulk value.
+static bool mean_within(const SizePoint& p, size_t headline, const Interval& bulk, double tolerance) {
+  return std::fabs(p.values[headline].mean - bulk.mean) <= tolerance;
+}
+
 double ratio_within(const std::vector<SizePoint>& points, size_t headline, const Interval& bulk,
                     double tolerance) {
   double from = NAN;
   for (auto it = points.rbegin(); it != points.rend(); ++it) {
-    if (!(std::fabs(it->values[headline].mean - bulk.mean) <= tolerance)) break;
+    if (!mean_within(*it, headline, bulk, tolerance)) break;
     from = it->ratio;
   }
   return from;
@@ -226,12 +231,11 @@ double ratio_within(const std::vector<SizePoint>& points, size_t headline, const
 
 // Where no size and every larger one is within `tolerance`: the sizes that
 // are, one by one ("at L/d = 14.2 only, not at the larger ones"), or none.
-static std::string sizes_within(const std::vector<SizePoint>& points, size_t headline, const Interval& bulk,
-                         double tolerance) {
+static std::string sizes_within(const std::vector<SizePoint>& points, size_t headline,
+                                const Interval& bulk, double tolerance) {
   std::string at;
   for (const SizePoint& p : points)
-    if (std::fabs(p.values[headline].mean - bulk.mean) <= tolerance)
-      at += (at.empty() ? "" : ", ") + fmt("%.1f", p.ratio);
+    if (mean_within(p, headline, bulk, tolerance)) at += (at.empty() ? "" : ", ") + fmt("%.1f", p.ratio);
   return at.empty() ? "at none of these sizes" : "at L/d = " + at + " only, not at the larger ones";
 }
 
