@@ -1,5 +1,5 @@
-// common.glsl — prepended to every shader after the #version line and the
-// variant #defines (see render/gl/shader.cpp). Colour mapping shared by beads
+// common.glsl — prepended to every fragment shader after the #version line
+// and the variant #defines (see render/gl/shader.cpp). Colour mapping shared by beads
 // and chains, so the legend (render/plot/colormap.h) and the image agree.
 
 // Colour map: a 1 x N RGBA8 texture (the table from colormap_table()).

@@ -33,7 +33,8 @@ void main() {
   vec2 s1 = c1.xy / c1.w * 0.5 * u_viewport;
   vec2 d = s1 - s0;
   float len = length(d);
-  if ((!fixed_width && force < u_force_range.x) || len < 1e-6 || c0.w <= 0.0 || c1.w <= 0.0) {
+  bool cut = !fixed_width && outside_section(0.5 * (a_p0.xyz + a_p1.xyz));  // wall edges stay
+  if ((!fixed_width && force < u_force_range.x) || cut || len < 1e-6 || c0.w <= 0.0 || c1.w <= 0.0) {
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: nothing drawn
     return;
   }

@@ -21,6 +21,10 @@ flat out float v_radius;
 flat out float v_value;
 
 void main() {
+  if (outside_section(a_bead.xyz)) {
+    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: nothing drawn
+    return;
+  }
   vec2 corner = vec2((gl_VertexID & 1) != 0 ? 1.0 : -1.0, (gl_VertexID & 2) != 0 ? 1.0 : -1.0);
   vec3 c = (u_view * vec4(a_bead.xyz, 1.0)).xyz;
   float r = a_bead.w;

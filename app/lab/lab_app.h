@@ -73,6 +73,9 @@ class LabApp {
   bool field_chosen = false;
   float threshold = 1.0f;
   bool chains_overlay = false;
+  // a slab through the middle (render::ViewSettings::section_axis): -1 none
+  int section_axis = -1;
+  float section_width = 2.0f;  // mean bead diameters
 
  private:
   struct Script;

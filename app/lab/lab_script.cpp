@@ -51,7 +51,8 @@ const LabApp::Script::Command LabApp::Script::kCommands[] = {
     {"resume", "", &Script::resume},
     {"step", "", &Script::step},
     {"view", "opaque|transparent|chains|alioscopy|grid|single", &Script::choose_view},
-    {"color", "size|layer|speed|displacement|contacts|rotation|grain", &Script::choose_color},
+    {"color", "size|layer|speed|displacement|contacts|rotation|grain|nonaffine", &Script::choose_color},
+    {"section", "x|y|z[:WIDTH]|off", &Script::choose_section},
     {"camera", "front|side|top|three-quarter", &Script::choose_camera},
     {"frames", "N", &Script::wait_for_frames},
     {"screenshot", "FILE.png", &Script::take_screenshot},
@@ -94,6 +95,10 @@ std::string LabApp::state_text() {
   o << "preparation_dir = " << exp_->preparation_dir() << "\n";
   o << "profile = " << exp_->profile() << "\n";
   o << "paused = " << (exp_->paused() ? 1 : 0) << "\n";
+  render::ViewSettings look;
+  look.section_axis = section_axis;
+  look.section_width = section_width;
+  o << "color = " << to_string(field) << "\nsection = " << render::section_text(look) << "\n";
   if (sim) {
     char hash[32];
     std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sim->hash()));

@@ -75,6 +75,7 @@ struct LabApp::Script {
   void step(const Line& line);                 // step
   void choose_view(const Line& line);          // view opaque|transparent|...
   void choose_color(const Line& line);         // color size|layer|...
+  void choose_section(const Line& line);       // section x|y|z[:WIDTH]|off
   void choose_camera(const Line& line);        // camera front|side|top|three-quarter
   void wait_for_frames(const Line& line);      // frames N
   void take_screenshot(const Line& line);      // screenshot FILE.png

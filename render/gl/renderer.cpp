@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "render/gl/shader.h"
@@ -274,6 +275,8 @@ void Renderer::set_common(ShaderProgram& p, const ViewSettings& s, bool force_ma
   p.set("u_viewport", float(width_), float(height_));
   p.set("u_depth_range", depth_range_.x, depth_range_.y);
   p.set("u_range", s.value_min, s.value_max);
+  p.set("u_section", section_.x, section_.y, section_.z, section_.w);
+  p.set("u_section_offset", section_offset_);
   bind_colormap(p, force_map ? kChainMap : s.bead_map);
 }
 
@@ -297,6 +300,7 @@ void Renderer::draw(const ViewProjection& vp, const FrameGeometry& g, const View
     dmax = std::max(dmax, d);
   }
   depth_range_ = glm::vec2(float(dmin), float(std::max(dmax, dmin + 1e-9)));
+  set_section(g, s);
 
   gl_.BindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
   gl_.Viewport(0, 0, width_, height_);
@@ -318,6 +322,45 @@ void Renderer::draw(const ViewProjection& vp, const FrameGeometry& g, const View
     composite();
   }
   gl_.check("Renderer::draw");
+}
+
+std::string parse_section(const std::string& text, ViewSettings& s) {
+  if (text == "off") {
+    s.section_axis = -1;
+    return {};
+  }
+  const std::string axes = "xyz";
+  const size_t colon = text.find(':');
+  const std::string axis = text.substr(0, colon);
+  if (axis.size() != 1 || axes.find(axis[0]) == std::string::npos)
+    return "'" + text + "' is not AXIS[:WIDTH] with AXIS one of x, y, z (e.g. y or y:1.5), or off";
+  float width = s.section_width;
+  if (colon != std::string::npos) {
+    char extra = 0;
+    if (std::sscanf(text.c_str() + colon + 1, "%f%c", &width, &extra) != 1 ||
+        !std::isfinite(width) || !(width > 0) || width > 1000)
+      return "'" + text + "': the width must be a number of bead diameters in (0, 1000]";
+  }
+  s.section_axis = int(axes.find(axis[0]));
+  s.section_width = width;
+  return {};
+}
+
+std::string section_text(const ViewSettings& s) {
+  if (s.section_axis < 0 || s.section_axis > 2) return "off";
+  char text[32];
+  std::snprintf(text, sizeof text, "%c:%g", "xyz"[s.section_axis], double(s.section_width));
+  return text;
+}
+
+void Renderer::set_section(const FrameGeometry& g, const ViewSettings& s) {
+  section_ = glm::vec4(0);
+  section_offset_ = 0;
+  if (s.section_axis < 0 || s.section_axis > 2) return;
+  const int a = s.section_axis;
+  section_[a] = 1;
+  section_.w = std::max(s.section_width, 0.f) * g.bead_radius;  // half of width x 2r
+  section_offset_ = float(0.5 * (g.lo[a] + g.hi[a]));
 }
 
 void Renderer::draw_beads(ShaderProgram& p, const FrameGeometry& g, const ViewSettings& s, float alpha) {

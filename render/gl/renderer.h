@@ -90,8 +90,21 @@ struct ViewSettings {
   glm::vec4 wall_color{0.62f, 0.68f, 0.76f, 0.14f};
   glm::vec4 wall_edge_color{0.70f, 0.75f, 0.82f, 1.0f};
   float wall_edge_px = 1.5f;  // 0: no edges
+  // Section: only the beads whose centres lie within section_width / 2 of
+  // the plane normal to axis section_axis (0 x, 1 y, 2 z) through the
+  // middle of what is drawn, and the force chains whose midpoints do (the
+  // walls stay whole); -1: the whole specimen. Width in mean bead diameters.
+  int section_axis = -1;
+  float section_width = 2.0f;
   bool chains_visible() const { return show_chains || mode == ViewMode::Chains; }
 };
+
+// Reads a section "AXIS[:WIDTH]" (x, y or z; WIDTH in bead diameters, in
+// (0, 1000]) or "off" into the settings; what is wrong with it otherwise
+// (the settings then unchanged), for the caller to report with its flag.
+std::string parse_section(const std::string& text, ViewSettings& s);
+// "y:1.5", or "off" for the whole specimen.
+std::string section_text(const ViewSettings& s);
 
 // The force chains' colour map and colour range (N): from the threshold,
 // chain_threshold x F_mean, to the largest force (never below the
@@ -168,6 +181,8 @@ class Renderer {
   void draw_segments(GLuint buffer, std::size_t count);
   void draw_beads(ShaderProgram& p, const FrameGeometry& g, const ViewSettings& s, float alpha);
   void set_common(ShaderProgram& p, const ViewSettings& s, bool force_map);
+  // section_ and section_offset_ from the settings and what is drawn
+  void set_section(const FrameGeometry& g, const ViewSettings& s);
   void bind_colormap(ShaderProgram& p, plot::ColorMap map);
   void release_targets();
 
@@ -186,6 +201,8 @@ class Renderer {
   glm::mat4 view_{1}, proj_{1};
   bool ortho_ = false;
   glm::vec2 depth_range_{0, 1};
+  glm::vec4 section_{0, 0, 0, 0};  // unit normal, half-width (m; 0: no section)
+  float section_offset_ = 0;       // the plane's offset along the normal (m)
 };
 
 }  // namespace simsols::render

@@ -10,11 +10,9 @@ std::string assemble(std::string_view file, bool fragment, const std::vector<std
   // while writing gl_FragDepth; where a driver lacks it, "enable" only warns.
   if (fragment) text += "#extension GL_ARB_conservative_depth : enable\n";
   for (const std::string& d : defines) text += "#define " + d + "\n";
-  if (fragment) {
-    text += "#line 1 1\n";  // source string 1: common.glsl
-    text += shader_file("common.glsl");
-    text += "\n";
-  }
+  text += "#line 1 1\n";  // source string 1: common.glsl or common_vertex.glsl
+  text += shader_file(fragment ? "common.glsl" : "common_vertex.glsl");
+  text += "\n";
   text += "#line 1 2\n";  // source string 2: the file itself
   text += shader_file(file);
   return text;
@@ -47,7 +45,7 @@ ShaderProgram::ShaderProgram(const Gl& gl, std::string_view vertex_file,
       gl.DeleteShader(shaders[s]);
       if (s == 1) gl.DeleteShader(shaders[0]);
       throw RenderError("shader " + std::string(files[s]) + " (defines: " + join(defines) +
-                        ") does not compile (source 1 = common.glsl, 2 = the file):\n" + log);
+                        ") does not compile (source 1 = common.glsl or common_vertex.glsl, 2 = the file):\n" + log);
     }
   }
   id_ = gl.CreateProgram();

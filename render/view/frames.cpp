@@ -52,6 +52,9 @@ void add_frame_flags(CLI::App* cmd, FrameFlags& f) {
   cmd->add_option("--range", f.range, "Colour range MIN:MAX (default: the field's range)");
   cmd->add_flag("--no-legend", f.no_legend, "No colour legend");
   cmd->add_flag("--no-walls", f.no_walls, "Do not draw the walls");
+  cmd->add_option("--section", f.section,
+                  "Draw a slab through the middle only: AXIS[:WIDTH], the axis normal to it "
+                  "(x, y, z) and its width in mean bead diameters (default 2), e.g. y:1.5");
   cmd->add_option("--gl", f.gl, "Headless OpenGL: auto, egl, osmesa")->capture_default_str();
   cmd->add_option("--stereo", f.stereo,
                   "alioscopy: the 8-view interleaved image for the display, and its views");
@@ -129,6 +132,10 @@ FrameOptions FrameOptions::resolve(const FrameFlags& flags, const Scene* scene) 
   }
   o.legend = !f.no_legend;
   o.settings.show_walls = !f.no_walls;
+  if (!f.section.empty()) {
+    if (const std::string p = render::parse_section(f.section, o.settings); !p.empty())
+      throw flag_error("--section", p);
+  }
   if (auto b = render::parse_gl_backend(f.gl)) o.backend = *b;
   else throw flag_error("--gl", "'" + f.gl + "' is not one of: auto, egl, osmesa");
   o.settings.bead_map = render::colormap_for(o.field);

@@ -115,9 +115,10 @@ const char* to_string(ColorField f) { return kNames[static_cast<int>(f)]; }
 
 const char* unit_of(ColorField f) { return kUnits[static_cast<int>(f)]; }
 
-std::string color_field_names() {
+std::string color_field_names(char separator) {
+  const std::string sep = separator == ',' ? ", " : std::string(1, separator);
   std::string s;
-  for (ColorField f : kColorFields) s += (s.empty() ? "" : ", ") + std::string(to_string(f));
+  for (ColorField f : kColorFields) s += (s.empty() ? "" : sep) + std::string(to_string(f));
   return s;
 }
 

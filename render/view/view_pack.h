@@ -67,9 +67,9 @@ const char* to_string(ColorField f);  // "size", "layer", "speed", ...
 // The field named `s` (as to_string writes it, any case); nullopt otherwise.
 std::optional<ColorField> parse_color_field(std::string_view s);
 const char* unit_of(ColorField f);    // "m", "", "m/s", "m", "", "rad/s", "", "m" (for legends)
-// "size, layer, speed, displacement, contacts, rotation, grain, nonaffine":
-// for help and errors.
-std::string color_field_names();
+// "size, layer, speed, displacement, contacts, rotation, grain, nonaffine"
+// for help and errors; with '|', "size|layer|...|nonaffine" (the lab's script).
+std::string color_field_names(char separator = ',');
 // The colouring a scene is drawn with when none is asked for: grain for
 // scenes with clumps (each grain in its own colour), layer otherwise.
 ColorField default_color_field(const Scene& scene);

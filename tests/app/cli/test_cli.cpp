@@ -302,6 +302,19 @@ TEST(Cli, SnapshotWritesAPngOfTheRequestedSize) {
     EXPECT_GT(foreground(img), 321 * 207 / 4 / 5) << mode << ": the specimen should fill the middle";
     EXPECT_FALSE(fs::exists(png.string() + ".tmp"));
   }
+  // a slab one bead wide through the middle, seen face on: some beads, not
+  // all (without the walls, whose tint would count as foreground)
+  long pixels[2] = {};
+  for (const std::string section : {"off", "y:1"}) {
+    const fs::path png = dir / ("section_" + section.substr(0, 1) + ".png");
+    const Result r = run("snapshot " + kShearSmall + " --out " + png.string() +
+                         " --size 321x207 --view front --mode opaque --no-walls --steps 200 "
+                         "--section " + section);
+    ASSERT_EQ(r.status, 0) << r.out;
+    pixels[section == "y:1"] = foreground(simsols::plot::read_png(png.string()));
+  }
+  EXPECT_GT(pixels[1], pixels[0] / 10) << "the slab's beads";
+  EXPECT_LT(pixels[1], pixels[0] * 9 / 10) << "the whole specimen covers more";
 }
 
 TEST(Cli, SnapshotRefusesBadSizePathAndNames) {
@@ -323,6 +336,8 @@ TEST(Cli, SnapshotRefusesBadSizePathAndNames) {
       {"--out " + out + " --threshold -1", "--threshold", ">= 0"},
       {"--out " + out + " --range 5:1", "--range", "MIN < MAX"},
       {"--out " + out + " --gl vulkan", "--gl", "egl, osmesa"},
+      {"--out " + out + " --section w", "--section", "x, y, z"},
+      {"--out " + out + " --section y:0", "--section", "(0, 1000]"},
   };
   for (const Case& c : cases) {
     const Result r = run("snapshot " + kShearSmall + " " + c.args);

@@ -65,7 +65,11 @@ TEST(Lab, ScriptedSessionShearsChangesStressAndCheckpoints) {
                                // a checkpoint loaded over a running simulation: the view
                                // follows the new one at once
                                << "view transparent\nload_checkpoint " << (d / "c.bin").string()
-                               << "\nframes 2\nstate " << (d / "a3.state").string() << "\n";
+                               << "\nframes 2\nstate " << (d / "a3.state").string() << "\n"
+                               // a slab through the middle, coloured by non-affine motion
+                               << "section y:1.5\ncolor nonaffine\nframes 2\nstate "
+                               << (d / "a4.state").string() << "\n";
+  std::ofstream(d / "bad_section.txt") << "section w\n";
   ASSERT_EQ(run(lab(d / "one.txt")), 0);
   ASSERT_EQ(run(lab(d / "two.txt")), 0);
 
@@ -95,6 +99,11 @@ TEST(Lab, ScriptedSessionShearsChangesStressAndCheckpoints) {
   auto a3 = read_state(d / "a3.state");
   EXPECT_EQ(a3["hash"], a["hash"]);
   EXPECT_EQ(a3["steps"], a["steps"]);
+  EXPECT_EQ(a3["section"], "off");
+  auto a4 = read_state(d / "a4.state");
+  EXPECT_EQ(a4["section"], "y:1.5");
+  EXPECT_EQ(a4["color"], "nonaffine");
+  EXPECT_EQ(run(lab(d / "bad_section.txt")), 2) << "a section that is not x|y|z[:WIDTH]|off";
   // the Alioscopy view: the interleaved image over the whole window, the
   // beads in the look of the last flat view (opaque: coloured by layer)
   const simsols::plot::Image alio = simsols::plot::read_png((d / "alio.png").string());

@@ -4,6 +4,7 @@
 // golden images, which guard against regressions).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -178,6 +179,69 @@ TEST(Renderer, IntersectingBeadsOccludeByDepth) {
     EXPECT_LT(double(wrong) / checked, 0.002) << wrong << " of " << checked << ", order " << order;
     ++order;
   }
+}
+
+// A section normal to y keeps the beads whose centres lie within half its
+// width (in mean bead diameters) of the middle of what is drawn: of three
+// beads at y = -3r, 0, +3r, a slab 1 diameter wide keeps the middle one,
+// with the same pixels as drawn alone; one 7 diameters wide keeps all.
+TEST(Renderer, ASectionDrawsOnlyTheBeadsInItsSlab) {
+  const Gl& gl = context().gl();
+  Renderer r(gl);
+  const int W = 320, H = 240;
+  r.resize(W, H);
+  GeometryBuffers buf(gl);
+  const Camera cam = axis_camera(0.5);
+  const float radius = 0.01f;
+  const std::vector<Bead> beads{{{-0.05f, -0.03f, 0.f}, radius, 0},
+                                {{0.f, 0.f, 0.f}, radius, 1},
+                                {{0.05f, 0.03f, 0.f}, radius, 2}};
+  auto counts = [&](const std::vector<Bead>& drawn, ViewSettings s) {
+    upload(buf, drawn);
+    buf.mutable_geometry().lo = {-0.06, -0.04, -0.01};  // the three beads' bounds either way
+    buf.mutable_geometry().hi = {0.06, 0.04, 0.01};
+    r.draw(cam, buf.geometry(), s);
+    const plot::Image img = r.read_pixels();
+    std::array<long, 3> n{};
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x)
+        for (int k = 0; k < 3; ++k) n[k] += plot::pixel(img, x, y) == category(k);
+    return n;
+  };
+  ViewSettings slab = flat_settings();
+  ASSERT_EQ(parse_section("y:1", slab), "");
+  EXPECT_EQ(slab.section_axis, 1);
+  const auto cut = counts(beads, slab);
+  const auto alone = counts({beads[1]}, flat_settings());
+  EXPECT_EQ(cut[0], 0);
+  EXPECT_EQ(cut[2], 0);
+  EXPECT_GT(alone[1], 150);  // a disc of about 9 px radius
+  EXPECT_EQ(cut[1], alone[1]);
+  ASSERT_EQ(parse_section("y:7", slab), "");
+  const auto wide = counts(beads, slab);
+  for (int k = 0; k < 3; ++k) EXPECT_GT(wide[k], 150) << k;
+  ASSERT_EQ(parse_section("off", slab), "");
+  EXPECT_EQ(counts(beads, slab), wide);
+}
+
+// "AXIS[:WIDTH]" or "off"; anything else is refused, naming what is allowed,
+// and leaves the settings as they were.
+TEST(Renderer, SectionTextIsReadOrRefused) {
+  ViewSettings s;
+  EXPECT_EQ(section_text(s), "off");
+  ASSERT_EQ(parse_section("z", s), "");
+  EXPECT_EQ(s.section_axis, 2);
+  EXPECT_FLOAT_EQ(s.section_width, 2.0f);  // the default width
+  ASSERT_EQ(parse_section("x:1.5", s), "");
+  EXPECT_EQ(section_text(s), "x:1.5");
+  for (const char* bad : {"w", "xy", "x:", "x:0", "x:-1", "x:2mm", "x:1e9", ""}) {
+    ViewSettings t = s;
+    const std::string problem = parse_section(bad, t);
+    EXPECT_NE(problem, "") << bad;
+    EXPECT_EQ(section_text(t), "x:1.5") << bad;
+  }
+  EXPECT_NE(parse_section("w", s).find("x, y, z"), std::string::npos);
+  EXPECT_NE(parse_section("x:0", s).find("(0, 1000]"), std::string::npos);
 }
 
 // Qualitative map (grains): the shader's hash (shaders/common.glsl) picks
