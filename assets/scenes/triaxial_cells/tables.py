@@ -33,7 +33,8 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from ensemble_stats import mean_ci  # noqa: E402
 
 CELLS = ["rigid", "membrane", "membrane_fine"]  # membrane_fine: membrane_spacing = 0.25
-PAIRS = [("membrane", "rigid"), ("membrane_fine", "membrane")]  # paired changes, seed by seed
+PAIRS = [("membrane", "rigid"), ("membrane_fine", "membrane"),  # paired changes, seed by seed
+         ("membrane_fine", "rigid")]
 # column of the tables, key of summary.txt (None: from triaxial.csv)
 MEASURES = [("initial_void_ratio", "initial_void_ratio"),
             ("peak_deg", "peak_friction_angle_deg"),
