@@ -219,12 +219,14 @@ void FrameExporter::set_caption(std::string title, std::string state) {
   state_ = std::move(state);
 }
 
-void FrameExporter::annotate(plot::Image& img) const {
+plot::Rect FrameExporter::annotate(plot::Image& img) const {
   char when[96];
   std::snprintf(when, sizeof when, "step %lld · t = %.4g s", static_cast<long long>(sim_->sim->steps()),
                 sim_->sim->time());
-  render::draw_caption(img, {title_, state_.empty() ? std::string(when) : state_ + " · " + when});
+  const plot::Rect caption =
+      render::draw_caption(img, {title_, state_.empty() ? std::string(when) : state_ + " · " + when});
   render::draw_scale_bar(img, camera_);
+  return caption;
 }
 
 std::string FrameExporter::describe() const {
@@ -261,7 +263,7 @@ plot::Image FrameExporter::render() {
   renderer_->draw(camera_, g, s);
   plot::Image img = renderer_->read_pixels();
   if (!opt_.legend) return img;
-  annotate(img);
+  const plot::Rect caption = annotate(img);
   if (s.mode == render::ViewMode::Chains) {  // the beads are ghosts: the chains' key only
     plot::draw_legend(img, chain_legend(s, g));
     return img;
@@ -273,6 +275,12 @@ plot::Image FrameExporter::render() {
   legend.min = s.value_min;
   legend.max = s.value_max;
   legend.dark = true;
+  // a narrow frame: the legend moves to the bottom right rather than cover
+  // the caption (unless the chains' key is there)
+  const plot::Rect panel = plot::legend_layout(img.width, img.height, legend).panel;
+  const bool covers = panel.x0 < caption.x1 && caption.x0 < panel.x1 && panel.y0 < caption.y1 &&
+                      caption.y0 < panel.y1;
+  if (covers && !s.chains_visible()) legend.corner = plot::Legend::Corner::BottomRight;
   plot::draw_legend(img, legend);
   if (s.chains_visible()) {
     plot::Legend chains = chain_legend(s, g);

@@ -119,8 +119,8 @@ class FrameExporter {
  private:
   void fit_camera();  // to the attached view's bounds, at the frame's aspect
   void write_alioscopy(const std::string& path);
-  // The caption and the scale bar.
-  void annotate(plot::Image& img) const;
+  // The caption and the scale bar; returns the caption's rectangle.
+  plot::Rect annotate(plot::Image& img) const;
   // Packs the current state for drawing; the settings with the colour range.
   render::ViewSettings update_view();
 
