@@ -177,8 +177,7 @@ render::ViewSettings LabApp::pack_view() {
                                       : render::ViewMode::Transparent;
   s.show_chains = look_ == LabView::Chains || view == LabView::Chains || chains_overlay;
   s.chain_threshold = threshold;
-  s.section_axis = section_axis;
-  s.section_width = section_width;
+  s.section = section;
   s.bead_map = render::colormap_for(field);
   s.value_min = update.range.min;
   s.value_max = update.range.max;

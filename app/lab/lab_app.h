@@ -73,9 +73,7 @@ class LabApp {
   bool field_chosen = false;
   float threshold = 1.0f;
   bool chains_overlay = false;
-  // a slab through the middle (render::ViewSettings::section_axis): -1 none
-  int section_axis = -1;
-  float section_width = 2.0f;  // mean bead diameters
+  render::Section section;  // a slab through the middle, or the whole specimen
 
  private:
   struct Script;

@@ -315,12 +315,12 @@ void LabApp::draw_view_settings() {
   // a slab through the middle of the specimen, to see inside it
   const char* sections[] = {"whole specimen", "slab normal to x", "slab normal to y",
                             "slab normal to z"};
-  int cut = section_axis + 1;
+  int cut = section.axis + 1;
   ImGui::SetNextItemWidth(200);
-  if (ImGui::Combo("section", &cut, sections, 4)) section_axis = cut - 1;
-  if (section_axis >= 0) {
+  if (ImGui::Combo("section", &cut, sections, 4)) section.axis = cut - 1;
+  if (section.on()) {
     ImGui::SetNextItemWidth(200);
-    ImGui::SliderFloat("slab width (bead diameters)", &section_width, 0.5f, 10.f, "%.1f");
+    ImGui::SliderFloat("slab width (bead diameters)", &section.width, 0.5f, 10.f, "%.1f");
   }
   int p = int(preset_);
   ImGui::SetNextItemWidth(200);

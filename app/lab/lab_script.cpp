@@ -95,10 +95,7 @@ std::string LabApp::state_text() {
   o << "preparation_dir = " << exp_->preparation_dir() << "\n";
   o << "profile = " << exp_->profile() << "\n";
   o << "paused = " << (exp_->paused() ? 1 : 0) << "\n";
-  render::ViewSettings look;
-  look.section_axis = section_axis;
-  look.section_width = section_width;
-  o << "color = " << to_string(field) << "\nsection = " << render::section_text(look) << "\n";
+  o << "color = " << to_string(field) << "\nsection = " << render::section_text(section) << "\n";
   if (sim) {
     char hash[32];
     std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sim->hash()));

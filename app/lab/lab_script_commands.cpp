@@ -230,12 +230,8 @@ void LabApp::Script::choose_color(const Line& line) {
 }
 
 void LabApp::Script::choose_section(const Line& line) {
-  render::ViewSettings s;
-  s.section_width = lab.section_width;
-  if (const std::string problem = render::parse_section(line.argument, s); !problem.empty())
+  if (const std::string problem = render::parse_section(line.argument, lab.section); !problem.empty())
     return fail(line, "section x|y|z[:WIDTH]|off: " + problem, 2);
-  lab.section_axis = s.section_axis;
-  lab.section_width = s.section_width;
 }
 
 void LabApp::Script::choose_camera(const Line& line) {

@@ -324,9 +324,9 @@ void Renderer::draw(const ViewProjection& vp, const FrameGeometry& g, const View
   gl_.check("Renderer::draw");
 }
 
-std::string parse_section(const std::string& text, ViewSettings& s) {
+std::string parse_section(const std::string& text, Section& s) {
   if (text == "off") {
-    s.section_axis = -1;
+    s.axis = -1;
     return {};
   }
   const std::string axes = "xyz";
@@ -334,32 +334,32 @@ std::string parse_section(const std::string& text, ViewSettings& s) {
   const std::string axis = text.substr(0, colon);
   if (axis.size() != 1 || axes.find(axis[0]) == std::string::npos)
     return "'" + text + "' is not AXIS[:WIDTH] with AXIS one of x, y, z (e.g. y or y:1.5), or off";
-  float width = s.section_width;
+  float width = s.width;
   if (colon != std::string::npos) {
     char extra = 0;
     if (std::sscanf(text.c_str() + colon + 1, "%f%c", &width, &extra) != 1 ||
         !std::isfinite(width) || !(width > 0) || width > 1000)
       return "'" + text + "': the width must be a number of bead diameters in (0, 1000]";
   }
-  s.section_axis = int(axes.find(axis[0]));
-  s.section_width = width;
+  s.axis = int(axes.find(axis[0]));
+  s.width = width;
   return {};
 }
 
-std::string section_text(const ViewSettings& s) {
-  if (s.section_axis < 0 || s.section_axis > 2) return "off";
+std::string section_text(const Section& s) {
+  if (!s.on()) return "off";
   char text[32];
-  std::snprintf(text, sizeof text, "%c:%g", "xyz"[s.section_axis], double(s.section_width));
+  std::snprintf(text, sizeof text, "%c:%g", "xyz"[s.axis], double(s.width));
   return text;
 }
 
 void Renderer::set_section(const FrameGeometry& g, const ViewSettings& s) {
   section_ = glm::vec4(0);
   section_offset_ = 0;
-  if (s.section_axis < 0 || s.section_axis > 2) return;
-  const int a = s.section_axis;
+  if (!s.section.on()) return;
+  const int a = s.section.axis;
   section_[a] = 1;
-  section_.w = std::max(s.section_width, 0.f) * g.bead_radius;  // half of width x 2r
+  section_.w = std::max(s.section.width, 0.f) * g.bead_radius;  // half of width x 2r
   section_offset_ = float(0.5 * (g.lo[a] + g.hi[a]));
 }
 

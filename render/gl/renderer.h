@@ -71,6 +71,16 @@ enum class ViewMode { Opaque, Transparent, Chains };
 const char* to_string(ViewMode m);  // "opaque", "transparent", "chains"
 std::optional<ViewMode> parse_view_mode(std::string_view s);
 
+// A slab through the middle of what is drawn: only the beads whose centres
+// lie within width / 2 of the plane normal to `axis` (0 x, 1 y, 2 z), and
+// the force chains whose midpoints do, are drawn (the walls stay whole);
+// axis -1: the whole specimen. Width in mean bead diameters.
+struct Section {
+  int axis = -1;
+  float width = 2.0f;
+  bool on() const { return axis >= 0 && axis <= 2; }
+};
+
 struct ViewSettings {
   ViewMode mode = ViewMode::Opaque;
   float bead_alpha = 0.3f;          // transparent mode
@@ -90,21 +100,16 @@ struct ViewSettings {
   glm::vec4 wall_color{0.62f, 0.68f, 0.76f, 0.14f};
   glm::vec4 wall_edge_color{0.70f, 0.75f, 0.82f, 1.0f};
   float wall_edge_px = 1.5f;  // 0: no edges
-  // Section: only the beads whose centres lie within section_width / 2 of
-  // the plane normal to axis section_axis (0 x, 1 y, 2 z) through the
-  // middle of what is drawn, and the force chains whose midpoints do (the
-  // walls stay whole); -1: the whole specimen. Width in mean bead diameters.
-  int section_axis = -1;
-  float section_width = 2.0f;
+  Section section;
   bool chains_visible() const { return show_chains || mode == ViewMode::Chains; }
 };
 
 // Reads a section "AXIS[:WIDTH]" (x, y or z; WIDTH in bead diameters, in
-// (0, 1000]) or "off" into the settings; what is wrong with it otherwise
-// (the settings then unchanged), for the caller to report with its flag.
-std::string parse_section(const std::string& text, ViewSettings& s);
+// (0, 1000]; without it the width stays) or "off"; what is wrong with it
+// otherwise (the section then unchanged), for the caller to report.
+std::string parse_section(const std::string& text, Section& s);
 // "y:1.5", or "off" for the whole specimen.
-std::string section_text(const ViewSettings& s);
+std::string section_text(const Section& s);
 
 // The force chains' colour map and colour range (N): from the threshold,
 // chain_threshold x F_mean, to the largest force (never below the

@@ -133,7 +133,7 @@ FrameOptions FrameOptions::resolve(const FrameFlags& flags, const Scene* scene) 
   o.legend = !f.no_legend;
   o.settings.show_walls = !f.no_walls;
   if (!f.section.empty()) {
-    if (const std::string p = render::parse_section(f.section, o.settings); !p.empty())
+    if (const std::string p = render::parse_section(f.section, o.settings.section); !p.empty())
       throw flag_error("--section", p);
   }
   if (auto b = render::parse_gl_backend(f.gl)) o.backend = *b;

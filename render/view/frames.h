@@ -46,7 +46,7 @@ struct FrameFlags {
   std::string range;  // "MIN:MAX", empty = the field's current range
   bool no_legend = false;
   bool no_walls = false;
-  std::string section;  // "AXIS[:WIDTH]": a slab through the middle (ViewSettings::section_axis)
+  std::string section;  // "AXIS[:WIDTH]": a slab through the middle (render::Section)
   std::string gl = "auto";
   std::string stereo;   // "alioscopy": the 8-view interleaved image and the views
   std::string display;  // display profile: a file or a built-in name (display_profile)

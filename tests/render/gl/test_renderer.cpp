@@ -209,33 +209,33 @@ TEST(Renderer, ASectionDrawsOnlyTheBeadsInItsSlab) {
     return n;
   };
   ViewSettings slab = flat_settings();
-  ASSERT_EQ(parse_section("y:1", slab), "");
-  EXPECT_EQ(slab.section_axis, 1);
+  ASSERT_EQ(parse_section("y:1", slab.section), "");
+  EXPECT_EQ(slab.section.axis, 1);
   const auto cut = counts(beads, slab);
   const auto alone = counts({beads[1]}, flat_settings());
   EXPECT_EQ(cut[0], 0);
   EXPECT_EQ(cut[2], 0);
   EXPECT_GT(alone[1], 150);  // a disc of about 9 px radius
   EXPECT_EQ(cut[1], alone[1]);
-  ASSERT_EQ(parse_section("y:7", slab), "");
+  ASSERT_EQ(parse_section("y:7", slab.section), "");
   const auto wide = counts(beads, slab);
   for (int k = 0; k < 3; ++k) EXPECT_GT(wide[k], 150) << k;
-  ASSERT_EQ(parse_section("off", slab), "");
+  ASSERT_EQ(parse_section("off", slab.section), "");
   EXPECT_EQ(counts(beads, slab), wide);
 }
 
 // "AXIS[:WIDTH]" or "off"; anything else is refused, naming what is allowed,
 // and leaves the settings as they were.
 TEST(Renderer, SectionTextIsReadOrRefused) {
-  ViewSettings s;
+  Section s;
   EXPECT_EQ(section_text(s), "off");
   ASSERT_EQ(parse_section("z", s), "");
-  EXPECT_EQ(s.section_axis, 2);
-  EXPECT_FLOAT_EQ(s.section_width, 2.0f);  // the default width
+  EXPECT_EQ(s.axis, 2);
+  EXPECT_FLOAT_EQ(s.width, 2.0f);  // the default width
   ASSERT_EQ(parse_section("x:1.5", s), "");
   EXPECT_EQ(section_text(s), "x:1.5");
   for (const char* bad : {"w", "xy", "x:", "x:0", "x:-1", "x:2mm", "x:1e9", ""}) {
-    ViewSettings t = s;
+    Section t = s;
     const std::string problem = parse_section(bad, t);
     EXPECT_NE(problem, "") << bad;
     EXPECT_EQ(section_text(t), "x:1.5") << bad;
