@@ -222,13 +222,16 @@ covered() {
 # a hundred headers).
 used_by() {
   ((${#BY_INDEX[@]})) || return 0
-  local h obj
+  local h obj objs
+  # one awk over every dependency file (xargs could split them, and the
+  # wanted list is read once)
+  mapfile -d '' objs < <(find "$BUILD" -name '*.o.d' -print0)
   while IFS=$'\t' read -r h obj; do
     ERRORS[${BY_INDEX[$h]}]+=" (used by ${obj#"$BUILD"/})"
-  done < <(find "$BUILD" -name '*.o.d' -print0 | xargs -0 awk '
+  done < <(awk '
     FNR == NR { want[$0] = 1; next }
     { for (i = 1; i <= NF; i++) if (($i in want) && !($i in seen)) { seen[$i] = 1; print $i "\t" FILENAME } }' \
-    <(printf '%s\n' "${!BY_INDEX[@]}"))
+    <(printf '%s\n' "${!BY_INDEX[@]}") "${objs[@]}")
 }
 owned() { local c; for c in "$@"; do [[ -n ${OWNER[$c]:-} ]] && return 0; done; return 1; }
 for f in $(printf '%s\n' "${!WHY[@]}" | sort); do
