@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Checks that setup.sh installs every Debian package the build and the tests
 # use. It reads what the build really used from the build tree: the system
-# headers in the compiler's dependency files (*.o.d, compiler_depend.make),
+# headers in the compiler's dependency files (*.o.d, compiler_depend.make
+# under Unix Makefiles; Ninja's own log, `ninja -t deps`, under Ninja),
 # the libraries and tools in link.txt, the compiler's implicit libraries,
 # the shared libraries the built executables load (ldd), the tools in
 # CMakeCache.txt, and the files loaded at run time listed in RUNTIME below.
@@ -69,16 +70,35 @@ ERRORS=()
 declare -A NOTE=() # file -> why it is needed, for run-time files
 add() { [[ -n ${WHY[$1]:-} ]] || { WHY[$1]=$2; NOTE[$1]=${3:-}; }; }
 
-# Headers: every absolute dependency outside the source and build trees.
-mapfile -t deps < <(find "$BUILD" \( -name '*.o.d' -o -name compiler_depend.make \) -print0 |
-  xargs -0 cat | tr -s ' \\\t' '\n' | grep '^/' | grep -v ':$' | sort -u)
+# Headers: every absolute dependency outside the source and build trees,
+# as OBJECT<TAB>HEADER lines in $PAIRS. Make-style files and `ninja -t
+# deps` both name an object as a word ending in ':' followed by its
+# dependencies (Ninja keeps no .d files: it reads them into .ninja_deps).
+PAIRS=$(mktemp)
+trap 'rm -f "$PAIRS"' EXIT
+dependency_text() {
+  if [[ -f $BUILD/build.ninja ]]; then
+    "$(cache CMAKE_MAKE_PROGRAM)" -C "$BUILD" -t deps
+  else
+    find "$BUILD" \( -name '*.o.d' -o -name compiler_depend.make \) -exec cat {} +
+  fi
+}
+dependency_text | awk '
+  { for (i = 1; i <= NF; i++)
+      if ($i ~ /:$/) obj = substr($i, 1, length($i) - 1)
+      else if ($i ~ /^\//) print obj "\t" $i }' | sort -u >"$PAIRS"
+mapfile -t deps < <(cut -f2 "$PAIRS" | sort -u)
 NHEADERS=0
+declare -A RAW=() # header, normalised -> as the dependency files spell it
 if ((${#deps[@]})); then
-  while read -r p; do
-    [[ $p == "$SRC"/* || $p == "$BUILD"/* ]] && continue
+  mapfile -t norm < <(realpath -s -m -- "${deps[@]}")
+  for i in "${!deps[@]}"; do
+    p=${norm[i]}
+    [[ $p == "$SRC"/* || $p == "$BUILD"/* || -n ${RAW[$p]:-} ]] && continue
+    RAW[$p]=${deps[i]}
     add "$p" header
     NHEADERS=$((NHEADERS + 1))
-  done < <(realpath -s -m -- "${deps[@]}" | sort -u)
+  done
 fi
 ((NHEADERS > 0)) || die "no dependency files with system headers under $BUILD: build it first"
 
@@ -218,20 +238,17 @@ covered() {
   ERRORS+=("${WHY[$f]} $1${NOTE[$f]:+ (${NOTE[$f]})} is from package $o, which setup.sh does not install")
 }
 # used_by: each uncovered header's error names an object that includes it,
-# from one pass over the dependency files (one grep -r each took 20 s for
-# a hundred headers).
+# from the OBJECT<TAB>HEADER pairs (one grep -r each took 20 s for a
+# hundred headers).
 used_by() {
   ((${#BY_INDEX[@]})) || return 0
-  local h obj objs
-  # one awk over every dependency file (xargs could split them, and the
-  # wanted list is read once)
-  mapfile -d '' objs < <(find "$BUILD" -name '*.o.d' -print0)
+  local h obj
   while IFS=$'\t' read -r h obj; do
     ERRORS[${BY_INDEX[$h]}]+=" (used by ${obj#"$BUILD"/})"
-  done < <(awk '
-    FNR == NR { want[$0] = 1; next }
-    { for (i = 1; i <= NF; i++) if (($i in want) && !($i in seen)) { seen[$i] = 1; print $i "\t" FILENAME } }' \
-    <(printf '%s\n' "${!BY_INDEX[@]}") "${objs[@]}")
+  done < <(awk -F '\t' '
+    FNR == NR { want[$1] = $2; next }
+    ($2 in want) && !($2 in seen) { seen[$2] = 1; print want[$2] "\t" $1 }' \
+    <(for h in "${!BY_INDEX[@]}"; do printf '%s\t%s\n' "${RAW[$h]:-$h}" "$h"; done) "$PAIRS")
 }
 owned() { local c; for c in "$@"; do [[ -n ${OWNER[$c]:-} ]] && return 0; done; return 1; }
 for f in $(printf '%s\n' "${!WHY[@]}" | sort); do

@@ -52,6 +52,12 @@ expect_failure "list without libxrandr-dev, zlib1g-dev, libfreetype-dev, python3
   "$1" "$2" --drop libxrandr-dev --drop zlib1g-dev --drop libfreetype-dev --drop python3-dev --drop python3-scipy \
   --drop pocl-opencl-icd --drop xvfb --drop cmake
 
+# The build tool: Ninja, the presets' generator (a Unix Makefiles tree has make).
+if grep -qx 'CMAKE_GENERATOR:INTERNAL=Ninja' "$1/CMakeCache.txt"; then
+  expect_failure "list without ninja-build" 'tool /usr/bin/ninja is from package ninja-build,' -- \
+    "$1" "$2" --drop ninja-build
+fi
+
 # A header no package owns (as under /usr/local), in a build tree of its own.
 fake=$(mktemp -d)
 trap 'rm -rf "$fake"' EXIT
