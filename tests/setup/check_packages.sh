@@ -3,7 +3,8 @@
 # use. It reads what the build really used from the build tree: the system
 # headers in the compiler's dependency files (*.o.d, compiler_depend.make
 # under Unix Makefiles; Ninja's own log, `ninja -t deps`, under Ninja),
-# the libraries and tools in link.txt, the compiler's implicit libraries,
+# the libraries and tools of the link commands (build.ninja or link.txt),
+# the compiler's implicit libraries,
 # the shared libraries the built executables load (ldd), the tools in
 # CMakeCache.txt, and the files loaded at run time listed in RUNTIME below.
 # Each file's owner (dpkg -S) must be
@@ -102,8 +103,11 @@ if ((${#deps[@]})); then
 fi
 ((NHEADERS > 0)) || die "no dependency files with system headers under $BUILD: build it first"
 
-# Libraries and tools: link.txt (-lNAME, absolute paths, each line's
-# program) and the compiler's implicit libraries.
+# Libraries and tools: the link and archive commands (-lNAME, absolute
+# paths, the programs: each command's first word and each after '&&') and
+# the compiler's implicit libraries. Ninja keeps them in build.ninja
+# (`ninja -t commands`, the lines that start with ':'), Unix Makefiles in
+# link.txt files.
 add_libname() { # -lNAME, as the linker finds it
   local f
   for f in "lib$1.so" "lib$1.a"; do
@@ -112,16 +116,27 @@ add_libname() { # -lNAME, as the linker finds it
   done
   ERRORS+=("library -l$1: the compiler finds no lib$1.so or lib$1.a")
 }
+link_commands() {
+  if [[ -f $BUILD/build.ninja ]]; then
+    "$(cache CMAKE_MAKE_PROGRAM)" -C "$BUILD" -t commands | grep '^: ' || true
+  else
+    find "$BUILD" -name link.txt -exec cat {} +
+  fi
+}
 declare -A LIBS=()
-while read -r first rest; do
-  [[ $first == /* ]] && add "$first" tool
-  for t in $rest; do
+set -f # the commands' words are not patterns
+while read -ra words; do
+  prev='&&'
+  for t in "${words[@]}"; do
     case $t in
       -l*) LIBS[${t#-l}]=1 ;;
       /*.so | /*.so.* | /*.a) [[ $t == "$SRC"/* || $t == "$BUILD"/* ]] || add "$t" library ;;
+      /*) [[ $prev == '&&' ]] && add "$t" tool ;;
     esac
+    prev=$t
   done
-done < <(find "$BUILD" -name link.txt -exec cat {} +)
+done < <(link_commands)
+set +f
 IMPLICIT=$(find "$BUILD/CMakeFiles" -maxdepth 2 -name CMakeCXXCompiler.cmake -exec sed -n \
   's/^set(CMAKE_CXX_IMPLICIT_LINK_LIBRARIES "\(.*\)")/\1/p' {} +)
 for n in ${IMPLICIT//;/ }; do LIBS[$n]=1; done
