@@ -2,7 +2,8 @@
 """One source for docs/triaxial.md's "Rigid against membrane": each row of
 its table is docs/img/triaxial_cells.csv, whose means and 95 % intervals
 (each cell's, and the paired membrane - rigid change) are recomputed here
-from the tests in docs/img/triaxial_cells_tests.csv.
+from the tests in docs/img/triaxial_cells_tests.csv; and the rows of its
+"A dense, rougher specimen" are docs/img/triaxial_dense_x2.csv's.
   tests/layout/check_triaxial_cells_tables.py [REPO_ROOT]"""
 import csv
 import os
@@ -47,7 +48,19 @@ for r in rows("triaxial_cells.csv"):
             bad.append(f"{r['cell']} {c}: the tests give {m:.4f} ± {ci:.4f}, the table {r[c]} ± {r[c + '_ci95']}")
     if int(r["specimens"]) != len(seeds):
         bad.append(f"{r['cell']}: {r['specimens']} specimens, the tests have {len(seeds)}")
+# the dense specimen's table ("A dense, rougher specimen"): its rows are
+# docs/img/triaxial_dense_x2.csv's (one run per cell, no interval)
+dense_doc = doc[doc.index("### A dense, rougher specimen"):]
+dense_doc = dense_doc[:dense_doc.index("\n## ")]
+DENSE = ["cell", "initial_void_ratio", "peak_deg", "peak_axial_strain", "critical_deg", "max_dilatancy_deg",
+         "final_volumetric_strain", "median_wall_internal_gap_percent", "end_membrane_axial_kPa"]
+dense_rows = rows("triaxial_dense_x2.csv")
+for r in dense_rows:
+    line = "| " + " | ".join(r[c] for c in DENSE) + " |"
+    if line not in dense_doc:
+        bad.append(f"the dense specimen's table lacks {line}")
 if bad:
     print("\n".join(bad))
     sys.exit(1)
-print(f"triaxial cells table: {len(seeds)} specimens in both cells, rows and intervals agree")
+print(f"triaxial cells table: {len(seeds)} specimens in both cells, rows and intervals agree; "
+      f"the dense specimen's {len(dense_rows)} rows agree")

@@ -16,6 +16,13 @@ Each seed's specimen is run in both cells (the scenes differ only in
     done
     python3 assets/scenes/triaxial_cells/tables.py RUNS
 
+and, for the dense specimen of dense_rigid.toml and dense_membrane.toml
+(one run each, "A dense, rougher specimen"),
+
+    python3 assets/scenes/triaxial_cells/tables.py --dense RIGID_DIR MEMBRANE_DIR
+
+writes docs/img/triaxial_dense_x2.csv and prints the docs' table.
+
 writes docs/img/triaxial_cells_tests.csv (every test) and
 docs/img/triaxial_cells.csv (each cell's mean with its 95 % interval over
 the seeds, and the membrane's paired change, membrane - rigid, seed by
@@ -122,9 +129,41 @@ def write(path, rows, header):
         w.writerows(rows)
 
 
+def dense(rigid_dir, membrane_dir, root):
+    """One specimen in each cell (dense_rigid.toml, dense_membrane.toml): an
+    example, no interval; docs/img/triaxial_dense_x2.csv and the docs' table."""
+    rows = []
+    for cell, d in (("rigid", rigid_dir), ("membrane", membrane_dir)):
+        s = summary(os.path.join(d, "summary.txt"))
+        row = {"cell": cell}
+        for col, key in MEASURES:
+            v = final_volumetric_strain(os.path.join(d, "triaxial.csv")) if key is None else float(s.get(key, 0))
+            row[col] = fmt(v, DIGITS[col])
+        rows.append(row)
+    write(os.path.join(root, "docs/img/triaxial_dense_x2.csv"), rows,
+          "# One dense specimen of mu = 0.262 glass in each cell, L/d = 16 (docs/triaxial.md); "
+          "angles in deg, strains as fractions, gap in % of p', shares in kPa; "
+          "written by assets/scenes/triaxial_cells/tables.py --dense\n")
+    print(DENSE_HEADER)
+    for r in rows:
+        print("| " + " | ".join(r[c] for c in DENSE_COLUMNS) + " |")
+
+
+# the docs' dense table, as tests/layout/check_triaxial_cells_tables.py reads it
+DENSE_COLUMNS = ["cell", "initial_void_ratio", "peak_deg", "peak_axial_strain", "critical_deg",
+                 "max_dilatancy_deg", "final_volumetric_strain", "median_wall_internal_gap_percent",
+                 "end_membrane_axial_kPa"]
+DENSE_HEADER = ("| cell | e after consolidation | peak φ′ (°) | εa at peak | critical φ′ (°) | ψ max (°) "
+                "| εv at the end | walls vs contacts, median (% of p′) | membrane's axial share at the end (kPa) |\n"
+                "|---|---|---|---|---|---|---|---|---|")
+
+
 def main():
-    runs = sys.argv[1]
     root = os.path.join(os.path.dirname(__file__), "..", "..", "..")
+    if sys.argv[1] == "--dense":
+        dense(sys.argv[2], sys.argv[3], root)
+        return
+    runs = sys.argv[1]
     rows = tests(runs)
     shown = [{k: (fmt(v, DIGITS[k]) if k in DIGITS else v) for k, v in r.items()} for r in rows]
     note = ("# Rigid and membrane triaxial cell, the same specimens (docs/triaxial.md); "
