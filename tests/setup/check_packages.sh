@@ -77,9 +77,11 @@ add() { [[ -n ${WHY[$1]:-} ]] || { WHY[$1]=$2; NOTE[$1]=${3:-}; }; }
 # dependencies (Ninja keeps no .d files: it reads them into .ninja_deps).
 PAIRS=$(mktemp)
 trap 'rm -f "$PAIRS"' EXIT
+NINJA= # the build tool of a Ninja tree; empty under Unix Makefiles
+[[ -f $BUILD/build.ninja ]] && NINJA=$(cache CMAKE_MAKE_PROGRAM)
 dependency_text() {
-  if [[ -f $BUILD/build.ninja ]]; then
-    "$(cache CMAKE_MAKE_PROGRAM)" -C "$BUILD" -t deps
+  if [[ -n $NINJA ]]; then
+    "$NINJA" -C "$BUILD" -t deps
   else
     find "$BUILD" \( -name '*.o.d' -o -name compiler_depend.make \) -exec cat {} +
   fi
@@ -117,14 +119,13 @@ add_libname() { # -lNAME, as the linker finds it
   ERRORS+=("library -l$1: the compiler finds no lib$1.so or lib$1.a")
 }
 link_commands() {
-  if [[ -f $BUILD/build.ninja ]]; then
-    "$(cache CMAKE_MAKE_PROGRAM)" -C "$BUILD" -t commands | grep '^: ' || true
+  if [[ -n $NINJA ]]; then
+    "$NINJA" -C "$BUILD" -t commands | grep '^: ' || true
   else
     find "$BUILD" -name link.txt -exec cat {} +
   fi
 }
 declare -A LIBS=()
-set -f # the commands' words are not patterns
 while read -ra words; do
   prev='&&'
   for t in "${words[@]}"; do
@@ -136,7 +137,6 @@ while read -ra words; do
     prev=$t
   done
 done < <(link_commands)
-set +f
 IMPLICIT=$(find "$BUILD/CMakeFiles" -maxdepth 2 -name CMakeCXXCompiler.cmake -exec sed -n \
   's/^set(CMAKE_CXX_IMPLICIT_LINK_LIBRARIES "\(.*\)")/\1/p' {} +)
 for n in ${IMPLICIT//;/ }; do LIBS[$n]=1; done
