@@ -71,6 +71,16 @@ def final_volumetric_strain(path):
     return float(rows[-1]["volumetric_strain"])
 
 
+def measured(d):
+    """One run's MEASURES, rounded as written: an ensemble is of what the table shows."""
+    s = summary(os.path.join(d, "summary.txt"))
+    row = {}
+    for col, key in MEASURES:
+        v = final_volumetric_strain(os.path.join(d, "triaxial.csv")) if key is None else float(s.get(key, 0))
+        row[col] = round(v, DIGITS[col])
+    return row
+
+
 def tests(runs):
     out = []
     for cell in CELLS:
@@ -80,12 +90,7 @@ def tests(runs):
             d = os.path.join(runs, cell, seed_dir)
             if not os.path.exists(os.path.join(d, "summary.txt")):
                 continue
-            s = summary(os.path.join(d, "summary.txt"))
-            row = {"cell": cell, "seed": seed_dir.lstrip("s")}
-            for col, key in MEASURES:  # rounded as written: the ensemble is of what the table shows
-                v = final_volumetric_strain(os.path.join(d, "triaxial.csv")) if key is None else float(s.get(key, 0))
-                row[col] = round(v, DIGITS[col])
-            out.append(row)
+            out.append({"cell": cell, "seed": seed_dir.lstrip("s"), **measured(d)})
     return out
 
 
@@ -132,14 +137,8 @@ def write(path, rows, header):
 def dense(rigid_dir, membrane_dir, root):
     """One specimen in each cell (dense_rigid.toml, dense_membrane.toml): an
     example, no interval; docs/img/triaxial_dense_x2.csv and the docs' table."""
-    rows = []
-    for cell, d in (("rigid", rigid_dir), ("membrane", membrane_dir)):
-        s = summary(os.path.join(d, "summary.txt"))
-        row = {"cell": cell}
-        for col, key in MEASURES:
-            v = final_volumetric_strain(os.path.join(d, "triaxial.csv")) if key is None else float(s.get(key, 0))
-            row[col] = fmt(v, DIGITS[col])
-        rows.append(row)
+    rows = [{"cell": cell, **{k: fmt(v, DIGITS[k]) for k, v in measured(d).items()}}
+            for cell, d in (("rigid", rigid_dir), ("membrane", membrane_dir))]
     write(os.path.join(root, "docs/img/triaxial_dense_x2.csv"), rows,
           "# One dense specimen of mu = 0.262 glass in each cell, L/d = 16 (docs/triaxial.md); "
           "angles in deg, strains as fractions, gap in % of p', shares in kPa; "
